@@ -1,0 +1,97 @@
+//! Machine presets as data. Every preset is a JSON-serialisable struct that
+//! cites its source; `machinePreset(name)` in JS returns one of these.
+//!
+//! Presets are looked up by name with [`preset`]; [`names`] lists them.
+
+mod nmv5000;
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use crate::servo::AxisParams;
+
+/// Errors of the preset registry.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MachineError {
+    /// No preset has this name.
+    #[error("unknown machine preset '{name}'; known presets: {known}")]
+    UnknownPreset {
+        /// The name asked for.
+        name: String,
+        /// The known names, comma-separated.
+        known: String,
+    },
+}
+
+/// A machine: its feed-drive axes (servo parameters) and travel limits.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Machine {
+    /// Preset name, e.g. `nmv5000`.
+    pub name: String,
+    /// One line on what the machine is.
+    pub description: String,
+    /// Where the numbers come from (paper, table, section).
+    pub source: String,
+    /// Feed-drive parameters per axis, keyed by lower-case axis letter.
+    pub axes: BTreeMap<String, AxisParams>,
+    /// Travel limits per axis: mm for linear axes, degrees for rotary axes.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub limits: BTreeMap<String, [f64; 2]>,
+}
+
+type Builder = fn() -> Machine;
+
+/// The registry: name and builder of every preset.
+const PRESETS: &[(&str, Builder)] = &[("nmv5000", nmv5000::machine)];
+
+/// Names of all presets, in registry order.
+pub fn names() -> Vec<&'static str> {
+    PRESETS.iter().map(|(n, _)| *n).collect()
+}
+
+/// The preset called `name`.
+///
+/// # Examples
+/// ```
+/// let m = mtmotion::machine::preset("nmv5000").unwrap();
+/// assert!((m.axes["c"].torque_max.unwrap() - 725.0).abs() < 1e-12);
+/// let err = mtmotion::machine::preset("nope").unwrap_err().to_string();
+/// assert!(err.contains("nmv5000"));
+/// ```
+pub fn preset(name: &str) -> Result<Machine, MachineError> {
+    let wanted = name.trim().to_ascii_lowercase();
+    PRESETS
+        .iter()
+        .find(|(n, _)| *n == wanted)
+        .map(|(_, build)| build())
+        .ok_or_else(|| MachineError::UnknownPreset {
+            name: name.to_string(),
+            known: names().join(", "),
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_is_valid_and_cites_a_source() {
+        for name in names() {
+            let m = preset(name).unwrap();
+            assert_eq!(m.name, name);
+            assert!(!m.source.is_empty());
+            for (axis, p) in &m.axes {
+                p.validate()
+                    .unwrap_or_else(|e| panic!("{name}.{axis}: {e}"));
+            }
+        }
+    }
+
+    #[test]
+    fn unknown_name_lists_known_names() {
+        let e = preset("dmu50").unwrap_err().to_string();
+        assert!(e.contains("'dmu50'") && e.contains("nmv5000"), "{e}");
+    }
+}

@@ -1,0 +1,56 @@
+//! DMG MORI NMV5000 feed drives, X, Y and C: suzuki-best-kffp Table 1.
+//!
+//! Values are copied from Table 1 as printed, in SI units:
+//! - `kpp` = 60 1/s (the table; the text of §3 says the NC default was 30 —
+//!   the table is the identified model, so it is used here).
+//! - `kffp` is a set value (`*` in the table); the preset uses 100 %.
+//! - `lead`: X has the 16 mm ball screw of the table. For Y the table lists
+//!   no lead but `r = 1 m/rad` and `K_FF = 1`, i.e. the Y loop is already
+//!   written in load units; `r = l/2π = 1` gives `lead = 2π m`.
+//! - `torqueMax` = 725 N·m for C (§5.2, Fig. 17); the paper gives no limit
+//!   for X and Y.
+//! - `j1` = 1.70 kg·m², the lightest of the paper's three work pieces.
+
+use std::collections::BTreeMap;
+
+use super::Machine;
+use crate::servo::{AxisKind, AxisParams};
+
+fn axis(kind: AxisKind, j: f64, c: f64, kvp: f64, kvi: f64, ts: f64, tp: f64) -> AxisParams {
+    AxisParams {
+        kind,
+        j,
+        j1: 0.0,
+        c,
+        kpp: 60.0,
+        kvp,
+        kvi,
+        kffp: 100.0,
+        ts,
+        ta: 0.015,
+        tp,
+        torque_max: None,
+        lead: None,
+        gear_ratio: None,
+        backlash: 0.0,
+        pitch_error: Vec::new(),
+    }
+}
+
+/// The preset.
+pub fn machine() -> Machine {
+    let mut x = axis(AxisKind::Linear, 4.5, 1.0, 177.5, 0.198, 0.05, 0.0155);
+    x.lead = Some(0.016);
+    let mut y = axis(AxisKind::Linear, 5.0, 5.0, 4700.0, 0.274, 0.064, 0.005);
+    y.lead = Some(std::f64::consts::TAU);
+    let mut c = axis(AxisKind::Rotary, 4.2, 5.0, 4700.0, 0.274, 0.064, 0.005);
+    c.j1 = 1.70;
+    c.torque_max = Some(725.0);
+    Machine {
+        name: "nmv5000".into(),
+        description: "DMG MORI NMV5000 5-axis machining centre: X, Y ball-screw axes and the direct-drive C table".into(),
+        source: "suzuki-best-kffp, Table 1 (feed-drive model parameters); 725 N·m C torque limit from §5.2, Fig. 17".into(),
+        axes: BTreeMap::from([("x".into(), x), ("y".into(), y), ("c".into(), c)]),
+        limits: BTreeMap::new(),
+    }
+}

@@ -1,0 +1,168 @@
+//! Parameter set of one feed-drive axis (suzuki-best-kffp Table 1;
+//! kato-cone-frustum-ballbar Eq. 1 for the worm gear).
+//!
+//! The field names are the JS contract (`machinePreset('nmv5000').axes.c`).
+
+use serde::{Deserialize, Serialize};
+
+use super::ServoError;
+
+/// Linear (ball screw) or rotary (direct drive or worm gear) axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AxisKind {
+    /// Linear axis; position in mm.
+    Linear,
+    /// Rotary axis; position in rad.
+    Rotary,
+}
+
+/// One harmonic of the worm-gear pitch error, kato Eq. 1:
+/// `R = R_all + Σ W_i sin(N_i R_all θm + φ_i)`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct WormHarmonic {
+    /// Amplitude `W_i` of the ratio ripple (dimensionless, like `R`).
+    pub w: f64,
+    /// Order `N_i` (cycles per output revolution).
+    pub n: f64,
+    /// Phase `φ_i` in rad.
+    pub phi: f64,
+}
+
+/// Parameters of one axis, in SI units (see the module header).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct AxisParams {
+    /// Linear or rotary.
+    pub kind: AxisKind,
+    /// Equivalent inertia of the mechanism at the motor, kg·m².
+    pub j: f64,
+    /// Load inertia, kg·m² (Table 1: set per test; 0 when none).
+    #[serde(default)]
+    pub j1: f64,
+    /// Viscous damping, N·m·s/rad.
+    pub c: f64,
+    /// Position proportional gain, 1/s.
+    pub kpp: f64,
+    /// Velocity proportional gain, N·m·s/rad.
+    pub kvp: f64,
+    /// Velocity integral gain (reading stated in `servo::response`).
+    pub kvi: f64,
+    /// Pre-Control feedforward coefficient, %.
+    pub kffp: f64,
+    /// Smoothing time constant (moving-average length), s.
+    pub ts: f64,
+    /// Averaging time constant of the feedforward, s.
+    pub ta: f64,
+    /// Preceding (read-ahead) time of the feedforward, s.
+    pub tp: f64,
+    /// Torque limit, N·m; `None` for no saturation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torque_max: Option<f64>,
+    /// Ball-screw lead, m (linear axes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lead: Option<f64>,
+    /// Worm-gear reduction ratio `R_all` (motor rev per output rev); `None`
+    /// for a direct drive.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gear_ratio: Option<f64>,
+    /// Backlash (full width): mm for linear axes, rad for rotary axes.
+    #[serde(default)]
+    pub backlash: f64,
+    /// Worm-gear pitch-error harmonics (kato Eq. 1).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pitch_error: Vec<WormHarmonic>,
+}
+
+impl AxisParams {
+    /// Total inertia `J + J1`, kg·m².
+    pub fn inertia(&self) -> f64 {
+        self.j + self.j1
+    }
+
+    /// Checks every field for a physically meaningful value.
+    ///
+    /// # Examples
+    /// ```
+    /// let mut c = mtmotion::machine::preset("nmv5000").unwrap().axes["c"].clone();
+    /// assert!(c.validate().is_ok());
+    /// c.kpp = -1.0;
+    /// assert!(c.validate().unwrap_err().to_string().contains("kpp"));
+    /// ```
+    pub fn validate(&self) -> Result<(), ServoError> {
+        let positive: [(&'static str, f64); 2] = [("j", self.j), ("kpp", self.kpp)];
+        for (field, value) in positive {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(ServoError::BadParameter {
+                    field,
+                    value,
+                    expected: "must be a finite number > 0",
+                });
+            }
+        }
+        let non_negative: [(&'static str, f64); 8] = [
+            ("j1", self.j1),
+            ("c", self.c),
+            ("kvp", self.kvp),
+            ("kvi", self.kvi),
+            ("ts", self.ts),
+            ("ta", self.ta),
+            ("tp", self.tp),
+            ("backlash", self.backlash),
+        ];
+        for (field, value) in non_negative {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(ServoError::BadParameter {
+                    field,
+                    value,
+                    expected: "must be a finite number ≥ 0",
+                });
+            }
+        }
+        if !self.kffp.is_finite() {
+            return Err(ServoError::BadParameter {
+                field: "kffp",
+                value: self.kffp,
+                expected: "must be a finite percentage",
+            });
+        }
+        if self.kvp == 0.0 && self.kvi == 0.0 {
+            return Err(ServoError::BadParameter {
+                field: "kvp",
+                value: 0.0,
+                expected: "kvp or kvi must be > 0 for the velocity loop to act",
+            });
+        }
+        if let Some(t) = self.torque_max {
+            if !(t.is_finite() && t > 0.0) {
+                return Err(ServoError::BadParameter {
+                    field: "torqueMax",
+                    value: t,
+                    expected: "must be > 0 (omit it for no limit)",
+                });
+            }
+        }
+        if let Some(r) = self.gear_ratio {
+            if !(r.is_finite() && r > 0.0) {
+                return Err(ServoError::BadParameter {
+                    field: "gearRatio",
+                    value: r,
+                    expected: "must be > 0 (omit it for a direct drive)",
+                });
+            }
+        }
+        match (self.kind, self.lead) {
+            (AxisKind::Linear, None) => Err(ServoError::MissingParameter {
+                field: "lead",
+                why: "a linear axis needs its ball-screw lead in m",
+            }),
+            (_, Some(l)) if !(l.is_finite() && l > 0.0) => Err(ServoError::BadParameter {
+                field: "lead",
+                value: l,
+                expected: "must be > 0 m",
+            }),
+            _ => Ok(()),
+        }
+    }
+}

@@ -1,0 +1,42 @@
+//! Cascaded feed drive for one axis (suzuki-best-kffp Fig. 11, Fig. 18,
+//! Table 1; kato-cone-frustum-ballbar Fig. 2 and Eq. 1).
+//!
+//! Position P loop `kpp`, velocity PI loop (`kvp`, `kvi`), inertia `j` plus
+//! load `j1`, viscous damping `c`, a ball screw of lead `lead` (linear axes)
+//! or a direct drive / worm gear of ratio `gear_ratio` (rotary axes), and
+//! FANUC-style Pre-Control feedforward (`kffp` %, smoothing `ts`, averaging
+//! `ta`, preceding `tp`). Optional torque limit, backlash and worm-gear pitch
+//! error `R = R_all + Σ W_i sin(N_i R_all θm + φ_i)` (kato Eq. 1).
+//!
+//! # Units
+//! SI throughout the parameter set: kg·m², N·m·s/rad, 1/s, s, N·m, m (lead),
+//! rad (backlash of a rotary axis) or mm (backlash of a linear axis).
+
+pub mod axis;
+pub mod response;
+pub mod simulate;
+
+pub use axis::{AxisKind, AxisParams, WormHarmonic};
+
+/// Errors of the servo models.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ServoError {
+    /// A parameter is outside its physical range.
+    #[error("axis parameter `{field}` = {value}: {expected}")]
+    BadParameter {
+        /// The camelCase field name, as in the JS API.
+        field: &'static str,
+        /// The offending value.
+        value: f64,
+        /// What was expected, e.g. "must be > 0".
+        expected: &'static str,
+    },
+    /// A required parameter is missing for this kind of axis.
+    #[error("axis parameter `{field}` is required: {why}")]
+    MissingParameter {
+        /// The camelCase field name.
+        field: &'static str,
+        /// Why it is needed.
+        why: &'static str,
+    },
+}

@@ -1,0 +1,44 @@
+//! Bindings for [`crate::machine`]: the preset registry.
+
+use wasm_bindgen::prelude::*;
+
+use super::convert::to_js;
+use crate::machine;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS: &str = r#"
+export interface WormHarmonic { w: number; n: number; phi: number }
+export interface AxisParams {
+  kind: 'linear' | 'rotary';
+  /** Equivalent inertia, kg·m². */ j: number;
+  /** Load inertia, kg·m². */ j1: number;
+  /** Viscous damping, N·m·s/rad. */ c: number;
+  /** Position gain, 1/s. */ kpp: number;
+  kvp: number; kvi: number;
+  /** Pre-Control coefficient, %. */ kffp: number;
+  /** Smoothing, averaging and preceding times, s. */ ts: number; ta: number; tp: number;
+  /** Torque limit, N·m. */ torqueMax?: number;
+  /** Ball-screw lead, m. */ lead?: number;
+  gearRatio?: number; backlash?: number; pitchError?: WormHarmonic[];
+}
+export interface MachinePreset {
+  name: string; description: string; source: string;
+  axes: Record<string, AxisParams>;
+  /** mm for linear axes, degrees for rotary axes. */
+  limits?: Record<string, [number, number]>;
+  [extra: string]: unknown;
+}
+"#;
+
+/// The machine preset called `name`; throws an `Error` listing the known
+/// names when there is none.
+#[wasm_bindgen(js_name = machinePreset, unchecked_return_type = "MachinePreset")]
+pub fn machine_preset(name: &str) -> Result<JsValue, JsError> {
+    to_js(&machine::preset(name)?)
+}
+
+/// The names of all machine presets.
+#[wasm_bindgen(js_name = machines, unchecked_return_type = "string[]")]
+pub fn machines() -> Result<JsValue, JsError> {
+    to_js(&machine::names())
+}

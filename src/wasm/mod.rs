@@ -1,0 +1,28 @@
+//! The JS binding layer (wasm32 only): thin, no logic.
+//!
+//! Pattern every binding follows:
+//! - fallible functions return `Result<T, JsError>`; the core's error message
+//!   becomes the thrown `Error`'s message;
+//! - small configs and results cross through serde-wasm-bindgen
+//!   ([`convert::from_js`], [`convert::to_js`]) and have TypeScript shapes
+//!   in a `typescript_custom_section`;
+//! - bulk arrays cross as `Float64Array` (`&[f64]` in, [`convert::Obj::arr`]
+//!   out), never through serde;
+//! - the panic hook is installed at start.
+
+pub mod convert;
+pub mod machine;
+
+use wasm_bindgen::prelude::*;
+
+/// Installs the panic hook; runs once when the module is instantiated.
+#[wasm_bindgen(start)]
+pub fn start() {
+    console_error_panic_hook::set_once();
+}
+
+/// The crate version, e.g. `"0.1.0"`.
+#[wasm_bindgen]
+pub fn version() -> String {
+    env!("CARGO_PKG_VERSION").to_string()
+}

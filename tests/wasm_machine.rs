@@ -1,0 +1,35 @@
+//! Under Node: the binding pattern end to end — a preset crosses as a plain
+//! object, an unknown name throws a JS `Error` carrying the core's message.
+#![cfg(target_arch = "wasm32")]
+
+use js_sys::Reflect;
+use wasm_bindgen::{JsCast, JsValue};
+use wasm_bindgen_test::wasm_bindgen_test;
+
+fn get(v: &JsValue, path: &[&str]) -> JsValue {
+    path.iter().fold(v.clone(), |acc, k| {
+        Reflect::get(&acc, &JsValue::from_str(k)).unwrap()
+    })
+}
+
+#[wasm_bindgen_test]
+fn machine_preset_returns_plain_objects() {
+    let m = mtmotion::wasm::machine::machine_preset("nmv5000").unwrap();
+    assert!(!m.is_instance_of::<js_sys::Map>());
+    assert_eq!(get(&m, &["axes", "c", "torqueMax"]).as_f64(), Some(725.0));
+    assert_eq!(
+        get(&m, &["axes", "x", "kind"]).as_string().as_deref(),
+        Some("linear")
+    );
+    assert_eq!(get(&m, &["axes", "x", "lead"]).as_f64(), Some(0.016));
+}
+
+#[wasm_bindgen_test]
+fn unknown_preset_throws_error_listing_names() {
+    let err: JsValue = mtmotion::wasm::machine::machine_preset("dmu50")
+        .unwrap_err()
+        .into();
+    let err: js_sys::Error = err.dyn_into().expect("a JS Error");
+    let msg: String = err.message().into();
+    assert!(msg.contains("dmu50") && msg.contains("nmv5000"), "{msg}");
+}
