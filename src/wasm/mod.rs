@@ -10,8 +10,12 @@
 //!   out), never through serde;
 //! - the panic hook is installed at start.
 
+pub mod ballbar;
 pub mod convert;
+pub mod kinematics;
 pub mod machine;
+pub mod servo;
+pub mod toolpath;
 
 use wasm_bindgen::prelude::*;
 

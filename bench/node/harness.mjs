@@ -1,0 +1,30 @@
+// Node benchmark harness for the wasm build (pkg/, built by ./scripts/build).
+// Usage in a bench file:
+//   import { wasm, bench } from './harness.mjs';
+//   bench('simulateAxis 1e5 steps', () => wasm.simulateAxis(axis, cfg), { perItem: 1e5, unit: 'step' });
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { performance } from 'node:perf_hooks';
+import * as wasm from '../../pkg/mtmotion.js';
+
+const bytes = readFileSync(fileURLToPath(new URL('../../pkg/mtmotion_bg.wasm', import.meta.url)));
+wasm.initSync({ module: bytes });
+export { wasm };
+
+/** Times `fn` (after warm-up) and prints the median; returns the median in ms. */
+export function bench(name, fn, { perItem = 1, unit = 'call', runs = 15, warmup = 3, target } = {}) {
+  for (let i = 0; i < warmup; i++) fn();
+  const times = [];
+  for (let i = 0; i < runs; i++) {
+    const t0 = performance.now();
+    fn();
+    times.push(performance.now() - t0);
+  }
+  times.sort((a, b) => a - b);
+  const med = times[Math.floor(times.length / 2)];
+  const per = (med * 1e6) / perItem;
+  const rate = perItem / (med / 1e3);
+  const verdict = target === undefined ? '' : med <= target ? `  ✓ target ${target} ms` : `  ✗ target ${target} ms`;
+  console.log(`${name}: median ${med.toFixed(3)} ms (min ${times[0].toFixed(3)}) — ${per.toFixed(1)} ns/${unit}, ${(rate / 1e6).toFixed(2)} M ${unit}/s${verdict}`);
+  return med;
+}

@@ -1,0 +1,1 @@
+//! Bindings for the kinematics models. Written under the issue that implements them.

@@ -1,0 +1,1 @@
+//! Bindings for the toolpath models. Written under the issue that implements them.
