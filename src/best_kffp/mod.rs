@@ -1,2 +1,264 @@
-//! Best K_FFP per axis and torque-saturation limits (suzuki-best-kffp §4.7,
-//! §5.2–5.3, Eq. 20, Fig. 21). Written under issue 3.
+//! Best K_FFP method (suzuki-best-kffp §4.7, §5.2–5.3, Eq. 20) and the
+//! torque-saturation limits of the rotary axis (Figs. 17 and 21).
+//!
+//! - [`analytic`]: Eq. 20 for the linear model, by root finding;
+//! - [`saturation`]: the ω, α and smallest R_C at which C saturates;
+//! - [`best_kffp`] picks the method, and always checks its answer by
+//!   simulating the feed-vector test with it (`before` / `after`).
+//!
+//! # Simulated mode (Fig. 18)
+//! When the C torque saturates (or when asked), the linear model no longer
+//! predicts the steady mean of α − β. Starting from the analytic K_FFP of X
+//! and Y, both are shifted by a common δ (%) until the *simulated*
+//! `meanAngleDiff` of the feed-vector test (with saturation) is zero:
+//! secant steps inside a bracket, to 1e-7 rad. C keeps its set K_FFP and
+//! is simulated once.
+//!
+//! # Units
+//! K_FFP in %; ω in rad/s; angles in rad.
+
+pub mod analytic;
+pub mod saturation;
+
+use serde::{Deserialize, Serialize};
+
+use crate::feed_vector::{self, Condition, FeedVectorError, KffpSet, Summary};
+use crate::machine::Machine;
+use crate::servo::ServoError;
+
+/// Errors of the Best K_FFP method.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BestKffpError {
+    /// A servo model failed.
+    #[error("axis {axis}: {source}")]
+    Servo {
+        /// Axis letter.
+        axis: &'static str,
+        /// The servo error.
+        source: ServoError,
+    },
+    /// The feed-vector test failed.
+    #[error(transparent)]
+    FeedVector(#[from] FeedVectorError),
+    /// No K_FFP in the search range zeroes α − β.
+    #[error("axis {axis}: no K_FFP in [{k_min} %, {k_max} %] gives the phase lag {target} rad of the rotary axis; widen options.kMin/kMax or change the C axis K_FFP")]
+    NoRoot {
+        /// Axis letter.
+        axis: &'static str,
+        /// Lower search bound, %.
+        k_min: f64,
+        /// Upper search bound, %.
+        k_max: f64,
+        /// The lag to match, rad.
+        target: f64,
+    },
+    /// A query or option is out of range.
+    #[error("`{field}` = {value}: {expected}")]
+    BadQuery {
+        /// camelCase field name.
+        field: &'static str,
+        /// The value.
+        value: f64,
+        /// What was expected.
+        expected: &'static str,
+    },
+}
+
+/// Which method to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Analytic unless the C axis saturates, then simulated.
+    #[default]
+    Auto,
+    /// Eq. 20 on the linear model.
+    Analytic,
+    /// Search with the saturating simulation (Fig. 18).
+    Simulated,
+}
+
+/// Options of [`best_kffp`] (the JS `options`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+pub struct Options {
+    /// Method; default `auto`.
+    pub method: Method,
+    /// Lower bound of the K_FFP search, %.
+    pub k_min: f64,
+    /// Upper bound of the K_FFP search, %.
+    pub k_max: f64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            method: Method::Auto,
+            k_min: -200.0,
+            k_max: 400.0,
+        }
+    }
+}
+
+/// Result of the Best K_FFP method.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct BestKffp {
+    /// The K_FFP per axis, %.
+    pub kffp: KffpSet,
+    /// Simulated summary with the condition's (or machine's) K_FFP.
+    pub before: Summary,
+    /// Simulated summary with the new K_FFP.
+    pub after: Summary,
+    /// `analytic` or `simulated`.
+    pub method: Method,
+    /// α_th of C (Eq. 17), rad.
+    pub alpha_th: f64,
+    /// α_th − β_th of X and Y with the new K_FFP (Eq. 19), rad.
+    pub residual_x: f64,
+    /// See `residual_x`.
+    pub residual_y: f64,
+}
+
+/// Finds the K_FFP per axis that zeroes α − β (the JS `bestKffp`).
+///
+/// # Units
+/// See [`Condition`]; K_FFP in %.
+///
+/// # Examples
+/// ```
+/// use mtmotion::best_kffp::{best_kffp, Method, Options};
+/// use mtmotion::feed_vector::Condition;
+/// let m = mtmotion::machine::preset("nmv5000").unwrap();
+/// let r = best_kffp(&m, &Condition::paper(std::f64::consts::PI), &Options::default()).unwrap();
+/// assert_eq!(r.method, Method::Analytic);
+/// assert!(r.residual_x.abs() < 1e-9 && r.residual_y.abs() < 1e-9);
+/// assert!(r.after.mean_angle_diff.abs() < 0.05 * r.before.mean_angle_diff.abs());
+/// ```
+pub fn best_kffp(
+    machine: &Machine,
+    cond: &Condition,
+    opts: &Options,
+) -> Result<BestKffp, BestKffpError> {
+    if !(opts.k_min.is_finite() && opts.k_max.is_finite() && opts.k_min < opts.k_max) {
+        return Err(BestKffpError::BadQuery {
+            field: "options.kMin",
+            value: opts.k_min,
+            expected: "kMin and kMax must be finite with kMin < kMax (in %)",
+        });
+    }
+    cond.validate()?;
+    let axes = feed_vector::axes_for(machine, cond)?;
+    let before = feed_vector::feed_vector_test(machine, cond)?.summary;
+    let [x, y, c] = &axes;
+    let alpha = crate::servo::response::alpha_th(c, cond.omega)
+        .map_err(|source| BestKffpError::Servo { axis: "c", source })?;
+    let (mut kx, mut ky) = analytic::solve(x, y, c, cond.omega, opts.k_min, opts.k_max)?;
+    let method = match opts.method {
+        Method::Auto if before.saturated => Method::Simulated,
+        Method::Auto => Method::Analytic,
+        m => m,
+    };
+    if method == Method::Simulated {
+        let delta = simulated_shift(&axes, cond, kx, ky, opts)?;
+        kx += delta;
+        ky += delta;
+    }
+    let kffp = KffpSet {
+        x: kx,
+        y: ky,
+        c: c.kffp,
+    };
+    let after_cond = Condition {
+        kffp: Some(kffp),
+        ..cond.clone()
+    };
+    let after = feed_vector::feed_vector_test(machine, &after_cond)?.summary;
+    let residual = |a: &crate::servo::AxisParams, k: f64, name: &'static str| {
+        let mut a = a.clone();
+        a.kffp = k;
+        crate::servo::response::beta_th(&a, cond.omega)
+            .map(|b| alpha - b)
+            .map_err(|source| BestKffpError::Servo { axis: name, source })
+    };
+    Ok(BestKffp {
+        kffp,
+        before,
+        after,
+        method,
+        alpha_th: alpha,
+        residual_x: residual(x, kx, "x")?,
+        residual_y: residual(y, ky, "y")?,
+    })
+}
+
+/// The common K_FFP shift δ of X and Y that zeroes the simulated mean α − β.
+fn simulated_shift(
+    axes: &[crate::servo::AxisParams; 3],
+    cond: &Condition,
+    kx: f64,
+    ky: f64,
+    opts: &Options,
+) -> Result<f64, BestKffpError> {
+    let n = feed_vector::samples(axes, cond)?;
+    let t_ss = feed_vector::steady_from(axes, cond);
+    let (cmd, [_, _, c_resp]) = feed_vector::simulate_test(axes, cond, n)?;
+    let dt = cond.step();
+    let pad = feed_vector::read_ahead_pad(axes, dt);
+    let full = feed_vector::command::sample(n + pad, dt, cond.rw, cond.omega, cond.accel_time);
+    let failure: std::cell::RefCell<Option<FeedVectorError>> = std::cell::RefCell::new(None);
+    let mut eval = |delta: f64| -> f64 {
+        let mut x = axes[0].clone();
+        let mut y = axes[1].clone();
+        x.kffp = kx + delta;
+        y.kffp = ky + delta;
+        let run = || -> Result<f64, FeedVectorError> {
+            let xr = feed_vector::run_axis("x", &x, dt, &full.x, n)?;
+            let yr = feed_vector::run_axis("y", &y, dt, &full.y, n)?;
+            let r = feed_vector::assemble(cmd.clone(), xr, yr, c_resp.clone(), cond, t_ss);
+            Ok(r.summary.mean_angle_diff)
+        };
+        match run() {
+            Ok(v) => v,
+            Err(e) => {
+                *failure.borrow_mut() = Some(e);
+                f64::NAN
+            }
+        }
+    };
+    // secant from δ = 0 and δ = −10 %, then Brent inside a bracket
+    let (mut d0, mut f0) = (0.0, eval(0.0));
+    let (mut d1, mut f1) = (-10.0, eval(-10.0));
+    for _ in 0..6 {
+        if let Some(e) = failure.borrow_mut().take() {
+            return Err(e.into());
+        }
+        if f1.abs() < 1e-7 {
+            return Ok(d1);
+        }
+        if f1 == f0 {
+            break;
+        }
+        let d2 = d1 - f1 * (d1 - d0) / (f1 - f0);
+        if !d2.is_finite() {
+            break;
+        }
+        let d2 = d2.clamp(opts.k_min - kx.min(ky), opts.k_max - kx.max(ky));
+        d0 = d1;
+        f0 = f1;
+        d1 = d2;
+        f1 = eval(d1);
+    }
+    if let Some(e) = failure.borrow_mut().take() {
+        return Err(e.into());
+    }
+    if f1.abs() < 1e-6 {
+        return Ok(d1);
+    }
+    let (lo, hi) = (opts.k_min - kx.min(ky), opts.k_max - kx.max(ky));
+    analytic::brent(&mut eval, lo, hi, 1e-6).ok_or(BestKffpError::NoRoot {
+        axis: "x",
+        k_min: opts.k_min,
+        k_max: opts.k_max,
+        target: 0.0,
+    })
+}

@@ -1,2 +1,345 @@
-//! The constant-feed-speed-vector test (suzuki-best-kffp §2.3, §4.1–4.2,
-//! Eqs. 1–11). Written under issue 3.
+//! The constant-feed-speed-vector test (suzuki-best-kffp §2.3, §3,
+//! §4.1–4.2, Eqs. 1–11): X and Y on the circle of radius `R_W`, C turning at
+//! the same ω, each axis through its own servo model
+//! ([`crate::servo::simulate`]), then the analysis of Eqs. 4–11.
+//!
+//! - [`command`]: the commanded motion with its linear acc/dec;
+//! - [`analysis`]: shape error, α, β, α − β, ΔR and the steady summary;
+//! - [`trace_analysis`]: the same analysis of a measured (SERVO GUIDE-style)
+//!   trace.
+//!
+//! # Readings
+//! - `condition.j1` is the load on C (Table 1's `*`), `condition.torqueMax`
+//!   replaces C's limit and `condition.kffp` the set K_FFP of each axis.
+//! - The steady state starts at `t_ss = accelTime + max(Ts) + max(Ta) +
+//!   max(Tp) + 0.25 s` (the paper analyses the steady state, §5.1).
+//!   The default duration is `t_ss` plus two periods `2·2π/ω`.
+//!
+//! # Units
+//! `rc`, `rw` in mm; `omega` in rad/s; times in s; `j1` in kg·m²;
+//! torque in N·m.
+
+pub mod analysis;
+pub mod command;
+pub mod trace_analysis;
+
+use serde::{Deserialize, Serialize};
+
+use crate::machine::Machine;
+use crate::servo::simulate::{simulate_axis, AxisResponse};
+use crate::servo::{AxisParams, ServoError};
+use crate::trace::TraceError;
+
+pub use analysis::{Series, Summary};
+
+/// Errors of the feed-vector test and its trace analysis.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FeedVectorError {
+    /// A servo parameter or command is unusable.
+    #[error("axis {axis}: {source}")]
+    Servo {
+        /// The axis letter.
+        axis: &'static str,
+        /// The servo error.
+        source: ServoError,
+    },
+    /// The machine lacks an axis the test needs.
+    #[error("the machine has no '{0}' axis; the feed-vector test needs x, y and c")]
+    MissingAxis(&'static str),
+    /// A condition field is out of range.
+    #[error("condition `{field}` = {value}: {expected}")]
+    BadCondition {
+        /// camelCase field name.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// What was expected.
+        expected: String,
+    },
+    /// The trace could not be read.
+    #[error(transparent)]
+    Trace(#[from] TraceError),
+    /// The trace's time column is unusable at a line.
+    #[error("line {line}, column {column} ('{name}'): {why}")]
+    TraceTime {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// Column name.
+        name: String,
+        /// What is wrong.
+        why: String,
+    },
+}
+
+/// K_FFP per axis, %.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct KffpSet {
+    /// X, %.
+    pub x: f64,
+    /// Y, %.
+    pub y: f64,
+    /// C, %.
+    pub c: f64,
+}
+
+/// Test condition (the JS `condition`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Condition {
+    /// Radius of curvature of the work piece R_C, mm.
+    pub rc: f64,
+    /// Offset of the tool centre R_W, mm.
+    pub rw: f64,
+    /// Angular velocity ω, rad/s.
+    pub omega: f64,
+    /// Acc/dec time of the command, s.
+    pub accel_time: f64,
+    /// Load inertia on C, kg·m².
+    pub j1: f64,
+    /// C torque limit, N·m (default: the machine's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torque_max: Option<f64>,
+    /// Duration, s (default: steady start + 2 periods).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub duration: Option<f64>,
+    /// Time step, s (default 1 ms, SERVO GUIDE's sampling).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dt: Option<f64>,
+    /// K_FFP per axis, % (default: the machine's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kffp: Option<KffpSet>,
+}
+
+/// Largest number of samples a test may have.
+pub const MAX_SAMPLES: usize = 4_000_000;
+
+fn bad(field: &'static str, value: f64, expected: &str) -> FeedVectorError {
+    FeedVectorError::BadCondition {
+        field,
+        value,
+        expected: expected.to_string(),
+    }
+}
+
+impl Condition {
+    /// The paper's test (§3): R_C = 5 mm, R_W = 8 mm, T_acc = 0.064 s,
+    /// J1 = 1.70 kg·m², at angular velocity `omega`.
+    pub fn paper(omega: f64) -> Self {
+        Self {
+            rc: 5.0,
+            rw: 8.0,
+            omega,
+            accel_time: 0.064,
+            j1: 1.70,
+            torque_max: None,
+            duration: None,
+            dt: None,
+            kffp: None,
+        }
+    }
+
+    /// Checks the geometric and timing fields.
+    pub fn validate(&self) -> Result<(), FeedVectorError> {
+        let pos = |f: &'static str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(bad(f, v, "must be a finite number > 0"))
+            }
+        };
+        pos("rc", self.rc)?;
+        pos("rw", self.rw)?;
+        pos("omega", self.omega)?;
+        if !(self.accel_time.is_finite() && self.accel_time >= 0.0) {
+            return Err(bad("accelTime", self.accel_time, "must be ≥ 0 s"));
+        }
+        if !(self.j1.is_finite() && self.j1 >= 0.0) {
+            return Err(bad("j1", self.j1, "must be ≥ 0 kg·m²"));
+        }
+        if let Some(t) = self.torque_max {
+            pos("torqueMax", t)?;
+        }
+        if let Some(dt) = self.dt {
+            if !(dt.is_finite() && dt > 0.0 && dt <= 0.01) {
+                return Err(bad("dt", dt, "must be in (0, 0.01] s"));
+            }
+        }
+        if let Some(d) = self.duration {
+            pos("duration", d)?;
+        }
+        if let Some(k) = self.kffp {
+            for (f, v) in [("kffp.x", k.x), ("kffp.y", k.y), ("kffp.c", k.c)] {
+                if !v.is_finite() {
+                    return Err(bad(f, v, "must be a finite percentage"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The time step, s.
+    pub fn step(&self) -> f64 {
+        self.dt.unwrap_or(1e-3)
+    }
+}
+
+/// The X, Y and C axes of `machine` with the condition applied.
+pub fn axes_for(machine: &Machine, cond: &Condition) -> Result<[AxisParams; 3], FeedVectorError> {
+    let get = |k: &'static str| {
+        machine
+            .axes
+            .get(k)
+            .cloned()
+            .ok_or(FeedVectorError::MissingAxis(k))
+    };
+    let (mut x, mut y, mut c) = (get("x")?, get("y")?, get("c")?);
+    c.j1 = cond.j1;
+    if cond.torque_max.is_some() {
+        c.torque_max = cond.torque_max;
+    }
+    if let Some(k) = cond.kffp {
+        x.kffp = k.x;
+        y.kffp = k.y;
+        c.kffp = k.c;
+    }
+    for (name, a) in [("x", &x), ("y", &y), ("c", &c)] {
+        a.validate()
+            .map_err(|source| FeedVectorError::Servo { axis: name, source })?;
+    }
+    Ok([x, y, c])
+}
+
+/// Start of the steady-state window, s (module header).
+pub fn steady_from(axes: &[AxisParams; 3], cond: &Condition) -> f64 {
+    let max = |f: fn(&AxisParams) -> f64| axes.iter().map(f).fold(0.0, f64::max);
+    cond.accel_time + max(|a| a.ts) + max(|a| a.ta) + max(|a| a.tp) + 0.25
+}
+
+/// Number of samples of the test.
+pub fn samples(axes: &[AxisParams; 3], cond: &Condition) -> Result<usize, FeedVectorError> {
+    let dt = cond.step();
+    let t_ss = steady_from(axes, cond);
+    let duration = cond
+        .duration
+        .unwrap_or(t_ss + 2.0 * std::f64::consts::TAU / cond.omega);
+    let n = (duration / dt).round() + 1.0;
+    if n > MAX_SAMPLES as f64 {
+        return Err(bad(
+            "duration",
+            duration,
+            &format!("gives {n} samples at dt = {dt} s; at most {MAX_SAMPLES} are allowed — shorten it or raise dt"),
+        ));
+    }
+    Ok(n as usize)
+}
+
+/// Result of one simulated test.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeedVectorResult {
+    /// The time series.
+    pub series: Series,
+    /// The steady-state summary.
+    pub summary: Summary,
+}
+
+/// Samples beyond the end of the test that the Pre-Control read-ahead may
+/// see: the command is simulated that much longer and the response cut, so
+/// the end of the test is not a stop of the NC.
+pub(crate) fn read_ahead_pad(axes: &[AxisParams; 3], dt: f64) -> usize {
+    let ahead = axes.iter().map(|a| a.tp + a.ta).fold(0.0, f64::max);
+    (ahead / dt).ceil() as usize + 2
+}
+
+/// One axis simulated on its (padded) command and cut to `n` samples,
+/// errors tagged with the axis.
+pub(crate) fn run_axis(
+    name: &'static str,
+    axis: &AxisParams,
+    dt: f64,
+    cmd: &[f64],
+    n: usize,
+) -> Result<AxisResponse, FeedVectorError> {
+    let mut r = simulate_axis(axis, dt, cmd)
+        .map_err(|source| FeedVectorError::Servo { axis: name, source })?;
+    r.position.truncate(n);
+    r.velocity.truncate(n);
+    r.torque.truncate(n);
+    if let Some(limit) = axis.torque_max {
+        // saturation beyond the cut does not count
+        r.saturated = r.saturated && r.torque.iter().any(|t| t.abs() >= limit);
+    }
+    Ok(r)
+}
+
+/// The padded command of a test with `n` samples, and the three responses.
+pub(crate) fn simulate_test(
+    axes: &[AxisParams; 3],
+    cond: &Condition,
+    n: usize,
+) -> Result<(command::Command, [AxisResponse; 3]), FeedVectorError> {
+    let dt = cond.step();
+    let pad = read_ahead_pad(axes, dt);
+    let mut cmd = command::sample(n + pad, dt, cond.rw, cond.omega, cond.accel_time);
+    let x = run_axis("x", &axes[0], dt, &cmd.x, n)?;
+    let y = run_axis("y", &axes[1], dt, &cmd.y, n)?;
+    let c = run_axis("c", &axes[2], dt, &cmd.theta, n)?;
+    cmd.t.truncate(n);
+    cmd.theta.truncate(n);
+    cmd.x.truncate(n);
+    cmd.y.truncate(n);
+    Ok((cmd, [x, y, c]))
+}
+
+/// Builds series and summary from the command and the three responses.
+pub(crate) fn assemble(
+    cmd: command::Command,
+    x: AxisResponse,
+    y: AxisResponse,
+    c: AxisResponse,
+    cond: &Condition,
+    t_ss: f64,
+) -> FeedVectorResult {
+    let saturated = c.saturated;
+    let mut series = Series {
+        t: cmd.t,
+        x_cmd: cmd.x,
+        y_cmd: cmd.y,
+        c_cmd: cmd.theta,
+        x: x.position,
+        y: y.position,
+        c: c.position,
+        torque_c: c.torque,
+        ..Series::default()
+    };
+    analysis::derive(&mut series, cond.rw, cond.rc);
+    let summary = analysis::summarize(&series, cond.omega, t_ss, saturated);
+    FeedVectorResult { series, summary }
+}
+
+/// Simulates the constant-feed-speed-vector test (the JS `feedVectorTest`).
+///
+/// # Units
+/// See [`Condition`]; series in mm, rad, s, N·m.
+///
+/// # Examples
+/// ```
+/// use mtmotion::feed_vector::{feed_vector_test, Condition};
+/// let m = mtmotion::machine::preset("nmv5000").unwrap();
+/// let r = feed_vector_test(&m, &Condition::paper(std::f64::consts::PI)).unwrap();
+/// // the rotary axis lags the linear axes: α − β > 0 with K_FFP = 100 %
+/// assert!(r.summary.mean_angle_diff > 0.0 && r.summary.mean_angle_diff < 0.05);
+/// assert!(!r.summary.saturated);
+/// ```
+pub fn feed_vector_test(
+    machine: &Machine,
+    cond: &Condition,
+) -> Result<FeedVectorResult, FeedVectorError> {
+    cond.validate()?;
+    let axes = axes_for(machine, cond)?;
+    let n = samples(&axes, cond)?;
+    let (cmd, [x, y, c]) = simulate_test(&axes, cond, n)?;
+    let t_ss = steady_from(&axes, cond);
+    Ok(assemble(cmd, x, y, c, cond, t_ss))
+}

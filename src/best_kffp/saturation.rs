@@ -1,0 +1,136 @@
+//! Torque-saturation limits of the rotary axis (suzuki-best-kffp §5.2,
+//! Figs. 17 and 21).
+//!
+//! For each load `J1` the C axis of the feed-vector test is simulated
+//! without a torque limit at a reference ω; the loop is linear and starts
+//! from rest, so its torque command is proportional to ω and the largest ω
+//! that keeps `max |τ| ≤ τ_max` is `ω_sat = ω_ref·τ_max/max|τ_ref|`, exactly
+//! on the same sample grid as [`crate::feed_vector::feed_vector_test`]
+//! (which therefore does not saturate at 0.97·ω_sat and does at 1.03·ω_sat).
+//! Then `accelSat = ω_sat/accelTime` (the command's acceleration) and
+//! `rcMin = F_C/ω_sat` (Eq. 1).
+//!
+//! The simple bound `J·α = τ_max` is *not* used: the torque command also
+//! carries the viscous term, the smoothing and the loop's overshoot.
+//!
+//! # Units
+//! J in kg·m²; τ in N·m; accelTime in s; `feedAtCuttingPoint` in mm/min
+//! (the paper's F_C = 200 mm/min); ω in rad/s; α in rad/s²; R_C in mm.
+
+use serde::{Deserialize, Serialize};
+
+use super::BestKffpError;
+use crate::feed_vector::{self, Condition};
+use crate::machine::Machine;
+
+/// The JS `torqueSaturation` query.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct SaturationQuery {
+    /// Load inertias J1 to evaluate, kg·m².
+    pub j1: Vec<f64>,
+    /// C torque limit, N·m.
+    pub torque_max: f64,
+    /// Acc/dec time, s.
+    pub accel_time: f64,
+    /// Feed speed at the cutting point F_C, mm/min.
+    pub feed_at_cutting_point: f64,
+    /// Time step, s (default 1 ms as in `feedVectorTest`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dt: Option<f64>,
+}
+
+/// One saturation limit (Fig. 21 point).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct SaturationPoint {
+    /// J + J1, kg·m².
+    pub j_total: f64,
+    /// Largest commanded C acceleration without saturation, rad/s².
+    pub accel_sat: f64,
+    /// Largest ω without saturation, rad/s.
+    pub omega_sat: f64,
+    /// Smallest R_C at the given F_C, mm.
+    pub rc_min: f64,
+    /// Peak torque command per rad/s of ω, N·m·s/rad.
+    pub torque_per_omega: f64,
+}
+
+/// The saturation limit for each load (the JS `torqueSaturation`).
+///
+/// # Units
+/// See the module header.
+///
+/// # Examples
+/// ```
+/// use mtmotion::best_kffp::saturation::{torque_saturation, SaturationQuery};
+/// let m = mtmotion::machine::preset("nmv5000").unwrap();
+/// let q = SaturationQuery { j1: vec![1.70], torque_max: 725.0, accel_time: 0.064,
+///                           feed_at_cutting_point: 200.0, dt: None };
+/// let p = torque_saturation(&m, &q).unwrap()[0];
+/// assert!((p.j_total - 5.9).abs() < 1e-12);
+/// assert!((p.rc_min * p.omega_sat - 200.0 / 60.0).abs() < 1e-12);
+/// // the torque needs more than J·α: below the naive 725/5.9 rad/s²
+/// assert!(p.accel_sat < 725.0 / 5.9);
+/// ```
+pub fn torque_saturation(
+    machine: &Machine,
+    q: &SaturationQuery,
+) -> Result<Vec<SaturationPoint>, BestKffpError> {
+    if !(q.feed_at_cutting_point.is_finite() && q.feed_at_cutting_point > 0.0) {
+        return Err(BestKffpError::BadQuery {
+            field: "feedAtCuttingPoint",
+            value: q.feed_at_cutting_point,
+            expected: "must be > 0 mm/min",
+        });
+    }
+    if q.j1.is_empty() {
+        return Err(BestKffpError::BadQuery {
+            field: "j1",
+            value: 0.0,
+            expected: "give at least one load inertia in kg·m²",
+        });
+    }
+    let mut out = Vec::with_capacity(q.j1.len());
+    for &j1 in &q.j1 {
+        let omega_ref = 1.0;
+        let cond = Condition {
+            rc: 1.0,
+            rw: 1.0,
+            omega: omega_ref,
+            accel_time: q.accel_time,
+            j1,
+            torque_max: Some(q.torque_max),
+            duration: None,
+            dt: q.dt,
+            kffp: None,
+        };
+        cond.validate()?;
+        let mut axes = feed_vector::axes_for(machine, &cond)?;
+        axes[2].torque_max = None;
+        let dt = cond.step();
+        // through the acc/dec, the smoothing and the settling of the loop
+        let n = (feed_vector::steady_from(&axes, &cond) / dt).ceil() as usize + 1;
+        let pad = feed_vector::read_ahead_pad(&axes, dt);
+        let cmd: Vec<f64> = (0..n + pad)
+            .map(|i| feed_vector::command::angle(i as f64 * dt, omega_ref, q.accel_time))
+            .collect();
+        let r = feed_vector::run_axis("c", &axes[2], dt, &cmd, n)?;
+        let peak = r.torque.iter().fold(0.0_f64, |m, t| m.max(t.abs()));
+        let per_omega = peak / omega_ref;
+        let omega_sat = q.torque_max / per_omega;
+        let accel_sat = if q.accel_time > 0.0 {
+            omega_sat / q.accel_time
+        } else {
+            f64::INFINITY
+        };
+        out.push(SaturationPoint {
+            j_total: axes[2].inertia(),
+            accel_sat,
+            omega_sat,
+            rc_min: q.feed_at_cutting_point / 60.0 / omega_sat,
+            torque_per_omega: per_omega,
+        });
+    }
+    Ok(out)
+}

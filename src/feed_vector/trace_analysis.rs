@@ -1,0 +1,176 @@
+//! Analysis of a measured constant-feed-speed-vector trace
+//! (suzuki-best-kffp §4.1, Fig. 7: SERVO GUIDE samples X, Y in mm and C in
+//! degrees every 1 ms).
+//!
+//! The trace is a CSV/TSV table with a header ([`crate::trace::Table`]).
+//! Columns are found by name (aliases below, or the names in
+//! [`ColumnMap`]) and scaled to core units. The commanded angle θ(t) that
+//! Eqs. 8–9 need is rebuilt from the condition (ω, accel time), with t = 0
+//! at `motionStart` (default: the first sample). Positions are machine
+//! positions with the circle centre at the origin; with `relative: true`
+//! they are displacements from the start point (R_W, 0, 0), as SERVO GUIDE
+//! records them, and the start point is added back.
+//!
+//! # Units
+//! After scaling: s, mm, rad, N·m.
+
+use serde::{Deserialize, Serialize};
+
+use super::analysis::{derive, summarize, Series};
+use super::{command, Condition, FeedVectorError, FeedVectorResult};
+use crate::trace::Table;
+
+/// Column names and units of a trace (the JS `mapping`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+pub struct ColumnMap {
+    /// Time column (default aliases: time, t, time_s).
+    pub time: Option<String>,
+    /// X column (x, pos_x).
+    pub x: Option<String>,
+    /// Y column (y, pos_y).
+    pub y: Option<String>,
+    /// C column (c, pos_c).
+    pub c: Option<String>,
+    /// Torque column (torque, tcmd, torque_c); optional.
+    pub torque: Option<String>,
+    /// Seconds per time unit (1e-3 for ms). Default 1.
+    pub time_scale: f64,
+    /// mm per linear unit (1e-3 for µm). Default 1.
+    pub linear_scale: f64,
+    /// rad per angle unit. Default π/180 (degrees, as SERVO GUIDE).
+    pub angle_scale: f64,
+    /// N·m per torque unit. Default 1.
+    pub torque_scale: f64,
+    /// Time of the start of the commanded motion, s (default: first sample).
+    pub motion_start: Option<f64>,
+    /// Positions are displacements from the start point.
+    pub relative: bool,
+}
+
+impl Default for ColumnMap {
+    fn default() -> Self {
+        Self {
+            time: None,
+            x: None,
+            y: None,
+            c: None,
+            torque: None,
+            time_scale: 1.0,
+            linear_scale: 1.0,
+            angle_scale: std::f64::consts::PI / 180.0,
+            torque_scale: 1.0,
+            motion_start: None,
+            relative: false,
+        }
+    }
+}
+
+fn column(
+    table: &Table,
+    name: &Option<String>,
+    aliases: &[&str],
+    scale: f64,
+) -> Result<Vec<f64>, FeedVectorError> {
+    Ok(match name {
+        Some(n) => table.column(&[n.as_str()], scale)?,
+        None => table.column(aliases, scale)?,
+    })
+}
+
+/// Analyses a measured trace (the JS `analyzeFeedVectorTrace`).
+///
+/// # Units
+/// The condition as in [`Condition`]; trace units as set in `map`.
+///
+/// # Examples
+/// ```
+/// use mtmotion::feed_vector::{trace_analysis::{analyze_trace, ColumnMap}, Condition};
+/// let cond = Condition::paper(1.0);
+/// let text = "time,x,y,c\n0,8,0,0\n0.001,8,0.001,0.0573\n0.002,8,0.002,0.1146\n";
+/// let r = analyze_trace(text, &cond, &ColumnMap::default()).unwrap();
+/// assert_eq!(r.series.t.len(), 3);
+/// let e = analyze_trace("time,x,y,c\n0,8,0,0\n0.001,8,oops,0\n", &cond, &ColumnMap::default());
+/// assert!(e.unwrap_err().to_string().starts_with("line 3, column 3"));
+/// ```
+pub fn analyze_trace(
+    text: &str,
+    cond: &Condition,
+    map: &ColumnMap,
+) -> Result<FeedVectorResult, FeedVectorError> {
+    cond.validate()?;
+    for (field, v) in [
+        ("mapping.timeScale", map.time_scale),
+        ("mapping.linearScale", map.linear_scale),
+        ("mapping.angleScale", map.angle_scale),
+        ("mapping.torqueScale", map.torque_scale),
+    ] {
+        if !(v.is_finite() && v != 0.0) {
+            return Err(super::bad(field, v, "must be a finite, non-zero scale"));
+        }
+    }
+    let table = Table::parse(text)?;
+    let t = column(
+        &table,
+        &map.time,
+        &["time", "t", "time_s", "time[s]"],
+        map.time_scale,
+    )?;
+    let tcol = match &map.time {
+        Some(n) => table.find(&[n.as_str()]),
+        None => table.find(&["time", "t", "time_s", "time[s]"]),
+    }
+    .unwrap_or(0);
+    for i in 1..t.len() {
+        if t[i] <= t[i - 1] {
+            return Err(FeedVectorError::TraceTime {
+                line: table.lines.get(i).copied().unwrap_or(0),
+                column: tcol + 1,
+                name: table.names.get(tcol).cloned().unwrap_or_default(),
+                why: format!(
+                    "time {} does not increase after {} on the line before; sort the trace or pick the right time column",
+                    t[i], t[i - 1]
+                ),
+            });
+        }
+    }
+    let mut x = column(&table, &map.x, &["x", "pos_x", "x_pos"], map.linear_scale)?;
+    let y = column(&table, &map.y, &["y", "pos_y", "y_pos"], map.linear_scale)?;
+    let c = column(&table, &map.c, &["c", "pos_c", "c_pos"], map.angle_scale)?;
+    let torque = match &map.torque {
+        Some(n) => table.column(&[n.as_str()], map.torque_scale)?,
+        None => table
+            .column(&["torque", "tcmd", "torque_c", "tq"], map.torque_scale)
+            .unwrap_or_default(),
+    };
+    if map.relative {
+        x.iter_mut().for_each(|v| *v += cond.rw);
+    }
+    let t0 = map.motion_start.unwrap_or(t[0]);
+    let tt: Vec<f64> = t.iter().map(|v| v - t0).collect();
+    let theta: Vec<f64> = tt
+        .iter()
+        .map(|&t| command::angle(t, cond.omega, cond.accel_time))
+        .collect();
+    let saturated = match (cond.torque_max, torque.is_empty()) {
+        (Some(limit), false) => torque.iter().any(|v| v.abs() >= limit),
+        _ => false,
+    };
+    let mut series = Series {
+        x_cmd: theta.iter().map(|th| cond.rw * th.cos()).collect(),
+        y_cmd: theta.iter().map(|th| cond.rw * th.sin()).collect(),
+        c_cmd: theta,
+        t: tt,
+        x,
+        y,
+        c,
+        torque_c: torque,
+        ..Series::default()
+    };
+    derive(&mut series, cond.rw, cond.rc);
+    // the trace's own steady window: same rule as the simulation, from the
+    // machine-independent part (accel time + 0.4 s)
+    let t_ss = cond.accel_time + 0.4;
+    let summary = summarize(&series, cond.omega, t_ss, saturated);
+    Ok(FeedVectorResult { series, summary })
+}
