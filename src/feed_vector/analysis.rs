@@ -13,7 +13,8 @@
 //!   α − β = atan2(Y, X) − C (Eq. 10), each wrapped to (−π, π];
 //! - ΔR = √(X² + Y²) − R_W (Eq. 11; negative when the radius shrinks).
 //!
-//! Summary over the steady state `t ≥ t_ss`: the mean of α − β; the mean
+//! Summary over the steady state `t ≥ t_ss`, cut to whole periods `2π/ω`
+//! (the whole window when shorter than one period): the mean of α − β; the mean
 //! half amplitude `(max − min)/2` of ΔR_C over each whole period `2π/ω`
 //! (over the whole window if it is shorter than one period); the radius
 //! decrease `−mean(ΔR)` (Eq. 12's sign: > 0 when the circle shrinks); the
@@ -138,11 +139,6 @@ pub fn derive(s: &mut Series, rw: f64, rc: f64) {
 /// The steady-state summary of derived series `s` (see the module header).
 pub fn summarize(s: &Series, omega: f64, steady_from: f64, saturated: bool) -> Summary {
     let start = s.t.partition_point(|&t| t < steady_from);
-    let window = start..s.t.len();
-    let count = window.len().max(1) as f64;
-    let mean_angle_diff = s.angle_diff[window.clone()].iter().sum::<f64>() / count;
-    let radius_decrease = -s.radius_error[window.clone()].iter().sum::<f64>() / count;
-    let peak_torque = s.torque_c.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let span = |r: std::ops::Range<usize>| {
         let (lo, hi) = s.shape_error[r]
             .iter()
@@ -155,6 +151,7 @@ pub fn summarize(s: &Series, omega: f64, steady_from: f64, saturated: bool) -> S
             0.0
         }
     };
+    // whole periods 2π/ω from the steady start
     let period = std::f64::consts::TAU / omega.abs();
     let mut halves = Vec::new();
     let mut a = start;
@@ -167,6 +164,17 @@ pub fn summarize(s: &Series, omega: f64, steady_from: f64, saturated: bool) -> S
         halves.push(span(a..b + 1));
         a = b;
     }
+    // means over the whole periods (the 2ω ripple of an elliptic X/Y path
+    // averages out), over the whole window when it is shorter than a period
+    let window = if halves.is_empty() {
+        start..s.t.len()
+    } else {
+        start..a
+    };
+    let count = window.len().max(1) as f64;
+    let mean_angle_diff = s.angle_diff[window.clone()].iter().sum::<f64>() / count;
+    let radius_decrease = -s.radius_error[window.clone()].iter().sum::<f64>() / count;
+    let peak_torque = s.torque_c.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let half_amplitude = if halves.is_empty() {
         span(window)
     } else {

@@ -59,9 +59,9 @@ pub enum FeedVectorError {
     /// The trace could not be read.
     #[error(transparent)]
     Trace(#[from] TraceError),
-    /// The trace's time column is unusable at a line.
+    /// A trace value is unusable at a line and column.
     #[error("line {line}, column {column} ('{name}'): {why}")]
-    TraceTime {
+    TraceValue {
         /// 1-based line.
         line: usize,
         /// 1-based column.
@@ -223,7 +223,7 @@ pub fn samples(axes: &[AxisParams; 3], cond: &Condition) -> Result<usize, FeedVe
     let t_ss = steady_from(axes, cond);
     let duration = cond
         .duration
-        .unwrap_or(t_ss + 2.0 * std::f64::consts::TAU / cond.omega);
+        .unwrap_or(t_ss + 2.0 * std::f64::consts::TAU / cond.omega + 2.0 * dt);
     let n = (duration / dt).round() + 1.0;
     if n > MAX_SAMPLES as f64 {
         return Err(bad(

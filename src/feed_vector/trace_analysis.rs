@@ -46,6 +46,9 @@ pub struct ColumnMap {
     pub motion_start: Option<f64>,
     /// Positions are displacements from the start point.
     pub relative: bool,
+    /// Start of the steady-state window after the motion start, s
+    /// (default `accelTime + 0.4 s`).
+    pub steady_from: Option<f64>,
 }
 
 impl Default for ColumnMap {
@@ -62,20 +65,33 @@ impl Default for ColumnMap {
             torque_scale: 1.0,
             motion_start: None,
             relative: false,
+            steady_from: None,
         }
     }
 }
 
+/// The 0-based index and scaled values of a column.
 fn column(
     table: &Table,
     name: &Option<String>,
     aliases: &[&str],
     scale: f64,
-) -> Result<Vec<f64>, FeedVectorError> {
-    Ok(match name {
-        Some(n) => table.column(&[n.as_str()], scale)?,
-        None => table.column(aliases, scale)?,
-    })
+) -> Result<(usize, Vec<f64>), FeedVectorError> {
+    let names: Vec<&str> = match name {
+        Some(n) => vec![n.as_str()],
+        None => aliases.to_vec(),
+    };
+    let values = table.column(&names, scale)?;
+    let index = table.find(&names).unwrap_or(0);
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(FeedVectorError::TraceValue {
+            line: table.lines.get(i).copied().unwrap_or(0),
+            column: index + 1,
+            name: table.names.get(index).cloned().unwrap_or_default(),
+            why: format!("'{}' is not a finite number", values[i]),
+        });
+    }
+    Ok((index, values))
 }
 
 /// Analyses a measured trace (the JS `analyzeFeedVectorTrace`).
@@ -110,20 +126,10 @@ pub fn analyze_trace(
         }
     }
     let table = Table::parse(text)?;
-    let t = column(
-        &table,
-        &map.time,
-        &["time", "t", "time_s", "time[s]"],
-        map.time_scale,
-    )?;
-    let tcol = match &map.time {
-        Some(n) => table.find(&[n.as_str()]),
-        None => table.find(&["time", "t", "time_s", "time[s]"]),
-    }
-    .unwrap_or(0);
+    let (tcol, t) = column(&table, &map.time, &["time", "t", "time_s"], map.time_scale)?;
     for i in 1..t.len() {
         if t[i] <= t[i - 1] {
-            return Err(FeedVectorError::TraceTime {
+            return Err(FeedVectorError::TraceValue {
                 line: table.lines.get(i).copied().unwrap_or(0),
                 column: tcol + 1,
                 name: table.names.get(tcol).cloned().unwrap_or_default(),
@@ -134,14 +140,14 @@ pub fn analyze_trace(
             });
         }
     }
-    let mut x = column(&table, &map.x, &["x", "pos_x", "x_pos"], map.linear_scale)?;
-    let y = column(&table, &map.y, &["y", "pos_y", "y_pos"], map.linear_scale)?;
-    let c = column(&table, &map.c, &["c", "pos_c", "c_pos"], map.angle_scale)?;
-    let torque = match &map.torque {
-        Some(n) => table.column(&[n.as_str()], map.torque_scale)?,
-        None => table
-            .column(&["torque", "tcmd", "torque_c", "tq"], map.torque_scale)
-            .unwrap_or_default(),
+    let (_, mut x) = column(&table, &map.x, &["x", "pos_x", "x_pos"], map.linear_scale)?;
+    let (_, y) = column(&table, &map.y, &["y", "pos_y", "y_pos"], map.linear_scale)?;
+    let (_, c) = column(&table, &map.c, &["c", "pos_c", "c_pos"], map.angle_scale)?;
+    let torque_aliases = ["torque", "tcmd", "torque_c", "tq"];
+    let torque = if map.torque.is_some() || table.find(&torque_aliases).is_some() {
+        column(&table, &map.torque, &torque_aliases, map.torque_scale)?.1
+    } else {
+        Vec::new()
     };
     if map.relative {
         x.iter_mut().for_each(|v| *v += cond.rw);
@@ -170,7 +176,7 @@ pub fn analyze_trace(
     derive(&mut series, cond.rw, cond.rc);
     // the trace's own steady window: same rule as the simulation, from the
     // machine-independent part (accel time + 0.4 s)
-    let t_ss = cond.accel_time + 0.4;
+    let t_ss = map.steady_from.unwrap_or(cond.accel_time + 0.4);
     let summary = summarize(&series, cond.omega, t_ss, saturated);
     Ok(FeedVectorResult { series, summary })
 }
