@@ -22,10 +22,11 @@ const browser = await chromium.launch({
 
 let passed = 0;
 let failed = 0;
-const local = (u) => u.startsWith(base) || u.startsWith('data:') || u.startsWith('blob:');
+const standaloneUrl = new URL('../../dist/mtmotion-standalone.html', here).href;
+const local = (u) => u.startsWith(base) || u === standaloneUrl || u.startsWith('data:') || u.startsWith('blob:');
 
 /** Opens a fresh page that records problems; returns { page, problems }. */
-export async function openPage(path = 'index.html', viewport = { width: 1366, height: 900 }) {
+async function openPage(url, viewport = { width: 1366, height: 900 }) {
   const context = await browser.newContext({ viewport, acceptDownloads: true });
   const page = await context.newPage();
   const problems = [];
@@ -37,16 +38,16 @@ export async function openPage(path = 'index.html', viewport = { width: 1366, he
     problems.push(`request leaves the machine: ${u}`);
     return route.abort();
   });
-  await page.goto(base + path);
+  await page.goto(url);
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 90_000 });
   return { page, problems, context };
 }
 
-async function run(name, fn, viewport) {
+async function run(name, fn, { url = base + 'index.html', viewport } = {}) {
   const t0 = Date.now();
   let ctx;
   try {
-    const opened = await openPage('index.html', viewport);
+    const opened = await openPage(url, viewport);
     ctx = opened;
     const checks = [];
     const check = (cond, message) => {
@@ -85,12 +86,39 @@ await run('shell', async (page, check) => {
 await run('tablet-layout', async (page, check) => {
   const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
   check(overflow <= 1, `no horizontal scrolling on a tablet (overflow ${overflow} px)`);
-}, { width: 768, height: 1024 });
+}, { viewport: { width: 768, height: 1024 } });
+
+await run('deep-link-and-print', async (page, check) => {
+  await page.click('[data-tab="kinematics"]');
+  check(new URLSearchParams(new URL(page.url()).hash.slice(1)).get('tab') === 'kinematics', `the hash should record the panel, got ${page.url()}`);
+  // A shared link restores the panel.
+  await page.goto(base + 'index.html#tab=ballbar');
+  await page.reload();
+  await page.waitForFunction(() => document.body.dataset.ready === 'true');
+  check(await page.isVisible('#panel-ballbar'), 'a #tab=ballbar link should open the ball-bar panel');
+  check(!(await page.isVisible('#panel-servo')), 'only the linked panel shows');
+  await page.emulateMedia({ media: 'print' });
+  check(!(await page.isVisible('nav.tabs')), 'the print stylesheet hides the navigation');
+  await page.screenshot({ path: `${shots}print.png`, fullPage: true });
+  await page.emulateMedia({ media: 'screen' });
+});
+
+// The single-file page, opened straight from disk: same shell checks.
+await run('standalone-file-shell', async (page, check) => {
+  check(page.url().startsWith('file://'), 'the single-file page is opened through file://');
+  const status = await page.textContent('#status');
+  check(/ready \(worker\)/.test(status), `the inlined core should run in a blob worker from file://, status says "${status}"`);
+  const text = await page.textContent('#panel-servo');
+  check(text.includes('725'), 'the servo panel should show the nmv5000 preset from the inlined core');
+}, { url: standaloneUrl });
 
 const panelDir = new URL('panels/', here);
 for (const f of existsSync(panelDir) ? readdirSync(panelDir).filter((f) => f.endsWith('.mjs')).sort() : []) {
   const mod = await import(new URL(f, panelDir));
-  await run(`panel-${f.replace(/\.mjs$/, '')}`, mod.default);
+  const name = f.replace(/\.mjs$/, '');
+  await run(`panel-${name}`, mod.default);
+  // Every panel also works in the single-file page opened from disk.
+  await run(`standalone-file-${name}`, mod.default, { url: standaloneUrl });
 }
 
 await browser.close();

@@ -1,31 +1,33 @@
 // The page's one door to the wasm core. Calls run in a Web Worker so that long
 // sweeps never freeze the page; where no worker can be created (e.g. a page
-// opened from file://), the same calls run in-page.
+// opened from file:// whose browser refuses blob workers), the same calls run
+// in-page with the same interface.
 
-/** Creates the API; resolves once the core is loaded. */
-export async function createApi({ workerUrl = new URL('../worker.js', import.meta.url), inPage } = {}) {
-  try {
-    return await workerApi(workerUrl);
-  } catch (e) {
-    if (!inPage) throw e;
-    return inPageApi(await inPage());
-  }
-}
-
-function workerApi(url) {
+/**
+ * Starts a worker at `url` and resolves to the API once the worker reports
+ * ready. `initMessage`, when given, is posted first (the single-file page
+ * sends the wasm bytes this way).
+ */
+export function workerApi(url, { initMessage, timeoutMs = 30_000, type = 'module' } = {}) {
   return new Promise((resolve, reject) => {
     let worker;
     try {
-      worker = new Worker(url, { type: 'module' });
+      worker = new Worker(url, { type });
     } catch (e) {
       reject(e);
       return;
     }
     const pending = new Map();
     let next = 1;
-    worker.onerror = (e) => reject(new Error(`worker failed to start: ${e.message || 'unknown error'}`));
+    const timer = setTimeout(() => reject(new Error('the calculation worker did not start in time')), timeoutMs);
+    worker.onerror = (e) => {
+      e.preventDefault?.();
+      clearTimeout(timer);
+      reject(new Error(`the calculation worker failed to start: ${e.message || 'unknown error'}`));
+    };
     worker.onmessage = ({ data }) => {
       if ('ready' in data) {
+        clearTimeout(timer);
         resolve({
           version: data.ready,
           mode: 'worker',
@@ -40,6 +42,7 @@ function workerApi(url) {
         return;
       }
       if ('initError' in data) {
+        clearTimeout(timer);
         reject(new Error(`the WebAssembly core failed to load: ${data.initError}`));
         return;
       }
@@ -53,6 +56,7 @@ function workerApi(url) {
       if ('error' in data) p.rej(new Error(data.error));
       else p.res(data.result);
     };
+    if (initMessage) worker.postMessage(initMessage);
   });
 }
 
@@ -63,7 +67,7 @@ export function inPageApi(wasm) {
     mode: 'in-page',
     async call(fn, args = [], { onProgress } = {}) {
       const f = wasm[fn];
-      if (typeof f !== 'function') throw new Error(`unknown function '${fn}'`);
+      if (typeof f !== 'function' || fn === 'default' || fn.startsWith('init')) throw new Error(`unknown function '${fn}'`);
       // Yield once so the page can paint the "running" state first.
       await new Promise((r) => setTimeout(r, 0));
       return onProgress ? f(...args, onProgress) : f(...args);
