@@ -1,1 +1,184 @@
-//! Bindings for the servo models. Written under the issue that implements them.
+//! Bindings for [`crate::servo`], [`crate::feed_vector`] and
+//! [`crate::best_kffp`]: `frequencyResponse`, `simulateAxis`,
+//! `feedVectorTest`, `analyzeFeedVectorTrace`, `bestKffp`,
+//! `torqueSaturation`. Thin: convert, call the core, convert back.
+
+use js_sys::{Float64Array, Reflect};
+use wasm_bindgen::prelude::*;
+
+use super::convert::{from_js, to_js, Obj};
+use crate::best_kffp::{self, saturation};
+use crate::feed_vector::{self, trace_analysis, Condition, FeedVectorResult};
+use crate::machine::{self, Machine};
+use crate::servo::{response, simulate, AxisParams};
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS: &str = r#"
+export interface FrequencyResponse { magnitude: Float64Array; phase: Float64Array }
+export interface SimulateInput { /** Step, s. */ dt: number; /** Command, mm or rad. */ position: Float64Array }
+export interface AxisResponse { position: Float64Array; velocity: Float64Array; torque: Float64Array; saturated: boolean }
+export interface KffpSet { x: number; y: number; c: number }
+export interface FeedVectorCondition {
+  /** mm */ rc: number; /** mm */ rw: number; /** rad/s */ omega: number;
+  /** s */ accelTime: number; /** kg·m² on C */ j1: number;
+  /** N·m */ torqueMax?: number; /** s */ duration?: number; /** s, default 0.001 */ dt?: number;
+  /** % */ kffp?: KffpSet;
+}
+export interface FeedVectorSummary {
+  /** rad */ meanAngleDiff: number; /** mm */ halfAmplitude: number; /** mm */ radiusDecrease: number;
+  /** N·m */ peakTorque: number; saturated: boolean; /** s */ steadyFrom: number; periods: number;
+}
+export interface FeedVectorSeries {
+  t: Float64Array; xCmd: Float64Array; yCmd: Float64Array; cCmd: Float64Array;
+  x: Float64Array; y: Float64Array; c: Float64Array; torqueC: Float64Array;
+  shapeError: Float64Array; alpha: Float64Array; beta: Float64Array; angleDiff: Float64Array;
+  radiusError: Float64Array; omegaC: Float64Array; omegaL: Float64Array;
+}
+export interface FeedVectorResult { series: FeedVectorSeries; summary: FeedVectorSummary }
+export interface TraceMapping {
+  time?: string; x?: string; y?: string; c?: string; torque?: string;
+  /** s per unit, default 1 */ timeScale?: number; /** mm per unit, default 1 */ linearScale?: number;
+  /** rad per unit, default π/180 */ angleScale?: number; torqueScale?: number;
+  motionStart?: number; relative?: boolean; steadyFrom?: number;
+}
+export interface BestKffpOptions { method?: 'auto' | 'analytic' | 'simulated'; kMin?: number; kMax?: number }
+export interface BestKffpResult {
+  kffp: KffpSet; before: FeedVectorSummary; after: FeedVectorSummary; method: 'analytic' | 'simulated';
+  alphaTh: number; residualX: number; residualY: number;
+}
+export interface SaturationQuery { j1: number[]; torqueMax: number; accelTime: number; /** mm/min */ feedAtCuttingPoint: number; dt?: number }
+export interface SaturationPoint { jTotal: number; accelSat: number; omegaSat: number; rcMin: number; torquePerOmega: number }
+"#;
+
+/// A machine given as a preset name or as a full machine object.
+fn machine_arg(value: JsValue) -> Result<Machine, JsError> {
+    match value.as_string() {
+        Some(name) => Ok(machine::preset(&name)?),
+        None => from_js(value, "machine"),
+    }
+}
+
+/// `G(jω)` of `axis` at each ω (rad/s): magnitude and phase (rad).
+#[wasm_bindgen(js_name = frequencyResponse, unchecked_return_type = "FrequencyResponse")]
+pub fn frequency_response(
+    #[wasm_bindgen(unchecked_param_type = "AxisParams")] axis: JsValue,
+    omegas: &[f64],
+) -> Result<JsValue, JsError> {
+    let axis: AxisParams = from_js(axis, "axis")?;
+    let r = response::frequency_response(&axis, omegas)?;
+    Ok(Obj::new()
+        .arr("magnitude", &r.magnitude)
+        .arr("phase", &r.phase)
+        .build())
+}
+
+/// Fixed-step simulation of one axis following `input.position`.
+#[wasm_bindgen(js_name = simulateAxis, unchecked_return_type = "AxisResponse")]
+pub fn simulate_axis(
+    #[wasm_bindgen(unchecked_param_type = "AxisParams")] axis: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "SimulateInput")] input: JsValue,
+) -> Result<JsValue, JsError> {
+    let axis: AxisParams = from_js(axis, "axis")?;
+    let dt = Reflect::get(&input, &JsValue::from_str("dt"))
+        .ok()
+        .and_then(|v| v.as_f64())
+        .ok_or_else(|| JsError::new("input.dt: expected the time step in s (a number)"))?;
+    let position = Reflect::get(&input, &JsValue::from_str("position"))
+        .ok()
+        .filter(|v| v.is_instance_of::<Float64Array>() || js_sys::Array::is_array(v))
+        .ok_or_else(|| {
+            JsError::new("input.position: expected a Float64Array of command samples")
+        })?;
+    let command: Vec<f64> = if position.is_instance_of::<Float64Array>() {
+        Float64Array::from(position).to_vec()
+    } else {
+        from_js(position, "input.position")?
+    };
+    let r = simulate::simulate_axis(&axis, dt, &command)?;
+    Ok(Obj::new()
+        .arr("position", &r.position)
+        .arr("velocity", &r.velocity)
+        .arr("torque", &r.torque)
+        .flag("saturated", r.saturated)
+        .build())
+}
+
+fn result_js(r: &FeedVectorResult) -> Result<JsValue, JsError> {
+    let s = &r.series;
+    let series = Obj::new()
+        .arr("t", &s.t)
+        .arr("xCmd", &s.x_cmd)
+        .arr("yCmd", &s.y_cmd)
+        .arr("cCmd", &s.c_cmd)
+        .arr("x", &s.x)
+        .arr("y", &s.y)
+        .arr("c", &s.c)
+        .arr("torqueC", &s.torque_c)
+        .arr("shapeError", &s.shape_error)
+        .arr("alpha", &s.alpha)
+        .arr("beta", &s.beta)
+        .arr("angleDiff", &s.angle_diff)
+        .arr("radiusError", &s.radius_error)
+        .arr("omegaC", &s.omega_c)
+        .arr("omegaL", &s.omega_l)
+        .build();
+    Ok(Obj::new()
+        .val("series", series)
+        .ser("summary", &r.summary)?
+        .build())
+}
+
+/// Simulates the constant-feed-speed-vector test (suzuki §2.3, §3).
+#[wasm_bindgen(js_name = feedVectorTest, unchecked_return_type = "FeedVectorResult")]
+pub fn feed_vector_test(
+    #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
+) -> Result<JsValue, JsError> {
+    let m = machine_arg(machine)?;
+    let cond: Condition = from_js(condition, "condition")?;
+    result_js(&feed_vector::feed_vector_test(&m, &cond)?)
+}
+
+/// Analyses a measured CSV/TSV trace of the test.
+#[wasm_bindgen(js_name = analyzeFeedVectorTrace, unchecked_return_type = "FeedVectorResult")]
+pub fn analyze_feed_vector_trace(
+    text: &str,
+    #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "TraceMapping | undefined")] mapping: JsValue,
+) -> Result<JsValue, JsError> {
+    let cond: Condition = from_js(condition, "condition")?;
+    let map: trace_analysis::ColumnMap = if mapping.is_undefined() || mapping.is_null() {
+        trace_analysis::ColumnMap::default()
+    } else {
+        from_js(mapping, "mapping")?
+    };
+    result_js(&trace_analysis::analyze_trace(text, &cond, &map)?)
+}
+
+/// The Best K_FFP per axis (Eq. 20), checked by simulation.
+#[wasm_bindgen(js_name = bestKffp, unchecked_return_type = "BestKffpResult")]
+pub fn best_kffp(
+    #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "BestKffpOptions | undefined")] options: JsValue,
+) -> Result<JsValue, JsError> {
+    let m = machine_arg(machine)?;
+    let cond: Condition = from_js(condition, "condition")?;
+    let opts: best_kffp::Options = if options.is_undefined() || options.is_null() {
+        best_kffp::Options::default()
+    } else {
+        from_js(options, "options")?
+    };
+    to_js(&best_kffp::best_kffp(&m, &cond, &opts)?)
+}
+
+/// Torque-saturation limits of the C axis per load (Figs. 17, 21).
+#[wasm_bindgen(js_name = torqueSaturation, unchecked_return_type = "SaturationPoint[]")]
+pub fn torque_saturation(
+    #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "SaturationQuery")] query: JsValue,
+) -> Result<JsValue, JsError> {
+    let m = machine_arg(machine)?;
+    let q: saturation::SaturationQuery = from_js(query, "query")?;
+    to_js(&saturation::torque_saturation(&m, &q)?)
+}
