@@ -111,6 +111,16 @@ pub(crate) fn shape(command: &[f64], dt: f64, ts: f64, ta: f64, tp: f64) -> Shap
     // The window [end − window, end] is centred at u + np − na/2.
     let end_offset = np - 0.5 * na + 0.5 * window;
     let n = command.len();
+    let integral = |v: f64| (v - v.round()).abs() < 1e-9;
+    if integral(ns) && integral(end_offset) && integral(window) {
+        return shape_on_grid(
+            &c,
+            dt,
+            ns.round() as usize,
+            end_offset.round(),
+            window.round() as usize,
+        );
+    }
     let mut xs = Vec::with_capacity(n);
     let mut vff = Vec::with_capacity(n);
     for i in 0..n {
@@ -123,9 +133,84 @@ pub(crate) fn shape(command: &[f64], dt: f64, ts: f64, ta: f64, tp: f64) -> Shap
     Shaped { xs, vff }
 }
 
+/// The same as the general path when `Ts`, the window and its end offset
+/// are whole numbers of steps: `x_s` is evaluated once per sample on an
+/// extended grid and `v_ff` is a difference of two of its samples.
+fn shape_on_grid(c: &Interpolant, dt: f64, ns: usize, end_offset: f64, window: usize) -> Shaped {
+    let n = c.c.len();
+    // grid indices k ∈ [lo, hi], x_s at u = k
+    let lo = (end_offset.min(0.0) as i64) - window as i64;
+    let hi = n as i64 - 1 + end_offset.max(0.0) as i64;
+    let len = (hi - lo + 1) as usize;
+    let last = n - 1;
+    let q_at = |k: i64| -> f64 {
+        if k <= 0 {
+            c.c[0] * k as f64
+        } else if k as usize >= last {
+            c.q[last] + c.c[last] * (k as usize - last) as f64
+        } else {
+            c.q[k as usize]
+        }
+    };
+    let c_at = |k: i64| -> f64 { c.c[k.clamp(0, last as i64) as usize] };
+    let grid: Vec<f64> = (0..len)
+        .map(|j| {
+            let k = lo + j as i64;
+            if ns == 0 {
+                c_at(k)
+            } else {
+                (q_at(k) - q_at(k - ns as i64)) / ns as f64
+            }
+        })
+        .collect();
+    let off = (-lo) as usize; // grid index of sample 0
+    let e = end_offset as i64;
+    let scale = 1.0 / (window as f64 * dt);
+    let xs = grid[off..off + n].to_vec();
+    let vff = (0..n as i64)
+        .map(|i| {
+            let end = (i + e + off as i64) as usize;
+            (grid[end] - grid[end - window]) * scale
+        })
+        .collect();
+    Shaped { xs, vff }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn grid_path_equals_the_general_path() {
+        let dt = 1e-3;
+        let c: Vec<f64> = (0..700)
+            .map(|i| (i as f64 * 0.01).sin() * 3.0 + 0.002 * (i * i) as f64)
+            .collect();
+        let cases: [(f64, f64, f64); 5] = [
+            (0.064, 0.015, 0.005),
+            (0.0, 0.0, 0.0),
+            (0.05, 0.015, 0.0155),
+            (0.01, 0.0, 0.003),
+            (0.02, 0.004, 0.0),
+        ];
+        for (ts, ta, tp) in cases {
+            let it = Interpolant::new(&c);
+            let (ns, np, na) = (ts / dt, tp / dt, ta / dt);
+            let window = na.max(1.0);
+            let end_offset = np - 0.5 * na + 0.5 * window;
+            let g = shape(&c, dt, ts, ta, tp);
+            for i in 0..c.len() {
+                let u = i as f64;
+                let xs = it.smoothed(u, ns);
+                let end = u + end_offset;
+                let v = (it.smoothed(end, ns) - it.smoothed(end - window, ns)) / (window * dt);
+                assert!(
+                    (g.xs[i] - xs).abs() < 1e-9 && (g.vff[i] - v).abs() < 1e-6,
+                    "{ts} {ta} {tp} @{i}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn integral_of_a_ramp_is_exact_at_fractional_points() {

@@ -1,13 +1,241 @@
-// Servo & Best K_FFP panel (shell): shows the nmv5000 preset from the core.
-import { h, table, fmt } from '../lib/ui.js';
+// Servo & Best K_FFP panel (suzuki-best-kffp). JS gathers inputs, calls the
+// core in the worker, draws and offers downloads; every number is computed
+// in Rust (feedVectorTest, bestKffp, torqueSaturation, frequencyResponse,
+// analyzeFeedVectorTrace).
+import { h, table, fmt, numberField, selectField, downloadText, toCsv, dropZone, progressBar, showError } from '../lib/ui.js';
+import { lineChart } from '../lib/plot.js';
+
+const FIELDS = [
+  ['j', 'J', 'kg·m²'], ['c', 'C', 'N·m·s/rad'], ['kpp', 'Kpp', '1/s'], ['kvp', 'Kvp', 'N·m·s/rad'], ['kvi', 'Kvi', 'N·m/rad'],
+  ['kffp', 'K_FFP', '%'], ['ts', 'Ts', 's'], ['ta', 'Ta', 's'], ['tp', 'Tp', 's'], ['torqueMax', 'torque max', 'N·m'], ['lead', 'lead', 'm'],
+];
+const PAPER_OMEGAS = [0.5, 1, 1.5, 2, 3, 4].map((k) => k * Math.PI);
+const PAPER_J1 = [1.7, 3.24, 4.77];
 
 export async function mount(root, api) {
-  const m = await api.call('machinePreset', ['nmv5000']);
-  const axes = Object.keys(m.axes);
-  const fields = ['kind', 'j', 'j1', 'c', 'kpp', 'kvp', 'kvi', 'kffp', 'ts', 'ta', 'tp', 'torqueMax', 'lead'];
+  const machine = await api.call('machinePreset', ['nmv5000']);
+  const axes = Object.keys(machine.axes);
+
+  // ---- parameter table (editable) ----
+  const inputs = {};
+  const cell = (a, f) => {
+    const v = machine.axes[a][f];
+    const input = h('input', { type: 'number', step: 'any', id: `servo-p-${a}-${f}`, value: v === undefined ? '' : String(v), style: 'width:6.5em' });
+    inputs[`${a}.${f}`] = input;
+    return input;
+  };
+  const paramTable = table(['parameter', 'unit', ...axes.map((a) => a.toUpperCase())], FIELDS.map(([f, label, unit]) => [label, unit, ...axes.map((a) => cell(a, f))]));
+  paramTable.querySelector('table').id = 'servo-preset-table';
+  const currentMachine = () => {
+    const m = structuredClone(machine);
+    for (const a of axes) {
+      for (const [f] of FIELDS) {
+        const s = inputs[`${a}.${f}`].value;
+        if (s === '') delete m.axes[a][f];
+        else m.axes[a][f] = Number(s);
+      }
+    }
+    return m;
+  };
+
+  // ---- condition ----
+  const j1 = selectField({ label: 'J1 (load on C)', id: 'servo-j1', value: '1.7', options: PAPER_J1.map((v) => [String(v), `${v} kg·m² (J+J1 = ${fmt(4.2 + v, 2)})`]) });
+  const mode = selectField({ label: 'speed given as', id: 'servo-mode', value: 'omega', options: [['omega', 'ω [rad/s]'], ['feed', 'F_C [mm/min] with R_C']] });
+  const omega = numberField({ label: 'ω', unit: 'rad/s', value: Math.PI.toFixed(6), id: 'servo-omega' });
+  const feed = numberField({ label: 'F_C', unit: 'mm/min', value: 200, id: 'servo-feed' });
+  const rc = numberField({ label: 'R_C', unit: 'mm', value: 5, id: 'servo-rc' });
+  const rw = numberField({ label: 'R_W', unit: 'mm', value: 8, id: 'servo-rw' });
+  const accel = numberField({ label: 'accel time', unit: 's', value: 0.064, id: 'servo-accel' });
+  const dt = numberField({ label: 'time step', unit: 's', value: 0.001, id: 'servo-dt' });
+  const condition = (over = {}) => {
+    const w = mode.value === 'omega' ? omega.value : feed.value / 60 / rc.value;
+    return { rc: rc.value, rw: rw.value, omega: w, accelTime: accel.value, j1: Number(j1.value), dt: dt.value, ...over };
+  };
+
+  // ---- outputs ----
+  const status = h('div', { id: 'servo-status', class: 'lead' });
+  const out = h('div', { id: 'servo-results' });
+  const progress = progressBar();
+  const charts = h('div');
+  const sweepBox = h('div', { id: 'servo-sweep-results' });
+  const traceBox = h('div', { id: 'servo-trace-results' });
+  let last = null; // { cond, before, best, after, trace }
+
+  const summaryRows = (label, s) => [label, fmt(s.meanAngleDiff * 1e3, 4), fmt(s.halfAmplitude * 1e3, 2), fmt(s.radiusDecrease * 1e3, 2), fmt(s.peakTorque, 0), s.saturated ? 'yes' : 'no'];
+  const summaryTable = (rows) => table(['', 'mean α−β [mrad]', 'half amplitude [µm]', 'radius decrease [µm]', 'peak C torque [N·m]', 'saturated'], rows);
+
+  const draw = async () => {
+    const { cond, before, after, m } = last;
+    const t = before.series.t;
+    const series = [{ label: `K_FFP set` }];
+    const shape = [t, before.series.shapeError.map((v) => v * 1e3)];
+    const diff = [t, before.series.angleDiff.map((v) => v * 1e3)];
+    if (after) {
+      series.push({ label: 'Best K_FFP', dash: [6, 3] });
+      shape.push(after.series.shapeError.map((v) => v * 1e3));
+      diff.push(after.series.angleDiff.map((v) => v * 1e3));
+    }
+    if (last.trace && last.trace.series.t.length) {
+      const tr = last.trace.series;
+      // the measured trace on the simulation's time base (nearest sample; display only)
+      const idx = (x) => Math.min(tr.t.length - 1, Math.max(0, Math.round((x - tr.t[0]) / ((tr.t[tr.t.length - 1] - tr.t[0]) / (tr.t.length - 1)))));
+      series.push({ label: 'measured trace', color: '#495057' });
+      shape.push(Array.from(t, (x) => (x >= tr.t[0] && x <= tr.t[tr.t.length - 1] ? tr.shapeError[idx(x)] * 1e3 : null)));
+      diff.push(Array.from(t, (x) => (x >= tr.t[0] && x <= tr.t[tr.t.length - 1] ? tr.angleDiff[idx(x)] * 1e3 : null)));
+    }
+    const band = [{ from: before.summary.steadyFrom, to: t[t.length - 1], label: 'steady state' }];
+    const limit = m.axes.c.torqueMax;
+    const els = Array.from({ length: 5 }, () => h('div'));
+    charts.replaceChildren(...els);
+    lineChart(els[0], { title: 'Shape error ΔR_C (Figs. 12, 25)', xLabel: 't [s]', yLabel: 'µm', series, data: shape, bands: band });
+    lineChart(els[1], { title: 'Relative angle difference α − β (Figs. 13, 23)', xLabel: 't [s]', yLabel: 'mrad', series, data: diff, bands: band });
+    const s = (after || before).series;
+    lineChart(els[2], { title: `Angular velocity of each axis${after ? ' (Best K_FFP)' : ''} (Figs. 16, 24)`, xLabel: 't [s]', yLabel: 'rad/s', series: [{ label: 'C' }, { label: 'X–Y about the centre' }], data: [t, s.omegaC, s.omegaL] });
+    lineChart(els[3], { title: 'C torque against its limit (Figs. 17, 19)', xLabel: 't [s]', yLabel: 'N·m', series: [{ label: 'C torque' }], data: [t, before.series.torqueC], hLines: limit ? [{ y: limit, label: `+${limit} N·m` }, { y: -limit, label: `−${limit} N·m` }] : [] });
+    const ws = Float64Array.from({ length: 200 }, (_, i) => 0.1 * 10 ** (i / 50));
+    const bode = await Promise.all(axes.map((a) => api.call('frequencyResponse', [{ ...m.axes[a], j1: a === 'c' ? cond.j1 : m.axes[a].j1, kffp: after ? last.best.kffp[a] : m.axes[a].kffp }, ws])));
+    const bodeEl = [h('div'), h('div')];
+    els[4].replaceChildren(...bodeEl);
+    lineChart(bodeEl[0], { title: `Bode magnitude per axis${after ? ' (Best K_FFP)' : ''}`, xLabel: 'ω [rad/s]', yLabel: 'dB', scales: { x: { time: false, distr: 3 } }, series: axes.map((a) => ({ label: a.toUpperCase() })), data: [ws, ...bode.map((b) => b.magnitude.map((v) => 20 * Math.log10(v)))] });
+    lineChart(bodeEl[1], { title: 'Bode phase per axis', xLabel: 'ω [rad/s]', yLabel: 'deg', scales: { x: { time: false, distr: 3 } }, series: axes.map((a) => ({ label: a.toUpperCase() })), data: [ws, ...bode.map((b) => b.phase.map((v) => (v * 180) / Math.PI))] });
+  };
+
+  const showResults = () => {
+    const { cond, before, best, after } = last;
+    const rows = [summaryRows('simulated, K_FFP set', before.summary)];
+    if (after) rows.push(summaryRows(`simulated, Best K_FFP (${best.method})`, after.summary));
+    if (last.trace) rows.push(summaryRows('measured trace', last.trace.summary));
+    const kffpTable = best
+      ? table(['axis', 'set K_FFP [%]', 'Best K_FFP [%]'], axes.map((a) => [a.toUpperCase(), fmt(last.m.axes[a].kffp, 2), h('span', { id: `servo-kffp-${a}` }, fmt(best.kffp[a], 3))]))
+      : '';
+    if (kffpTable) kffpTable.querySelector('table').id = 'servo-kffp-table';
+    out.replaceChildren(
+      h('p', {}, `ω = ${fmt(cond.omega, 4)} rad/s, J + J1 = ${fmt(last.m.axes.c.j + cond.j1, 2)} kg·m². Mean α − β: `, h('b', { id: 'servo-mean-angle-diff' }, fmt(before.summary.meanAngleDiff * 1e3, 4)), ' mrad; half amplitude of the shape error: ', h('b', { id: 'servo-half-amplitude' }, fmt(before.summary.halfAmplitude * 1e3, 2)), ' µm.'),
+      best ? h('p', {}, 'α_th of C (Eq. 17): ', h('b', { id: 'servo-alpha-th' }, fmt(best.alphaTh * 1e3, 4)), ' mrad; after Best K_FFP the simulated mean α − β is ', h('b', { id: 'servo-after-angle-diff' }, fmt(after.summary.meanAngleDiff * 1e3, 4)), ' mrad.') : '',
+      summaryTable(rows),
+      kffpTable,
+    );
+  };
+
+  const run = async (withBest) => {
+    status.textContent = 'running in the worker…';
+    try {
+      const m = currentMachine();
+      const cond = condition();
+      const before = await api.call('feedVectorTest', [m, cond]);
+      let best = null;
+      let after = null;
+      if (withBest) {
+        best = await api.call('bestKffp', [m, cond]);
+        after = await api.call('feedVectorTest', [m, { ...cond, kffp: best.kffp }]);
+      }
+      last = { m, cond, before, best, after, trace: last?.trace && last.traceText ? await api.call('analyzeFeedVectorTrace', [last.traceText, cond, last.mapping]) : null, traceText: last?.traceText, mapping: last?.mapping };
+      showResults();
+      await draw();
+      status.textContent = 'done';
+    } catch (e) {
+      status.textContent = '';
+      showError(out, e);
+    }
+  };
+
+  // ---- the paper's sweep (Figs. 14, 15, 20, 22) and the saturation map (Fig. 21) ----
+  const sweep = async () => {
+    const m = currentMachine();
+    const rows = [];
+    const data = PAPER_J1.map(() => ({ before: [], after: [], half: [], kx: [], ky: [] }));
+    const total = PAPER_J1.length * PAPER_OMEGAS.length;
+    let done = 0;
+    try {
+      for (const [ji, jv] of PAPER_J1.entries()) {
+        for (const w of PAPER_OMEGAS) {
+          progress.set(done / total, `J1 = ${jv} kg·m², ω = ${fmt(w / Math.PI, 1)}π rad/s`);
+          const r = await api.call('bestKffp', [m, { rc: 5, rw: 8, omega: w, accelTime: 0.064, j1: jv, dt: dt.value }]);
+          data[ji].before.push(r.before.meanAngleDiff * 1e3);
+          data[ji].after.push(r.after.meanAngleDiff * 1e3);
+          data[ji].half.push(r.before.halfAmplitude * 1e3);
+          rows.push([fmt(4.2 + jv, 2), `${fmt(w / Math.PI, 1)}π`, fmt(r.before.meanAngleDiff * 1e3, 3), fmt(r.before.halfAmplitude * 1e3, 1), r.before.saturated ? 'yes' : 'no', r.method, fmt(r.kffp.x, 2), fmt(r.kffp.y, 2), fmt(r.after.meanAngleDiff * 1e3, 4), fmt(r.after.halfAmplitude * 1e3, 1)]);
+          done++;
+        }
+      }
+      const sat = await api.call('torqueSaturation', [m, { j1: PAPER_J1, torqueMax: m.axes.c.torqueMax ?? 725, accelTime: 0.064, feedAtCuttingPoint: 200, dt: dt.value }]);
+      progress.done();
+      const els = [h('div'), h('div'), h('div')];
+      const t = table(['J+J1 [kg·m²]', 'ω', 'α−β [mrad]', 'half ampl. [µm]', 'saturated', 'method', 'Best K_FFP X [%]', 'Best K_FFP Y [%]', 'α−β after [mrad]', 'half ampl. after [µm]'], rows);
+      t.querySelector('table').id = 'servo-sweep-table';
+      const satTable = table(['J+J1 [kg·m²]', 'accelSat [rad/s²]', 'ωsat [rad/s]', 'R_C min at 200 mm/min [mm]'], sat.map((p) => [fmt(p.jTotal, 2), fmt(p.accelSat, 1), fmt(p.omegaSat, 3), fmt(p.rcMin, 3)]));
+      satTable.querySelector('table').id = 'servo-saturation-table';
+      sweepBox.replaceChildren(...els, t, h('h4', {}, 'Torque-saturation limits (Figs. 17, 21)'), satTable);
+      const series = PAPER_J1.map((jv) => ({ label: `J+J1 = ${fmt(4.2 + jv, 2)}` }));
+      lineChart(els[0], { title: 'Mean α − β with K_FFP set (Figs. 15, 20)', xLabel: 'ω [rad/s]', yLabel: 'mrad', series, data: [PAPER_OMEGAS, ...data.map((d) => d.before)] });
+      lineChart(els[1], { title: 'Half amplitude of the shape error (Fig. 14)', xLabel: 'ω [rad/s]', yLabel: 'µm', series, data: [PAPER_OMEGAS, ...data.map((d) => d.half)] });
+      const rcs = Float64Array.from({ length: 200 }, (_, i) => 0.1 + (i * 5.9) / 199);
+      lineChart(els[2], {
+        title: 'R_C – ω_R map with the saturation ω per load (Figs. 5, 21)', xLabel: 'R_C [mm]', yLabel: 'ω_R [rad/s]',
+        series: [100, 200, 400].map((f) => ({ label: `F_C = ${f} mm/min` })),
+        data: [rcs, ...[100, 200, 400].map((f) => rcs.map((r) => f / 60 / r))],
+        scales: { x: { time: false }, y: { range: [0, 20] } },
+        hLines: sat.map((p, i) => ({ y: p.omegaSat, label: `saturation, J+J1 = ${fmt(p.jTotal, 2)} (R_C min ${fmt(p.rcMin, 2)} mm at 200 mm/min)`, color: ['#b3261e', '#d9480f', '#862e9c'][i % 3] })),
+      });
+    } catch (e) {
+      progress.done();
+      showError(sweepBox, e);
+    }
+  };
+
+  // ---- trace import ----
+  const mapBox = h('div', { id: 'servo-trace-mapper' });
+  const onTrace = (text, name) => {
+    const header = text.split(/\r?\n/).find((l) => l.trim() && !l.startsWith('#') && /[,;\t]/.test(l)) || '';
+    const names = header.split(/[,;\t]/).map((s) => s.trim());
+    const pick = (id, label, guess) => selectField({ label, id, value: names.find((n) => guess.test(n)) || '', options: [['', '—'], ...names.map((n) => [n, n])] });
+    const cols = { time: pick('servo-map-time', 'time', /^t(ime)?/i), x: pick('servo-map-x', 'X', /^(pos_)?x/i), y: pick('servo-map-y', 'Y', /^(pos_)?y/i), c: pick('servo-map-c', 'C', /^(pos_)?c/i), torque: pick('servo-map-torque', 'torque', /torque|tcmd/i) };
+    const tUnit = selectField({ label: 'time unit', id: 'servo-map-tunit', value: '1', options: [['1', 's'], ['0.001', 'ms']] });
+    const lUnit = selectField({ label: 'X, Y unit', id: 'servo-map-lunit', value: '1', options: [['1', 'mm'], ['0.001', 'µm']] });
+    const aUnit = selectField({ label: 'C unit', id: 'servo-map-aunit', value: String(Math.PI / 180), options: [[String(Math.PI / 180), 'deg'], ['1', 'rad']] });
+    const rel = h('input', { type: 'checkbox', id: 'servo-map-relative' });
+    const go = h('button', { id: 'servo-trace-run', onclick: async () => {
+      const mapping = { timeScale: Number(tUnit.value), linearScale: Number(lUnit.value), angleScale: Number(aUnit.value), relative: rel.checked };
+      for (const [k, s] of Object.entries(cols)) if (s.value) mapping[k] = s.value;
+      try {
+        const trace = await api.call('analyzeFeedVectorTrace', [text, condition(), mapping]);
+        last = { ...(last || {}), trace, traceText: text, mapping };
+        traceBox.replaceChildren(h('p', {}, `${name}: ${trace.series.t.length} samples.`), summaryTable([summaryRows('measured trace', trace.summary)]));
+        if (last.before) {
+          showResults();
+          await draw();
+        }
+      } catch (e) {
+        showError(traceBox, e);
+      }
+    } }, 'Analyse the trace');
+    mapBox.replaceChildren(h('div', { class: 'row' }, ...Object.values(cols).map((c) => c.el), tUnit.el, lUnit.el, aUnit.el, h('label', { class: 'field' }, h('span', {}, 'displacements from the start'), rel)), go);
+  };
+
+  // ---- downloads ----
+  const csv = () => {
+    if (!last?.before) return;
+    const s = last.before.series;
+    const cols = { t_s: s.t, x_cmd_mm: s.xCmd, y_cmd_mm: s.yCmd, c_cmd_rad: s.cCmd, x_mm: s.x, y_mm: s.y, c_rad: s.c, torque_c_Nm: s.torqueC, shape_error_mm: s.shapeError, alpha_rad: s.alpha, beta_rad: s.beta, angle_diff_rad: s.angleDiff, radius_error_mm: s.radiusError };
+    if (last.after) Object.assign(cols, { best_x_mm: last.after.series.x, best_y_mm: last.after.series.y, best_shape_error_mm: last.after.series.shapeError, best_angle_diff_rad: last.after.series.angleDiff });
+    downloadText('feed-vector-test.csv', toCsv(cols), 'text/csv');
+  };
+  const json = () => {
+    if (!last?.before) return;
+    downloadText('feed-vector-test.json', JSON.stringify({ machine: last.m, condition: last.cond, before: last.before.summary, bestKffp: last.best, after: last.after?.summary, trace: last.trace?.summary }, null, 2), 'application/json');
+  };
+
   root.replaceChildren(
-    h('div', { class: 'card' }, h('h3', {}, `Preset ${m.name}`), h('p', {}, m.description), h('p', { class: 'lead' }, `Source: ${m.source}`),
-      table(['field', ...axes.map((a) => a.toUpperCase())], fields.map((f) => [f, ...axes.map((a) => (typeof m.axes[a][f] === 'number' ? fmt(m.axes[a][f], 4) : m.axes[a][f] ?? '—'))]))),
+    h('div', { class: 'card' }, h('h3', {}, `Preset ${machine.name}`), h('p', {}, machine.description), h('p', { class: 'lead' }, `Source: ${machine.source}. Edit any value; the C torque limit is ${machine.axes.c.torqueMax} N·m.`), paramTable),
+    h('div', { class: 'card' }, h('h3', {}, 'Constant-feed-speed-vector test (§2.3, §3)'), h('div', { class: 'row' }, j1.el, mode.el, omega.el, feed.el, rc.el, rw.el, accel.el, dt.el),
+      h('div', { class: 'row' },
+        h('button', { id: 'servo-run', onclick: () => run(false) }, 'Simulate'),
+        h('button', { id: 'servo-best', onclick: () => run(true) }, 'Best K_FFP'),
+        h('button', { id: 'servo-csv', onclick: csv }, 'Download CSV'),
+        h('button', { id: 'servo-json', onclick: json }, 'Download JSON')),
+      status, out, charts),
+    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace }), mapBox, traceBox),
+    h('div', { class: 'card' }, h('h3', {}, "The paper's sweep: R_C = 5 mm, R_W = 8 mm, ω = 0.5π … 4π rad/s, J1 = 1.70, 3.24, 4.77 kg·m² (Figs. 14, 15, 20, 21, 22)"),
+      h('button', { id: 'servo-sweep', onclick: sweep }, 'Run the sweep'), progress.el, sweepBox),
   );
-  root.querySelector('table').id = 'servo-preset-table';
 }
