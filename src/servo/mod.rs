@@ -13,11 +13,11 @@
 //! rad (backlash of a rotary axis) or mm (backlash of a linear axis).
 
 pub mod axis;
-mod discrete;
-mod precontrol;
+pub mod discrete;
+pub mod precontrol;
 pub mod response;
 pub mod simulate;
-mod transmission;
+pub mod transmission;
 
 pub use axis::{AxisKind, AxisParams, WormHarmonic};
 
