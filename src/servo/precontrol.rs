@@ -93,11 +93,45 @@ impl<'a> Interpolant<'a> {
 }
 
 /// The position reference and feedforward velocity, one per sample.
-pub(crate) struct Shaped {
-    /// `x_s` at each sample.
-    pub xs: Vec<f64>,
-    /// `v_ff` at each sample, per s (K_FFP not applied).
-    pub vff: Vec<f64>,
+pub(crate) enum Shaped {
+    /// Whole-step times: `x_s` on an extended grid, `v_ff` read from it.
+    Grid {
+        /// `x_s` at samples `−window … n−1+e`; sample 0 at index `window`.
+        grid: Vec<f64>,
+        /// End offset of the feedforward window, samples.
+        e: usize,
+        /// Feedforward window, samples.
+        window: usize,
+        /// `1/(window·dt)`.
+        scale: f64,
+    },
+    /// General times: both per sample.
+    Samples {
+        /// `x_s` at each sample.
+        xs: Vec<f64>,
+        /// `v_ff` at each sample, per s.
+        vff: Vec<f64>,
+    },
+}
+
+impl Shaped {
+    /// `(x_s, v_ff)` at sample `i` (< the command length); the simulation
+    /// inlines the same reads.
+    #[cfg(test)]
+    pub(crate) fn at(&self, i: usize) -> (f64, f64) {
+        match self {
+            Shaped::Grid {
+                grid,
+                e,
+                window,
+                scale,
+            } => (
+                grid[window + i],
+                (grid[window + i + e] - grid[i + e]) * scale,
+            ),
+            Shaped::Samples { xs, vff } => (xs[i], vff[i]),
+        }
+    }
 }
 
 /// Applies `Ts`, `Ta`, `Tp` to the sampled command (see the module header).
@@ -130,7 +164,7 @@ pub(crate) fn shape(command: &[f64], dt: f64, ts: f64, ta: f64, tp: f64) -> Shap
         let v = (c.smoothed(end, ns) - c.smoothed(end - window, ns)) / (window * dt);
         vff.push(v);
     }
-    Shaped { xs, vff }
+    Shaped::Samples { xs, vff }
 }
 
 /// The same as the general path when `Ts`, the window and its end offset
@@ -138,10 +172,9 @@ pub(crate) fn shape(command: &[f64], dt: f64, ts: f64, ta: f64, tp: f64) -> Shap
 /// extended grid and `v_ff` is a difference of two of its samples.
 fn shape_on_grid(c: &Interpolant, dt: f64, ns: usize, end_offset: f64, window: usize) -> Shaped {
     let n = c.c.len();
-    // grid indices k ∈ [lo, hi], x_s at u = k
-    let lo = (end_offset.min(0.0) as i64) - window as i64;
-    let hi = n as i64 - 1 + end_offset.max(0.0) as i64;
-    let len = (hi - lo + 1) as usize;
+    let e = end_offset as usize; // ≥ 0: the window ends at or after its centre
+                                 // grid index j ↔ sample k = j − window, k ∈ [−window, n − 1 + e]
+    let len = n + e + window;
     let last = n - 1;
     let q_at = |k: i64| -> f64 {
         if k <= 0 {
@@ -153,27 +186,23 @@ fn shape_on_grid(c: &Interpolant, dt: f64, ns: usize, end_offset: f64, window: u
         }
     };
     let c_at = |k: i64| -> f64 { c.c[k.clamp(0, last as i64) as usize] };
+    let inv = if ns == 0 { 0.0 } else { 1.0 / ns as f64 };
     let grid: Vec<f64> = (0..len)
         .map(|j| {
-            let k = lo + j as i64;
+            let k = j as i64 - window as i64;
             if ns == 0 {
                 c_at(k)
             } else {
-                (q_at(k) - q_at(k - ns as i64)) / ns as f64
+                (q_at(k) - q_at(k - ns as i64)) * inv
             }
         })
         .collect();
-    let off = (-lo) as usize; // grid index of sample 0
-    let e = end_offset as i64;
-    let scale = 1.0 / (window as f64 * dt);
-    let xs = grid[off..off + n].to_vec();
-    let vff = (0..n as i64)
-        .map(|i| {
-            let end = (i + e + off as i64) as usize;
-            (grid[end] - grid[end - window]) * scale
-        })
-        .collect();
-    Shaped { xs, vff }
+    Shaped::Grid {
+        grid,
+        e,
+        window,
+        scale: 1.0 / (window as f64 * dt),
+    }
 }
 
 #[cfg(test)]
@@ -200,12 +229,13 @@ mod tests {
             let end_offset = np - 0.5 * na + 0.5 * window;
             let g = shape(&c, dt, ts, ta, tp);
             for i in 0..c.len() {
+                let (gx, gv) = g.at(i);
                 let u = i as f64;
                 let xs = it.smoothed(u, ns);
                 let end = u + end_offset;
                 let v = (it.smoothed(end, ns) - it.smoothed(end - window, ns)) / (window * dt);
                 assert!(
-                    (g.xs[i] - xs).abs() < 1e-9 && (g.vff[i] - v).abs() < 1e-6,
+                    (gx - xs).abs() < 1e-9 && (gv - v).abs() < 1e-6,
                     "{ts} {ta} {tp} @{i}"
                 );
             }
@@ -235,11 +265,12 @@ mod tests {
         // after the start-up, x_s(t) = 3 (t − Ts/2) and v_ff = 3 exactly
         for i in [200, 1000, 1900] {
             let t = i as f64 * dt;
-            assert!((s.xs[i] - 3.0 * (t - 0.032)).abs() < 1e-12);
-            assert!((s.vff[i] - 3.0).abs() < 1e-9);
+            let (xs, vff) = s.at(i);
+            assert!((xs - 3.0 * (t - 0.032)).abs() < 1e-12);
+            assert!((vff - 3.0).abs() < 1e-9);
         }
         // at the end the command stops: the feedforward reads ahead and falls
-        assert!(s.vff[1999] < 3.0);
+        assert!(s.at(1999).1 < 3.0);
     }
 
     #[test]
@@ -255,7 +286,7 @@ mod tests {
             let t = i as f64 * dt;
             let want = g * (w * (t - 0.5 * ts)).sin();
             // piecewise-linear interpolation error ~ (ω dt)²/8
-            assert!((s.xs[i] - want).abs() < 2e-6, "{} vs {want}", s.xs[i]);
+            assert!((s.at(i).0 - want).abs() < 2e-6, "{} vs {want}", s.at(i).0);
         }
     }
 }

@@ -66,6 +66,53 @@ fn check_input(dt: f64, command: &[f64]) -> Result<(), ServoError> {
     Ok(())
 }
 
+/// The loop over the samples; `input(i)` gives `(x_s, v_ff)` in table units.
+/// Returns nominal positions (motor angle over `s_m`), velocities, applied
+/// torques and the saturation flag.
+#[inline(always)]
+fn run(
+    step: &LoopStep,
+    sm: f64,
+    kf: f64,
+    limit: f64,
+    n: usize,
+    input: impl Fn(usize) -> (f64, f64),
+) -> (Vec<f64>, Vec<f64>, Vec<f64>, bool) {
+    let mut position = vec![0.0; n];
+    let mut velocity = vec![0.0; n];
+    let mut torque = vec![0.0; n];
+    let mut saturated = false;
+    let inv = 1.0 / sm;
+    let (x0, v0) = input(0);
+    let mut z = [sm * x0, 0.0, 0.0];
+    let mut u0 = [sm * x0, kf * v0];
+    let outputs = position
+        .iter_mut()
+        .zip(velocity.iter_mut())
+        .zip(torque.iter_mut());
+    for (i, ((p, v), t)) in outputs.enumerate() {
+        let tau = step.torque(&z, u0[0], u0[1]);
+        let sat = tau.abs() > limit;
+        let applied = if sat { limit.copysign(tau) } else { tau };
+        saturated |= sat;
+        *p = z[0] * inv;
+        *v = z[1] * inv;
+        *t = applied;
+        if i + 1 == n {
+            break;
+        }
+        let (x1, v1) = input(i + 1);
+        let u1 = [sm * x1, kf * v1];
+        if sat {
+            step.saturated(&mut z, applied);
+        } else {
+            step.linear(&mut z, u0, u1);
+        }
+        u0 = u1;
+    }
+    (position, velocity, torque, saturated)
+}
+
 /// Simulates one axis following the sampled `command`, one sample per `dt`.
 ///
 /// # Units
@@ -98,32 +145,29 @@ pub fn simulate_axis(
     let sm = trans.scale;
     let kf = sm * axis.kffp / 100.0;
     let n = command.len();
-    let mut position = Vec::with_capacity(n);
-    let mut velocity = Vec::with_capacity(n);
-    let mut torque = Vec::with_capacity(n);
-    let mut saturated = false;
     let limit = axis.torque_max.unwrap_or(f64::INFINITY);
-    let rigid = trans.is_rigid();
-    let mut z = [sm * shaped.xs[0], 0.0, 0.0];
-    let mut u0 = [sm * shaped.xs[0], kf * shaped.vff[0]];
-    for i in 0..n {
-        let tau = step.torque(&z, u0[0], u0[1]);
-        let sat = tau.abs() > limit;
-        let applied = if sat { limit.copysign(tau) } else { tau };
-        saturated |= sat;
-        position.push(if rigid { z[0] / sm } else { trans.table(z[0]) });
-        velocity.push(z[1] / sm);
-        torque.push(applied);
-        if i + 1 == n {
-            break;
+    let (mut position, velocity, torque, saturated) = match &shaped {
+        precontrol::Shaped::Grid {
+            grid,
+            e,
+            window,
+            scale,
+        } => {
+            let (e, w, scale) = (*e, *window, *scale);
+            // x_s(i) and v_ff(i) read from the grid (precontrol::Shaped::at)
+            run(&step, sm, kf, limit, n, |i| {
+                (grid[w + i], (grid[w + i + e] - grid[i + e]) * scale)
+            })
         }
-        let u1 = [sm * shaped.xs[i + 1], kf * shaped.vff[i + 1]];
-        if sat {
-            step.saturated(&mut z, applied);
-        } else {
-            step.linear(&mut z, u0, u1);
+        precontrol::Shaped::Samples { xs, vff } => {
+            run(&step, sm, kf, limit, n, |i| (xs[i], vff[i]))
         }
-        u0 = u1;
+    };
+    if !trans.is_rigid() {
+        // the loop saw motor angles s_m·position; map them through gear and backlash
+        for p in position.iter_mut() {
+            *p = trans.table(*p * sm);
+        }
     }
     Ok(AxisResponse {
         position,
