@@ -3,10 +3,20 @@
 //! Values are copied from Table 1 as printed, in SI units:
 //! - `kpp` = 60 1/s (the table; the text of §3 says the NC default was 30 —
 //!   the table is the identified model, so it is used here).
+//! - `kvi`: the table prints "Nms/rad" for Kvi as for Kvp, which cannot be
+//!   right for an integral gain; it is read as N·m/rad in
+//!   `τ = Kvp e + Kvi ∫e dt`, values as printed (see `servo::response`).
+//! - X's loop (J, C, Kvp, Kvi) is read at the motor, the table moving one
+//!   lead (16 mm) per motor turn.
 //! - `kffp` is a set value (`*` in the table); the preset uses 100 %.
 //! - `lead`: X has the 16 mm ball screw of the table. For Y the table lists
 //!   no lead but `r = 1 m/rad` and `K_FF = 1`, i.e. the Y loop is already
-//!   written in load units; `r = l/2π = 1` gives `lead = 2π m`.
+//!   written in load units; `r = l/2π = 1` gives `lead = 2π m`. Apart
+//!   from J the Y column repeats the C column (C, Kvp, Kvi, Ts, Ta, Tp); we
+//!   suspect a copy, but use it as printed.
+//! - `ts` is each axis's own smoothing, as printed: X 0.05 s, Y and C
+//!   0.064 s. X therefore runs 7 ms ahead of Y and C in the feed-vector
+//!   test (see `docs/servo.md`).
 //! - `torqueMax` = 725 N·m for C (§5.2, Fig. 17); the paper gives no limit
 //!   for X and Y.
 //! - `j1` = 1.70 kg·m², the lightest of the paper's three work pieces.
