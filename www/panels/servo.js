@@ -200,7 +200,10 @@ export async function mount(root, api) {
       try {
         const trace = await api.call('analyzeFeedVectorTrace', [text, condition(), mapping]);
         last = { ...(last || {}), trace, traceText: text, mapping };
-        traceBox.replaceChildren(h('p', {}, `${name}: ${trace.series.t.length} samples.`), summaryTable([summaryRows('measured trace', trace.summary)]));
+        traceBox.replaceChildren(
+          h('p', {}, `${name}: ${trace.series.t.length} samples; mean α − β `, h('b', { id: 'servo-trace-angle-diff' }, fmt(trace.summary.meanAngleDiff * 1e3, 4)), ' mrad.'),
+          summaryTable([summaryRows('measured trace', trace.summary)]),
+        );
         if (last.before) {
           showResults();
           await draw();

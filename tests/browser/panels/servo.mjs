@@ -19,4 +19,25 @@ export default async function (page, check) {
   const kx = Number(await page.textContent('#servo-kffp-x'));
   check(kx > 0 && kx < 100, `Best K_FFP of X should be lowered below 100 %, shown ${kx}`);
   check((await page.$$('#panel-servo .chart')).length >= 5, 'the panel should draw its charts');
+  await traceCheck(page, check);
+}
+
+// Trace import: a synthetic SERVO GUIDE-style trace (ms, mm, degrees) in
+// which X and Y follow the circle exactly and C lags by 2 mrad: Eq. 10 gives
+// α − β = +2 mrad, independent of any servo model.
+export async function traceCheck(page, check) {
+  const omega = Math.PI;
+  const lines = ['time,X,Y,C'];
+  for (let i = 0; i <= 3000; i++) {
+    const t = i * 1e-3;
+    const th = t < 0.064 ? (omega * t * t) / (2 * 0.064) : omega * (t - 0.032);
+    lines.push(`${i},${8 * Math.cos(th)},${8 * Math.sin(th)},${((th - 0.002) * 180) / Math.PI}`);
+  }
+  await page.setInputFiles('#panel-servo .drop input[type=file]', { name: 'trace.csv', mimeType: 'text/csv', buffer: Buffer.from(lines.join('\n')) });
+  await page.waitForSelector('#servo-map-time');
+  await page.selectOption('#servo-map-tunit', '0.001');
+  await page.click('#servo-trace-run');
+  await page.waitForSelector('#servo-trace-angle-diff', { timeout: 30_000 });
+  const d = Number(await page.textContent('#servo-trace-angle-diff'));
+  check(Math.abs(d - 2) < 1e-3, `the trace's mean α − β should be 2 mrad, shown ${d}`);
 }
