@@ -78,7 +78,12 @@ fn feed_vector_best_kffp_and_saturation() {
     assert!(get(&s, "meanAngleDiff").as_f64().unwrap() > 0.0);
     assert_eq!(get(&s, "saturated").as_bool(), Some(false));
     assert!(Float64Array::from(get(&get(&r, "series"), "angleDiff")).length() > 1000);
-    let b = best_kffp("nmv5000".into(), condition(std::f64::consts::PI), JsValue::UNDEFINED).unwrap();
+    let b = best_kffp(
+        "nmv5000".into(),
+        condition(std::f64::consts::PI),
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
     assert_eq!(get(&b, "method").as_string().as_deref(), Some("analytic"));
     assert!(get(&b, "residualX").as_f64().unwrap().abs() < 1e-9);
     let q = Object::new();
