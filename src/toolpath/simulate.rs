@@ -40,6 +40,9 @@ pub struct SegmentStats {
     /// Mean signed normal deviation of those samples (arcs: the mean radius
     /// loss, positive inside; lines in XY: positive to the left), mm.
     pub mean_deviation: Option<f64>,
+    /// The same over the first and the second half of the segment's
+    /// length (used to shift the vertices of line programs), mm.
+    pub half_deviation: [Option<f64>; 2],
     /// Number of samples nearest to this segment.
     pub samples: usize,
 }
@@ -127,6 +130,7 @@ pub fn simulate(
     let mut max_e = vec![0.0f64; ne];
     let mut sum_dev = vec![0.0f64; ne];
     let mut n_dev = vec![0usize; ne];
+    let mut half = vec![[0.0f64; 4]; ne];
     let mut n_s = vec![0usize; ne];
     let (mut max_error, mut max_k, mut max_el) = (0.0f64, 0usize, 0usize);
     for k in 0..n {
@@ -144,6 +148,10 @@ pub fn simulate(
         if nr.normal.is_finite() {
             sum_dev[e] += nr.normal;
             n_dev[e] += 1;
+            let el = &path.elements[e];
+            let h = usize::from(nr.s - el.s0 > 0.5 * el.len);
+            half[e][2 * h] += nr.normal;
+            half[e][2 * h + 1] += 1.0;
         }
         if !path.elements[e].rapid && nr.dist > max_error {
             max_error = nr.dist;
@@ -182,6 +190,9 @@ pub fn simulate(
                 radius,
                 max_error_um: max_e[i] * 1e3,
                 mean_deviation: (n_dev[i] > 0).then(|| sum_dev[i] / n_dev[i] as f64),
+                half_deviation: [0, 1].map(|h| {
+                    (half[i][2 * h + 1] > 0.0).then(|| half[i][2 * h] / half[i][2 * h + 1])
+                }),
                 samples: n_s[i],
             }
         })
