@@ -9,7 +9,9 @@
 //! the last nearest point and examines the path elements within
 //! `2·(last error + step) + 0.05 mm` of it (at least the neighbours), so a
 //! path that comes back near itself far along its length is not mistaken
-//! for the local path, and the cost per sample stays a few elements.
+//! for the local path, and the cost per sample stays a few elements. When
+//! two elements are equally near (a circle programmed twice) the one closer
+//! along the path to the last nearest point wins, so the search moves on.
 //!
 //! Units: mm.
 
@@ -126,9 +128,12 @@ impl Path {
         Self { elements }
     }
 
-    /// Exact nearest point on element `i` to `q`.
+    /// Exact nearest point on element `i` to `q`. `hint` is the arc length
+    /// the caller expects; it only resolves where on a full circle a point
+    /// just behind the start lies (at its start when the hint is in the
+    /// circle's first quarter and the point in its last).
     #[inline]
-    pub fn nearest_on(&self, i: usize, q: [f64; 3]) -> Nearest {
+    pub fn nearest_on(&self, i: usize, q: [f64; 3], hint: f64) -> Nearest {
         let e = &self.elements[i];
         match e.geo {
             Geo::Line { p0, d, l2 } => {
@@ -171,12 +176,18 @@ impl Path {
                 if phi < 0.0 {
                     phi += std::f64::consts::TAU;
                 }
-                let f = phi / sweep.abs();
+                let mut f = phi / sweep.abs();
+                if sweep.abs() >= std::f64::consts::TAU - 1e-9
+                    && f > 0.75
+                    && hint < e.s0 + 0.25 * e.len
+                {
+                    f = 0.0;
+                }
                 if f <= 1.0 && rho > 0.0 {
                     let mut pt = [0.0; 3];
                     pt[u] = c[u] + r * x / rho;
                     pt[v] = c[v] + r * y / rho;
-                    pt[n] = n0 + dn * f;
+                    pt[n] = n0 + dn * (phi / sweep.abs()).min(1.0);
                     Nearest {
                         element: i,
                         dist: d3(q, pt),
@@ -230,6 +241,14 @@ impl Default for Tracker {
 }
 
 impl Tracker {
+    /// Nearer, or as near (within 1 nm, e.g. a path that repeats itself)
+    /// and closer along the path to the last nearest point.
+    #[inline]
+    fn better(&self, cand: &Nearest, best: &Nearest) -> bool {
+        cand.dist < best.dist - 1e-9
+            || (cand.dist <= best.dist + 1e-9 && (cand.s - self.s).abs() < (best.s - self.s).abs())
+    }
+
     /// The nearest point of `path` to `q`, searched around the last one.
     /// `None` for an empty path.
     pub fn nearest(&mut self, path: &Path, q: [f64; 3]) -> Option<Nearest> {
@@ -241,13 +260,13 @@ impl Tracker {
         let w = 2.0 * (self.err + step) + 0.05;
         let (lo, hi) = (self.s - w, self.s + w);
         let cur = self.cur.min(n - 1);
-        let mut best = path.nearest_on(cur, q);
+        let mut best = path.nearest_on(cur, q, self.s);
         let mut i = cur;
         while i > 0 {
             i -= 1;
             let e = &path.elements[i];
-            let cand = path.nearest_on(i, q);
-            if cand.dist < best.dist {
+            let cand = path.nearest_on(i, q, self.s);
+            if self.better(&cand, &best) {
                 best = cand;
             }
             if e.s0 < lo {
@@ -257,8 +276,8 @@ impl Tracker {
         let mut i = cur + 1;
         while i < n {
             let e = &path.elements[i];
-            let cand = path.nearest_on(i, q);
-            if cand.dist < best.dist {
+            let cand = path.nearest_on(i, q, self.s);
+            if self.better(&cand, &best) {
                 best = cand;
             }
             if e.s0 + e.len > hi {

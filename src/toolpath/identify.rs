@@ -50,7 +50,7 @@ pub enum IdentifyError {
 /// let x = 0.04 * w / 2.0;
 /// let expect = (1.0 - x.sin() / x / (0.015f64.powi(2) * w * w + 1.0).sqrt()) * 10.0;
 /// assert!((dr - expect).abs() < 1e-15);
-/// assert!((dr - 0.0177).abs() < 1e-4);
+/// assert!((dr - 0.019873).abs() < 1e-6);
 /// ```
 pub fn radius_reduction(feed: f64, radius: f64, t_a: f64, t: f64) -> Result<f64, IdentifyError> {
     let bad = |f: &str, m: &str| {

@@ -62,7 +62,8 @@ pub struct Timeline {
 
 impl Timeline {
     /// Times `segments` at their feeds × `feed_override`; rapids at
-    /// `rapid_feed` (mm/min).
+    /// `rapid_feed` (mm/min). Pass the rapid's settling time with
+    /// [`Timeline::with_rapid_stop`].
     ///
     /// # Examples
     /// ```
@@ -75,6 +76,17 @@ impl Timeline {
     /// assert!((tl.integral(1.0, &mut h)[0] - 5.0).abs() < 1e-12);
     /// ```
     pub fn new(segments: &[Segment], rapid_feed: f64, feed_override: f64) -> Self {
+        Self::with_rapid_stop(segments, rapid_feed, feed_override, 0.0)
+    }
+
+    /// As [`Timeline::new`], with the tool standing still for
+    /// `rapid_stop` seconds after every G0 (the NC's in-position check).
+    pub fn with_rapid_stop(
+        segments: &[Segment],
+        rapid_feed: f64,
+        feed_override: f64,
+        rapid_stop: f64,
+    ) -> Self {
         let origin = segments.first().map_or([0.0; 3], |s| s.start.p());
         let mut items = Vec::with_capacity(segments.len());
         let mut t = 0.0;
@@ -135,6 +147,20 @@ impl Timeline {
             q = item.local_integral(tau, origin, q);
             t += tau;
             items.push(item);
+            if matches!(s.motion, Motion::Rapid) && rapid_stop > 0.0 {
+                let stop = Item {
+                    segment: i,
+                    t0: t,
+                    tau: rapid_stop,
+                    p0: p1,
+                    p1,
+                    q0: q,
+                    geo: Geo::Still,
+                };
+                q = stop.local_integral(rapid_stop, origin, q);
+                t += rapid_stop;
+                items.push(stop);
+            }
         }
         Self {
             items,

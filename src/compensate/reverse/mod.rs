@@ -275,10 +275,10 @@ pub fn dwell_candidates(orig: &[Segment], sim: &SimConfig) -> Vec<usize> {
 /// # Examples
 /// ```
 /// use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
-/// let nc = "N10 G0 X10 Y0\nN20 G3 X10 Y0 I-10 J0 F3000 (circle)\nN30 G3 X10 Y0 I-10 J0";
-/// let c = reverse_compensate(nc, &ReverseConfig::default()).unwrap();
-/// assert!(c.after.max_error_um < 0.5 * c.before.max_error_um);
-/// assert!(c.nc.contains("N20 G3") && c.nc.contains("(circle)"));
+/// let nc = mtmotion::toolpath::example::arc_example();
+/// let c = reverse_compensate(&nc, &ReverseConfig::default()).unwrap();
+/// assert!(c.after.max_error_um < 0.4 * c.before.max_error_um);
+/// assert!(c.nc.contains("N40 G3") && c.nc.contains("(C)"));
 /// ```
 pub fn reverse_compensate(text: &str, cfg: &ReverseConfig) -> Result<Compensation, ToolpathError> {
     cfg.sim.validate()?;
