@@ -41,7 +41,7 @@ enum Geo {
     Arc {
         c: [f64; 3],
         r: f64,
-        th0: f64,
+        sc0: (f64, f64),
         sweep: f64,
         axes: (usize, usize, usize),
         n0: f64,
@@ -97,7 +97,7 @@ impl Path {
                     Geo::Arc {
                         c: a.center,
                         r: a.radius,
-                        th0: (p0[v] - a.center[v]).atan2(p0[u] - a.center[u]),
+                        sc0: (p0[v] - a.center[v]).atan2(p0[u] - a.center[u]).sin_cos(),
                         sweep: a.sweep,
                         axes: (u, v, n),
                         n0: p0[n],
@@ -157,7 +157,7 @@ impl Path {
             Geo::Arc {
                 c,
                 r,
-                th0,
+                sc0,
                 sweep,
                 axes: (u, v, n),
                 n0,
@@ -168,7 +168,7 @@ impl Path {
                 let (x, y) = (q[u] - c[u], q[v] - c[v]);
                 let rho = x.hypot(y);
                 // Angle of q from the start, in the sweep's direction.
-                let (s0, c0) = th0.sin_cos();
+                let (s0, c0) = sc0;
                 let mut phi = (c0 * y - s0 * x).atan2(c0 * x + s0 * y);
                 if sweep < 0.0 {
                     phi = -phi;

@@ -108,17 +108,14 @@ pub fn filter(tl: &Timeline, t_a: f64, t: [f64; 3], dt: f64, n: usize) -> Filter
         Lag1::new(t[2], dt),
     ];
     let o = tl.origin;
-    let (mut h_now, mut h_back, mut h_q) = (0usize, 0usize, 0usize);
+    let (mut h_now, mut h_back) = (0usize, 0usize);
     let mut y = o;
     let mut u_prev = o;
     for k in 0..n {
         let tk = k as f64 * dt;
-        let p = tl.pos(tk, &mut h_now);
-        let vb = tl.vel(tk, &mut h_now);
+        let (p, vb, q1) = tl.eval(tk, &mut h_now);
         let (u, fa) = if t_a > 0.0 {
-            let q1 = tl.integral(tk, &mut h_now);
-            let q0 = tl.integral(tk - t_a, &mut h_q);
-            let pb = tl.pos(tk - t_a, &mut h_back);
+            let (pb, _, q0) = tl.eval(tk - t_a, &mut h_back);
             let mut u = [0.0; 3];
             let mut fa = [0.0; 3];
             for ax in 0..3 {

@@ -44,6 +44,7 @@ enum Geo {
         w: f64,
         axes: (usize, usize, usize),
         vn: f64,
+        sc0: (f64, f64),
     },
 }
 
@@ -119,6 +120,7 @@ impl Timeline {
                                 w: a.sweep / tau,
                                 axes,
                                 vn: (p1[n] - p0[n]) / tau,
+                                sc0: (p0[v] - a.center[v]).atan2(p0[u] - a.center[u]).sin_cos(),
                             }
                         }
                         _ => Geo::Line {
@@ -206,6 +208,15 @@ impl Timeline {
             .map_or([0.0; 3], |it| it.vel(t - it.t0))
     }
 
+    /// Position, velocity and `Q` at `t` in one lookup.
+    #[inline]
+    pub fn eval(&self, t: f64, hint: &mut usize) -> ([f64; 3], [f64; 3], [f64; 3]) {
+        match self.locate(t, hint) {
+            Some(it) => it.eval(t - it.t0, self.origin),
+            None => (self.pos(t, hint), [0.0; 3], self.integral(t, hint)),
+        }
+    }
+
     /// `Q(t) = ∫₀ᵗ (p − origin) dτ`, mm·s (zero for `t ≤ 0`).
     #[inline]
     pub fn integral(&self, t: f64, hint: &mut usize) -> [f64; 3] {
@@ -249,6 +260,7 @@ impl Item {
                 w,
                 axes: (a, b, n),
                 vn,
+                ..
             } => {
                 let (s, co) = (th0 + w * u).sin_cos();
                 let mut p = [0.0; 3];
@@ -290,6 +302,40 @@ impl Item {
         self.local_integral(u, self.p0, [0.0; 3])
     }
 
+    /// Position, velocity and `q0 + ∫₀ᵘ (p − origin) dτ` at `u`, with one
+    /// sine/cosine evaluation.
+    #[inline]
+    pub fn eval(&self, u: f64, o: [f64; 3]) -> ([f64; 3], [f64; 3], [f64; 3]) {
+        match self.geo {
+            Geo::Arc {
+                c,
+                r,
+                th0,
+                w,
+                axes: (a, b, n),
+                vn,
+                sc0: (s0, c0),
+            } => {
+                let (s1, c1) = (th0 + w * u).sin_cos();
+                let mut p = [0.0; 3];
+                let mut v = [0.0; 3];
+                let mut q = self.q0;
+                p[a] = c[a] + r * c1;
+                p[b] = c[b] + r * s1;
+                p[n] = self.p0[n] + vn * u;
+                v[a] = -r * w * s1;
+                v[b] = r * w * c1;
+                v[n] = vn;
+                let k = r / w;
+                q[a] += (c[a] - o[a]) * u + k * (s1 - s0);
+                q[b] += (c[b] - o[b]) * u - k * (c1 - c0);
+                q[n] += (self.p0[n] - o[n]) * u + 0.5 * vn * u * u;
+                (p, v, q)
+            }
+            _ => (self.pos(u), self.vel(u), self.local_integral(u, o, self.q0)),
+        }
+    }
+
     /// `q0 + ∫₀ᵘ (p − origin) dτ`, mm·s.
     #[inline]
     fn local_integral(&self, u: f64, o: [f64; 3], q0: [f64; 3]) -> [f64; 3] {
@@ -311,8 +357,9 @@ impl Item {
                 w,
                 axes: (a, b, n),
                 vn,
+                sc0,
             } => {
-                let (s0, c0) = th0.sin_cos();
+                let (s0, c0) = sc0;
                 let (s1, c1) = (th0 + w * u).sin_cos();
                 let mut q = q0;
                 // ∫ r cos(th0 + w τ) dτ = r (sin θ1 − sin θ0) / w, written
