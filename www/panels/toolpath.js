@@ -136,12 +136,12 @@ export async function mount(root, api) {
   root.replaceChildren(
     h('div', { class: 'card' },
       h('h3', {}, 'NC program'),
-      h('div', { class: 'row' }, example.el, drop),
+      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, example.el, drop),
       nc),
     h('div', { class: 'card' },
       h('h3', {}, 'Model (Eq. 1 moving average tA, Eq. 2 first-order lag T per axis)'),
-      h('div', { class: 'row' }, tA.el, tx.el, ty.el, tz.el, ovr.el, dt.el),
-      h('div', { class: 'row' }, run, comp, h('label', {}, 'Error magnification ', mag, ' ', magLabel))),
+      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, tA.el, tx.el, ty.el, tz.el, ovr.el, dt.el),
+      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, run, comp, h('label', {}, 'Error magnification ', mag, ' ', magLabel))),
     h('div', { class: 'card' }, h('h3', {}, 'Simulation'), out, pathBox, velBox),
     h('div', { class: 'card' }, h('h3', {}, 'Reverse compensation (§4-3)'), compOut),
   );
