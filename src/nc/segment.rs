@@ -170,7 +170,7 @@ pub enum Motion {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
 pub struct Segment {
-    /// Index into [`Program::blocks`]; `None` for a segment a tool inserted.
+    /// Index into [`crate::nc::program::Program::blocks`]; `None` for a segment a tool inserted.
     pub block: Option<usize>,
     /// 1-based source line (0 for an inserted segment).
     pub line: usize,

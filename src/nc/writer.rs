@@ -85,7 +85,7 @@ struct Out {
 }
 
 impl Program {
-    /// Writes the program's own segments back (see [`write`]).
+    /// Writes the program's own segments back (see [`write()`]).
     ///
     /// # Examples
     /// ```

@@ -8,7 +8,7 @@
 //! superposed as the paper does ([`superpose`]), which equals filtering the
 //! whole command directly (tested); the contour error is the exact distance
 //! from the simulated point to the commanded lines and arcs ([`contour`]).
-//! [`simulate`] ties them together; [`identify`] is Eq. 3 and the
+//! [`mod@simulate`] ties them together; [`identify`] is Eq. 3 and the
 //! identification of `tA` and `T`; [`example`] holds the built-in test paths
 //! that resemble the paper's Fig. 2.
 //!
