@@ -23,7 +23,7 @@
 //! | [`kinematics`] | 4×4 HTM chains with error matrices, FK and IK | thasana §II-B, Eq. 3, Eq. 8; kato |
 //! | [`cone_frustum`] | ISO 10791-6 cone-frustum ball-bar test | kato |
 //! | [`machine`] | machine presets as data, each citing its source | suzuki Table 1; thasana §II-D |
-//! | [`nc`] | NC program lexer: words, comments, line and column | — |
+//! | [`nc`] | NC program lexer, interpreter (G0–G3, G4, G17–G19, G90/G91, G20/G21, modal F, A/B/C) and writer | RS-274 / ISO 6983 |
 //! | [`trace`] | CSV/TSV trace import with line- and column-naming errors | — |
 //! | `wasm` | the JS binding layer (wasm32 only) | — |
 

@@ -1,1 +1,185 @@
-//! Bindings for the toolpath models. Written under the issue that implements them.
+//! Bindings for [`crate::toolpath`] and [`crate::compensate::reverse`]
+//! (qiu §4-1 to §4-3): `parseNc`, `simulateToolPath`, `radiusReduction`,
+//! `identifyAccDec`, `reverseCompensate`, `toolpathExample`.
+
+use serde::Serialize;
+use wasm_bindgen::prelude::*;
+
+use super::convert::{from_js, to_js, Obj};
+use crate::compensate::reverse::{reverse_compensate, ReverseConfig};
+use crate::nc::program::{parse, Segment, Warning};
+use crate::toolpath::identify::{
+    identify_acc_dec as identify, radius_reduction as eq3, CircleLoss,
+};
+use crate::toolpath::{example, SimConfig, Simulation};
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS: &str = r#"
+export interface Pose { x: number; y: number; z: number; a: number; b: number; c: number }
+export type NcMotion =
+  | { type: 'rapid' } | { type: 'linear' }
+  | { type: 'arc'; center: [number, number, number]; radius: number; plane: 'XY' | 'ZX' | 'YZ'; sweep: number; rForm: boolean }
+  | { type: 'dwell'; seconds: number };
+/** One motion segment; mm, degrees for a/b/c, feed in mm/min. */
+export interface NcSegment { block: number | null; line: number; motion: NcMotion; start: Pose; end: Pose; feed: number }
+export interface NcWarning { line: number; column: number; message: string }
+export interface ParsedNc { segments: NcSegment[]; warnings: NcWarning[] }
+/** tA and T in s (T one value or [Tx, Ty, Tz]), dt in s, rapidFeed in mm/min, feedOverride as a fraction. */
+export interface ToolPathConfig { tA?: number; T?: number | [number, number, number]; dt?: number; rapidFeed?: number; feedOverride?: number }
+export interface SegmentStats {
+  segment: number; line: number; kind: 'line' | 'arc' | 'rapid'; length: number; radius: number;
+  maxErrorUm: number; meanDeviation: number | null; halfDeviation: [number | null, number | null]; samples: number;
+}
+/** Time series (Float64Array, mm, mm/s, µm) and summary of one simulation. */
+export interface ToolPathSimulation {
+  t: Float64Array;
+  cmdX: Float64Array; cmdY: Float64Array; cmdZ: Float64Array;
+  simX: Float64Array; simY: Float64Array; simZ: Float64Array;
+  nearX: Float64Array; nearY: Float64Array; nearZ: Float64Array;
+  velCmdX: Float64Array; velCmdY: Float64Array; velCmdZ: Float64Array;
+  velSimX: Float64Array; velSimY: Float64Array; velSimZ: Float64Array;
+  errorUm: Float64Array;
+  maxErrorUm: number; maxErrorTime: number; maxErrorLine: number;
+  motionTime: number; nominalTime: number;
+  segments: SegmentStats[]; warnings: NcWarning[];
+}
+export interface RadiusReductionInput { feed: number; radius: number; tA: number; T: number }
+export interface CircleLoss { feed: number; radius: number; radiusLoss: number }
+export interface AccDec { tA: number; T: number; residual: number }
+export interface ReverseConfig extends ToolPathConfig { dwell?: number; iterations?: number }
+export interface CompSummary { maxErrorUm: number; motionTime: number }
+export interface SegmentChange { segment: number; line: number; kind: string; radiusBefore: number; radiusAfter: number; endShiftUm: number }
+export interface ReverseCompensation {
+  nc: string; before: CompSummary; after: CompSummary; segments: SegmentChange[];
+  dwells: { afterLine: number; seconds: number }[]; historyUm: number[];
+  beforeSim: ToolPathSimulation; afterSim: ToolPathSimulation;
+}
+"#;
+
+#[derive(Serialize)]
+struct Parsed<'a> {
+    segments: &'a [Segment],
+    warnings: &'a [Warning],
+}
+
+/// Parses an NC program into motion segments and warnings; throws an
+/// `Error` naming line and column.
+#[wasm_bindgen(js_name = parseNc, unchecked_return_type = "ParsedNc")]
+pub fn parse_nc(text: &str) -> Result<JsValue, JsError> {
+    let p = parse(text)?;
+    to_js(&Parsed {
+        segments: &p.segments,
+        warnings: &p.warnings,
+    })
+}
+
+fn sim_obj(s: &Simulation, warnings: &[Warning]) -> Result<JsValue, JsError> {
+    let err_um: Vec<f64> = s.error.iter().map(|e| e * 1e3).collect();
+    Ok(Obj::new()
+        .arr("t", &s.t)
+        .arr("cmdX", &s.cmd[0])
+        .arr("cmdY", &s.cmd[1])
+        .arr("cmdZ", &s.cmd[2])
+        .arr("simX", &s.sim[0])
+        .arr("simY", &s.sim[1])
+        .arr("simZ", &s.sim[2])
+        .arr("nearX", &s.near[0])
+        .arr("nearY", &s.near[1])
+        .arr("nearZ", &s.near[2])
+        .arr("velCmdX", &s.vel_cmd[0])
+        .arr("velCmdY", &s.vel_cmd[1])
+        .arr("velCmdZ", &s.vel_cmd[2])
+        .arr("velSimX", &s.vel_sim[0])
+        .arr("velSimY", &s.vel_sim[1])
+        .arr("velSimZ", &s.vel_sim[2])
+        .arr("errorUm", &err_um)
+        .num("maxErrorUm", s.max_error * 1e3)
+        .num("maxErrorTime", s.max_error_time)
+        .num("maxErrorLine", s.max_error_line as f64)
+        .num("motionTime", s.motion_time)
+        .num("nominalTime", s.nominal_time)
+        .ser("segments", &s.segments)?
+        .ser("warnings", warnings)?
+        .build())
+}
+
+/// Simulates the program (Eqs. 1–2) and its contour error (§4-2).
+#[wasm_bindgen(js_name = simulateToolPath, unchecked_return_type = "ToolPathSimulation")]
+pub fn simulate_tool_path(
+    text: &str,
+    #[wasm_bindgen(unchecked_param_type = "ToolPathConfig")] config: JsValue,
+) -> Result<JsValue, JsError> {
+    let cfg: SimConfig = if config.is_undefined() || config.is_null() {
+        SimConfig::default()
+    } else {
+        from_js(config, "config")?
+    };
+    let p = parse(text)?;
+    let s = crate::toolpath::simulate_program(&p, &cfg)?;
+    sim_obj(&s, &p.warnings)
+}
+
+#[derive(serde::Deserialize)]
+struct Eq3In {
+    feed: f64,
+    radius: f64,
+    #[serde(rename = "tA")]
+    t_a: f64,
+    #[serde(rename = "T")]
+    t: f64,
+}
+
+/// Δr of Eq. 3, mm (feed in mm/min, radius in mm, tA and T in s).
+#[wasm_bindgen(js_name = radiusReduction)]
+pub fn radius_reduction(
+    #[wasm_bindgen(unchecked_param_type = "RadiusReductionInput")] input: JsValue,
+) -> Result<f64, JsError> {
+    let i: Eq3In = from_js(input, "radiusReduction")?;
+    Ok(eq3(i.feed, i.radius, i.t_a, i.t)?)
+}
+
+/// Least-squares tA and T from measured circle radius losses (§4-1).
+#[wasm_bindgen(js_name = identifyAccDec, unchecked_return_type = "AccDec")]
+pub fn identify_acc_dec(
+    #[wasm_bindgen(unchecked_param_type = "CircleLoss[]")] data: JsValue,
+) -> Result<JsValue, JsError> {
+    let d: Vec<CircleLoss> = from_js(data, "data")?;
+    to_js(&identify(&d)?)
+}
+
+/// Reverse compensation of the program (§4-3(2)).
+#[wasm_bindgen(js_name = reverseCompensate, unchecked_return_type = "ReverseCompensation")]
+pub fn reverse_compensate_js(
+    text: &str,
+    #[wasm_bindgen(unchecked_param_type = "ReverseConfig")] config: JsValue,
+) -> Result<JsValue, JsError> {
+    let cfg: ReverseConfig = if config.is_undefined() || config.is_null() {
+        ReverseConfig::default()
+    } else {
+        from_js(config, "config")?
+    };
+    let c = reverse_compensate(text, &cfg)?;
+    Ok(Obj::new()
+        .val("nc", JsValue::from_str(&c.nc))
+        .ser("before", &c.before)?
+        .ser("after", &c.after)?
+        .ser("segments", &c.segments)?
+        .ser("dwells", &c.dwells)?
+        .ser("historyUm", &c.history_um)?
+        .val("beforeSim", sim_obj(&c.sim_before, &[])?)
+        .val("afterSim", sim_obj(&c.sim_after, &[])?)
+        .build())
+}
+
+/// The built-in test path resembling qiu Fig. 2: `"arcs"` (43 arcs) or
+/// `"lines"` (83 lines).
+#[wasm_bindgen(js_name = toolpathExample)]
+pub fn toolpath_example(kind: &str) -> Result<String, JsError> {
+    match kind {
+        "arcs" => Ok(example::arc_example()),
+        "lines" => Ok(example::line_example()),
+        other => Err(JsError::new(&format!(
+            "toolpathExample: unknown example '{other}'; expected 'arcs' or 'lines'"
+        ))),
+    }
+}

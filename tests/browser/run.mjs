@@ -53,7 +53,7 @@ async function run(name, fn, { url = base + 'index.html', viewport } = {}) {
     const check = (cond, message) => {
       if (!cond) checks.push(message);
     };
-    await fn(opened.page, check);
+    await fn(opened.page, check, base);
     await opened.page.screenshot({ path: `${shots}${name}.png`, fullPage: true });
     const problems = [...opened.problems, ...checks];
     if (problems.length) throw new Error(problems.join('\n  '));
@@ -111,6 +111,9 @@ await run('standalone-file-shell', async (page, check) => {
   const text = await page.textContent('#panel-servo');
   check(text.includes('725'), 'the servo panel should show the nmv5000 preset from the inlined core');
 }, { url: standaloneUrl });
+
+// Documentation calculators (custom elements) in a docs-style page.
+await run('embed-example', (await import('./embed.mjs')).default);
 
 const panelDir = new URL('panels/', here);
 for (const f of existsSync(panelDir) ? readdirSync(panelDir).filter((f) => f.endsWith('.mjs')).sort() : []) {

@@ -1,6 +1,148 @@
-// toolpath panel (shell): the capability lands with its issue.
-import { h } from '../lib/ui.js';
+// Tool-path panel (qiu §4-1 to §4-3): paste or load an NC program, simulate
+// the NC acc/dec + servo lag, see where the tool leaves the path, and
+// download a reverse-compensated program. All computation is in the core
+// (simulateToolPath, reverseCompensate, toolpathExample); this file only
+// gathers inputs, calls the API and draws.
+import { h, numberField, selectField, table, downloadText, dropZone, showError, fmt, toCsv } from '../lib/ui.js';
+import { xyChart, lineChart } from '../lib/plot.js';
 
-export async function mount(root) {
-  root.replaceChildren(h('p', { class: 'warn-box' }, 'This capability is being built; the description above says what it will do.'));
+export async function mount(root, api) {
+  const examples = {
+    arcs: await api.call('toolpathExample', ['arcs']),
+    lines: await api.call('toolpathExample', ['lines']),
+  };
+  const nc = h('textarea', { id: 'toolpath-nc', rows: 14, spellcheck: false, style: 'width:100%;font-family:monospace' });
+  nc.value = examples.arcs;
+  let fileName = 'program.nc';
+  const example = selectField({
+    label: 'Built-in example', id: 'toolpath-example', value: 'arcs',
+    options: [['arcs', 'Fig. 2-like path, B–D as 43 arcs'], ['lines', 'Fig. 2-like path, B–D as 83 lines']],
+    onChange: (v) => { nc.value = examples[v]; fileName = `example-${v}.nc`; },
+  });
+  const drop = dropZone({ label: 'Drop an NC program here, or click to choose one', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', onText: (text, name) => { nc.value = text; fileName = name; } });
+  const tA = numberField({ label: 'tA (acc/dec)', value: 40, unit: 'ms', step: 1, min: 0, id: 'toolpath-ta' });
+  const tx = numberField({ label: 'T X', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-tx' });
+  const ty = numberField({ label: 'T Y', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-ty' });
+  const tz = numberField({ label: 'T Z', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-tz' });
+  const ovr = numberField({ label: 'Feed override', value: 100, unit: '%', step: 5, min: 1, id: 'toolpath-override' });
+  const dt = numberField({ label: 'Sampling dt', value: 1, unit: 'ms', step: 0.1, min: 0.01, id: 'toolpath-dt' });
+  const magLabel = h('span', { id: 'toolpath-mag-value' }, '×200');
+  const mag = h('input', { type: 'range', id: 'toolpath-mag', min: 1, max: 2000, step: 1, value: 200, title: 'error magnification' });
+  const run = h('button', { id: 'toolpath-run', class: 'primary' }, 'Simulate');
+  const comp = h('button', { id: 'toolpath-compensate' }, 'Compensate');
+  const out = h('div', { id: 'toolpath-out' });
+  const pathBox = h('div', { class: 'plot' });
+  const velBox = h('div', { class: 'plot' });
+  const compOut = h('div', { id: 'toolpath-comp-out' });
+
+  const cfg = () => ({
+    tA: tA.value / 1e3,
+    T: [tx.value / 1e3, ty.value / 1e3, tz.value / 1e3],
+    dt: dt.value / 1e3,
+    feedOverride: ovr.value / 100,
+  });
+
+  /** Path traces: commanded path and the simulated path with its error magnified by k. */
+  function pathTraces(s, k, label) {
+    const n = s.t.length;
+    const x = new Float64Array(n), y = new Float64Array(n);
+    for (let i = 0; i < n; i++) {
+      x[i] = s.nearX[i] + k * (s.simX[i] - s.nearX[i]);
+      y[i] = s.nearY[i] + k * (s.simY[i] - s.nearY[i]);
+    }
+    return [
+      { x: s.cmdX, y: s.cmdY, label: 'commanded', color: '#495057', width: 1 },
+      { x, y, values: s.errorUm, label: `${label} (error ×${k})`, width: 2 },
+    ];
+  }
+
+  let last = null;
+  let lastComp = null;
+  let pathChart = null;
+  const compCharts = [];
+  function redraw() {
+    const k = Number(mag.value);
+    magLabel.textContent = `×${k}`;
+    if (last && pathChart) pathChart.update({ traces: pathTraces(last, k, 'simulated') });
+    if (lastComp && compCharts.length === 2) {
+      compCharts[0].update({ traces: pathTraces(lastComp.beforeSim, k, 'before') });
+      compCharts[1].update({ traces: pathTraces(lastComp.afterSim, k, 'after') });
+    }
+  }
+  mag.addEventListener('input', redraw);
+
+  async function simulate() {
+    out.replaceChildren(h('p', {}, 'Simulating…'));
+    try {
+      const s = await api.call('simulateToolPath', [nc.value, cfg()]);
+      last = s;
+      const warn = s.warnings.length
+        ? h('details', { class: 'warn-box' }, h('summary', {}, `${s.warnings.length} warning(s)`), h('ul', {}, ...s.warnings.map((w) => h('li', {}, `line ${w.line}, column ${w.column}: ${w.message}`))))
+        : '';
+      const worst = [...s.segments].sort((a, b) => b.maxErrorUm - a.maxErrorUm).slice(0, 8);
+      out.replaceChildren(
+        table(['quantity', 'value'], [
+          ['maximum contour error', h('span', { id: 'toolpath-max-error' }, `${fmt(s.maxErrorUm, 4)} µm`)],
+          ['at line / time', `${s.maxErrorLine} / ${fmt(s.maxErrorTime, 4)} s`],
+          ['motion time', h('span', { id: 'toolpath-motion-time' }, `${fmt(s.motionTime, 5)} s`)],
+          ['nominal time (Σ length / feed)', `${fmt(s.nominalTime, 5)} s`],
+        ]),
+        warn,
+        h('h4', {}, 'Segments with the largest error'),
+        table(['line', 'kind', 'length mm', 'radius mm', 'max error µm', 'mean deviation µm'], worst.map((g) => [g.line, g.kind, fmt(g.length, 4), g.radius ? fmt(g.radius, 4) : '—', fmt(g.maxErrorUm, 4), g.meanDeviation == null ? '—' : fmt(g.meanDeviation * 1e3, 3)])),
+        h('button', { id: 'toolpath-csv', onclick: () => downloadText('toolpath-simulation.csv', toCsv({ t_s: s.t, cmd_x_mm: s.cmdX, cmd_y_mm: s.cmdY, cmd_z_mm: s.cmdZ, sim_x_mm: s.simX, sim_y_mm: s.simY, sim_z_mm: s.simZ, vel_x_mm_s: s.velSimX, vel_y_mm_s: s.velSimY, vel_z_mm_s: s.velSimZ, error_um: s.errorUm }), 'text/csv') }, 'Download CSV'),
+      );
+      pathBox.replaceChildren();
+      velBox.replaceChildren();
+      pathChart = xyChart(pathBox, { title: 'Commanded and simulated path (colour: contour error µm)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(s, Number(mag.value), 'simulated'), colorLabel: 'µm', height: 420 });
+      lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY], height: 260 });
+    } catch (e) {
+      out.replaceChildren();
+      showError(out, e);
+    }
+  }
+
+  async function compensate() {
+    compOut.replaceChildren(h('p', {}, 'Compensating…'));
+    try {
+      const c = await api.call('reverseCompensate', [nc.value, cfg()]);
+      lastComp = c;
+      const pct = (1 - c.after.maxErrorUm / c.before.maxErrorUm) * 100;
+      const left = h('div', { class: 'plot' });
+      const right = h('div', { class: 'plot' });
+      const base = fileName.replace(/\.[^.]*$/, '');
+      compOut.replaceChildren(
+        table(['', 'max error µm (vs original path)', 'motion time s'], [
+          ['original', h('span', { id: 'toolpath-before-error' }, fmt(c.before.maxErrorUm, 4)), fmt(c.before.motionTime, 5)],
+          ['compensated', h('span', { id: 'toolpath-after-error' }, fmt(c.after.maxErrorUm, 4)), h('span', { id: 'toolpath-after-time' }, fmt(c.after.motionTime, 5))],
+        ]),
+        h('p', {}, `Error ${pct >= 0 ? 'reduced' : 'increased'} by ${fmt(Math.abs(pct), 3)} %; rounds: ${c.historyUm.map((e) => fmt(e, 3)).join(' → ')} µm; dwells: ${c.dwells.length ? c.dwells.map((d) => `${d.seconds} s after line ${d.afterLine}`).join(', ') : 'none'}.`),
+        h('button', { id: 'toolpath-download', class: 'primary', onclick: () => downloadText(`${base}-compensated.nc`, c.nc, 'text/plain') }, 'Download compensated .nc'),
+        h('div', { class: 'grid2', style: 'display:grid;grid-template-columns:1fr 1fr;gap:8px' }, left, right),
+        h('details', {}, h('summary', {}, 'Compensated program'), h('pre', { id: 'toolpath-comp-nc', style: 'max-height:300px;overflow:auto' }, c.nc)),
+      );
+      compCharts.length = 0;
+      const k = Number(mag.value);
+      compCharts.push(xyChart(left, { title: 'Before', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.beforeSim, k, 'before'), colorLabel: 'µm', height: 360 }));
+      compCharts.push(xyChart(right, { title: 'After (against the original path)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.afterSim, k, 'after'), colorLabel: 'µm', height: 360 }));
+    } catch (e) {
+      compOut.replaceChildren();
+      showError(compOut, e);
+    }
+  }
+
+  run.addEventListener('click', simulate);
+  comp.addEventListener('click', compensate);
+  root.replaceChildren(
+    h('div', { class: 'card' },
+      h('h3', {}, 'NC program'),
+      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, example.el, drop),
+      nc),
+    h('div', { class: 'card' },
+      h('h3', {}, 'Model (Eq. 1 moving average tA, Eq. 2 first-order lag T per axis)'),
+      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, tA.el, tx.el, ty.el, tz.el, ovr.el, dt.el),
+      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, run, comp, h('label', {}, 'Error magnification ', mag, ' ', magLabel))),
+    h('div', { class: 'card' }, h('h3', {}, 'Simulation'), out, pathBox, velBox),
+    h('div', { class: 'card' }, h('h3', {}, 'Reverse compensation (§4-3)'), compOut),
+  );
 }

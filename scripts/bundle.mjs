@@ -1,7 +1,9 @@
-// Writes dist/mtmotion-standalone.html: one file with the page, its CSS, the
-// bundled JS (panels, uPlot, wasm-bindgen glue), the worker's code and the
-// wasm inlined as base64 — it opens from file:// with no other file.
-// Run by scripts/build after dist/ is assembled.
+// Bundles for delivery, run by scripts/build after dist/ is assembled:
+// - dist/mtmotion-standalone.html: one file with the page, its CSS, the
+//   bundled JS (panels, uPlot, wasm-bindgen glue), the worker's code and the
+//   wasm inlined as base64 — it opens from file:// with no other file;
+// - dist/mtmotion-embed.js: the documentation calculators (custom elements)
+//   in one module that loads pkg/mtmotion_bg.wasm beside it.
 import { readFileSync, writeFileSync } from 'node:fs';
 import { build } from 'esbuild';
 
@@ -44,7 +46,10 @@ for (const [re, rep] of swaps) {
   html = html.replace(re, () => rep);
 }
 writeFileSync(new URL('mtmotion-standalone.html', dist), html);
+const embed = await bundle('embed.js');
+writeFileSync(new URL('mtmotion-embed.js', dist), embed);
+
 const kb = (n) => `${(n / 1024).toFixed(0)} KiB`;
 console.log(
-  `build-standalone: mtmotion-standalone.html ${kb(html.length)} (wasm as base64 ${kb(wasmBase64.length)}, page JS ${kb(pageJs.length - wasmBase64.length - workerSource.length)}, worker JS ${kb(workerSource.length)}, CSS ${kb(css.length)})`,
+  `bundle: mtmotion-embed.js ${kb(embed.length)}; mtmotion-standalone.html ${kb(html.length)} (wasm as base64 ${kb(wasmBase64.length)}, page JS ${kb(pageJs.length - wasmBase64.length - workerSource.length)}, worker JS ${kb(workerSource.length)}, CSS ${kb(css.length)})`,
 );

@@ -1,0 +1,211 @@
+//! Rebuilding a compensated path (qiu §4-3(2)): arcs keep their centres and
+//! take new radii, line vertices move, and the joints between segments are
+//! recomputed.
+//!
+//! Joint rules, for the original joint `J` between segments `i` and `i+1`:
+//! - arc–arc: the intersection of the two new circles nearest `J` when it
+//!   lies within `4·max(|Δrᵢ|, |Δrᵢ₊₁|) + 1 µm` of `J` (a corner moves a
+//!   little); otherwise — tangent arcs, whose circles no longer meet or meet
+//!   far away — each arc ends at its radial point through `J`
+//!   (`c + r'·(J − c)/|J − c|`) and a short connecting line (normally a few
+//!   µm along the common normal) joins them;
+//! - arc–line: the line's end follows the arc's radial point;
+//! - line–line: the vertex moves by the vertex shift;
+//! - the program's first start and last end never move.
+//!
+//! An arc keeps its direction; its sweep is the one closest to the original.
+//! Dwells are placed at the new joint.
+//!
+//! Units: mm, rad, s.
+
+use crate::nc::program::{dist, Arc, Motion, Segment};
+
+/// The edit to apply to each original segment.
+#[derive(Debug, Clone, Default)]
+pub struct Edit {
+    /// New radius per segment (arcs only; ignored elsewhere), mm.
+    pub radius: Vec<f64>,
+    /// Shift of the end vertex of each segment (line–line joints), mm.
+    pub vertex_shift: Vec<[f64; 3]>,
+    /// Dwell inserted after each segment, s (0 = none).
+    pub dwell_after: Vec<f64>,
+}
+
+fn radial(a: &Arc, r: f64, j: [f64; 3]) -> [f64; 3] {
+    let (u, v, _) = a.plane.axes();
+    let (x, y) = (j[u] - a.center[u], j[v] - a.center[v]);
+    let rho = x.hypot(y);
+    let mut p = j;
+    if rho > 0.0 {
+        p[u] = a.center[u] + r * x / rho;
+        p[v] = a.center[v] + r * y / rho;
+    }
+    p
+}
+
+/// Intersection of two coplanar circles nearest `j`.
+fn intersect(a: &Arc, ra: f64, b: &Arc, rb: f64, j: [f64; 3]) -> Option<[f64; 3]> {
+    if a.plane != b.plane {
+        return None;
+    }
+    let (u, v, _) = a.plane.axes();
+    let (dx, dy) = (b.center[u] - a.center[u], b.center[v] - a.center[v]);
+    let d = dx.hypot(dy);
+    if d < 1e-9 || d > ra + rb || d < (ra - rb).abs() {
+        return None;
+    }
+    let along = (ra * ra - rb * rb + d * d) / (2.0 * d);
+    let h = (ra * ra - along * along).max(0.0).sqrt();
+    let (mx, my) = (a.center[u] + along * dx / d, a.center[v] + along * dy / d);
+    let mut best = None;
+    let mut best_d = f64::MAX;
+    for s in [-1.0, 1.0] {
+        let mut p = j;
+        p[u] = mx - s * h * dy / d;
+        p[v] = my + s * h * dx / d;
+        let dd = dist(p, j);
+        if dd < best_d {
+            best_d = dd;
+            best = Some(p);
+        }
+    }
+    best
+}
+
+fn arc_of(s: &Segment) -> Option<Arc> {
+    match s.motion {
+        Motion::Arc(a) => Some(a),
+        _ => None,
+    }
+}
+
+fn is_move(s: &Segment) -> bool {
+    !matches!(s.motion, Motion::Dwell { .. })
+}
+
+/// The compensated segment list: edited originals (keeping their `block`),
+/// connecting lines and dwells (with `block: None`).
+pub fn rebuild(orig: &[Segment], edit: &Edit) -> Vec<Segment> {
+    let n = orig.len();
+    let r_new = |i: usize| edit.radius.get(i).copied().unwrap_or(0.0);
+    // New start and end of every segment.
+    let mut starts: Vec<[f64; 3]> = orig.iter().map(|s| s.start.p()).collect();
+    let mut ends: Vec<[f64; 3]> = orig.iter().map(|s| s.end.p()).collect();
+    let moves: Vec<usize> = (0..n).filter(|&i| is_move(&orig[i])).collect();
+    for w in moves.windows(2) {
+        let (i, k) = (w[0], w[1]);
+        let jp = orig[i].end.p();
+        let (ai, ak) = (arc_of(&orig[i]), arc_of(&orig[k]));
+        let (p, q) = match (ai, ak) {
+            (Some(a), Some(b)) => {
+                let (ra, rb) = (r_new(i), r_new(k));
+                let p = radial(&a, ra, jp);
+                let q = radial(&b, rb, jp);
+                let lim = 4.0 * (ra - a.radius).abs().max((rb - b.radius).abs()) + 1e-3;
+                match intersect(&a, ra, &b, rb, jp) {
+                    Some(x) if dist(x, jp) <= lim => (x, x),
+                    _ => (p, q),
+                }
+            }
+            (Some(a), None) => {
+                let p = radial(&a, r_new(i), jp);
+                (p, p)
+            }
+            (None, Some(b)) => {
+                let q = radial(&b, r_new(k), jp);
+                (q, q)
+            }
+            (None, None) => {
+                let s = edit.vertex_shift.get(i).copied().unwrap_or([0.0; 3]);
+                let x = [jp[0] + s[0], jp[1] + s[1], jp[2] + s[2]];
+                (x, x)
+            }
+        };
+        ends[i] = p;
+        starts[k] = q;
+    }
+    let mut out = Vec::with_capacity(n + 8);
+    let mut pen = orig.first().map_or([0.0; 3], |s| s.start.p());
+    for (i, s) in orig.iter().enumerate() {
+        let mut seg = s.clone();
+        if !is_move(s) {
+            seg.start.x = pen[0];
+            seg.start.y = pen[1];
+            seg.start.z = pen[2];
+            seg.end = seg.start;
+            out.push(seg);
+            continue;
+        }
+        if dist(pen, starts[i]) > 1e-6 {
+            let mut c = s.clone();
+            c.block = None;
+            c.line = 0;
+            c.motion = Motion::Linear;
+            c.start = prev_pose(&out, s, pen);
+            c.end = c.start;
+            c.end.x = starts[i][0];
+            c.end.y = starts[i][1];
+            c.end.z = starts[i][2];
+            c.feed = if s.is_cutting() {
+                s.feed
+            } else {
+                out.iter()
+                    .rev()
+                    .find(|x| x.is_cutting())
+                    .map_or(s.feed, |x| x.feed)
+            };
+            out.push(c);
+        }
+        seg.start.x = starts[i][0];
+        seg.start.y = starts[i][1];
+        seg.start.z = starts[i][2];
+        seg.end.x = ends[i][0];
+        seg.end.y = ends[i][1];
+        seg.end.z = ends[i][2];
+        if let Motion::Arc(mut a) = s.motion {
+            a.radius = r_new(i);
+            let (u, v, _) = a.plane.axes();
+            let th0 = (starts[i][v] - a.center[v]).atan2(starts[i][u] - a.center[u]);
+            let th1 = (ends[i][v] - a.center[v]).atan2(ends[i][u] - a.center[u]);
+            let tau = std::f64::consts::TAU;
+            let mut sw = if a.sweep > 0.0 {
+                (th1 - th0).rem_euclid(tau)
+            } else {
+                -(th0 - th1).rem_euclid(tau)
+            };
+            if (sw - a.sweep).abs() > std::f64::consts::PI {
+                sw += if a.sweep > sw { tau } else { -tau };
+            }
+            if a.sweep.abs() > tau - 1e-9 && sw.abs() < 1e-9 {
+                sw = a.sweep;
+            }
+            if sw == 0.0 || sw.signum() != a.sweep.signum() {
+                seg.motion = Motion::Linear;
+            } else {
+                a.sweep = sw;
+                seg.motion = Motion::Arc(a);
+            }
+        }
+        pen = ends[i];
+        out.push(seg);
+        let dw = edit.dwell_after.get(i).copied().unwrap_or(0.0);
+        if dw > 0.0 {
+            let mut d = out.last().cloned().unwrap_or_else(|| s.clone());
+            d.block = None;
+            d.line = 0;
+            d.motion = Motion::Dwell { seconds: dw };
+            d.start = d.end;
+            d.feed = 0.0;
+            out.push(d);
+        }
+    }
+    out
+}
+
+fn prev_pose(out: &[Segment], s: &Segment, pen: [f64; 3]) -> crate::nc::program::Pose {
+    let mut p = out.last().map_or(s.start, |x| x.end);
+    p.x = pen[0];
+    p.y = pen[1];
+    p.z = pen[2];
+    p
+}

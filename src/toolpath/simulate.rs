@@ -1,0 +1,246 @@
+//! The tool-path simulation of qiu §4-2 end to end: NC program → timeline
+//! → Eq. 1 moving average → Eq. 2 first-order lag → contour error against a
+//! reference path, with the maximum error, the motion time and statistics
+//! per segment.
+//!
+//! Readings: a G0 ends in an exact stop — the NC's in-position check — so
+//! the next block starts `tA + 10·max T` after the rapid's command ends (the
+//! rapid's lag has then decayed to e⁻¹⁰ ≈ 5·10⁻⁵ of itself); the run lasts until `tA + 12·max T` after the last command
+//! (the lag's residual is then e⁻¹² ≈ 6·10⁻⁶ of its steady lag); the
+//! *motion time* is the time at which the simulated tool has settled within
+//! 1 µm of the program's end point — the closest model counterpart of the
+//! paper's "actual motion time". The reference path is normally the program
+//! itself; reverse compensation simulates the corrected program against the
+//! original path.
+//!
+//! Units: mm, s; errors in mm (µm only in field names that say so).
+
+use serde::Serialize;
+
+use super::contour::{Path, Tracker};
+use super::filter::filter;
+use super::timeline::Timeline;
+use super::{SimConfig, ToolpathError, MAX_SAMPLES};
+use crate::nc::program::{parse, Motion, Program, Segment};
+
+/// Statistics of one reference segment.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct SegmentStats {
+    /// Index into the reference program's segments.
+    pub segment: usize,
+    /// Source line.
+    pub line: usize,
+    /// `"line"`, `"arc"` or `"rapid"`.
+    pub kind: &'static str,
+    /// Length, mm.
+    pub length: f64,
+    /// Arc radius, mm (0 for lines).
+    pub radius: f64,
+    /// Largest contour error of the samples nearest to this segment, µm.
+    pub max_error_um: f64,
+    /// Mean signed normal deviation of those samples (arcs: the mean radius
+    /// loss, positive inside; lines in XY: positive to the left), mm.
+    pub mean_deviation: Option<f64>,
+    /// The same over the first and the second half of the segment's
+    /// length (used to shift the vertices of line programs), mm.
+    pub half_deviation: [Option<f64>; 2],
+    /// Number of samples nearest to this segment.
+    pub samples: usize,
+}
+
+/// Result of a simulation.
+#[derive(Debug, Clone, Default)]
+pub struct Simulation {
+    /// Sample times, s.
+    pub t: Vec<f64>,
+    /// Commanded position X/Y/Z, mm.
+    pub cmd: [Vec<f64>; 3],
+    /// Simulated position X/Y/Z, mm.
+    pub sim: [Vec<f64>; 3],
+    /// Nearest reference-path point X/Y/Z, mm.
+    pub near: [Vec<f64>; 3],
+    /// Commanded velocity `f_b` X/Y/Z, mm/s.
+    pub vel_cmd: [Vec<f64>; 3],
+    /// Simulated velocity X/Y/Z, mm/s.
+    pub vel_sim: [Vec<f64>; 3],
+    /// Contour error, mm.
+    pub error: Vec<f64>,
+    /// Maximum contour error on cutting moves, mm.
+    pub max_error: f64,
+    /// When it occurs, s.
+    pub max_error_time: f64,
+    /// Source line of the reference segment where it occurs.
+    pub max_error_line: usize,
+    /// Settling time within 1 µm of the end point, s.
+    pub motion_time: f64,
+    /// Sum of the segments' nominal durations, s.
+    pub nominal_time: f64,
+    /// Per reference segment with a length.
+    pub segments: Vec<SegmentStats>,
+}
+
+/// Simulates `command` and measures it against `reference`.
+///
+/// # Units
+/// Config in s and mm/min; results in mm and s.
+///
+/// # Errors
+/// An invalid config field, an empty program, or too many samples.
+///
+/// # Examples
+/// ```
+/// use mtmotion::{nc::program::parse, toolpath::{simulate, SimConfig, Lag}};
+/// let p = parse("G0 X10 Y0\nG3 X10 Y0 I-10 J0 F2000\nG3 X10 Y0 I-10 J0").unwrap();
+/// let cfg = SimConfig { t_a: 0.0, t: Lag::All(0.03), dt: 1e-3, ..Default::default() };
+/// let s = simulate(&p.segments, &p.segments, &cfg).unwrap();
+/// // Steady state on R10 at F2000: Δr = R(1 − 1/√(1 + T²ω²)) = 0.049628 mm
+/// // (the circle starts from rest after the rapid's exact stop).
+/// assert!((s.max_error - 0.049628).abs() < 0.0005, "{}", s.max_error);
+/// ```
+pub fn simulate(
+    command: &[Segment],
+    reference: &[Segment],
+    cfg: &SimConfig,
+) -> Result<Simulation, ToolpathError> {
+    cfg.validate()?;
+    let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
+    let tl = Timeline::with_rapid_stop(
+        command,
+        cfg.rapid_feed,
+        cfg.feed_override,
+        cfg.t_a + 10.0 * tmax,
+    );
+    let path = Path::new(reference);
+    if path.elements.is_empty() || tl.items.is_empty() {
+        return Err(ToolpathError::Empty);
+    }
+    let t_end = tl.end_time + cfg.t_a + 12.0 * tmax + cfg.dt;
+    let n_f = (t_end / cfg.dt).ceil() + 1.0;
+    if n_f > MAX_SAMPLES as f64 {
+        return Err(ToolpathError::TooLong {
+            samples: n_f as usize,
+            limit: MAX_SAMPLES,
+        });
+    }
+    let n = n_f as usize;
+    let f = filter(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt, n);
+
+    let mut tracker = Tracker::default();
+    let mut error = Vec::with_capacity(n);
+    let mut near: [Vec<f64>; 3] = [
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+    ];
+    let ne = path.elements.len();
+    let mut max_e = vec![0.0f64; ne];
+    let mut sum_dev = vec![0.0f64; ne];
+    let mut n_dev = vec![0usize; ne];
+    let mut half = vec![[0.0f64; 4]; ne];
+    let mut n_s = vec![0usize; ne];
+    let (mut max_error, mut max_k, mut max_el) = (0.0f64, 0usize, 0usize);
+    for k in 0..n {
+        let q = [f.sim[0][k], f.sim[1][k], f.sim[2][k]];
+        let Some(nr) = tracker.nearest(&path, q) else {
+            break;
+        };
+        error.push(nr.dist);
+        for ax in 0..3 {
+            near[ax].push(nr.point[ax]);
+        }
+        let e = nr.element;
+        n_s[e] += 1;
+        max_e[e] = max_e[e].max(nr.dist);
+        if nr.normal.is_finite() {
+            sum_dev[e] += nr.normal;
+            n_dev[e] += 1;
+            let el = &path.elements[e];
+            let h = usize::from(nr.s - el.s0 > 0.5 * el.len);
+            half[e][2 * h] += nr.normal;
+            half[e][2 * h + 1] += 1.0;
+        }
+        if !path.elements[e].rapid && nr.dist > max_error {
+            max_error = nr.dist;
+            max_k = k;
+            max_el = e;
+        }
+    }
+    let end = reference.last().map_or(tl.origin, |s| s.end.p());
+    let mut motion_time = 0.0;
+    for k in (0..n).rev() {
+        let d = ((f.sim[0][k] - end[0]).powi(2)
+            + (f.sim[1][k] - end[1]).powi(2)
+            + (f.sim[2][k] - end[2]).powi(2))
+        .sqrt();
+        if d > 1e-3 {
+            motion_time = (k + 1) as f64 * cfg.dt;
+            break;
+        }
+    }
+    let segments = path
+        .elements
+        .iter()
+        .enumerate()
+        .map(|(i, el)| {
+            let seg = &reference[el.segment];
+            let (kind, radius) = match seg.motion {
+                Motion::Arc(a) => ("arc", a.radius),
+                Motion::Rapid => ("rapid", 0.0),
+                _ => ("line", 0.0),
+            };
+            SegmentStats {
+                segment: el.segment,
+                line: seg.line,
+                kind,
+                length: el.len,
+                radius,
+                max_error_um: max_e[i] * 1e3,
+                mean_deviation: (n_dev[i] > 0).then(|| sum_dev[i] / n_dev[i] as f64),
+                half_deviation: [0, 1].map(|h| {
+                    (half[i][2 * h + 1] > 0.0).then(|| half[i][2 * h] / half[i][2 * h + 1])
+                }),
+                samples: n_s[i],
+            }
+        })
+        .collect();
+    Ok(Simulation {
+        max_error_time: f.t.get(max_k).copied().unwrap_or(0.0),
+        max_error_line: reference[path.elements[max_el].segment].line,
+        t: f.t,
+        cmd: f.cmd,
+        sim: f.sim,
+        near,
+        vel_cmd: f.vel_cmd,
+        vel_sim: f.vel_sim,
+        error,
+        max_error,
+        motion_time,
+        nominal_time: tl.end_time,
+        segments,
+    })
+}
+
+/// Simulates a parsed program against itself.
+///
+/// # Errors
+/// As [`simulate`].
+pub fn simulate_program(p: &Program, cfg: &SimConfig) -> Result<Simulation, ToolpathError> {
+    simulate(&p.segments, &p.segments, cfg)
+}
+
+/// Parses `text` and simulates it against itself.
+///
+/// # Errors
+/// NC errors naming line and column, and those of [`simulate`].
+///
+/// # Examples
+/// ```
+/// use mtmotion::toolpath::{simulate_text, SimConfig};
+/// let s = simulate_text("G1 X10 F600\nG1 Y10", &SimConfig::default()).unwrap();
+/// assert!(s.max_error > 0.0 && s.max_error < 0.2);
+/// assert!((s.nominal_time - 2.0).abs() < 1e-12);
+/// ```
+pub fn simulate_text(text: &str, cfg: &SimConfig) -> Result<Simulation, ToolpathError> {
+    simulate_program(&parse(text)?, cfg)
+}
