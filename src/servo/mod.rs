@@ -13,8 +13,11 @@
 //! rad (backlash of a rotary axis) or mm (backlash of a linear axis).
 
 pub mod axis;
+mod discrete;
+mod precontrol;
 pub mod response;
 pub mod simulate;
+mod transmission;
 
 pub use axis::{AxisKind, AxisParams, WormHarmonic};
 
@@ -30,6 +33,14 @@ pub enum ServoError {
         value: f64,
         /// What was expected, e.g. "must be > 0".
         expected: &'static str,
+    },
+    /// A sample of a position command is unusable.
+    #[error("position command, sample {index}: {why}")]
+    BadCommand {
+        /// 0-based sample index.
+        index: usize,
+        /// What is wrong and what was expected.
+        why: &'static str,
     },
     /// A required parameter is missing for this kind of axis.
     #[error("axis parameter `{field}` is required: {why}")]
