@@ -11,6 +11,14 @@
 //! comments as written by FANUC and Heidenhain-ISO posts.
 //!
 //! Lines and columns are 1-based; a column counts characters, not bytes.
+//!
+//! [`program`] interprets the blocks (modes, arcs, feeds, dwells) into motion
+//! segments; [`writer`] writes segments back as NC text.
+
+pub mod arc;
+pub mod program;
+pub mod segment;
+pub mod writer;
 
 /// An error that names the line and column and says what was expected.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -1,0 +1,143 @@
+//! Arc centre and sweep from an NC block: the centre as I/J/K (incremental
+//! from the start, per plane: G17 I/J, G18 K/I, G19 J/K) or as R (R > 0 the
+//! arc up to 180°, R < 0 the arc over 180°). A full circle (end = start)
+//! needs I/J/K. Consistency: the end radius must match the start radius
+//! within 0.005 mm + 1e-5·R (FANUC alarms on a few µm), and R must be at
+//! least half the chord within the same tolerance; the arc's radius is the
+//! mean of start and end radii.
+//!
+//! Units: mm, rad.
+
+use super::program::{Arc, Plane, Pose};
+use super::{Block, NcError, Word};
+
+fn err(b: &Block, w: &Word, msg: impl Into<String>) -> NcError {
+    NcError::new(b.line, w.column, msg)
+}
+
+/// The arc of a G2 (`cw`) or G3 block from `start` to `end`; `scale`
+/// converts the block's lengths to mm (25.4 under G20).
+///
+/// # Errors
+/// No centre word, a zero radius, a full circle given by R, an R shorter
+/// than half the chord, or end and start radii that differ; each names the
+/// word's line and column.
+pub fn arc(
+    b: &Block,
+    first: &Word,
+    plane: Plane,
+    cw: bool,
+    start: Pose,
+    end: Pose,
+    scale: f64,
+) -> Result<Arc, NcError> {
+    let (u, v, n) = plane.axes();
+    let p0 = start.p();
+    let p1 = end.p();
+    let letters = ['I', 'J', 'K'];
+    let (lu, lv) = (letters[u], letters[v]);
+    let chord = (p1[u] - p0[u]).hypot(p1[v] - p0[v]);
+    let tol = |r: f64| 0.005 + 1e-5 * r.abs();
+    let mut center = [0.0; 3];
+    center[n] = p0[n];
+    let r_form;
+    let radius;
+    if let Some(rw) = b.word('R') {
+        r_form = true;
+        let r = rw.value * scale;
+        if r == 0.0 {
+            return Err(err(
+                b,
+                rw,
+                "arc radius R is zero; expected a non-zero radius",
+            ));
+        }
+        if chord < 1e-9 {
+            return Err(err(
+                b,
+                rw,
+                "a full circle cannot be given by R; expected I/J/K for the centre",
+            ));
+        }
+        let half = chord / 2.0;
+        if half > r.abs() + tol(r) {
+            return Err(err(
+                b,
+                rw,
+                format!(
+                    "inconsistent radius: R{} is smaller than half the chord ({:.4} mm); expected |R| ≥ {:.4}",
+                    rw.text,
+                    half / scale,
+                    half / scale
+                ),
+            ));
+        }
+        let h = (r * r - half * half).max(0.0).sqrt();
+        let (mu, mv) = ((p0[u] + p1[u]) / 2.0, (p0[v] + p1[v]) / 2.0);
+        let (du, dv) = ((p1[u] - p0[u]) / chord, (p1[v] - p0[v]) / chord);
+        // Left of the chord for CCW minor arcs; right for CW; flipped for R < 0.
+        let side = if cw { -1.0 } else { 1.0 } * r.signum();
+        center[u] = mu - dv * h * side;
+        center[v] = mv + du * h * side;
+        radius = r.abs();
+    } else {
+        r_form = false;
+        let iw = b.word(lu);
+        let jw = b.word(lv);
+        if iw.is_none() && jw.is_none() {
+            return Err(err(
+                b,
+                first,
+                format!(
+                    "arc (G{}) without a centre in the G{} plane; expected {lu}/{lv} or R",
+                    if cw { 2 } else { 3 },
+                    plane.code()
+                ),
+            ));
+        }
+        center[u] = p0[u] + iw.map_or(0.0, |w| w.value * scale);
+        center[v] = p0[v] + jw.map_or(0.0, |w| w.value * scale);
+        let r0 = (p0[u] - center[u]).hypot(p0[v] - center[v]);
+        let r1 = (p1[u] - center[u]).hypot(p1[v] - center[v]);
+        if r0 < 1e-9 {
+            return Err(err(
+                b,
+                iw.or(jw).unwrap_or(first),
+                "arc centre equals the start point; expected a non-zero radius",
+            ));
+        }
+        if (r0 - r1).abs() > tol(r0) {
+            return Err(err(
+                b,
+                iw.or(jw).unwrap_or(first),
+                format!(
+                    "inconsistent radius: start radius {:.4} but end radius {:.4} (mm); check the end point and {lu}/{lv}",
+                    r0, r1
+                ),
+            ));
+        }
+        radius = 0.5 * (r0 + r1);
+    }
+    let th0 = (p0[v] - center[v]).atan2(p0[u] - center[u]);
+    let th1 = (p1[v] - center[v]).atan2(p1[u] - center[u]);
+    let tau = std::f64::consts::TAU;
+    let full = chord < 1e-9;
+    let sweep = if full {
+        if cw {
+            -tau
+        } else {
+            tau
+        }
+    } else if cw {
+        -(th0 - th1).rem_euclid(tau)
+    } else {
+        (th1 - th0).rem_euclid(tau)
+    };
+    Ok(Arc {
+        center,
+        radius,
+        plane,
+        sweep,
+        r_form,
+    })
+}
