@@ -26,6 +26,12 @@ pub enum MachineError {
         /// The known names, comma-separated.
         known: String,
     },
+    /// The machine has no kinematic chain.
+    #[error("machine '{name}' has no kinematic chain (`kinematics`); use pocketnc-v2-10, table-on-table-bc or trunnion-ac, or describe its links")]
+    NoChain {
+        /// The machine's name.
+        name: String,
+    },
 }
 
 /// A machine: its feed-drive axes (servo parameters) and travel limits.
