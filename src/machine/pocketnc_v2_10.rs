@@ -18,7 +18,7 @@
 //!
 //! Limits: not in the paper; the maker's published travels (X 4.5 in,
 //! Y 5 in, Z 3.5 in, A −25…135°, B continuous, here ±360°), placed so that
-//! the workpiece origin is reachable. No servo parameters (the paper's PID
+//! the workpiece origin and the S part 12 mm below it are reachable. No servo parameters (the paper's PID
 //! model is a Simulink block without physical values): cone-frustum tests
 //! on this machine need `idealServo`.
 
@@ -87,7 +87,7 @@ pub fn machine() -> Machine {
         limits: BTreeMap::from([
             ("x".into(), [-114.3, 0.0]),
             ("y".into(), [-127.0, 0.0]),
-            ("z".into(), [-88.9, 0.0]),
+            ("z".into(), [-110.0, -21.1]),
             ("a".into(), [-25.0, 135.0]),
             ("b".into(), [-360.0, 360.0]),
         ]),
