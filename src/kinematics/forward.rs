@@ -200,6 +200,47 @@ impl Model {
     }
 }
 
+impl Model {
+    /// Bulk evaluation: `q` holds `n × 6` axis values with the rotary axes
+    /// in **degrees** (the JS convention); returns flat `n × 3` positions
+    /// and orientations.
+    ///
+    /// # Units
+    /// mm and degrees in, mm and unit vectors out.
+    ///
+    /// # Examples
+    /// ```
+    /// use mtmotion::kinematics::{Model, GeometricErrors};
+    /// let chain = mtmotion::machine::preset("trunnion-ac").unwrap().kinematics.unwrap();
+    /// let m = Model::new(&chain, &GeometricErrors::default(), 0.0).unwrap();
+    /// let (p, k) = m.eval_bulk_degrees(&[10.0, 0.0, 0.0, 0.0, 0.0, 90.0]).unwrap();
+    /// assert!((p[1] - 10.0).abs() < 1e-12 && (k[2] - 1.0).abs() < 1e-15);
+    /// assert!(m.eval_bulk_degrees(&[1.0; 7]).is_err());
+    /// ```
+    pub fn eval_bulk_degrees(&self, q: &[f64]) -> Result<(Vec<f64>, Vec<f64>), KinematicsError> {
+        if q.len() % 6 != 0 {
+            return Err(KinematicsError::BadInput {
+                field: "q".into(),
+                why: format!(
+                    "must hold 6 values (x, y, z, a, b, c) per point; got {} values",
+                    q.len()
+                ),
+            });
+        }
+        let n = q.len() / 6;
+        let mut pos = Vec::with_capacity(3 * n);
+        let mut ori = Vec::with_capacity(3 * n);
+        let k = std::f64::consts::PI / 180.0;
+        for c in q.chunks_exact(6) {
+            let qq = [c[0], c[1], c[2], c[3] * k, c[4] * k, c[5] * k];
+            let (p, o) = self.eval(&qq);
+            pos.extend_from_slice(p.as_slice());
+            ori.extend_from_slice(o.as_slice());
+        }
+        Ok((pos, ori))
+    }
+}
+
 #[inline(always)]
 fn rotate(v: &mut Vector3<f64>, dir: Dir, s: f64, c: f64) {
     let (x, y, z) = (v.x, v.y, v.z);
