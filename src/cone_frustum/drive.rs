@@ -10,7 +10,7 @@
 //! `θ = θm/g − Σ (W_i g/N_i)[cos(N_i θm/g + φ_i) − cos φ_i]` with
 //! `θm = g·θ_cmd`; backlash a play of full width `b` that starts centred.
 //!
-//! The servo runs on a sub-grid of at most 0.5 ms (the command is linearly
+//! The servo runs on a sub-grid of at most 1 ms (the command is linearly
 //! interpolated), sampled back at the path points.
 //!
 //! Units: mm (linear), rad (rotary), s.
@@ -19,7 +19,7 @@ use crate::servo::simulate::simulate_axis;
 use crate::servo::{AxisKind, AxisParams, ServoError};
 
 /// Longest servo step, s.
-pub const SERVO_STEP: f64 = 0.5e-3;
+pub const SERVO_STEP: f64 = 1e-3;
 
 /// The table position of an ideal servo with `axis`'s transmission errors.
 pub fn ideal(axis: &AxisParams, command: &[f64]) -> Vec<f64> {

@@ -23,7 +23,7 @@ use serde::{Deserialize, Serialize};
 use super::path::{Geometry, Method};
 use super::{drive, sensitivity, ConeFrustumError};
 use crate::kinematics::inverse::limits_from_degrees;
-use crate::kinematics::{inverse, Chain, GeometricErrors, MachineRef, Model, Pose, AXES};
+use crate::kinematics::{Chain, GeometricErrors, MachineRef, Model, Pose, AXES};
 use crate::servo::{AxisKind, AxisParams};
 
 fn perpendicular() -> Method {
@@ -242,6 +242,7 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         .filter(|i| chain.axes().contains(&AXES[*i]))
         .collect();
     // Commands.
+    let ik = crate::kinematics::inverse::Inverse::new(&chain, cfg.tool_length)?;
     let total = lead + n;
     let mut q_cmd: Vec<[f64; 6]> = Vec::with_capacity(total);
     let mut points = Vec::with_capacity(total);
@@ -252,7 +253,7 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
             position: pt.tip.into(),
             orientation: pt.axis.into(),
         };
-        let sols = inverse(&chain, &pose, cfg.tool_length, &limits)?;
+        let sols = ik.solve(&pose, &limits)?;
         let pick = match q_cmd.last() {
             None => sols.iter().filter(|s| s.within_limits).min_by(|a, b| {
                 let m =
