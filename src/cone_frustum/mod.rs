@@ -1,2 +1,66 @@
-//! ISO 10791-6 cone-frustum ball-bar test (kato-cone-frustum-ballbar).
-//! Written under issue 6.
+//! ISO 10791-6 cone-frustum ball-bar test, simulated
+//! (kato-cone-frustum-ballbar §2–3): the 3D circular five-axis motion
+//! equivalent to cone-frustum cutting, the per-axis feed drives of Fig. 2
+//! (ball screw, worm gear with reduction ratio, backlash, pitch error of
+//! Eq. 1), the geometric errors of the machine, and the sensitivity
+//! coefficients of the bar reading to each axis and each error.
+//!
+//! - [`path`]: the path for half-apex θ (15°, 45°), inclination β (10°,
+//!   30°) and the perpendicular or parallel bar of Fig. 1;
+//! - [`drive`]: servo model or ideal servo per axis;
+//! - [`test`]: the simulation and its result;
+//! - [`sensitivity`]: sensitivity coefficients along the path.
+//!
+//! Units: mm, rad, s inside; the configuration takes degrees for the cone
+//! angles and mm/min for the feed, as in kato.
+
+pub mod drive;
+pub mod path;
+pub mod sensitivity;
+pub mod test;
+
+pub use path::Method;
+pub use test::{cone_frustum_test, ConeFrustumConfig, ConeFrustumResult};
+
+/// Errors of the cone-frustum test.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ConeFrustumError {
+    /// A configuration value is out of range.
+    #[error("cone-frustum test: `{field}` = {value}: {why}")]
+    BadConfig {
+        /// The camelCase field.
+        field: &'static str,
+        /// The value given.
+        value: f64,
+        /// What was expected.
+        why: &'static str,
+    },
+    /// The machine preset or description is unusable.
+    #[error(transparent)]
+    Machine(#[from] crate::machine::MachineError),
+    /// The chain or errors are invalid, or the path is unreachable.
+    #[error("cone-frustum test: {0}")]
+    Kinematics(#[from] crate::kinematics::KinematicsError),
+    /// The path leaves an axis' travel.
+    #[error("cone-frustum test: the path needs {axis} = {value:.3} at {angle_deg:.1}°, outside its limits [{min}, {max}] (mm or degrees); move `centre` or change the angles")]
+    OutOfLimits {
+        /// Axis letter.
+        axis: String,
+        /// Needed value (mm or degrees).
+        value: f64,
+        /// Path angle, degrees.
+        angle_deg: f64,
+        /// Lower limit.
+        min: f64,
+        /// Upper limit.
+        max: f64,
+    },
+    /// A servo axis is missing or invalid.
+    #[error("cone-frustum test, axis {axis}: {why}")]
+    Servo {
+        /// Axis letter.
+        axis: String,
+        /// What went wrong.
+        why: String,
+    },
+}

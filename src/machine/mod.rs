@@ -4,11 +4,15 @@
 //! Presets are looked up by name with [`preset`]; [`names`] lists them.
 
 mod nmv5000;
+mod pocketnc_v2_10;
+mod table_on_table_bc;
+mod trunnion_ac;
 
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use crate::kinematics::Chain;
 use crate::servo::AxisParams;
 
 /// Errors of the preset registry.
@@ -21,6 +25,12 @@ pub enum MachineError {
         name: String,
         /// The known names, comma-separated.
         known: String,
+    },
+    /// The machine has no kinematic chain.
+    #[error("machine '{name}' has no kinematic chain (`kinematics`); use pocketnc-v2-10, table-on-table-bc or trunnion-ac, or describe its links")]
+    NoChain {
+        /// The machine's name.
+        name: String,
     },
 }
 
@@ -39,12 +49,21 @@ pub struct Machine {
     /// Travel limits per axis: mm for linear axes, degrees for rotary axes.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub limits: BTreeMap<String, [f64; 2]>,
+    /// The kinematic chain, workpiece to tool (thasana Eq. 8 style), for the
+    /// 5-axis models; absent for machines described by their drives only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kinematics: Option<Chain>,
 }
 
 type Builder = fn() -> Machine;
 
 /// The registry: name and builder of every preset.
-const PRESETS: &[(&str, Builder)] = &[("nmv5000", nmv5000::machine)];
+const PRESETS: &[(&str, Builder)] = &[
+    ("nmv5000", nmv5000::machine),
+    ("pocketnc-v2-10", pocketnc_v2_10::machine),
+    ("table-on-table-bc", table_on_table_bc::machine),
+    ("trunnion-ac", trunnion_ac::machine),
+];
 
 /// Names of all presets, in registry order.
 pub fn names() -> Vec<&'static str> {

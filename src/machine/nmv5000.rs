@@ -62,5 +62,6 @@ pub fn machine() -> Machine {
         source: "suzuki-best-kffp, Table 1 (feed-drive model parameters); 725 N·m C torque limit from §5.2, Fig. 17".into(),
         axes: BTreeMap::from([("x".into(), x), ("y".into(), y), ("c".into(), c)]),
         limits: BTreeMap::new(),
+        kinematics: None,
     }
 }

@@ -1,1 +1,324 @@
-//! Bindings for the kinematics models. Written under the issue that implements them.
+//! Bindings for [`crate::kinematics`], [`crate::cone_frustum`] and
+//! [`crate::compensate::nc5`]. Rotary axis positions cross in degrees;
+//! lengths in mm; error parameters in mm and rad.
+
+use std::collections::BTreeMap;
+
+use js_sys::{Array, Function};
+use serde::Deserialize;
+use wasm_bindgen::prelude::*;
+
+use super::convert::{from_js, to_js, Obj};
+use crate::compensate::nc5::{self, s_shape};
+use crate::cone_frustum::{self, ConeFrustumConfig};
+use crate::kinematics::{
+    self, inverse::limits_from_degrees, GeometricErrors, MachineRef, Model, Pose, AXES,
+};
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS: &str = r#"
+/** `[x, y, z, a, b, c]` (mm, degrees) or `{ x, y, z, a, b, c }`; missing axes are 0. */
+export type AxisValues = number[] | Partial<Record<'x'|'y'|'z'|'a'|'b'|'c', number>>;
+export type MachineArg = string | MachinePreset;
+export interface GeometricErrors {
+  /** ISO 230 location errors, e.g. { EX0C: 0.01 (mm), EB0C: 2e-5 (rad), EC0Y: 1e-5 }. */
+  location?: Record<string, number>;
+  /** ISO 230 component errors, constant or polynomial in position (mm or rad), e.g. { EXX: [0, 1e-5] }. */
+  component?: Record<string, number | number[]>;
+  /** E_ST of thasana Eq. 8: [dx, dy, dz, ex, ey, ez] in the tool frame. */
+  tool?: number[];
+  /** Full backlash width per axis, mm or rad. */
+  backlash?: Record<string, number>;
+  /** Worm-gear pitch error per rotary axis (kato Eq. 1). */
+  pitchError?: Record<string, WormHarmonic[]>;
+}
+export interface ToolPose { position: [number, number, number]; orientation: [number, number, number] }
+export interface IkBranch { q: Record<string, number>; withinLimits: boolean; singular: boolean }
+export interface ConeFrustumOptions {
+  machine: MachineArg; halfApexDeg: number; inclinationDeg: number;
+  method?: 'perpendicular' | 'parallel'; barLength?: number; feed: number;
+  radius?: number; centre?: [number, number, number]; errors?: GeometricErrors;
+  idealServo?: boolean; toolLength?: number; points?: number; clockwise?: boolean; leadInDeg?: number;
+}
+export interface ConeFrustumResult {
+  angle: Float64Array; time: Float64Array; deviation: Float64Array;
+  path: { x: Float64Array; y: Float64Array; z: Float64Array };
+  axes: Record<string, { command: Float64Array; actual: Float64Array }>;
+  sensitivity: { axes: Record<string, Float64Array>; errors: Record<string, Float64Array> };
+  barLength: number; radius: number; duration: number; maxDeviation: number; minDeviation: number;
+}
+export interface Nc5Stats { meanMm: number[]; stdMm: number[]; meanRad: number[]; stdRad: number[] }
+export interface Nc5Result {
+  nc: string; before: Nc5Stats; after: Nc5Stats; lines: number[];
+  beforePoints: { x: Float64Array; y: Float64Array; z: Float64Array; a: Float64Array; b: Float64Array };
+  afterPoints: { x: Float64Array; y: Float64Array; z: Float64Array; a: Float64Array; b: Float64Array };
+  reductionPercent: number[]; totalReductionPercent: number; deflectionMm: number; machineErrors: GeometricErrors;
+}
+"#;
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum AxisValues {
+    Arr(Vec<f64>),
+    Obj(BTreeMap<String, f64>),
+}
+
+fn q_of(v: JsValue, what: &str) -> Result<[f64; 6], JsError> {
+    let vals: AxisValues = from_js(v, what)?;
+    let mut q = [0.0; 6];
+    match vals {
+        AxisValues::Arr(a) => {
+            if a.len() > 6 {
+                return Err(JsError::new(&format!(
+                    "{what}: expected at most 6 values [x, y, z, a, b, c], got {}",
+                    a.len()
+                )));
+            }
+            q[..a.len()].copy_from_slice(&a);
+        }
+        AxisValues::Obj(m) => {
+            for (k, v) in m {
+                let i =
+                    kinematics::Chain::axis_index(&k.to_ascii_lowercase()).ok_or_else(|| {
+                        JsError::new(&format!(
+                            "{what}: unknown axis '{k}'; expected x, y, z, a, b, c"
+                        ))
+                    })?;
+                q[i] = v;
+            }
+        }
+    }
+    if let Some(i) = q.iter().position(|v| !v.is_finite()) {
+        return Err(JsError::new(&format!(
+            "{what}.{}: must be a finite number",
+            AXES[i]
+        )));
+    }
+    Ok(kinematics::q_from_degrees(&q))
+}
+
+fn machine_of(v: JsValue) -> Result<(crate::machine::Machine, kinematics::Chain), JsError> {
+    let m: MachineRef = from_js(v, "machine")?;
+    Ok(m.resolve()?)
+}
+
+fn errors_of(v: JsValue) -> Result<GeometricErrors, JsError> {
+    if v.is_undefined() || v.is_null() {
+        Ok(GeometricErrors::default())
+    } else {
+        from_js(v, "errors")
+    }
+}
+
+fn q_obj(q: &[f64; 6], axes: &[&str]) -> BTreeMap<String, f64> {
+    let d = kinematics::q_to_degrees(q);
+    AXES.iter()
+        .enumerate()
+        .filter(|(_, a)| axes.contains(a))
+        .map(|(i, a)| (a.to_string(), d[i]))
+        .collect()
+}
+
+/// Tool tip and tool axis relative to the workpiece at axis positions `q`
+/// (mm, degrees), through the error model.
+#[wasm_bindgen(js_name = forwardKinematics, unchecked_return_type = "ToolPose")]
+pub fn forward_kinematics(
+    #[wasm_bindgen(unchecked_param_type = "MachineArg")] machine: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "AxisValues")] q: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "GeometricErrors | undefined")] errors: JsValue,
+    tool_length: Option<f64>,
+) -> Result<JsValue, JsError> {
+    let (_, chain) = machine_of(machine)?;
+    let q = q_of(q, "q")?;
+    let e = errors_of(errors)?;
+    to_js(&kinematics::forward(
+        &chain,
+        &q,
+        &e,
+        tool_length.unwrap_or(0.0),
+    )?)
+}
+
+/// Bulk forward kinematics: `q` is a flat `Float64Array` of `n × 6` axis
+/// values (mm, degrees); returns flat `position` and `orientation` arrays of
+/// `n × 3`.
+#[wasm_bindgen(js_name = forwardKinematicsBulk, unchecked_return_type = "{ position: Float64Array; orientation: Float64Array }")]
+pub fn forward_kinematics_bulk(
+    #[wasm_bindgen(unchecked_param_type = "MachineArg")] machine: JsValue,
+    q: &[f64],
+    #[wasm_bindgen(unchecked_param_type = "GeometricErrors | undefined")] errors: JsValue,
+    tool_length: Option<f64>,
+) -> Result<JsValue, JsError> {
+    let (_, chain) = machine_of(machine)?;
+    let e = errors_of(errors)?;
+    let model = Model::new(&chain, &e, tool_length.unwrap_or(0.0))?;
+    let (pos, ori) = model.eval_bulk_degrees(q)?;
+    Ok(Obj::new()
+        .arr("position", &pos)
+        .arr("orientation", &ori)
+        .build())
+}
+
+/// Every inverse-kinematics branch of the nominal machine for a pose.
+#[wasm_bindgen(js_name = inverseKinematics, unchecked_return_type = "IkBranch[]")]
+pub fn inverse_kinematics(
+    #[wasm_bindgen(unchecked_param_type = "MachineArg")] machine: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "ToolPose")] pose: JsValue,
+    tool_length: Option<f64>,
+) -> Result<JsValue, JsError> {
+    let (m, chain) = machine_of(machine)?;
+    let pose: Pose = from_js(pose, "pose")?;
+    let sols = kinematics::inverse(
+        &chain,
+        &pose,
+        tool_length.unwrap_or(0.0),
+        &limits_from_degrees(&m.limits),
+    )?;
+    let axes = chain.axes();
+    let out = Array::new();
+    for s in sols {
+        out.push(
+            &Obj::new()
+                .ser("q", &q_obj(&s.q, &axes))?
+                .flag("withinLimits", s.within_limits)
+                .flag("singular", s.singular)
+                .build(),
+        );
+    }
+    Ok(out.into())
+}
+
+fn series_obj(items: impl Iterator<Item = (String, Vec<f64>)>) -> JsValue {
+    let o = items.fold(Obj::new(), |o, (k, v)| o.arr(&k, &v));
+    o.build()
+}
+
+/// The simulated ISO 10791-6 cone-frustum ball-bar test (kato).
+#[wasm_bindgen(js_name = coneFrustumTest, unchecked_return_type = "ConeFrustumResult")]
+pub fn cone_frustum_test(
+    #[wasm_bindgen(unchecked_param_type = "ConeFrustumOptions")] options: JsValue,
+    on_progress: Option<Function>,
+) -> Result<JsValue, JsError> {
+    let cfg: ConeFrustumConfig = from_js(options, "options")?;
+    if let Some(f) = &on_progress {
+        let _ = f.call2(
+            &JsValue::NULL,
+            &JsValue::from_f64(0.0),
+            &JsValue::from_str("simulating"),
+        );
+    }
+    let r = cone_frustum::cone_frustum_test(&cfg)?;
+    if let Some(f) = &on_progress {
+        let _ = f.call2(
+            &JsValue::NULL,
+            &JsValue::from_f64(1.0),
+            &JsValue::from_str("done"),
+        );
+    }
+    let axes = r.axes.iter().fold(Obj::new(), |o, s| {
+        let scale = if ["a", "b", "c"].contains(&s.axis.as_str()) {
+            180.0 / std::f64::consts::PI
+        } else {
+            1.0
+        };
+        let c: Vec<f64> = s.command.iter().map(|v| v * scale).collect();
+        let a: Vec<f64> = s.actual.iter().map(|v| v * scale).collect();
+        o.val(
+            &s.axis,
+            Obj::new().arr("command", &c).arr("actual", &a).build(),
+        )
+    });
+    let sens = Obj::new()
+        .val(
+            "axes",
+            series_obj(
+                r.axis_sensitivity
+                    .iter()
+                    .map(|s| (s.name.clone(), s.values.clone())),
+            ),
+        )
+        .val(
+            "errors",
+            series_obj(
+                r.error_sensitivity
+                    .iter()
+                    .map(|s| (s.name.clone(), s.values.clone())),
+            ),
+        )
+        .build();
+    let max = r
+        .deviation
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    let min = r.deviation.iter().copied().fold(f64::INFINITY, f64::min);
+    Ok(Obj::new()
+        .arr("angle", &r.angle_deg)
+        .arr("time", &r.time)
+        .arr("deviation", &r.deviation)
+        .val(
+            "path",
+            Obj::new()
+                .arr("x", &r.path[0])
+                .arr("y", &r.path[1])
+                .arr("z", &r.path[2])
+                .build(),
+        )
+        .val("axes", axes.build())
+        .val("sensitivity", sens)
+        .num("barLength", r.bar_length)
+        .num("radius", r.radius)
+        .num("duration", r.duration)
+        .num("maxDeviation", max)
+        .num("minDeviation", min)
+        .build())
+}
+
+fn points_obj(p: &nc5::PointErrors) -> JsValue {
+    Obj::new()
+        .arr("x", &p.x)
+        .arr("y", &p.y)
+        .arr("z", &p.z)
+        .arr("a", &p.a)
+        .arr("b", &p.b)
+        .build()
+}
+
+/// Compensates a 5-axis NC program for the machine's geometric errors
+/// (thasana §II-D).
+#[wasm_bindgen(js_name = compensateNc5, unchecked_return_type = "Nc5Result")]
+pub fn compensate_nc5(
+    text: &str,
+    #[wasm_bindgen(
+        unchecked_param_type = "{ machine: MachineArg; errors?: GeometricErrors; toolLength?: number; monteCarlo?: { seed?: number; sigmaMm?: number; sigmaRad?: number; repeatabilityMm?: number }; cutting?: Record<string, unknown> }"
+    )]
+    options: JsValue,
+) -> Result<JsValue, JsError> {
+    let cfg: nc5::Nc5Config = from_js(options, "options")?;
+    let r = nc5::compensate_nc5(text, &cfg)?;
+    Ok(Obj::new()
+        .val("nc", JsValue::from_str(&r.nc))
+        .ser("before", &r.before)?
+        .ser("after", &r.after)?
+        .val("beforePoints", points_obj(&r.before_points))
+        .val("afterPoints", points_obj(&r.after_points))
+        .ser("lines", &r.lines)?
+        .ser("reductionPercent", &r.reduction_percent)?
+        .num("totalReductionPercent", r.total_reduction_percent)
+        .num("deflectionMm", r.deflection_mm)
+        .ser("machineErrors", &r.machine_errors)?
+        .build())
+}
+
+/// The ISO 10791-7 S-shape test piece (scaled) and its 5-axis program with
+/// 64 evaluation points.
+#[wasm_bindgen(js_name = sShapeTestPiece, unchecked_return_type = "{ points: number[][]; axes: number[][]; nc: string }")]
+pub fn s_shape_test_piece(
+    #[wasm_bindgen(
+        unchecked_param_type = "{ machine: MachineArg; scale?: number; toolLength?: number; origin?: number[]; feed?: number }"
+    )]
+    options: JsValue,
+) -> Result<JsValue, JsError> {
+    let o: s_shape::SShapeOptions = from_js(options, "options")?;
+    to_js(&s_shape::s_shape(&o)?)
+}

@@ -1,6 +1,191 @@
-// kinematics panel (shell): the capability lands with its issue.
-import { h } from '../lib/ui.js';
+// 5-axis kinematics & cone-frustum panel: pick a machine, edit its ISO 230
+// errors, run the ISO 10791-6 cone-frustum test (kato) and compensate a
+// 5-axis NC program (thasana). All numbers come from the core.
+import { h, numberField, selectField, table, downloadText, toCsv, progressBar, showError, fmt } from '../lib/ui.js';
+import { lineChart, xyChart, polarChart, barChart } from '../lib/plot.js';
 
-export async function mount(root) {
-  root.replaceChildren(h('p', { class: 'warn-box' }, 'This capability is being built; the description above says what it will do.'));
+const MACHINES = [
+  ['trunnion-ac', 'trunnion-ac — A–C tilting rotary table (kato)'],
+  ['table-on-table-bc', 'table-on-table-bc — B–C like the NMV5000'],
+  ['pocketnc-v2-10', 'pocketnc-v2-10 — Pocket NC V2-10 (thasana Eq. 8)'],
+];
+const DIR = { a: 'X', b: 'Y', c: 'Z' };
+
+/** ISO 230-7 location-error symbols of each rotary axis and ISO 230-1 squareness errors. */
+function errorSymbols(axes) {
+  const out = [];
+  for (const r of axes.filter((a) => 'abc'.includes(a))) {
+    const R = r.toUpperCase();
+    for (const d of ['X', 'Y', 'Z', 'A', 'B', 'C']) if (d !== DIR[r]) out.push(`E${d}0${R}`);
+  }
+  return [...out, 'EC0Y', 'EB0Z', 'EA0Z'];
+}
+
+export async function mount(root, api) {
+  const out = h('div', {});
+  const machineSel = selectField({ label: 'Machine', options: MACHINES, value: 'trunnion-ac', id: 'kinematics-machine', onChange: () => loadMachine() });
+  const errBox = h('div', { id: 'kinematics-errors' });
+  let errInputs = {};
+  let preset = null;
+
+  async function loadMachine() {
+    try {
+      preset = await api.call('machinePreset', [machineSel.value]);
+      const axes = Object.keys(preset.limits || {});
+      errInputs = {};
+      const rows = errorSymbols(axes).map((s) => {
+        const inp = h('input', { type: 'number', step: 'any', value: '0', id: `kinematics-err-${s}`, style: 'width:8em' });
+        errInputs[s] = inp;
+        return [s, /^E[XYZ]/.test(s) ? 'mm' : 'rad', inp];
+      });
+      for (const r of axes.filter((a) => 'abc'.includes(a))) {
+        const inp = h('input', { type: 'number', step: 'any', value: '0', id: `kinematics-backlash-${r}`, style: 'width:8em' });
+        errInputs[`backlash.${r}`] = inp;
+        rows.push([`backlash ${r.toUpperCase()}`, 'rad', inp]);
+      }
+      errBox.replaceChildren(
+        h('p', {}, preset.description, h('br'), h('small', {}, `Source: ${preset.source}`)),
+        table(['ISO 230 error', 'unit', 'value'], rows),
+        table(['axis', 'min', 'max'], axes.map((a) => [a.toUpperCase(), fmt(preset.limits[a][0], 4), fmt(preset.limits[a][1], 4)])),
+      );
+      if (machineSel.value === 'pocketnc-v2-10') loadSShape();
+    } catch (e) {
+      showError(out, e);
+    }
+  }
+
+  function errors() {
+    const e = { location: {}, backlash: {} };
+    for (const [k, inp] of Object.entries(errInputs)) {
+      const v = Number(inp.value);
+      if (!v) continue;
+      if (k.startsWith('backlash.')) e.backlash[k.slice(9)] = v;
+      else e.location[k] = v;
+    }
+    return e;
+  }
+
+  // --- cone-frustum test -------------------------------------------------
+  const incl = selectField({ label: 'Inclination β', options: [['10', '10°'], ['30', '30°']], value: '10', id: 'kinematics-inclination' });
+  const feed = numberField({ label: 'Feed', value: 1000, unit: 'mm/min', id: 'kinematics-feed' });
+  const bar = numberField({ label: 'Bar length', value: 100, unit: 'mm', id: 'kinematics-bar' });
+  const cx = numberField({ label: 'Centre x', value: 60, unit: 'mm', id: 'kinematics-cx' });
+  const cy = numberField({ label: 'Centre y', value: 40, unit: 'mm', id: 'kinematics-cy' });
+  const cz = numberField({ label: 'Centre z', value: 20, unit: 'mm', id: 'kinematics-cz' });
+  const ideal = h('input', { type: 'checkbox', id: 'kinematics-ideal' });
+  const progress = progressBar();
+  const coneOut = h('div', {});
+  async function runCone() {
+    coneOut.replaceChildren();
+    const combos = [[15, 'perpendicular'], [15, 'parallel'], [45, 'perpendicular'], [45, 'parallel']];
+    const results = [];
+    try {
+      for (const [i, [theta, method]] of combos.entries()) {
+        progress.set(i / combos.length, `θ = ${theta}°, ${method}`);
+        results.push(await api.call('coneFrustumTest', [{
+          machine: machineSel.value, halfApexDeg: theta, inclinationDeg: Number(incl.value), method,
+          barLength: bar.value, feed: feed.value, centre: [cx.value, cy.value, cz.value],
+          errors: errors(), idealServo: ideal.checked, points: 1440,
+        }]));
+      }
+      progress.done();
+    } catch (e) {
+      progress.done();
+      showError(coneOut, e);
+      return;
+    }
+    const colors = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd'];
+    const base = 20; // µm offset so that negative deviations stay visible
+    const polar = h('div', {});
+    const dev = h('div', {});
+    const sens = h('div', {});
+    const sensBar = h('div', {});
+    const xy = h('div', {});
+    const xz = h('div', {});
+    const summary = table(['θ', 'bar', 'min [µm]', 'max [µm]'], results.map((r, i) => [`${combos[i][0]}°`, combos[i][1], fmt(r.minDeviation * 1e3, 4), fmt(r.maxDeviation * 1e3, 4)]));
+    summary.id = 'kinematics-cone-table';
+    const worst = Math.max(...results.map((r) => Math.max(Math.abs(r.minDeviation), Math.abs(r.maxDeviation))));
+    coneOut.replaceChildren(
+      h('p', {}, 'Largest |bar deviation| over the four runs: ', h('b', { id: 'kinematics-cone-max' }, `${fmt(worst * 1e3, 4)} µm`)),
+      summary, polar, dev, xy, xz, sens, sensBar,
+      h('button', { id: 'kinematics-cone-csv', onclick: () => downloadText('cone-frustum.csv', toCsv({ angle_deg: results[0].angle, ...Object.fromEntries(results.map((r, i) => [`dev_mm_${combos[i][0]}_${combos[i][1]}`, r.deviation])) }), 'text/csv') }, 'Download deviations (CSV)'),
+    );
+    polarChart(polar, {
+      title: `Bar deviation (µm, offset by ${base} µm) — perpendicular vs parallel, 15° vs 45°`,
+      traces: results.map((r, i) => ({ angle: Float64Array.from(r.angle, (a) => (a * Math.PI) / 180), r: Float64Array.from(r.deviation, (d) => base + d * 1e3), label: `${combos[i][0]}° ${combos[i][1]}`, color: colors[i] })),
+      circles: [{ r: base, label: '0 µm' }],
+    });
+    lineChart(dev, { title: 'Bar deviation', xLabel: 'angle [°]', yLabel: 'µm', series: results.map((r, i) => ({ label: `${combos[i][0]}° ${combos[i][1]}`, color: colors[i] })), data: [results[0].angle, ...results.map((r) => Float64Array.from(r.deviation, (d) => d * 1e3))] });
+    const r0 = results[2];
+    xyChart(xy, { title: 'Spindle-ball path, XY (workpiece frame, 45° perpendicular)', xLabel: 'x [mm]', yLabel: 'y [mm]', traces: [{ x: r0.path.x, y: r0.path.y, label: 'path', values: r0.deviation }], colorLabel: 'deviation [mm]' });
+    xyChart(xz, { title: 'Spindle-ball path, XZ', xLabel: 'x [mm]', yLabel: 'z [mm]', traces: [{ x: r0.path.x, y: r0.path.z, label: 'path' }] });
+    const axNames = Object.keys(r0.sensitivity.axes);
+    lineChart(sens, { title: 'Sensitivity of the bar to each axis (45° perpendicular): mm/mm (linear), mm/rad (rotary)', xLabel: 'angle [°]', yLabel: 'sensitivity', series: axNames.map((a) => ({ label: a.toUpperCase() })), data: [r0.angle, ...axNames.map((a) => r0.sensitivity.axes[a])] });
+    const errNames = Object.keys(r0.sensitivity.errors);
+    barChart(sensBar, { title: 'RMS sensitivity to each location error along the path (45° perpendicular)', labels: errNames, values: errNames.map((k) => Math.sqrt(r0.sensitivity.errors[k].reduce((s, v) => s + v * v, 0) / r0.sensitivity.errors[k].length)), yLabel: 'mm per mm or rad' });
+  }
+
+  // --- NC compensation -----------------------------------------------------
+  const ncText = h('textarea', { id: 'kinematics-nc-input', rows: 10, style: 'width:100%;font-family:monospace' });
+  const seed = numberField({ label: 'Monte-Carlo seed', value: 42, id: 'kinematics-mc-seed', step: 1 });
+  const sigMm = numberField({ label: 'σ translations', value: 0.02, unit: 'mm', id: 'kinematics-mc-mm' });
+  const sigRad = numberField({ label: 'σ angles', value: 0.001, unit: 'rad', id: 'kinematics-mc-rad' });
+  const cutting = h('input', { type: 'checkbox', id: 'kinematics-cutting', checked: true });
+  const ncOut = h('div', {});
+  async function loadSShape() {
+    try {
+      const s = await api.call('sShapeTestPiece', [{ machine: 'pocketnc-v2-10' }]);
+      ncText.value = s.nc;
+    } catch (e) {
+      showError(ncOut, e);
+    }
+  }
+  async function runNc() {
+    ncOut.replaceChildren();
+    try {
+      const r = await api.call('compensateNc5', [ncText.value, {
+        machine: machineSel.value, errors: errors(),
+        monteCarlo: { seed: seed.value, sigmaMm: sigMm.value, sigmaRad: sigRad.value },
+        cutting: cutting.checked ? {} : undefined,
+      }]);
+      const names = ['X [mm]', 'Y [mm]', 'Z [mm]', 'A [rad]', 'B [rad]'];
+      const row = (s) => [...s.meanMm, ...s.meanRad];
+      const sd = (s) => [...s.stdMm, ...s.stdRad];
+      const stats = table(['', ...names], [
+        ['mean before', ...row(r.before).map((v) => fmt(v, 4))], ['std before', ...sd(r.before).map((v) => fmt(v, 4))],
+        ['mean after', ...row(r.after).map((v) => fmt(v, 4))], ['std after', ...sd(r.after).map((v) => fmt(v, 4))],
+        ['std reduction [%]', ...r.reductionPercent.map((v) => fmt(v, 4))],
+      ]);
+      stats.id = 'kinematics-nc-stats';
+      const chartX = h('div', {});
+      const chartB = h('div', {});
+      const idx = Float64Array.from(r.lines.map((_, i) => i + 1));
+      ncOut.replaceChildren(
+        h('p', {}, 'Reduction of the standard deviations (mean of X, Y, A, B, as thasana’s 80.73 %): ', h('b', { id: 'kinematics-nc-reduction' }, `${fmt(r.totalReductionPercent, 4)} %`), ` — tool deflection E_ST ${fmt(r.deflectionMm * 1e3, 3)} µm`),
+        stats, chartX, chartB,
+        h('button', { id: 'kinematics-nc-download', onclick: () => downloadText('compensated.ngc', r.nc) }, 'Download corrected program'),
+      );
+      lineChart(chartX, { title: 'Form errors at the evaluation points (Figs. 10–11)', xLabel: 'point', yLabel: 'mm', series: [{ label: 'X before' }, { label: 'X after' }, { label: 'Y before', dash: [4, 3] }, { label: 'Y after', dash: [4, 3] }], data: [idx, r.beforePoints.x, r.afterPoints.x, r.beforePoints.y, r.afterPoints.y] });
+      lineChart(chartB, { title: 'Angular errors at the evaluation points (Figs. 12–13)', xLabel: 'point', yLabel: 'rad', series: [{ label: 'A before' }, { label: 'A after' }, { label: 'B before', dash: [4, 3] }, { label: 'B after', dash: [4, 3] }], data: [idx, r.beforePoints.a, r.afterPoints.a, r.beforePoints.b, r.afterPoints.b] });
+    } catch (e) {
+      showError(ncOut, e);
+    }
+  }
+
+  root.replaceChildren(
+    h('div', { class: 'card' }, h('h3', {}, 'Machine and geometric errors'), machineSel.el, errBox),
+    h('div', { class: 'card' }, h('h3', {}, 'ISO 10791-6 cone-frustum ball-bar test'),
+      incl.el, feed.el, bar.el, cx.el, cy.el, cz.el,
+      h('label', { class: 'field' }, h('span', {}, 'Ideal servos'), ideal),
+      h('button', { id: 'kinematics-cone-run', onclick: runCone }, 'Run 15°/45° × perpendicular/parallel'),
+      progress.el, coneOut),
+    h('div', { class: 'card' }, h('h3', {}, '5-axis NC compensation'),
+      h('button', { id: 'kinematics-sshape', onclick: loadSShape }, 'Load the ISO 10791-7 S-shape program (Pocket NC, 15 %)'),
+      ncText, seed.el, sigMm.el, sigRad.el,
+      h('label', { class: 'field' }, h('span', {}, 'Cutting-force deflection (E_ST)'), cutting),
+      h('button', { id: 'kinematics-nc-run', onclick: runNc }, 'Compensate'), ncOut),
+    out,
+  );
+  await loadMachine();
+  await loadSShape();
 }

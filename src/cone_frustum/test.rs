@@ -1,0 +1,412 @@
+//! The simulated cone-frustum ball-bar test (kato §2–3): path → inverse
+//! kinematics (continuous branch) → per-axis drives → forward kinematics
+//! with the geometric errors → change of the bar length.
+//!
+//! Readings chosen: the feed is the speed of the spindle ball along its
+//! circle; `points` samples cover one revolution (counter-clockwise about
+//! the cone axis unless `clockwise`), after a lead-in arc of `leadInDeg`
+//! that lets the drives leave their start transient (dropped from the
+//! result). `radius`, if given, sets the spindle-ball circle radius and
+//! the bar length follows from it (`L = radius / cos θ` perpendicular,
+//! `L = radius` parallel). The inverse-kinematics branch at the start is
+//! the one inside the limits with the smallest rotary angles; later points
+//! take the branch nearest the previous one.
+//!
+//! Units: config in degrees, mm and mm/min; results in mm, rad, s (the JS
+//! binding gives rotary axis positions in degrees).
+
+use std::f64::consts::TAU;
+
+use nalgebra::Vector3;
+use serde::{Deserialize, Serialize};
+
+use super::path::{Geometry, Method};
+use super::{drive, sensitivity, ConeFrustumError};
+use crate::kinematics::inverse::limits_from_degrees;
+use crate::kinematics::{Chain, GeometricErrors, MachineRef, Model, Pose, AXES};
+use crate::servo::{AxisKind, AxisParams};
+
+fn perpendicular() -> Method {
+    Method::Perpendicular
+}
+fn hundred() -> f64 {
+    100.0
+}
+fn n3600() -> usize {
+    3600
+}
+fn thirty() -> f64 {
+    30.0
+}
+
+/// The test configuration (the JS `coneFrustumTest` argument).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
+pub struct ConeFrustumConfig {
+    /// Preset name or machine description.
+    pub machine: MachineRef,
+    /// Half-apex angle θ, degrees (ISO: 15 or 45).
+    pub half_apex_deg: f64,
+    /// Inclination β of the cone axis, degrees (kato: 10 or 30).
+    pub inclination_deg: f64,
+    /// Bar direction.
+    #[serde(default = "perpendicular")]
+    pub method: Method,
+    /// Bar length, mm (kato: 100).
+    #[serde(default = "hundred")]
+    pub bar_length: f64,
+    /// Feed of the spindle ball, mm/min.
+    pub feed: f64,
+    /// Spindle-ball circle radius, mm (sets the bar length).
+    #[serde(default)]
+    pub radius: Option<f64>,
+    /// Table-ball centre in the workpiece frame, mm.
+    #[serde(default)]
+    pub centre: Option<[f64; 3]>,
+    /// Geometric errors (mm, rad).
+    #[serde(default)]
+    pub errors: GeometricErrors,
+    /// The axes follow the command exactly (transmission errors remain).
+    #[serde(default)]
+    pub ideal_servo: bool,
+    /// Spindle-ball offset from the gauge point along the tool axis, mm.
+    #[serde(default)]
+    pub tool_length: f64,
+    /// Samples per revolution.
+    #[serde(default = "n3600")]
+    pub points: usize,
+    /// Run clockwise about the cone axis.
+    #[serde(default)]
+    pub clockwise: bool,
+    /// Lead-in arc before the measured revolution, degrees.
+    #[serde(default = "thirty")]
+    pub lead_in_deg: f64,
+}
+
+/// Command and actual position of one axis.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AxisSeries {
+    /// Axis letter.
+    pub axis: String,
+    /// Commanded position, mm or rad.
+    pub command: Vec<f64>,
+    /// Actual (table) position, mm or rad.
+    pub actual: Vec<f64>,
+}
+
+/// A named series of sensitivity coefficients.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Series {
+    /// Axis letter or ISO error symbol.
+    pub name: String,
+    /// Values along the path (mm/mm or mm/rad).
+    pub values: Vec<f64>,
+}
+
+/// The result.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct ConeFrustumResult {
+    /// Path angle φ around the cone axis, degrees (0…360).
+    pub angle_deg: Vec<f64>,
+    /// Time, s (0 at the start of the measured revolution).
+    pub time: Vec<f64>,
+    /// Change of bar length, mm.
+    pub deviation: Vec<f64>,
+    /// Nominal spindle-ball path in the workpiece frame, mm.
+    pub path: [Vec<f64>; 3],
+    /// Per-axis command and actual position.
+    pub axes: Vec<AxisSeries>,
+    /// Sensitivity of the bar to each axis.
+    pub axis_sensitivity: Vec<Series>,
+    /// Sensitivity of the bar to each location error.
+    pub error_sensitivity: Vec<Series>,
+    /// Bar length used, mm.
+    pub bar_length: f64,
+    /// Spindle-ball circle radius, mm.
+    pub radius: f64,
+    /// Duration of one revolution, s.
+    pub duration: f64,
+}
+
+fn bad(field: &'static str, value: f64, why: &'static str) -> ConeFrustumError {
+    ConeFrustumError::BadConfig { field, value, why }
+}
+
+fn placeholder_axis(kind: AxisKind) -> AxisParams {
+    AxisParams {
+        kind,
+        j: 1.0,
+        j1: 0.0,
+        c: 0.0,
+        kpp: 1.0,
+        kvp: 1.0,
+        kvi: 0.0,
+        kffp: 0.0,
+        ts: 0.0,
+        ta: 0.0,
+        tp: 0.0,
+        torque_max: None,
+        lead: Some(0.01),
+        gear_ratio: None,
+        backlash: 0.0,
+        pitch_error: Vec::new(),
+    }
+}
+
+/// Runs the simulated test.
+///
+/// # Units
+/// See [`ConeFrustumConfig`]; results in mm, rad, s.
+///
+/// # Examples
+/// ```
+/// use mtmotion::cone_frustum::{cone_frustum_test, ConeFrustumConfig, Method};
+/// use mtmotion::kinematics::{GeometricErrors, MachineRef};
+/// let cfg = ConeFrustumConfig {
+///     machine: MachineRef::Name("trunnion-ac".into()), half_apex_deg: 45.0,
+///     inclination_deg: 10.0, method: Method::Perpendicular, bar_length: 100.0,
+///     feed: 1000.0, radius: None, centre: Some([0.0, 50.0, 0.0]), errors: GeometricErrors::default(),
+///     ideal_servo: true, tool_length: 0.0, points: 360, clockwise: false, lead_in_deg: 0.0 };
+/// let r = cone_frustum_test(&cfg).unwrap();
+/// assert!(r.deviation.iter().all(|d| d.abs() < 1e-9)); // ideal machine, ideal servo
+/// ```
+pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, ConeFrustumError> {
+    let (machine, chain) = cfg.machine.resolve()?;
+    if !(cfg.half_apex_deg.is_finite() && cfg.half_apex_deg > 0.0 && cfg.half_apex_deg < 90.0) {
+        return Err(bad(
+            "halfApexDeg",
+            cfg.half_apex_deg,
+            "must be between 0 and 90 degrees (ISO 10791-6: 15 or 45)",
+        ));
+    }
+    if !(cfg.inclination_deg.is_finite() && cfg.inclination_deg.abs() < 90.0) {
+        return Err(bad(
+            "inclinationDeg",
+            cfg.inclination_deg,
+            "must be between −90 and 90 degrees",
+        ));
+    }
+    if !(cfg.feed.is_finite() && cfg.feed > 0.0) {
+        return Err(bad("feed", cfg.feed, "must be > 0 mm/min"));
+    }
+    if !(cfg.points >= 8 && cfg.points <= 1_000_000) {
+        return Err(bad(
+            "points",
+            cfg.points as f64,
+            "must be between 8 and 1 000 000",
+        ));
+    }
+    if !(cfg.lead_in_deg.is_finite() && (0.0..=360.0).contains(&cfg.lead_in_deg)) {
+        return Err(bad(
+            "leadInDeg",
+            cfg.lead_in_deg,
+            "must be between 0 and 360 degrees",
+        ));
+    }
+    let theta = cfg.half_apex_deg.to_radians();
+    let bar_length = match cfg.radius {
+        Some(r) if !(r.is_finite() && r > 0.0) => return Err(bad("radius", r, "must be > 0 mm")),
+        Some(r) => match cfg.method {
+            Method::Perpendicular => r / theta.cos(),
+            Method::Parallel => r,
+        },
+        None => cfg.bar_length,
+    };
+    if !(bar_length.is_finite() && bar_length > 0.0) {
+        return Err(bad("barLength", bar_length, "must be > 0 mm"));
+    }
+    let centre = cfg.centre.unwrap_or([0.0; 3]);
+    if !centre.iter().all(|v| v.is_finite()) {
+        return Err(bad(
+            "centre",
+            f64::NAN,
+            "must be three finite coordinates in mm",
+        ));
+    }
+    let geo = Geometry {
+        half_apex: theta,
+        inclination: cfg.inclination_deg.to_radians(),
+        method: cfg.method,
+        bar_length,
+        centre: Vector3::from(centre),
+    };
+    let radius = geo.circle_radius();
+    let duration = TAU * radius / (cfg.feed / 60.0);
+    let n = cfg.points;
+    let dt = duration / n as f64;
+    let lead = (n as f64 * cfg.lead_in_deg / 360.0).ceil() as usize;
+    let dir = if cfg.clockwise { -1.0 } else { 1.0 };
+    let limits = limits_from_degrees(&machine.limits);
+    let present: Vec<usize> = (0..6)
+        .filter(|i| chain.axes().contains(&AXES[*i]))
+        .collect();
+    // Commands.
+    let ik = crate::kinematics::inverse::Inverse::new(&chain, cfg.tool_length)?;
+    let total = lead + n;
+    let mut q_cmd: Vec<[f64; 6]> = Vec::with_capacity(total);
+    let mut points = Vec::with_capacity(total);
+    for i in 0..total {
+        let phi = dir * TAU * (i as f64 - lead as f64) / n as f64;
+        let pt = geo.point(phi);
+        let pose = Pose {
+            position: pt.tip.into(),
+            orientation: pt.axis.into(),
+        };
+        let sols = ik.solve(&pose, &limits)?;
+        let pick = match q_cmd.last() {
+            None => sols.iter().filter(|s| s.within_limits).min_by(|a, b| {
+                let m =
+                    |s: &crate::kinematics::Solution| s.q[3..].iter().map(|v| v.abs()).sum::<f64>();
+                m(a).total_cmp(&m(b))
+            }),
+            Some(prev) => sols.iter().filter(|s| s.within_limits).min_by(|a, b| {
+                let d = |s: &crate::kinematics::Solution| {
+                    (0..6)
+                        .map(|k| ((s.q[k] - prev[k]) * if k >= 3 { 1000.0 } else { 1.0 }).powi(2))
+                        .sum::<f64>()
+                };
+                d(a).total_cmp(&d(b))
+            }),
+        };
+        let Some(sol) = pick else {
+            // Name the worst axis of the branch that misses the limits least.
+            let excess = |q: &[f64; 6]| {
+                (0..6)
+                    .map(|k| (k, (limits[k][0] - q[k]).max(q[k] - limits[k][1])))
+                    .max_by(|a, b| a.1.total_cmp(&b.1))
+                    .unwrap_or((0, 0.0))
+            };
+            let s = sols
+                .iter()
+                .map(|s| s.q)
+                .min_by(|a, b| excess(a).1.total_cmp(&excess(b).1))
+                .unwrap_or([0.0; 6]);
+            let (k, _) = excess(&s);
+            let scale = if k >= 3 {
+                180.0 / std::f64::consts::PI
+            } else {
+                1.0
+            };
+            return Err(ConeFrustumError::OutOfLimits {
+                axis: AXES[k].to_uppercase(),
+                value: s[k] * scale,
+                angle_deg: phi.to_degrees(),
+                min: limits[k][0] * scale,
+                max: limits[k][1] * scale,
+            });
+        };
+        q_cmd.push(sol.q);
+        points.push(pt);
+    }
+    // Drives.
+    let mut q_act = q_cmd.clone();
+    let mut series = Vec::new();
+    for &k in &present {
+        let letter = AXES[k];
+        let kind = if k < 3 {
+            AxisKind::Linear
+        } else {
+            AxisKind::Rotary
+        };
+        let mut params = match machine.axes.get(letter) {
+            Some(p) => p.clone(),
+            None if cfg.ideal_servo => placeholder_axis(kind),
+            None => {
+                return Err(ConeFrustumError::Servo {
+                    axis: letter.to_uppercase(),
+                    why: format!("machine '{}' has no feed-drive parameters for this axis; add axes.{letter} or set idealServo: true", machine.name),
+                })
+            }
+        };
+        if let Some(b) = cfg.errors.backlash.get(letter) {
+            params.backlash = *b;
+        }
+        if let Some(h) = cfg.errors.pitch_error.get(letter) {
+            params.pitch_error = h.clone();
+        }
+        let cmd: Vec<f64> = q_cmd.iter().map(|q| q[k]).collect();
+        let act = if cfg.ideal_servo {
+            drive::ideal(&params, &cmd)
+        } else {
+            drive::servo(&params, dt, &cmd).map_err(|e| ConeFrustumError::Servo {
+                axis: letter.to_uppercase(),
+                why: e.to_string(),
+            })?
+        };
+        for (q, a) in q_act.iter_mut().zip(&act) {
+            q[k] = *a;
+        }
+        series.push(AxisSeries {
+            axis: letter.to_string(),
+            command: cmd[lead..].to_vec(),
+            actual: act[lead..].to_vec(),
+        });
+    }
+    // Bar readings.
+    let model = Model::new(&chain, &cfg.errors, cfg.tool_length)?;
+    let nominal = Model::new(&chain, &GeometricErrors::default(), cfg.tool_length)?;
+    let symbols = sensitivity::error_symbols(&chain);
+    let perturbed = symbols
+        .iter()
+        .map(|s| sensitivity::perturbed(&chain, &GeometricErrors::default(), cfg.tool_length, s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut deviation = Vec::with_capacity(n);
+    let mut path = [
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+    ];
+    let mut axis_sens = vec![Vec::with_capacity(n); present.len()];
+    let mut err_sens = vec![Vec::with_capacity(n); symbols.len()];
+    let mut angle_deg = Vec::with_capacity(n);
+    let mut time = Vec::with_capacity(n);
+    for i in lead..total {
+        let (p, _) = model.eval(&q_act[i]);
+        deviation.push((p - geo.centre).norm() - bar_length);
+        let pt = &points[i];
+        for (c, v) in path.iter_mut().zip(pt.tip.iter()) {
+            c.push(*v);
+        }
+        for (s, v) in axis_sens
+            .iter_mut()
+            .zip(sensitivity::axes(&nominal, &q_cmd[i], &pt.bar, &present))
+        {
+            s.push(v);
+        }
+        for (s, m) in err_sens.iter_mut().zip(&perturbed) {
+            s.push(sensitivity::error(m, &q_cmd[i], &pt.bar));
+        }
+        let j = (i - lead) as f64;
+        angle_deg.push(360.0 * j / n as f64);
+        time.push(j * dt);
+    }
+    Ok(ConeFrustumResult {
+        angle_deg,
+        time,
+        deviation,
+        path,
+        axes: series,
+        axis_sensitivity: present
+            .iter()
+            .zip(axis_sens)
+            .map(|(k, v)| Series {
+                name: AXES[*k].to_string(),
+                values: v,
+            })
+            .collect(),
+        error_sensitivity: symbols
+            .into_iter()
+            .zip(err_sens)
+            .map(|(s, v)| Series { name: s, values: v })
+            .collect(),
+        bar_length,
+        radius,
+        duration,
+    })
+}
+
+/// The chain of a machine reference (for callers that need it).
+pub fn chain_of(m: &MachineRef) -> Result<Chain, ConeFrustumError> {
+    Ok(m.resolve()?.1)
+}

@@ -1,0 +1,174 @@
+//! Proves the simulated ISO 10791-6 cone-frustum test: an ideal machine
+//! with ideal servos reads zero bar deviation (< 1e-6 mm) for every ISO
+//! condition (θ = 15°/45°, β = 10°/30°, perpendicular/parallel bar); C-axis
+//! backlash shows its known signature — steps of the bar reading at the
+//! reversals of C whose size is the backlash times the C sensitivity
+//! coefficient — with ideal servos and with the servo models; and the
+//! sensitivity coefficients agree with the first-order error propagation.
+#![cfg(not(target_arch = "wasm32"))]
+#![allow(clippy::needless_range_loop)]
+
+use mtmotion::cone_frustum::{cone_frustum_test, ConeFrustumConfig, Method};
+use mtmotion::kinematics::propagation::sensitivity;
+use mtmotion::kinematics::{GeometricErrors, MachineRef};
+
+fn cfg(machine: &str, theta: f64, beta: f64, method: Method) -> ConeFrustumConfig {
+    ConeFrustumConfig {
+        machine: MachineRef::Name(machine.into()),
+        half_apex_deg: theta,
+        inclination_deg: beta,
+        method,
+        bar_length: 100.0,
+        feed: 1000.0,
+        radius: None,
+        centre: Some([60.0, 40.0, 20.0]),
+        errors: GeometricErrors::default(),
+        ideal_servo: true,
+        tool_length: 0.0,
+        points: 720,
+        clockwise: false,
+        lead_in_deg: 30.0,
+    }
+}
+
+#[test]
+fn ideal_machine_and_servos_read_zero() {
+    for machine in ["trunnion-ac", "table-on-table-bc"] {
+        for theta in [15.0, 45.0] {
+            for beta in [10.0, 30.0] {
+                for method in [Method::Perpendicular, Method::Parallel] {
+                    let c = cfg(machine, theta, beta, method);
+                    let r = cone_frustum_test(&c)
+                        .unwrap_or_else(|e| panic!("{machine} {theta} {beta} {method:?}: {e}"));
+                    let worst = r.deviation.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+                    assert!(
+                        worst < 1e-6,
+                        "{machine} θ={theta} β={beta} {method:?}: {worst}"
+                    );
+                    assert_eq!(r.deviation.len(), 720);
+                }
+            }
+        }
+    }
+}
+
+/// Indices where C reverses.
+fn reversals(c: &[f64]) -> Vec<usize> {
+    (1..c.len() - 1)
+        .filter(|&i| (c[i] - c[i - 1]) * (c[i + 1] - c[i]) < 0.0)
+        .collect()
+}
+
+#[test]
+fn c_backlash_steps_at_c_reversals() {
+    // θ = 15° < β = 30°: the tool axis never circles the C axis, so C swings
+    // back and forth and reverses twice per revolution.
+    let b = 1.745e-4; // 0.01° of backlash
+    let mut c = cfg("trunnion-ac", 15.0, 30.0, Method::Perpendicular);
+    c.errors.backlash.insert("c".into(), b);
+    let r = cone_frustum_test(&c).unwrap();
+    let cs = r.axes.iter().find(|s| s.axis == "c").unwrap();
+    let rev = reversals(&cs.command);
+    assert_eq!(rev.len(), 2, "C reversals: {rev:?}");
+    let sc = &r
+        .axis_sensitivity
+        .iter()
+        .find(|s| s.name == "c")
+        .unwrap()
+        .values;
+    // First order: deviation = S_C · (actual C − command C) = ∓ S_C·b/2.
+    let peak = sc.iter().fold(0.0f64, |m, v| m.max(v.abs())) * b / 2.0;
+    assert!(peak > 1e-3, "test needs a visible effect: {peak}");
+    for i in 0..r.deviation.len() {
+        let pred = sc[i] * (cs.actual[i] - cs.command[i]);
+        assert!(
+            (r.deviation[i] - pred).abs() < 0.01 * peak,
+            "i={i}: {} vs {pred}",
+            r.deviation[i]
+        );
+    }
+    // The signature: away from reversals the C error is exactly ±b/2 with
+    // the sign of −Ċ; across each reversal the reading steps by S_C·b.
+    for &k in &rev {
+        let before = cs.actual[k - 2] - cs.command[k - 2];
+        let after = cs.actual[(k + 40).min(cs.actual.len() - 1)]
+            - cs.command[(k + 40).min(cs.actual.len() - 1)];
+        assert!((before.abs() - b / 2.0).abs() < 1e-12 && (after.abs() - b / 2.0).abs() < 1e-12);
+        assert!(
+            before * after < 0.0,
+            "C error keeps its sign across reversal {k}"
+        );
+    }
+    // Without backlash the same run reads zero.
+    let mut c0 = c.clone();
+    c0.errors = GeometricErrors::default();
+    let r0 = cone_frustum_test(&c0).unwrap();
+    assert!(r0.deviation.iter().all(|d| d.abs() < 1e-9));
+}
+
+#[test]
+fn c_backlash_with_servo_models() {
+    let b = 1.745e-4;
+    let mut c = cfg("trunnion-ac", 15.0, 30.0, Method::Perpendicular);
+    c.ideal_servo = false;
+    c.lead_in_deg = 90.0;
+    let base = cone_frustum_test(&c).unwrap();
+    c.errors.backlash.insert("c".into(), b);
+    let r = cone_frustum_test(&c).unwrap();
+    let cs = r.axes.iter().find(|s| s.axis == "c").unwrap();
+    let sc = &r
+        .axis_sensitivity
+        .iter()
+        .find(|s| s.name == "c")
+        .unwrap()
+        .values;
+    // The backlash part of the reading (servo lag removed by the difference)
+    // follows the first-order prediction ∓ S_C·b/2 away from the reversals.
+    let rev = reversals(&cs.command);
+    let peak = sc.iter().fold(0.0f64, |m, v| m.max(v.abs())) * b / 2.0;
+    let mut checked = 0;
+    for i in 0..r.deviation.len() {
+        if rev.iter().any(|&k| (i as i64 - k as i64).abs() < 60) {
+            continue;
+        }
+        let cmd_dir =
+            cs.command[(i + 1).min(cs.command.len() - 1)] - cs.command[i.saturating_sub(1)];
+        let pred = -sc[i] * b / 2.0 * cmd_dir.signum();
+        let got = r.deviation[i] - base.deviation[i];
+        assert!((got - pred).abs() < 0.05 * peak, "i={i}: {got} vs {pred}");
+        checked += 1;
+    }
+    assert!(checked > 300);
+}
+
+#[test]
+fn error_sensitivity_matches_first_order_propagation() {
+    let r = cone_frustum_test(&cfg("trunnion-ac", 45.0, 10.0, Method::Parallel)).unwrap();
+    let chain = mtmotion::machine::preset("trunnion-ac")
+        .unwrap()
+        .kinematics
+        .unwrap();
+    for i in (0..720).step_by(37) {
+        let a = &r.axes;
+        let q = [
+            a[0].command[i],
+            a[1].command[i],
+            a[2].command[i],
+            a[3].command[i],
+            0.0,
+            a[4].command[i],
+        ];
+        let tip = nalgebra::Vector3::new(r.path[0][i], r.path[1][i], r.path[2][i]);
+        let bar = (tip - nalgebra::Vector3::new(60.0, 40.0, 20.0)) / 100.0;
+        for s in &r.error_sensitivity {
+            let d = sensitivity(&chain, &q, 0.0, &s.name).unwrap();
+            let want = bar.x * d[0] + bar.y * d[1] + bar.z * d[2];
+            assert!(
+                (s.values[i] - want).abs() < 1e-6 * (1.0 + want.abs()),
+                "{} at {i}: {} vs {want}",
+                s.name,
+                s.values[i]
+            );
+        }
+    }
+}
