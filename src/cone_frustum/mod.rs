@@ -8,7 +8,7 @@
 //! - [`path`]: the path for half-apex θ (15°, 45°), inclination β (10°,
 //!   30°) and the perpendicular or parallel bar of Fig. 1;
 //! - [`drive`]: servo model or ideal servo per axis;
-//! - [`test`]: the simulation and its result;
+//! - [`test`](mod@test): the simulation and its result;
 //! - [`sensitivity`]: sensitivity coefficients along the path.
 //!
 //! Units: mm, rad, s inside; the configuration takes degrees for the cone

@@ -7,8 +7,8 @@
 //! - [`htm`]: elementary transforms and the error matrix `E` (Eq. 3);
 //! - [`chain`]: machine chains as data (links, joints);
 //! - [`errors`]: ISO-named geometric errors and how they enter the chain;
-//! - [`forward`]: compiled forward kinematics;
-//! - [`inverse`]: closed-form inverse kinematics of the nominal chain;
+//! - [`forward`](mod@forward): compiled forward kinematics;
+//! - [`inverse`](mod@inverse): closed-form inverse kinematics of the nominal chain;
 //! - [`newton`]: inverse of the full error model (thasana §II-D);
 //! - [`propagation`]: first-order error propagation and sensitivities.
 //!
