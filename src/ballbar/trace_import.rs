@@ -8,7 +8,7 @@
 //!
 //! Readings chosen (no standard file format exists):
 //! - columns, case-insensitive, unit suffix in brackets allowed:
-//!   angle `angle`/`theta`/`angle_deg`/`angle_rad` (degrees unless the name
+//!   angle `angle`/`theta` (+ `_deg`/`_rad`; degrees unless the name
 //!   says `rad`); deviation `deviation`/`dev`/`dr`/`radial`/`error`
 //!   (+ `_um`/`_mm`; **µm unless the name says mm**, as ball-bar software
 //!   reports µm); or `x`, `y` (mm unless the name says um); optional `time`
@@ -177,7 +177,15 @@ pub fn parse_ballbar_trace(
         }
     }
     let t = Table::parse(text)?;
-    let ang = t.find(&["angle", "theta", "angle_deg", "angle_rad", "ang"]);
+    let ang = t.find(&[
+        "angle",
+        "theta",
+        "angle_deg",
+        "angle_rad",
+        "theta_deg",
+        "theta_rad",
+        "ang",
+    ]);
     let dev = t.find(&[
         "deviation",
         "dev",
