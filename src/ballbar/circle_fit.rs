@@ -149,32 +149,18 @@ pub fn fit_circle(x: &[f64], y: &[f64]) -> Result<Circle, FitError> {
     let f = -sz / nf;
     let (mut a, mut b) = (-d / 2.0, -e / 2.0);
     let mut r = (a * a + b * b - f).max(0.0).sqrt();
-    // Levenberg–Marquardt on (a, b, r) in scaled coordinates.
+    // Levenberg–Marquardt on (a, b, r) in scaled coordinates. One pass over
+    // the points per iteration: the pass at a trial point gives its cost
+    // and its normal equations; a trial that raises the cost is undone and
+    // the damping raised.
     let inv = 1.0 / s;
-    let cost_at = |a: f64, b: f64, r: f64| -> f64 {
-        x.iter()
-            .zip(y)
-            .map(|(&px, &py)| {
-                let (u, v) = ((px - mx) * inv - a, (py - my) * inv - b);
-                let e = (u * u + v * v).sqrt() - r;
-                e * e
-            })
-            .sum()
-    };
-    let mut cost = cost_at(a, b, r);
-    let mut lambda = 1e-6;
-    for _ in 0..100 {
-        // Normal equations JᵀJ δ = −Jᵀe, with J = [−u/d, −v/d, −1].
-        let mut m = [0.0f64; 6]; // aa ab ar bb br rr
-        let mut g = [0.0f64; 3];
+    let pass = |a: f64, b: f64, r: f64| -> ([f64; 6], [f64; 3], f64) {
+        // JᵀJ (aa ab ar bb br rr), Jᵀe and the cost, with J = [−u/d, −v/d, −1].
+        let (mut m, mut g, mut cost) = ([0.0f64; 6], [0.0f64; 3], 0.0);
         for (&px, &py) in x.iter().zip(y) {
             let (u, v) = ((px - mx) * inv - a, (py - my) * inv - b);
             let dist = (u * u + v * v).sqrt();
-            let (ju, jv) = if dist > 0.0 {
-                (-u / dist, -v / dist)
-            } else {
-                (0.0, 0.0)
-            };
+            let (ju, jv) = if dist > 0.0 { (-u / dist, -v / dist) } else { (0.0, 0.0) };
             let res = dist - r;
             m[0] += ju * ju;
             m[1] += ju * jv;
@@ -184,47 +170,54 @@ pub fn fit_circle(x: &[f64], y: &[f64]) -> Result<Circle, FitError> {
             g[0] += ju * res;
             g[1] += jv * res;
             g[2] -= res;
+            cost += res * res;
         }
         m[5] = nf;
+        (m, g, cost)
+    };
+    let mut lambda = 1e-6;
+    let (mut m, mut g, mut cost) = pass(a, b, r);
+    let mut accepted = (a, b, r);
+    for _ in 0..60 {
         // Converged: the gradient vanishes to rounding (scaled units).
         if (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt() <= 1e-13 * nf {
             break;
         }
-        let mut improved = false;
-        for _ in 0..12 {
-            let mat = nalgebra::Matrix3::new(
-                m[0] * (1.0 + lambda),
-                m[1],
-                m[2],
-                m[1],
-                m[3] * (1.0 + lambda),
-                m[4],
-                m[2],
-                m[4],
-                m[5] * (1.0 + lambda),
-            );
-            let rhs = nalgebra::Vector3::new(-g[0], -g[1], -g[2]);
-            let Some(step) = mat.cholesky().map(|c| c.solve(&rhs)) else {
-                lambda *= 10.0;
-                continue;
-            };
-            let (na, nb, nr) = (a + step[0], b + step[1], r + step[2]);
-            let new_cost = cost_at(na, nb, nr);
-            if new_cost <= cost {
-                let small = step.norm() < 1e-14 * (1.0 + r);
-                a = na;
-                b = nb;
-                r = nr;
-                let drop = cost - new_cost;
-                cost = new_cost;
-                lambda = (lambda * 0.1).max(1e-12);
-                improved = !small && drop > 1e-30 * nf;
+        let mat = nalgebra::Matrix3::new(
+            m[0] * (1.0 + lambda),
+            m[1],
+            m[2],
+            m[1],
+            m[3] * (1.0 + lambda),
+            m[4],
+            m[2],
+            m[4],
+            m[5] * (1.0 + lambda),
+        );
+        let rhs = nalgebra::Vector3::new(-g[0], -g[1], -g[2]);
+        let Some(step) = mat.cholesky().map(|c| c.solve(&rhs)) else {
+            lambda *= 10.0;
+            continue;
+        };
+        if step.norm() < 1e-15 * (1.0 + r) {
+            break;
+        }
+        let (na, nb, nr) = (a + step[0], b + step[1], r + step[2]);
+        let (tm, tg, tc) = pass(na, nb, nr);
+        if tc <= cost {
+            let drop = cost - tc;
+            (a, b, r, m, g, cost) = (na, nb, nr, tm, tg, tc);
+            accepted = (a, b, r);
+            lambda = (lambda * 0.1).max(1e-12);
+            if drop <= 1e-28 * nf {
                 break;
             }
+        } else {
+            (a, b, r) = accepted;
             lambda *= 10.0;
-        }
-        if !improved {
-            break;
+            if lambda > 1e12 {
+                break;
+            }
         }
     }
     if !(a.is_finite() && b.is_finite() && r.is_finite()) {
