@@ -1,0 +1,84 @@
+// Page start-up shared by the served page (main.js) and the single-file page
+// (standalone.js): start the core, mount the panels, restore the deep link,
+// then mark the page ready for the tests.
+import { showError } from './ui.js';
+
+export const PANELS = ['servo', 'toolpath', 'ballbar', 'kinematics'];
+
+function selectTab(name) {
+  if (!PANELS.includes(name)) return;
+  for (const b of document.querySelectorAll('[data-tab]')) b.setAttribute('aria-selected', String(b.dataset.tab === name));
+  for (const s of document.querySelectorAll('[data-panel]')) s.hidden = s.dataset.panel !== name;
+  document.dispatchEvent(new CustomEvent('mtmotion:tab', { detail: name }));
+}
+
+const activeTab = () => document.querySelector('[data-tab][aria-selected="true"]')?.dataset.tab || PANELS[0];
+
+// Deep links: the hash holds the panel and the values of its id'd inputs and
+// selects, e.g. #tab=toolpath&toolpath-ta=0.064. Text areas and files are not
+// kept (programs and traces are too large for a link).
+function inputsOf(panel) {
+  return [...document.querySelectorAll(`#panel-${panel} input[id], #panel-${panel} select[id]`)].filter((e) => e.type !== 'file' && e.type !== 'button');
+}
+
+function writeHash() {
+  const tab = activeTab();
+  const q = new URLSearchParams({ tab });
+  for (const e of inputsOf(tab)) q.set(e.id, e.type === 'checkbox' ? String(e.checked) : e.value);
+  history.replaceState(null, '', `#${q}`);
+}
+
+function restoreHash() {
+  const q = new URLSearchParams(location.hash.slice(1));
+  const tab = q.get('tab');
+  if (!tab || !PANELS.includes(tab)) return;
+  selectTab(tab);
+  for (const e of inputsOf(tab)) {
+    if (!q.has(e.id)) continue;
+    if (e.type === 'checkbox') e.checked = q.get(e.id) === 'true';
+    else e.value = q.get(e.id);
+    e.dispatchEvent(new Event('input', { bubbles: true }));
+    e.dispatchEvent(new Event('change', { bubbles: true }));
+  }
+  // A panel marks its main action with data-run; a shared link re-runs it.
+  document.querySelector(`#panel-${tab} [data-run]`)?.click();
+}
+
+/** makeApi() → Promise<api>; loadPanel(name) → Promise<{ mount(root, api) }>. */
+export async function boot({ makeApi, loadPanel }) {
+  const status = document.getElementById('status');
+  for (const b of document.querySelectorAll('[data-tab]')) {
+    b.addEventListener('click', () => {
+      selectTab(b.dataset.tab);
+      writeHash();
+    });
+  }
+  let api;
+  try {
+    api = await makeApi();
+    // Proves the round trip with a real core call.
+    const preset = await api.call('machinePreset', ['nmv5000']);
+    status.textContent = `Core v${api.version} ready (${api.mode}) · default machine: ${preset.name}`;
+  } catch (e) {
+    status.textContent = `The calculation core could not start: ${e.message}`;
+    status.classList.add('error');
+    console.error(e);
+    return;
+  }
+  await Promise.all(
+    PANELS.map(async (name) => {
+      const body = document.querySelector(`#panel-${name} .panel-body`);
+      try {
+        const panel = await loadPanel(name);
+        await panel.mount(body, api);
+      } catch (e) {
+        showError(body, e);
+        console.error(`panel ${name}:`, e);
+      }
+    }),
+  );
+  restoreHash();
+  document.querySelector('main').addEventListener('change', writeHash);
+  window.addEventListener('hashchange', restoreHash);
+  document.body.dataset.ready = 'true';
+}

@@ -1,0 +1,332 @@
+// Charts shared by the panels: time/frequency series through uPlot, and
+// small canvas charts for paths (equal aspect), polar traces and bars.
+// Every function draws into `el` and returns { el, update(opts) }.
+import uPlot from '../vendor/uPlot.esm.js';
+
+export const PALETTE = ['#0b6bcb', '#d9480f', '#2b8a3e', '#862e9c', '#c2255c', '#1098ad', '#5c940d', '#495057'];
+
+function frame(el, title) {
+  el.classList.add('chart');
+  el.replaceChildren();
+  if (title) el.append(Object.assign(document.createElement('div'), { className: 'chart-title', textContent: title }));
+}
+
+/** Line chart over a shared x: data = [xs, ys1, ys2, …]. */
+export function lineChart(el, opts) {
+  let plot;
+  const build = (o) => {
+    plot?.destroy();
+    frame(el, o.title);
+    const host = document.createElement('div');
+    el.append(host);
+    const width = Math.max(200, el.clientWidth || 600);
+    const drawExtras = (u) => {
+      const { ctx, bbox } = u;
+      ctx.save();
+      for (const b of o.bands || []) {
+        const x0 = u.valToPos(b.from, 'x', true);
+        const x1 = u.valToPos(b.to, 'x', true);
+        ctx.fillStyle = b.color || 'rgba(11,107,203,0.08)';
+        ctx.fillRect(Math.max(bbox.left, x0), bbox.top, Math.min(bbox.left + bbox.width, x1) - Math.max(bbox.left, x0), bbox.height);
+        if (b.label) {
+          ctx.fillStyle = '#5b6673';
+          ctx.font = `${11 * devicePixelRatio}px system-ui`;
+          ctx.fillText(b.label, Math.max(bbox.left, x0) + 4, bbox.top + 14 * devicePixelRatio);
+        }
+      }
+      for (const l of o.hLines || []) {
+        const y = u.valToPos(l.y, 'y', true);
+        ctx.strokeStyle = l.color || '#b3261e';
+        ctx.setLineDash([6, 4]);
+        ctx.beginPath();
+        ctx.moveTo(bbox.left, y);
+        ctx.lineTo(bbox.left + bbox.width, y);
+        ctx.stroke();
+        if (l.label) {
+          ctx.fillStyle = l.color || '#b3261e';
+          ctx.font = `${11 * devicePixelRatio}px system-ui`;
+          ctx.fillText(l.label, bbox.left + 4, y - 4);
+        }
+      }
+      ctx.restore();
+    };
+    plot = new uPlot(
+      {
+        width,
+        height: o.height || 260,
+        scales: { x: { time: false }, ...(o.scales || {}) },
+        axes: [{ label: o.xLabel }, { label: o.yLabel, size: 60 }],
+        series: [{ label: o.xLabel || 'x' }, ...o.series.map((s, i) => ({ label: s.label, stroke: s.color || PALETTE[i % PALETTE.length], width: s.width || 1.5, dash: s.dash, points: { show: false } }))],
+        hooks: { draw: [drawExtras] },
+      },
+      o.data,
+      host,
+    );
+  };
+  build(opts);
+  const ro = new ResizeObserver(() => plot && el.clientWidth && plot.setSize({ width: el.clientWidth, height: opts.height || 260 }));
+  ro.observe(el);
+  return {
+    el,
+    plot: () => plot,
+    update(o) {
+      opts = { ...opts, ...o };
+      build(opts);
+    },
+  };
+}
+
+function niceTicks(lo, hi, n = 5) {
+  if (!(hi > lo)) return [lo];
+  const raw = (hi - lo) / n;
+  const mag = 10 ** Math.floor(Math.log10(raw));
+  const step = [1, 2, 2.5, 5, 10].map((m) => m * mag).find((s) => s >= raw) || raw;
+  const out = [];
+  for (let v = Math.ceil(lo / step) * step; v <= hi + step * 1e-9; v += step) out.push(Math.abs(v) < step * 1e-9 ? 0 : v);
+  return out;
+}
+
+const tick = (v) => (Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(1) : String(+v.toPrecision(6)));
+
+function canvasChart(el, opts, draw) {
+  const paint = () => {
+    frame(el, opts.title);
+    const canvas = document.createElement('canvas');
+    el.append(canvas);
+    const w = Math.max(200, el.clientWidth || 600);
+    const hgt = opts.height || Math.min(420, Math.max(240, w * 0.75));
+    const dpr = window.devicePixelRatio || 1;
+    canvas.width = w * dpr;
+    canvas.height = hgt * dpr;
+    canvas.style.height = `${hgt}px`;
+    const ctx = canvas.getContext('2d');
+    ctx.scale(dpr, dpr);
+    ctx.font = '11px system-ui';
+    const legend = draw(ctx, w, hgt) || [];
+    if (legend.length) {
+      const lg = document.createElement('div');
+      lg.className = 'legend';
+      for (const { label, color } of legend) {
+        const item = document.createElement('span');
+        const sw = document.createElement('i');
+        sw.style.background = color;
+        item.append(sw, label);
+        lg.append(item);
+      }
+      el.append(lg);
+    }
+  };
+  paint();
+  let width = el.clientWidth;
+  new ResizeObserver(() => {
+    if (el.clientWidth && Math.abs(el.clientWidth - width) > 2) {
+      width = el.clientWidth;
+      paint();
+    }
+  }).observe(el);
+  return {
+    el,
+    update(o) {
+      Object.assign(opts, o);
+      paint();
+    },
+  };
+}
+
+/** Viridis-like colour for t in [0, 1]. */
+export function colorScale(t) {
+  const stops = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+  const x = Math.max(0, Math.min(1, t)) * (stops.length - 1);
+  const i = Math.min(stops.length - 2, Math.floor(x));
+  const f = x - i;
+  const c = stops[i].map((a, k) => Math.round(a + (stops[i + 1][k] - a) * f));
+  return `rgb(${c[0]},${c[1]},${c[2]})`;
+}
+
+function axesBox(ctx, w, hgt, xr, yr, o) {
+  const m = { l: 58, r: o.colorLabel ? 70 : 12, t: 8, b: 38 };
+  const pw = w - m.l - m.r;
+  const ph = hgt - m.t - m.b;
+  let [x0, x1] = xr;
+  let [y0, y1] = yr;
+  if (o.equal !== false) {
+    const sx = (x1 - x0) / pw;
+    const sy = (y1 - y0) / ph;
+    const s = Math.max(sx, sy);
+    const cx = (x0 + x1) / 2;
+    const cy = (y0 + y1) / 2;
+    [x0, x1] = [cx - (s * pw) / 2, cx + (s * pw) / 2];
+    [y0, y1] = [cy - (s * ph) / 2, cy + (s * ph) / 2];
+  }
+  const X = (x) => m.l + ((x - x0) / (x1 - x0)) * pw;
+  const Y = (y) => m.t + ph - ((y - y0) / (y1 - y0)) * ph;
+  ctx.strokeStyle = '#d9dee4';
+  ctx.fillStyle = '#5b6673';
+  ctx.lineWidth = 1;
+  for (const v of o.noXTicks ? [] : niceTicks(x0, x1)) {
+    ctx.beginPath();
+    ctx.moveTo(X(v), m.t);
+    ctx.lineTo(X(v), m.t + ph);
+    ctx.stroke();
+    ctx.fillText(tick(v), X(v) - 12, m.t + ph + 14);
+  }
+  for (const v of niceTicks(y0, y1)) {
+    ctx.beginPath();
+    ctx.moveTo(m.l, Y(v));
+    ctx.lineTo(m.l + pw, Y(v));
+    ctx.stroke();
+    ctx.fillText(tick(v), 4, Y(v) + 4);
+  }
+  ctx.strokeStyle = '#9aa5b1';
+  ctx.strokeRect(m.l, m.t, pw, ph);
+  if (o.xLabel) ctx.fillText(o.xLabel, m.l + pw / 2 - 20, hgt - 6);
+  if (o.yLabel) {
+    ctx.save();
+    ctx.translate(12, m.t + ph / 2 + 20);
+    ctx.rotate(-Math.PI / 2);
+    ctx.fillText(o.yLabel, 0, 0);
+    ctx.restore();
+  }
+  return { X, Y, m, pw, ph };
+}
+
+function range(arrays, pad = 0.05) {
+  let lo = Infinity;
+  let hi = -Infinity;
+  for (const a of arrays) for (const v of a) if (Number.isFinite(v)) (lo = Math.min(lo, v)), (hi = Math.max(hi, v));
+  if (!Number.isFinite(lo)) return [0, 1];
+  if (hi - lo < 1e-12) return [lo - 1, hi + 1];
+  const p = (hi - lo) * pad;
+  return [lo - p, hi + p];
+}
+
+/** Paths in the plane (equal aspect by default); `values` colours a trace per point. */
+export function xyChart(el, opts) {
+  return canvasChart(el, opts, (ctx, w, hgt) => {
+    const traces = opts.traces || [];
+    const { X, Y, m, pw, ph } = axesBox(ctx, w, hgt, range(traces.map((t) => t.x)), range(traces.map((t) => t.y)), opts);
+    const allV = traces.filter((t) => t.values).map((t) => t.values);
+    const [v0, v1] = allV.length ? range(allV, 0) : [0, 1];
+    ctx.save();
+    ctx.beginPath();
+    ctx.rect(m.l, m.t, pw, ph);
+    ctx.clip();
+    const legend = [];
+    traces.forEach((t, k) => {
+      const color = t.color || PALETTE[k % PALETTE.length];
+      ctx.lineWidth = t.width || 1.5;
+      ctx.setLineDash(t.dash || []);
+      if (t.points) {
+        ctx.fillStyle = color;
+        for (let i = 0; i < t.x.length; i++) ctx.fillRect(X(t.x[i]) - 2, Y(t.y[i]) - 2, 4, 4);
+      } else if (t.values) {
+        for (let i = 1; i < t.x.length; i++) {
+          ctx.strokeStyle = colorScale((t.values[i] - v0) / (v1 - v0 || 1));
+          ctx.beginPath();
+          ctx.moveTo(X(t.x[i - 1]), Y(t.y[i - 1]));
+          ctx.lineTo(X(t.x[i]), Y(t.y[i]));
+          ctx.stroke();
+        }
+      } else {
+        ctx.strokeStyle = color;
+        ctx.beginPath();
+        for (let i = 0; i < t.x.length; i++) (i ? ctx.lineTo : ctx.moveTo).call(ctx, X(t.x[i]), Y(t.y[i]));
+        ctx.stroke();
+      }
+      if (t.label) legend.push({ label: t.label, color: t.values ? colorScale(0.7) : color });
+    });
+    ctx.restore();
+    if (allV.length) {
+      const x = w - m.r + 14;
+      for (let i = 0; i < ph; i++) {
+        ctx.fillStyle = colorScale(1 - i / ph);
+        ctx.fillRect(x, m.t + i, 12, 1);
+      }
+      ctx.fillStyle = '#5b6673';
+      ctx.fillText(tick(v1), x + 14, m.t + 8);
+      ctx.fillText(tick(v0), x + 14, m.t + ph);
+      if (opts.colorLabel) ctx.fillText(opts.colorLabel, x - 8, m.t + ph + 24);
+    }
+    return legend;
+  });
+}
+
+/** Polar traces (angle in rad, r in any unit) with reference circles and markers. */
+export function polarChart(el, opts) {
+  return canvasChart(el, { height: 380, ...opts }, (ctx, w, hgt) => {
+    const traces = opts.traces || [];
+    const rmax = Math.max(1e-12, ...traces.flatMap((t) => Array.from(t.r, Math.abs)), ...(opts.circles || []).map((c) => c.r)) * 1.05;
+    const cx = w / 2;
+    const cy = hgt / 2;
+    const R = Math.min(w, hgt) / 2 - 20;
+    const P = (a, r) => [cx + (r / rmax) * R * Math.cos(a), cy - (r / rmax) * R * Math.sin(a)];
+    ctx.strokeStyle = '#d9dee4';
+    ctx.fillStyle = '#5b6673';
+    for (const v of niceTicks(0, rmax, 4).filter((v) => v > 0)) {
+      ctx.beginPath();
+      ctx.arc(cx, cy, (v / rmax) * R, 0, 2 * Math.PI);
+      ctx.stroke();
+      ctx.fillText(tick(v), cx + (v / rmax) * R + 2, cy - 2);
+    }
+    for (let d = 0; d < 360; d += 30) {
+      const [x, y] = P((d * Math.PI) / 180, rmax);
+      ctx.beginPath();
+      ctx.moveTo(cx, cy);
+      ctx.lineTo(x, y);
+      ctx.stroke();
+      ctx.fillText(`${d}°`, cx + (x - cx) * 1.06 - 8, cy + (y - cy) * 1.06 + 4);
+    }
+    const legend = [];
+    for (const [k, c] of (opts.circles || []).entries()) {
+      ctx.strokeStyle = c.color || '#9aa5b1';
+      ctx.setLineDash([5, 4]);
+      ctx.beginPath();
+      ctx.arc(cx, cy, (c.r / rmax) * R, 0, 2 * Math.PI);
+      ctx.stroke();
+      ctx.setLineDash([]);
+      if (c.label) legend.push({ label: c.label, color: c.color || '#9aa5b1' });
+      void k;
+    }
+    traces.forEach((t, k) => {
+      const color = t.color || PALETTE[k % PALETTE.length];
+      ctx.strokeStyle = color;
+      ctx.lineWidth = t.width || 1.5;
+      ctx.beginPath();
+      for (let i = 0; i < t.angle.length; i++) {
+        const [x, y] = P(t.angle[i], t.r[i]);
+        (i ? ctx.lineTo : ctx.moveTo).call(ctx, x, y);
+      }
+      ctx.stroke();
+      if (t.label) legend.push({ label: t.label, color });
+    });
+    for (const mk of opts.markers || []) {
+      const x = cx + (mk.x / rmax) * R;
+      const y = cy - (mk.y / rmax) * R;
+      ctx.fillStyle = mk.color || '#b3261e';
+      ctx.beginPath();
+      ctx.arc(x, y, 4, 0, 2 * Math.PI);
+      ctx.fill();
+      if (mk.label) ctx.fillText(mk.label, x + 6, y - 6);
+    }
+    return legend;
+  });
+}
+
+/** Vertical bars with category labels. */
+export function barChart(el, opts) {
+  return canvasChart(el, { height: 240, ...opts }, (ctx, w, hgt) => {
+    const vals = Array.from(opts.values);
+    const lo = Math.min(0, ...vals);
+    const hi = Math.max(0, ...vals) || 1;
+    const { X, Y, m, pw } = axesBox(ctx, w, hgt, [0, vals.length], [lo, hi + (hi - lo) * 0.05], { ...opts, equal: false, noXTicks: true });
+    const bw = (pw / Math.max(1, vals.length)) * 0.7;
+    vals.forEach((v, i) => {
+      ctx.fillStyle = opts.color || PALETTE[0];
+      const x = X(i + 0.5) - bw / 2;
+      ctx.fillRect(x, Math.min(Y(0), Y(v)), bw, Math.abs(Y(v) - Y(0)));
+      ctx.fillStyle = '#5b6673';
+      ctx.fillText(String(opts.labels?.[i] ?? i), x, hgt - m.b + 26);
+    });
+    return [];
+  });
+}

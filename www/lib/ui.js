@@ -1,0 +1,136 @@
+// Small DOM helpers shared by the panels. No model logic lives here.
+
+/** Creates an element: h('div', { class: 'card', onclick: f }, child, …). */
+export function h(tag, attrs = {}, ...children) {
+  const el = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs || {})) {
+    if (v === undefined || v === null || v === false) continue;
+    if (k === 'class') el.className = v;
+    else if (k === 'style' && typeof v === 'string') el.style.cssText = v;
+    else if (k === 'dataset') Object.assign(el.dataset, v);
+    else if (k.startsWith('on') && typeof v === 'function') el.addEventListener(k.slice(2), v);
+    else if (k in el && typeof v !== 'string') el[k] = v;
+    else el.setAttribute(k, v === true ? '' : v);
+  }
+  for (const c of children.flat(Infinity)) {
+    if (c === undefined || c === null || c === false) continue;
+    el.append(c instanceof Node ? c : document.createTextNode(String(c)));
+  }
+  return el;
+}
+
+/** A labelled number input. `value` reads the current number (NaN if empty). */
+export function numberField({ label, value, unit, step = 'any', min, max, id, title, onChange }) {
+  const input = h('input', { type: 'number', step, min, max, id, title, value: String(value) });
+  if (onChange) input.addEventListener('change', () => onChange(Number(input.value)));
+  const el = h('label', { class: 'field', title }, h('span', {}, label, unit ? h('span', { class: 'unit' }, ` [${unit}]`) : null), input);
+  return {
+    el,
+    input,
+    get value() {
+      return input.value === '' ? NaN : Number(input.value);
+    },
+    set value(v) {
+      input.value = String(v);
+    },
+  };
+}
+
+/** A labelled select; options are [value, text] pairs. */
+export function selectField({ label, options, value, id, onChange }) {
+  const select = h('select', { id }, options.map(([v, t]) => h('option', { value: v, selected: v === value }, t)));
+  if (onChange) select.addEventListener('change', () => onChange(select.value));
+  const el = h('label', { class: 'field' }, h('span', {}, label), select);
+  return {
+    el,
+    input: select,
+    get value() {
+      return select.value;
+    },
+    set value(v) {
+      select.value = v;
+    },
+  };
+}
+
+/** A table from header strings and rows of cells (strings, numbers or nodes). */
+export function table(headers, rows) {
+  return h(
+    'div',
+    { class: 'table-wrap' },
+    h('table', {}, h('thead', {}, h('tr', {}, headers.map((x) => h('th', {}, x)))), h('tbody', {}, rows.map((r) => h('tr', {}, r.map((c) => h('td', {}, c)))))),
+  );
+}
+
+/** Offers `text` as a file download. */
+export function downloadText(filename, text, mime = 'text/plain') {
+  const url = URL.createObjectURL(new Blob([text], { type: `${mime};charset=utf-8` }));
+  const a = h('a', { href: url, download: filename });
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 1000);
+}
+
+/** CSV from named columns of equal length (shorter columns leave blanks). */
+export function toCsv(columns) {
+  const names = Object.keys(columns);
+  const n = Math.max(0, ...names.map((k) => columns[k].length));
+  const lines = [names.join(',')];
+  for (let i = 0; i < n; i++) lines.push(names.map((k) => (i < columns[k].length ? String(columns[k][i]) : '')).join(','));
+  return lines.join('\n') + '\n';
+}
+
+/** Drag-and-drop area with a file picker; calls onText(text, fileName). */
+export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText }) {
+  const input = h('input', { type: 'file', accept, hidden: true });
+  const el = h('div', { class: 'drop', tabindex: 0, role: 'button' }, label, input);
+  const read = async (file) => file && onText(await file.text(), file.name);
+  el.addEventListener('click', () => input.click());
+  el.addEventListener('keydown', (e) => (e.key === 'Enter' || e.key === ' ') && input.click());
+  input.addEventListener('change', () => read(input.files[0]));
+  el.addEventListener('dragover', (e) => {
+    e.preventDefault();
+    el.classList.add('over');
+  });
+  el.addEventListener('dragleave', () => el.classList.remove('over'));
+  el.addEventListener('drop', (e) => {
+    e.preventDefault();
+    el.classList.remove('over');
+    read(e.dataTransfer.files[0]);
+  });
+  return el;
+}
+
+/** A progress bar: set(fraction 0…1, message), done(). */
+export function progressBar() {
+  const bar = h('div');
+  const msg = h('div', { class: 'progress-msg' });
+  const el = h('div', { hidden: true }, h('div', { class: 'progress' }, bar), msg);
+  return {
+    el,
+    set(fraction, message = '') {
+      el.hidden = false;
+      bar.style.width = `${Math.round(Math.max(0, Math.min(1, fraction)) * 100)}%`;
+      msg.textContent = message;
+    },
+    done() {
+      el.hidden = true;
+    },
+  };
+}
+
+/** Replaces the content of `container` with an error message. */
+export function showError(container, err) {
+  const box = h('div', { class: 'error-box', role: 'alert' }, String((err && err.message) || err));
+  container.replaceChildren(box);
+  return box;
+}
+
+/** Formats a number with `digits` significant-ish decimals; '—' for non-finite. */
+export function fmt(x, digits = 3) {
+  if (typeof x !== 'number' || !Number.isFinite(x)) return '—';
+  const a = Math.abs(x);
+  if (a !== 0 && (a < 1e-3 || a >= 1e6)) return x.toExponential(digits);
+  return x.toFixed(digits);
+}
