@@ -142,9 +142,21 @@ fn reversal_spikes_at_the_quadrant_points() {
         assert!((s.height_um - 5.0).abs() < 0.5, "{s:?}");
     }
     assert!((d.backlash_x_um - 2.0).abs() < 0.3, "{d:?}");
-    // A clean trace has no spikes.
+    // A clean trace has no spikes, even with a smooth motion error.
     let d = run(SyntheticConfig {
         backlash_x: 0.002,
+        harmonics: vec![
+            Harmonic {
+                order: 3,
+                amplitude: 0.002,
+                phase: 0.3,
+            },
+            Harmonic {
+                order: 6,
+                amplitude: 0.001,
+                phase: 0.0,
+            },
+        ],
         ..Default::default()
     })
     .diagnostics

@@ -160,7 +160,11 @@ pub fn fit_circle(x: &[f64], y: &[f64]) -> Result<Circle, FitError> {
         for (&px, &py) in x.iter().zip(y) {
             let (u, v) = ((px - mx) * inv - a, (py - my) * inv - b);
             let dist = (u * u + v * v).sqrt();
-            let (ju, jv) = if dist > 0.0 { (-u / dist, -v / dist) } else { (0.0, 0.0) };
+            let (ju, jv) = if dist > 0.0 {
+                (-u / dist, -v / dist)
+            } else {
+                (0.0, 0.0)
+            };
             let res = dist - r;
             m[0] += ju * ju;
             m[1] += ju * jv;

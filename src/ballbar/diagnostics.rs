@@ -10,9 +10,12 @@
 //! Method (readings chosen): each run covering a full revolution is fitted by
 //! linear least squares (QR) with
 //! Δ(θ) = c₀ + c₁ cos θ + s₁ sin θ + c₂ cos 2θ + s₂ sin 2θ
-//!        + βx·s·sign(sin θ)·cos θ/2 − βy·s·sign(cos θ)·sin θ/2,
+//!        + βx·s·sign(sin θ)·cos θ/2 − βy·s·sign(cos θ)·sin θ/2
+//!        + Σₙ₌₃⁸ (aₙ cos nθ + bₙ sin nθ),
 //! s = +1 CCW, −1 CW (the dead-band backlash signature: a step of βx at the
-//! X reversals θ = 0°, 180° and of βy at 90°, 270°). Then, averaging over
+//! X reversals θ = 0°, 180° and of βy at 90°, 270°; orders 3–8 take up
+//! smooth motion errors so that they are not read as spikes). Then,
+//! averaging over
 //! runs and with R₀ the nominal radius and v the feed:
 //! - centre offset = (c₁, s₁);
 //! - backlash βx, βy;
@@ -25,7 +28,8 @@
 //!   of travel, where the reversal spikes are;
 //! - reversal spikes: the residual of largest magnitude within 15° after
 //!   each quadrant point in the direction of travel;
-//! - cyclic error: on the residuals of all runs, the pitch p (1 mm … R₀/4,
+//! - cyclic error: on the residuals of all runs (of the model without
+//!   orders 3–8, which would absorb part of it), the pitch p (1 mm … R₀/4,
 //!   log grid then refined) whose model
 //!   cos θ·(a sin 2πx/p + b cos 2πx/p) + sin θ·(c sin 2πy/p + d cos 2πy/p)
 //!   explains most variance; amplitudes √(a² + b²) for X, √(c² + d²) for Y.
@@ -112,9 +116,13 @@ fn lsq(a: &DMatrix<f64>, b: &[f64]) -> Option<DVector<f64>> {
     r.solve_upper_triangular(&(qr.q().transpose() * DVector::from_column_slice(b)))
 }
 
-fn basis(t: f64, s: f64) -> [f64; 7] {
+/// Columns of the per-run model: 7 signature terms, then orders 3 … 8.
+const COLS: usize = 7 + 2 * 6;
+
+fn basis(t: f64, s: f64) -> [f64; COLS] {
     let (c, sn) = (t.cos(), t.sin());
-    [
+    let mut b = [0.0; COLS];
+    b[..7].copy_from_slice(&[
         1.0,
         c,
         sn,
@@ -122,7 +130,13 @@ fn basis(t: f64, s: f64) -> [f64; 7] {
         (2.0 * t).sin(),
         s * sgn(sn) * c / 2.0,
         -s * sgn(c) * sn / 2.0,
-    ]
+    ]);
+    for k in 3..=8 {
+        let (sk, ck) = (k as f64 * t).sin_cos();
+        b[7 + 2 * (k - 3)] = ck;
+        b[8 + 2 * (k - 3)] = sk;
+    }
+    b
 }
 
 /// Runs the diagnostics on the runs that cover a full revolution (≥ 355°);
@@ -163,23 +177,32 @@ pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
         let keep: Vec<usize> = (0..run.angle.len())
             .filter(|&i| !after_quadrant(run.angle[i], s, 10f64.to_radians()))
             .collect();
-        let a = DMatrix::from_fn(keep.len(), 7, |i, j| basis(run.angle[keep[i]], s)[j]);
         let b: Vec<f64> = keep.iter().map(|&i| run.deviation[i]).collect();
-        let coef = lsq(&a, &b)?;
-        let res: Vec<f64> = run
-            .angle
-            .iter()
-            .zip(&run.deviation)
-            .map(|(t, d)| {
-                d - basis(*t, s)
-                    .iter()
-                    .zip(coef.iter())
-                    .map(|(b, c)| b * c)
-                    .sum::<f64>()
-            })
-            .collect();
+        // Two fits: with orders 3–8 (for the spikes, so that smooth motion
+        // errors are not read as spikes) and without them (for the cyclic
+        // error, which orders 3–8 would partly absorb; its signature is not
+        // a pure harmonic). The signature terms come from the first.
+        let fit = |cols: usize| -> Option<(DVector<f64>, Vec<f64>)> {
+            let a = DMatrix::from_fn(keep.len(), cols, |i, j| basis(run.angle[keep[i]], s)[j]);
+            let coef = lsq(&a, &b)?;
+            let res = run
+                .angle
+                .iter()
+                .zip(&run.deviation)
+                .map(|(t, d)| {
+                    d - basis(*t, s)
+                        .iter()
+                        .zip(coef.iter())
+                        .map(|(b, c)| b * c)
+                        .sum::<f64>()
+                })
+                .collect();
+            Some((coef, res))
+        };
+        let (coef, res) = fit(COLS)?;
+        let (_, res7) = fit(7)?;
         spikes.extend(find_spikes(run, &res));
-        resid.extend(run.angle.iter().copied().zip(res));
+        resid.extend(run.angle.iter().copied().zip(res7));
         fits.push((run.direction, coef));
     }
     if fits.is_empty() {
