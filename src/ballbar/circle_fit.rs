@@ -64,7 +64,7 @@ pub struct Circle {
     pub rms_residual: f64,
 }
 
-/// Fits a circle to the points (x[i], y[i]) in the geometric least-squares
+/// Fits a circle to the points (`x[i]`, `y[i]`) in the geometric least-squares
 /// sense.
 ///
 /// # Units
