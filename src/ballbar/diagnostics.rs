@@ -104,16 +104,33 @@ fn sgn(v: f64) -> f64 {
     }
 }
 
-/// Least squares by QR; None when rank deficient.
-fn lsq(a: &DMatrix<f64>, b: &[f64]) -> Option<DVector<f64>> {
-    let qr = a.clone().qr();
-    let r = qr.r();
-    let m = a.ncols();
-    let big = (0..m).map(|k| r[(k, k)].abs()).fold(0.0, f64::max);
-    if (0..m).any(|k| r[(k, k)].abs() <= 1e-10 * big) {
+/// Least squares through the normal equations (the basis is bounded and a
+/// run covers a full revolution, so they are well conditioned; memory stays
+/// O(cols²) for traces of any length). None when rank deficient.
+fn lsq(rows: impl Iterator<Item = ([f64; COLS], f64)>, cols: usize) -> Option<DVector<f64>> {
+    let mut m = DMatrix::<f64>::zeros(cols, cols);
+    let mut g = DVector::<f64>::zeros(cols);
+    for (b, y) in rows {
+        for i in 0..cols {
+            g[i] += b[i] * y;
+            for j in i..cols {
+                m[(i, j)] += b[i] * b[j];
+            }
+        }
+    }
+    for i in 0..cols {
+        for j in 0..i {
+            m[(i, j)] = m[(j, i)];
+        }
+    }
+    let big = (0..cols).map(|k| m[(k, k)]).fold(0.0, f64::max);
+    let chol = m.cholesky()?;
+    let l = chol.l();
+    // A pivot below 1e-10 of the largest column norm: rank deficient.
+    if (0..cols).any(|k| l[(k, k)] * l[(k, k)] <= 1e-20 * big) {
         return None;
     }
-    r.solve_upper_triangular(&(qr.q().transpose() * DVector::from_column_slice(b)))
+    Some(chol.solve(&g))
 }
 
 /// Columns of the per-run model: 7 signature terms, then orders 3 … 8.
@@ -177,14 +194,16 @@ pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
         let keep: Vec<usize> = (0..run.angle.len())
             .filter(|&i| !after_quadrant(run.angle[i], s, 10f64.to_radians()))
             .collect();
-        let b: Vec<f64> = keep.iter().map(|&i| run.deviation[i]).collect();
         // Two fits: with orders 3–8 (for the spikes, so that smooth motion
         // errors are not read as spikes) and without them (for the cyclic
         // error, which orders 3–8 would partly absorb; its signature is not
         // a pure harmonic). The signature terms come from the first.
         let fit = |cols: usize| -> Option<(DVector<f64>, Vec<f64>)> {
-            let a = DMatrix::from_fn(keep.len(), cols, |i, j| basis(run.angle[keep[i]], s)[j]);
-            let coef = lsq(&a, &b)?;
+            let coef = lsq(
+                keep.iter()
+                    .map(|&i| (basis(run.angle[i], s), run.deviation[i])),
+                cols,
+            )?;
             let res = run
                 .angle
                 .iter()

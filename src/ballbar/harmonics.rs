@@ -67,6 +67,14 @@ pub enum HarmonicsError {
     /// Order above the supported maximum.
     #[error("maxOrder {0} is too large: at most 1000")]
     OrderTooLarge(usize),
+    /// The design matrix would not fit in memory.
+    #[error("{points} samples × {coefficients} coefficients is too large (at most 2e7): decimate the trace or lower maxOrder")]
+    TooLarge {
+        /// Samples given.
+        points: usize,
+        /// Coefficients to determine.
+        coefficients: usize,
+    },
 }
 
 /// One harmonic component A sin(nθ + φ).
@@ -134,6 +142,12 @@ pub fn fit_harmonics(
             points: n,
             order: max_order,
             needed: m,
+        });
+    }
+    if n.saturating_mul(m) > 20_000_000 {
+        return Err(HarmonicsError::TooLarge {
+            points: n,
+            coefficients: m,
         });
     }
     for (i, (&a, &d)) in angle.iter().zip(deviation).enumerate() {
@@ -224,6 +238,11 @@ mod tests {
         assert!(matches!(
             fit_harmonics(&th, &[0.0; 2], 1),
             Err(HarmonicsError::LengthMismatch { .. })
+        ));
+        let big = vec![0.0; 30_000];
+        assert!(matches!(
+            fit_harmonics(&big, &big, 500),
+            Err(HarmonicsError::TooLarge { .. })
         ));
         // Order 30 over a 5° span: columns are numerically dependent.
         let th: Vec<f64> = (0..200).map(|i| (i as f64 * 0.025).to_radians()).collect();
