@@ -28,11 +28,14 @@
 //!   of travel, where the reversal spikes are;
 //! - reversal spikes: the residual of largest magnitude within 15° after
 //!   each quadrant point in the direction of travel;
-//! - cyclic error: on the residuals of all runs (of the model without
-//!   orders 3–8, which would absorb part of it), the pitch p (1 mm … R₀/4,
+//! - cyclic error: on the residuals of all runs, the pitch p (1 mm … R₀/4,
 //!   log grid then refined) whose model
 //!   cos θ·(a sin 2πx/p + b cos 2πx/p) + sin θ·(c sin 2πy/p + d cos 2πy/p)
-//!   explains most variance; amplitudes √(a² + b²) for X, √(c² + d²) for Y.
+//!   explains most variance; then the pitch is refined (±2 %) and a, b, c, d
+//!   are refitted jointly with the
+//!   run model (whose orders 3–8 would otherwise absorb part of the cyclic
+//!   signature) and averaged over runs; amplitudes √(a² + b²) for X,
+//!   √(c² + d²) for Y.
 //!
 //! Units: trace in rad and mm; the report in µm, ms, ppm (µm/m), µrad and mm
 //! as named.
@@ -107,7 +110,10 @@ fn sgn(v: f64) -> f64 {
 /// Least squares through the normal equations (the basis is bounded and a
 /// run covers a full revolution, so they are well conditioned; memory stays
 /// O(cols²) for traces of any length). None when rank deficient.
-fn lsq(rows: impl Iterator<Item = ([f64; COLS], f64)>, cols: usize) -> Option<DVector<f64>> {
+fn lsq<const N: usize>(
+    rows: impl Iterator<Item = ([f64; N], f64)>,
+    cols: usize,
+) -> Option<DVector<f64>> {
     let mut m = DMatrix::<f64>::zeros(cols, cols);
     let mut g = DVector::<f64>::zeros(cols);
     for (b, y) in rows {
@@ -130,7 +136,29 @@ fn lsq(rows: impl Iterator<Item = ([f64; COLS], f64)>, cols: usize) -> Option<DV
     if (0..cols).any(|k| l[(k, k)] * l[(k, k)] <= 1e-20 * big) {
         return None;
     }
-    Some(chol.solve(&g))
+    let x = chol.solve(&g);
+    Some(x)
+}
+
+/// As [`lsq`], also returning the explained sum of squares xᵀg.
+fn lsq_explained<const N: usize>(
+    rows: impl Iterator<Item = ([f64; N], f64)>,
+    cols: usize,
+) -> Option<(DVector<f64>, f64)> {
+    let rows: Vec<([f64; N], f64)> = rows.collect();
+    let x = lsq(rows.iter().copied(), cols)?;
+    let e = rows
+        .iter()
+        .map(|(b, y)| {
+            b[..cols]
+                .iter()
+                .zip(x.iter())
+                .map(|(p, q)| p * q)
+                .sum::<f64>()
+                * y
+        })
+        .sum();
+    Some((x, e))
 }
 
 /// Columns of the per-run model: 7 signature terms, then orders 3 … 8.
@@ -194,10 +222,8 @@ pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
         let keep: Vec<usize> = (0..run.angle.len())
             .filter(|&i| !after_quadrant(run.angle[i], s, 10f64.to_radians()))
             .collect();
-        // Two fits: with orders 3–8 (for the spikes, so that smooth motion
-        // errors are not read as spikes) and without them (for the cyclic
-        // error, which orders 3–8 would partly absorb; its signature is not
-        // a pure harmonic). The signature terms come from the first.
+        // The model with orders 3–8, so that smooth motion errors are read
+        // neither as spikes nor as cyclic error.
         let fit = |cols: usize| -> Option<(DVector<f64>, Vec<f64>)> {
             let coef = lsq(
                 keep.iter()
@@ -219,9 +245,8 @@ pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
             Some((coef, res))
         };
         let (coef, res) = fit(COLS)?;
-        let (_, res7) = fit(7)?;
         spikes.extend(find_spikes(run, &res));
-        resid.extend(run.angle.iter().copied().zip(res7));
+        resid.extend(run.angle.iter().copied().zip(res.iter().copied()));
         fits.push((run.direction, coef));
     }
     if fits.is_empty() {
@@ -255,7 +280,7 @@ pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
         servo_mismatch_ms: servo,
         scale_mismatch_ppm: 2.0 * mean(3) / r0 * 1e6,
         squareness_urad: squareness * 1e6,
-        cyclic: cyclic(&resid, r0),
+        cyclic: cyclic_pitch(&resid, r0).and_then(|p| cyclic_amplitudes(&full, p, r0)),
         runs_used: fits.len(),
     })
 }
@@ -308,7 +333,7 @@ fn find_spikes(run: &Run, res: &[f64]) -> Vec<Spike> {
     out
 }
 
-fn cyclic(resid: &[(f64, f64)], r0: f64) -> Option<Cyclic> {
+fn cyclic_pitch(resid: &[(f64, f64)], r0: f64) -> Option<f64> {
     let (pmin, pmax) = (1.0, r0 / 4.0);
     if resid.len() < 16 || pmax <= pmin {
         return None;
@@ -364,10 +389,56 @@ fn cyclic(resid: &[(f64, f64)], r0: f64) -> Option<Cyclic> {
         }
     }
     p = (a + b) / 2.0;
-    let (_, x) = fit(p)?;
+    Some(p)
+}
+
+/// Cyclic amplitudes at pitch `p`, fitted jointly with the run model (the
+/// orders 3–8 would otherwise take up part of the cyclic signature), and
+/// averaged over the runs (the error depends on position, not direction).
+fn cyclic_amplitudes(runs: &[&Run], p0: f64, r0: f64) -> Option<Cyclic> {
+    let joint = |p: f64| -> Option<([f64; 4], f64)> {
+        let k = std::f64::consts::TAU / p;
+        let (mut sum, mut explained) = ([0.0f64; 4], 0.0);
+        for run in runs {
+            let s = run.direction.sign();
+            let w = 10f64.to_radians();
+            let rows = run
+                .angle
+                .iter()
+                .zip(&run.deviation)
+                .filter(|(t, _)| !after_quadrant(**t, s, w))
+                .map(|(&t, &d)| {
+                    let mut b = [0.0f64; COLS + 4];
+                    b[..COLS].copy_from_slice(&basis(t, s));
+                    let (c, sn) = (t.cos(), t.sin());
+                    let ((sx, cx), (sy, cy)) = ((k * r0 * c).sin_cos(), (k * r0 * sn).sin_cos());
+                    b[COLS..].copy_from_slice(&[c * sx, c * cx, sn * sy, sn * cy]);
+                    (b, d)
+                });
+            let (coef, e) = lsq_explained(rows, COLS + 4)?;
+            explained += e;
+            for (j, v) in sum.iter_mut().enumerate() {
+                *v += coef[COLS + j] / runs.len() as f64;
+            }
+        }
+        Some((sum, explained))
+    };
+    // Golden-section refinement of the pitch on the joint model, ±2 %.
+    let (mut a, mut b) = (p0 / 1.02, p0 * 1.02);
+    let gr = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..20 {
+        let (c, d) = (b - gr * (b - a), a + gr * (b - a));
+        if joint(c).map_or(0.0, |f| f.1) > joint(d).map_or(0.0, |f| f.1) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    let p = (a + b) / 2.0;
+    let (sum, _) = joint(p)?;
     Some(Cyclic {
         pitch_mm: p,
-        amplitude_x_um: x[0].hypot(x[1]) * 1e3,
-        amplitude_y_um: x[2].hypot(x[3]) * 1e3,
+        amplitude_x_um: sum[0].hypot(sum[1]) * 1e3,
+        amplitude_y_um: sum[2].hypot(sum[3]) * 1e3,
     })
 }
