@@ -426,7 +426,7 @@ fn cyclic_amplitudes(runs: &[&Run], p0: f64, r0: f64) -> Option<Cyclic> {
     // Golden-section refinement of the pitch on the joint model, ±2 %.
     let (mut a, mut b) = (p0 / 1.02, p0 * 1.02);
     let gr = (5f64.sqrt() - 1.0) / 2.0;
-    for _ in 0..20 {
+    for _ in 0..12 {
         let (c, d) = (b - gr * (b - a), a + gr * (b - a));
         if joint(c).map_or(0.0, |f| f.1) > joint(d).map_or(0.0, |f| f.1) {
             b = d;
