@@ -1,2 +1,20 @@
 //! Rotary-axis alignment from partial-range ball-bar traces
-//! (takayama-alignment-travel-range §2–4). Written under issue 5.
+//! (takayama-alignment-travel-range §2–4).
+//!
+//! | file | what it models |
+//! |---|---|
+//! | [`travel_range`] | §2.1: centre-estimate error against travel range (Figs. 6–8) |
+//! | [`angle`] | §2.2: offset per section, ΔBz/ΔBx from two sections, angle sweep (Fig. 12) |
+//! | [`examples`] | the paper's Figs. 6, 7, 8, 12 as built-in examples, with its numbers |
+
+pub mod angle;
+pub mod examples;
+pub mod travel_range;
+
+pub use angle::{
+    angle_sweep, estimate_alignment, AlignmentEstimate, AngleSweepConfig, AngleSweepPoint, Section,
+    SectionEstimate, SectionOffset,
+};
+pub use travel_range::{
+    travel_range_sweep, AlignmentError, Locus, Offset, SweepConfig, SweepPoint,
+};

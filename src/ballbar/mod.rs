@@ -1,2 +1,27 @@
 //! Ball-bar analysis: circle fit, harmonics, ISO 230-4 circular test
-//! (takayama-alignment-travel-range; ISO 230-4). Written under issue 5.
+//! (takayama-alignment-travel-range; ISO 230-4).
+//!
+//! | file | what it models |
+//! |---|---|
+//! | [`circle_fit`] | geometric least-squares circle (algebraic seed + Levenberg–Marquardt) |
+//! | [`harmonics`] | least-squares harmonic fit of a radial deviation, valid on partial ranges |
+//! | [`trace_import`] | CSV/TSV ball-bar traces (angle + deviation or X/Y), split into CCW/CW runs |
+//! | [`iso230_4`] | ISO 230-4 circular deviation G, hysteresis H, radial deviation F |
+//! | [`diagnostics`] | backlash, reversal spikes, servo and scale mismatch, squareness, cyclic error |
+//! | [`synthetic`] | synthetic traces with known machine errors (the diagnostics' forward model) |
+
+pub mod circle_fit;
+pub mod diagnostics;
+pub mod harmonics;
+pub mod iso230_4;
+pub mod synthetic;
+pub mod trace_import;
+
+pub use circle_fit::{fit_circle, Circle, FitError};
+pub use diagnostics::{Cyclic, Diagnostics, Spike};
+pub use harmonics::{fit_harmonics, Harmonic, HarmonicsError};
+pub use iso230_4::{circular_test, CircularTest, CircularTestError, RunResult};
+pub use synthetic::{synthetic_trace, SyntheticConfig, SyntheticError};
+pub use trace_import::{
+    parse_ballbar_trace, BallbarTrace, BallbarTraceError, Direction, ParseOptions, Run,
+};

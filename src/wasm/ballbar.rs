@@ -1,1 +1,251 @@
-//! Bindings for the ballbar models. Written under the issue that implements them.
+//! Bindings for [`crate::ballbar`] and [`crate::alignment`]: circle fit,
+//! harmonics, travel-range and angle sweeps, alignment estimate, trace
+//! import, ISO 230-4 circular test, synthetic traces and the paper's
+//! examples. Thin: conversion only.
+
+use js_sys::{Array, Float64Array, Reflect};
+use wasm_bindgen::prelude::*;
+
+use super::convert::{from_js, to_js, Obj};
+use crate::alignment::{self, examples, AngleSweepConfig, Section, SweepConfig};
+use crate::ballbar::{self, BallbarTrace, Direction, ParseOptions, Run, SyntheticConfig};
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS: &str = r#"
+export interface CircleFit { cx: number; cy: number; r: number; rmsResidual: number }
+/** A sin(n·θ + φ); amplitude in the deviation's unit (mm), phase in rad. */
+export interface HarmonicComponent { order: number; amplitude: number; phase: number }
+/** Lengths in mm, angles in degrees (ranges, centre), phases in rad. */
+export interface TravelRangeSweepConfig {
+  offset?: { z: number; x: number };
+  harmonics?: HarmonicComponent[];
+  ranges: number[];
+  /** Ball-bar radius, mm (default 100); 0 = DBB5 centre-ball reading. */
+  radius?: number;
+  /** Samples per revolution (default 1000). */
+  samples?: number;
+  /** Centre of every range, degrees (default 0: 180° means −90°…90°). */
+  centreDeg?: number;
+}
+/** errorZ, errorX: estimated − true centre, mm. */
+export interface SweepPoint { rangeDeg: number; errorZ: number; errorX: number }
+export interface AlignmentSection { y: number; angleDeg: Float64Array | number[]; deviation: Float64Array | number[] }
+export interface AlignmentInput { sections: AlignmentSection[]; /** bar length, mm (default 100) */ radius?: number }
+export interface AlignmentEstimate {
+  sections: { y: number; z: number; x: number; rmsResidual: number }[];
+  /** rad (mm/mm); null with one section. */ deltaBz: number | null; deltaBx: number | null;
+}
+export interface AngleSweepConfig {
+  sections: { y: number; offset: { z: number; x: number } }[];
+  ranges: number[]; harmonics?: HarmonicComponent[]; radius?: number; samples?: number; centreDeg?: number;
+}
+/** Angle errors in rad. */
+export interface AngleSweepPoint { rangeDeg: number; deltaBz: number; deltaBx: number; errorBz: number; errorBx: number }
+export interface BallbarRun { direction: 'ccw' | 'cw'; /** rad, unwrapped */ angleRad: Float64Array; /** mm */ deviation: Float64Array }
+export interface BallbarTrace { /** mm */ nominalRadius: number; /** mm/min */ feed: number | null; runs: BallbarRun[] }
+export interface ParseTraceOptions { nominalRadius?: number; feed?: number }
+export interface CircularTestRun {
+  direction: 'ccw' | 'cw'; gUm: number; fMaxUm: number; fMinUm: number;
+  centreXMm: number; centreYMm: number; radiusMm: number; spanDeg: number; points: number;
+}
+export interface BallbarDiagnostics {
+  centreOffsetXUm: number; centreOffsetYUm: number; backlashXUm: number; backlashYUm: number;
+  reversalSpikes: { direction: 'ccw' | 'cw'; axis: 'x' | 'y'; angleDeg: number; heightUm: number }[];
+  servoMismatchMs: number | null; scaleMismatchPpm: number; squarenessUrad: number;
+  cyclic: { pitchMm: number; amplitudeXUm: number; amplitudeYUm: number } | null; runsUsed: number;
+}
+export interface CircularTestResult { nominalRadiusMm: number; runs: CircularTestRun[]; hUm: number | null; diagnostics: BallbarDiagnostics | null }
+/** mm, rad, s, mm/min; every field optional. */
+export interface SyntheticTraceConfig {
+  radius?: number; feed?: number; samples?: number; rangeDeg?: number; centreDeg?: number; bothDirections?: boolean;
+  offsetX?: number; offsetY?: number; harmonics?: HarmonicComponent[];
+  scaleX?: number; scaleY?: number; squareness?: number; servoMismatch?: number;
+  backlashX?: number; backlashY?: number; spike?: number; spikeDecayDeg?: number;
+  cyclicAmplitude?: number; cyclicPitch?: number; noise?: number;
+}
+export interface PaperExample {
+  name: string; description: string;
+  curves: { offset: { z: number; x: number }; points: SweepPoint[] }[];
+  angle: AngleSweepPoint[];
+  paper: { label: string; rangeDeg: number; paper: string; ours: number }[];
+}
+"#;
+
+/// Least-squares circle through the points (algebraic start, then
+/// Levenberg–Marquardt); throws for < 3 or collinear points.
+#[wasm_bindgen(js_name = fitCircle, unchecked_return_type = "CircleFit")]
+pub fn fit_circle(x: &[f64], y: &[f64]) -> Result<JsValue, JsError> {
+    to_js(&ballbar::fit_circle(x, y)?)
+}
+
+/// Least-squares harmonics of orders 0 … maxOrder (valid on partial ranges).
+#[wasm_bindgen(js_name = harmonics, unchecked_return_type = "HarmonicComponent[]")]
+pub fn harmonics(
+    angle_rad: &[f64],
+    radial_deviation: &[f64],
+    max_order: usize,
+) -> Result<JsValue, JsError> {
+    to_js(&ballbar::fit_harmonics(
+        angle_rad,
+        radial_deviation,
+        max_order,
+    )?)
+}
+
+/// takayama §2.1: centre-estimate error for each travel range.
+#[wasm_bindgen(js_name = travelRangeSweep, unchecked_return_type = "SweepPoint[]")]
+pub fn travel_range_sweep(
+    #[wasm_bindgen(unchecked_param_type = "TravelRangeSweepConfig")] config: JsValue,
+) -> Result<JsValue, JsError> {
+    let cfg: SweepConfig = from_js(config, "config")?;
+    to_js(&alignment::travel_range_sweep(&cfg)?)
+}
+
+/// takayama §2.2: angle-error estimate against travel range (Fig. 12).
+#[wasm_bindgen(js_name = angleSweep, unchecked_return_type = "AngleSweepPoint[]")]
+pub fn angle_sweep(
+    #[wasm_bindgen(unchecked_param_type = "AngleSweepConfig")] config: JsValue,
+) -> Result<JsValue, JsError> {
+    let cfg: AngleSweepConfig = from_js(config, "config")?;
+    to_js(&alignment::angle_sweep(&cfg)?)
+}
+
+fn get(obj: &JsValue, key: &str) -> JsValue {
+    Reflect::get(obj, &JsValue::from_str(key)).unwrap_or(JsValue::UNDEFINED)
+}
+
+fn number(obj: &JsValue, key: &str, what: &str) -> Result<f64, JsError> {
+    get(obj, key)
+        .as_f64()
+        .ok_or_else(|| JsError::new(&format!("{what}.{key}: expected a number")))
+}
+
+fn floats(obj: &JsValue, key: &str, what: &str) -> Result<Vec<f64>, JsError> {
+    let v = get(obj, key);
+    if v.is_instance_of::<Float64Array>() || Array::is_array(&v) {
+        Ok(Float64Array::new(&v).to_vec())
+    } else {
+        Err(JsError::new(&format!(
+            "{what}.{key}: expected a Float64Array or an array of numbers"
+        )))
+    }
+}
+
+/// takayama §2.2: offset per section and ΔBz, ΔBx from two sections.
+#[wasm_bindgen(js_name = estimateAlignment, unchecked_return_type = "AlignmentEstimate")]
+pub fn estimate_alignment(
+    #[wasm_bindgen(unchecked_param_type = "AlignmentInput")] input: JsValue,
+) -> Result<JsValue, JsError> {
+    let list = get(&input, "sections");
+    if !Array::is_array(&list) {
+        return Err(JsError::new(
+            "sections: expected an array of { y, angleDeg, deviation }",
+        ));
+    }
+    let mut sections = Vec::new();
+    for (k, s) in Array::from(&list).iter().enumerate() {
+        let what = format!("sections[{k}]");
+        sections.push(Section {
+            y: number(&s, "y", &what)?,
+            angle_deg: floats(&s, "angleDeg", &what)?,
+            deviation: floats(&s, "deviation", &what)?,
+        });
+    }
+    let radius = get(&input, "radius").as_f64().unwrap_or(100.0);
+    to_js(&alignment::estimate_alignment(&sections, radius)?)
+}
+
+fn trace_to_js(t: &BallbarTrace) -> Result<JsValue, JsError> {
+    let runs = Array::new();
+    for r in &t.runs {
+        runs.push(
+            &Obj::new()
+                .ser("direction", &r.direction)?
+                .arr("angleRad", &r.angle)
+                .arr("deviation", &r.deviation)
+                .build(),
+        );
+    }
+    let feed = t.feed.map_or(JsValue::NULL, JsValue::from_f64);
+    Ok(Obj::new()
+        .num("nominalRadius", t.nominal_radius)
+        .val("feed", feed)
+        .val("runs", runs.into())
+        .build())
+}
+
+fn trace_from_js(v: &JsValue) -> Result<BallbarTrace, JsError> {
+    let list = get(v, "runs");
+    if !Array::is_array(&list) {
+        return Err(JsError::new(
+            "trace.runs: expected an array of { direction, angleRad, deviation }",
+        ));
+    }
+    let mut runs = Vec::new();
+    for (k, r) in Array::from(&list).iter().enumerate() {
+        let what = format!("trace.runs[{k}]");
+        let direction = match get(&r, "direction").as_string().as_deref() {
+            Some("ccw") => Direction::Ccw,
+            Some("cw") => Direction::Cw,
+            _ => {
+                return Err(JsError::new(&format!(
+                    "{what}.direction: expected 'ccw' or 'cw'"
+                )))
+            }
+        };
+        runs.push(Run {
+            direction,
+            angle: floats(&r, "angleRad", &what)?,
+            deviation: floats(&r, "deviation", &what)?,
+            lines: Vec::new(),
+        });
+    }
+    Ok(BallbarTrace {
+        nominal_radius: number(v, "nominalRadius", "trace")?,
+        feed: get(v, "feed").as_f64(),
+        runs,
+    })
+}
+
+/// Reads a CSV/TSV ball-bar trace (angle + deviation, or X/Y); errors name
+/// the line.
+#[wasm_bindgen(js_name = parseBallbarTrace, unchecked_return_type = "BallbarTrace")]
+pub fn parse_ballbar_trace(
+    text: &str,
+    #[wasm_bindgen(unchecked_param_type = "ParseTraceOptions | undefined")] options: JsValue,
+) -> Result<JsValue, JsError> {
+    let opts: ParseOptions = if options.is_undefined() || options.is_null() {
+        ParseOptions::default()
+    } else {
+        from_js(options, "options")?
+    };
+    trace_to_js(&ballbar::parse_ballbar_trace(text, opts)?)
+}
+
+/// ISO 230-4 G, H, F per direction, plus the ball-bar diagnostics.
+#[wasm_bindgen(js_name = circularTest, unchecked_return_type = "CircularTestResult")]
+pub fn circular_test(
+    #[wasm_bindgen(unchecked_param_type = "BallbarTrace")] trace: JsValue,
+) -> Result<JsValue, JsError> {
+    to_js(&ballbar::circular_test(&trace_from_js(&trace)?)?)
+}
+
+/// A synthetic ball-bar trace with known machine errors.
+#[wasm_bindgen(js_name = syntheticBallbarTrace, unchecked_return_type = "BallbarTrace")]
+pub fn synthetic_ballbar_trace(
+    #[wasm_bindgen(unchecked_param_type = "SyntheticTraceConfig")] config: JsValue,
+) -> Result<JsValue, JsError> {
+    let cfg: SyntheticConfig = if config.is_undefined() {
+        SyntheticConfig::default()
+    } else {
+        from_js(config, "config")?
+    };
+    trace_to_js(&ballbar::synthetic_trace(&cfg)?)
+}
+
+/// The paper's Figs. 6, 7, 8, 12 ("fig6" …) with its quoted numbers;
+/// `radius` 100 mm (default, ball bar) or 0 (DBB5 centre ball).
+#[wasm_bindgen(js_name = ballbarExample, unchecked_return_type = "PaperExample")]
+pub fn ballbar_example(name: &str, radius: Option<f64>) -> Result<JsValue, JsError> {
+    to_js(&examples::example(name, radius.unwrap_or(100.0))?)
+}

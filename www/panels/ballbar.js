@@ -1,6 +1,219 @@
-// ballbar panel (shell): the capability lands with its issue.
-import { h } from '../lib/ui.js';
+// Ball bar & alignment panel: load a ball-bar trace (or generate a synthetic
+// one), fit its centre, its harmonics, the ISO 230-4 table and diagnostics,
+// and the travel-range bias of the centre estimate (Takayama et al.).
+// JS only gathers inputs, calls the core, draws and offers downloads.
+import { h, numberField, selectField, table, downloadText, toCsv, dropZone, showError, fmt } from '../lib/ui.js';
+import { polarChart, barChart, lineChart } from '../lib/plot.js';
 
-export async function mount(root) {
-  root.replaceChildren(h('p', { class: 'warn-box' }, 'This capability is being built; the description above says what it will do.'));
+const UM = 1e-3; // mm per µm
+const RAD = Math.PI / 180;
+
+/** "2:5, 3:3, 5:2.5" (order:amplitude µm[:phase deg]) → harmonics in mm/rad. */
+function parseHarmonics(text) {
+  const out = [];
+  for (const part of text.split(/[,;\s]+/).filter(Boolean)) {
+    const [o, a, p = '0'] = part.split(':');
+    const order = Number(o);
+    const amplitude = Number(a) * UM;
+    const phase = Number(p) * RAD;
+    if (!Number.isInteger(order) || order < 0 || !Number.isFinite(amplitude) || !Number.isFinite(phase)) {
+      throw new Error(`harmonics: '${part}' is not order:amplitude[:phase], e.g. 2:5 or 3:3:90 (µm, degrees)`);
+    }
+    out.push({ order, amplitude, phase });
+  }
+  return out;
+}
+
+export async function mount(root, api) {
+  // ---- inputs -------------------------------------------------------------
+  const source = selectField({ label: 'Trace', id: 'ballbar-source', value: 'synthetic', options: [['synthetic', 'Synthetic (from the fields below)'], ['file', 'Loaded file']] });
+  const f = {
+    radius: numberField({ label: 'Bar length', unit: 'mm', value: 100, id: 'ballbar-radius', min: 1 }),
+    range: numberField({ label: 'Travel range', unit: '°', value: 360, id: 'ballbar-range', min: 10, max: 360 }),
+    offX: numberField({ label: 'Centre offset X (Z for a B axis)', unit: 'µm', value: 0, id: 'ballbar-offset-x' }),
+    offY: numberField({ label: 'Centre offset Y (X for a B axis)', unit: 'µm', value: 10, id: 'ballbar-offset-y' }),
+    feed: numberField({ label: 'Feed', unit: 'mm/min', value: 1000, id: 'ballbar-feed', min: 1 }),
+    backlashX: numberField({ label: 'Backlash X', unit: 'µm', value: 0, id: 'ballbar-backlash-x' }),
+    backlashY: numberField({ label: 'Backlash Y', unit: 'µm', value: 0, id: 'ballbar-backlash-y' }),
+    servo: numberField({ label: 'Servo mismatch (X lags)', unit: 'ms', value: 0, id: 'ballbar-servo' }),
+    squareness: numberField({ label: 'Squareness', unit: 'µrad', value: 0, id: 'ballbar-squareness' }),
+    maxOrder: numberField({ label: 'Harmonics up to order', value: 10, id: 'ballbar-max-order', min: 2, max: 50, step: 1 }),
+  };
+  const harm = h('input', { id: 'ballbar-harmonics-input', value: '2:5, 3:3, 5:2.5', title: 'order:amplitude µm[:phase °], comma-separated (sine convention: A·sin(nθ + φ))' });
+  const harmField = h('label', { class: 'field' }, h('span', {}, 'Motion-error harmonics ', h('span', { class: 'unit' }, '[order:µm[:°]]')), harm);
+  let loaded = null;
+  const fileInfo = h('p', { id: 'ballbar-file-info', class: 'unit' }, 'No file loaded (CSV/TSV: angle + deviation, or X/Y).');
+  const drop = dropZone({
+    label: 'Drop a ball-bar trace (CSV/TSV) here, or click to choose one',
+    accept: '.csv,.tsv,.txt',
+    onText: async (text, name) => {
+      try {
+        loaded = await api.call('parseBallbarTrace', [text, { nominalRadius: f.radius.value }]);
+        fileInfo.textContent = `${name}: ${loaded.runs.length} run(s), ${loaded.runs.map((r) => `${r.direction} ${r.angleRad.length} points`).join(', ')}`;
+        source.value = 'file';
+        await analyse();
+      } catch (e) {
+        showError(out, e);
+      }
+    },
+  });
+  const run = h('button', { id: 'ballbar-run', class: 'primary', onclick: () => analyse() }, 'Analyse');
+  const out = h('div', { id: 'ballbar-results' });
+
+  // ---- paper examples -----------------------------------------------------
+  const exName = selectField({ label: 'Paper figure', id: 'ballbar-example', value: 'fig7', options: [['fig6', 'Fig. 6: single harmonics, 180°'], ['fig7', 'Fig. 7: travel range 90…360°'], ['fig8', 'Fig. 8: four offset positions'], ['fig12', 'Fig. 12: angle error 10 µm/350 mm']] });
+  const exReading = selectField({ label: 'Reading', id: 'ballbar-example-reading', value: '100', options: [['100', 'Ball bar, 100 mm (default)'], ['0', 'DBB5 centre ball (radius 0)']] });
+  const exOut = h('div', { id: 'ballbar-example-results' });
+  const exRun = h('button', { id: 'ballbar-example-run', onclick: () => example() }, 'Run example');
+
+  root.replaceChildren(
+    h('div', { class: 'card' }, h('h3', {}, 'Trace'), h('div', { class: 'fields' }, source.el, ...Object.values(f).map((x) => x.el), harmField), drop, fileInfo, run),
+    out,
+    h('div', { class: 'card' }, h('h3', {}, 'The paper’s simulations (Takayama et al., Figs. 6, 7, 8, 12)'), h('div', { class: 'fields' }, exName.el, exReading.el), exRun, exOut),
+  );
+
+  async function getTrace() {
+    if (source.value === 'file') {
+      if (!loaded) throw new Error('no trace loaded: drop a CSV/TSV file, or choose "Synthetic"');
+      return loaded;
+    }
+    return api.call('syntheticBallbarTrace', [{
+      radius: f.radius.value,
+      rangeDeg: f.range.value,
+      feed: f.feed.value,
+      offsetX: f.offX.value * UM,
+      offsetY: f.offY.value * UM,
+      harmonics: parseHarmonics(harm.value),
+      backlashX: f.backlashX.value * UM,
+      backlashY: f.backlashY.value * UM,
+      servoMismatch: f.servo.value * 1e-3,
+      squareness: f.squareness.value * 1e-6,
+    }]);
+  }
+
+  async function analyse() {
+    out.replaceChildren(h('p', {}, 'Computing…'));
+    try {
+      const trace = await getTrace();
+      const r0 = trace.nominalRadius;
+      const first = trace.runs[0];
+      const n = first.angleRad.length;
+      const x = new Float64Array(n);
+      const y = new Float64Array(n);
+      for (let i = 0; i < n; i++) {
+        const rr = r0 + first.deviation[i];
+        x[i] = rr * Math.cos(first.angleRad[i]);
+        y[i] = rr * Math.sin(first.angleRad[i]);
+      }
+      const [fit, harmonics, iso] = await Promise.all([
+        api.call('fitCircle', [x, y]),
+        api.call('harmonics', [first.angleRad, first.deviation, f.maxOrder.value]).catch((e) => e),
+        api.call('circularTest', [trace]),
+      ]);
+      // Travel-range sweep of the fitted centre with the measured harmonics
+      // (orders ≥ 2), as the paper's §4.1.4 does with its DBB5 trace.
+      const motion = Array.isArray(harmonics) ? harmonics.filter((c) => c.order >= 2) : [];
+      const ranges = Array.from({ length: 34 }, (_, k) => 30 + 10 * k);
+      const sweep = await api.call('travelRangeSweep', [{ offset: { z: fit.cx, x: fit.cy }, harmonics: motion, ranges, radius: r0, samples: 1000 }]);
+      render(trace, fit, harmonics, iso, sweep);
+    } catch (e) {
+      showError(out, e);
+    }
+  }
+
+  function render(trace, fit, harmonics, iso, sweep) {
+    const r0 = trace.nominalRadius;
+    // Polar plot: r = base + deviation (µm), base = 2 × the largest |deviation|.
+    const all = trace.runs.flatMap((r) => Array.from(r.deviation, (d) => Math.abs(d) / UM));
+    const base = Math.max(1, 2 * Math.max(...all));
+    const traces = trace.runs.map((r) => ({ angle: r.angleRad, r: Float64Array.from(r.deviation, (d) => base + d / UM), label: `${r.direction.toUpperCase()} deviation (µm)` }));
+    const circ = Float64Array.from({ length: 361 }, (_, i) => i * RAD);
+    traces.push({ angle: circ, r: Float64Array.from(circ, (t) => base + ((fit.r - r0) + fit.cx * Math.cos(t) + fit.cy * Math.sin(t)) / UM), label: 'fitted circle', color: '#b3261e' });
+    const polarEl = h('div', { id: 'ballbar-polar' });
+    const barEl = h('div', { id: 'ballbar-harmonics' });
+    const sweepEl = h('div', { id: 'ballbar-sweep' });
+    const isoRows = iso.runs.map((r) => [r.direction.toUpperCase(), fmt(r.gUm, 2), fmt(r.fMaxUm, 2), fmt(r.fMinUm, 2), fmt(r.centreXMm / UM, 2), fmt(r.centreYMm / UM, 2), fmt(r.spanDeg, 1)]);
+    const d = iso.diagnostics;
+    const diagRows = d
+      ? [
+          ['Centre offset X / Y', `${fmt(d.centreOffsetXUm, 2)} / ${fmt(d.centreOffsetYUm, 2)} µm`],
+          ['Backlash X', `${fmt(d.backlashXUm, 2)} µm`],
+          ['Backlash Y', `${fmt(d.backlashYUm, 2)} µm`],
+          ['Servo mismatch (X lags Y)', d.servoMismatchMs === null ? '— (needs CCW + CW and the feed)' : `${fmt(d.servoMismatchMs, 3)} ms`],
+          ['Scale mismatch (X − Y)', `${fmt(d.scaleMismatchPpm, 2)} ppm`],
+          ['Squareness (axes < 90° positive)', `${fmt(d.squarenessUrad, 2)} µrad`],
+          ['Cyclic error', d.cyclic ? `X ${fmt(d.cyclic.amplitudeXUm, 2)} µm, Y ${fmt(d.cyclic.amplitudeYUm, 2)} µm at ${fmt(d.cyclic.pitchMm, 2)} mm pitch` : '—'],
+          ...d.reversalSpikes.map((s) => [`Reversal spike ${s.direction.toUpperCase()} ${s.axis.toUpperCase()} at ${s.angleDeg}°`, `${fmt(s.heightUm, 2)} µm`]),
+        ]
+      : [['Diagnostics', 'need a run over a full revolution']];
+    const isoTable = table(['run', 'G [µm]', 'F max [µm]', 'F min [µm]', 'LSC centre X [µm]', 'LSC centre Y [µm]', 'span [°]'], isoRows);
+    isoTable.querySelector('table').id = 'ballbar-iso';
+    const diagTable = table(['diagnostic', 'value'], diagRows);
+    diagTable.querySelector('table').id = 'ballbar-diagnostics';
+    const downloads = h('div', { class: 'buttons' },
+      h('button', { id: 'ballbar-download', onclick: () => downloadText('ballbar-results.json', JSON.stringify({ fit, harmonics: Array.isArray(harmonics) ? harmonics : String(harmonics.message), iso, travelRangeSweep: sweep }, null, 2), 'application/json') }, 'Download results (JSON)'),
+      h('button', { id: 'ballbar-download-sweep', onclick: () => downloadText('travel-range-sweep.csv', toCsv({ rangeDeg: sweep.map((p) => p.rangeDeg), errorZUm: sweep.map((p) => p.errorZ / UM), errorXUm: sweep.map((p) => p.errorX / UM) }), 'text/csv') }, 'Download sweep (CSV)'),
+      h('button', { id: 'ballbar-download-trace', onclick: () => {
+        const cat = (fn) => trace.runs.flatMap((r) => Array.from(r.angleRad, (_, i) => fn(r, i)));
+        downloadText('ballbar-trace.csv', toCsv({ angle_deg: cat((r, i) => r.angleRad[i] / RAD), deviation_um: cat((r, i) => r.deviation[i] / UM), direction: cat((r) => (r.direction === 'ccw' ? 1 : -1)) }), 'text/csv');
+      } }, 'Download trace (CSV)'),
+    );
+    out.replaceChildren(
+      h('div', { class: 'card' }, h('h3', {}, 'Fitted centre (least-squares circle of the first run)'),
+        h('p', {}, 'Centre X ', h('strong', { id: 'ballbar-centre-x' }, fmt(fit.cx / UM, 3)), ' µm, Y ', h('strong', { id: 'ballbar-centre-y' }, fmt(fit.cy / UM, 3)), ' µm; radius ', fmt(fit.r, 6), ' mm; RMS residual ', fmt(fit.rmsResidual / UM, 3), ' µm'),
+        polarEl),
+      h('div', { class: 'card' }, h('h3', {}, 'Harmonics of the deviation (least squares, valid on partial ranges)'), barEl),
+      h('div', { class: 'card' }, h('h3', {}, 'Travel-range bias of the centre estimate (Takayama §2.1 with these harmonics)'), sweepEl),
+      h('div', { class: 'card' }, h('h3', {}, 'ISO 230-4 circular test'), isoTable, h('p', {}, 'Circular hysteresis H: ', h('strong', { id: 'ballbar-h' }, iso.hUm === null ? '— (needs CCW and CW)' : `${fmt(iso.hUm, 2)} µm`)), diagTable, downloads),
+    );
+    polarChart(polarEl, { title: `Deviation, magnified (base circle = ${fmt(base, 1)} µm)`, traces, circles: [{ r: base, label: 'nominal' }], markers: [{ x: fit.cx / UM, y: fit.cy / UM, label: 'fitted centre' }] });
+    if (Array.isArray(harmonics)) {
+      const hs = harmonics.filter((c) => c.order >= 1);
+      barChart(barEl, { title: 'Amplitude by order (order 1 = centre offset)', labels: hs.map((c) => c.order), values: hs.map((c) => c.amplitude / UM), yLabel: 'µm' });
+    } else {
+      showError(barEl, harmonics);
+    }
+    lineChart(sweepEl, {
+      title: 'Estimated − true centre against travel range',
+      xLabel: 'travel range [°]',
+      yLabel: 'µm',
+      series: [{ label: 'ΔZ (X) error' }, { label: 'ΔX (Y) error' }, { label: '|error|', dash: [6, 4] }],
+      data: [sweep.map((p) => p.rangeDeg), sweep.map((p) => p.errorZ / UM), sweep.map((p) => p.errorX / UM), sweep.map((p) => Math.hypot(p.errorZ, p.errorX) / UM)],
+      bands: [
+        { from: 75, to: 105, label: 'universal head ~90°', color: 'rgba(217,72,15,0.10)' },
+        { from: 160, to: 200, label: 'trunnion ~180°', color: 'rgba(11,107,203,0.10)' },
+        { from: 330, to: 360, label: 'table-on-table ~360°', color: 'rgba(43,138,62,0.12)' },
+      ],
+    });
+  }
+
+  async function example() {
+    exOut.replaceChildren(h('p', {}, 'Computing…'));
+    try {
+      const ex = await api.call('ballbarExample', [exName.value, Number(exReading.value)]);
+      const paper = table(['quantity', 'range [°]', 'paper', 'ours'], ex.paper.map((p) => [p.label, p.rangeDeg || '—', p.paper, fmt(p.ours, 2)]));
+      paper.querySelector('table').id = 'ballbar-paper-table';
+      const chartEl = h('div', { id: 'ballbar-example-chart' });
+      exOut.replaceChildren(h('p', {}, ex.description), paper, chartEl);
+      if (ex.angle.length) {
+        lineChart(chartEl, { title: 'Angle-error estimate error', xLabel: 'travel range [°]', yLabel: 'µm / 700 mm', series: [{ label: 'ΔBz' }, { label: 'ΔBx' }], data: [ex.angle.map((p) => p.rangeDeg), ex.angle.map((p) => (p.errorBz * 700) / UM), ex.angle.map((p) => (p.errorBx * 700) / UM)] });
+      } else if (ex.name === 'fig6') {
+        const pts = ex.curves[0].points;
+        barChart(chartEl, { title: '|centre error| by harmonic order (180°)', labels: pts.map((p) => p.rangeDeg), values: pts.map((p) => Math.hypot(p.errorZ, p.errorX) / UM), yLabel: 'µm' });
+      } else {
+        const xs = ex.curves[0].points.map((p) => p.rangeDeg);
+        lineChart(chartEl, {
+          title: 'Radial centre error against travel range',
+          xLabel: 'travel range [°]',
+          yLabel: 'µm',
+          series: ex.curves.map((c) => ({ label: `offset (${fmt(c.offset.z / UM, 0)}, ${fmt(c.offset.x / UM, 0)}) µm` })),
+          data: [xs, ...ex.curves.map((c) => c.points.map((p) => Math.hypot(p.errorZ, p.errorX) / UM))],
+        });
+      }
+    } catch (e) {
+      showError(exOut, e);
+    }
+  }
+
+  await analyse();
 }

@@ -1,0 +1,444 @@
+//! Ball-bar diagnostics: the error sources that commercial ball-bar software
+//! reports from a CCW + CW circular test — centre offset, backlash and
+//! reversal spikes at the quadrant points, servo mismatch, scale mismatch,
+//! squareness and cyclic (pitch) error.
+//!
+//! Source: ISO 230-4 Annex A (interpretation of circular-test traces) and
+//! the signature model of [`super::synthetic`], which is its exact forward
+//! model.
+//!
+//! Method (readings chosen): each run covering a full revolution is fitted by
+//! linear least squares (QR) with
+//! Δ(θ) = c₀ + c₁ cos θ + s₁ sin θ + c₂ cos 2θ + s₂ sin 2θ
+//!        + βx·s·sign(sin θ)·cos θ/2 − βy·s·sign(cos θ)·sin θ/2
+//!        + Σₙ₌₃⁸ (aₙ cos nθ + bₙ sin nθ),
+//! s = +1 CCW, −1 CW (the dead-band backlash signature: a step of βx at the
+//! X reversals θ = 0°, 180° and of βy at 90°, 270°; orders 3–8 take up
+//! smooth motion errors so that they are not read as spikes). Then,
+//! averaging over
+//! runs and with R₀ the nominal radius and v the feed:
+//! - centre offset = (c₁, s₁);
+//! - backlash βx, βy;
+//! - scale mismatch sx − sy = 2c₂/R₀ (X longer: positive);
+//! - squareness α = (s₂,CCW + s₂,CW)/R₀ (positive: the axes enclose less
+//!   than 90°); with one direction only it includes the servo mismatch;
+//! - servo mismatch τ = (s₂,CCW − s₂,CW)/v (positive: X lags Y), needs both
+//!   directions and the feed;
+//! - the fit leaves out the 10° after each quadrant point in the direction
+//!   of travel, where the reversal spikes are;
+//! - reversal spikes: the residual of largest magnitude within 15° after
+//!   each quadrant point in the direction of travel;
+//! - cyclic error: on the residuals of all runs, the pitch p (1 mm … R₀/4,
+//!   log grid then refined) whose model
+//!   cos θ·(a sin 2πx/p + b cos 2πx/p) + sin θ·(c sin 2πy/p + d cos 2πy/p)
+//!   explains most variance; then the pitch is refined (±2 %) and a, b, c, d
+//!   are refitted jointly with the
+//!   run model (whose orders 3–8 would otherwise absorb part of the cyclic
+//!   signature) and averaged over runs; amplitudes √(a² + b²) for X,
+//!   √(c² + d²) for Y.
+//!
+//! Units: trace in rad and mm; the report in µm, ms, ppm (µm/m), µrad and mm
+//! as named.
+
+use nalgebra::{DMatrix, DVector};
+use serde::{Deserialize, Serialize};
+
+use super::trace_import::{BallbarTrace, Direction, Run};
+
+/// A reversal spike after a quadrant point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Spike {
+    /// Direction of the run.
+    pub direction: Direction,
+    /// The axis that reverses there ('x' at 0°/180°, 'y' at 90°/270°).
+    pub axis: char,
+    /// Quadrant point, degrees in [0, 360).
+    pub angle_deg: f64,
+    /// Signed spike height (outward positive), µm.
+    pub height_um: f64,
+}
+
+/// Cyclic (pitch) error.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Cyclic {
+    /// Pitch, mm.
+    pub pitch_mm: f64,
+    /// Amplitude on X, µm.
+    pub amplitude_x_um: f64,
+    /// Amplitude on Y, µm.
+    pub amplitude_y_um: f64,
+}
+
+/// The diagnostics report.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Diagnostics {
+    /// Centre offset X, µm.
+    pub centre_offset_x_um: f64,
+    /// Centre offset Y, µm.
+    pub centre_offset_y_um: f64,
+    /// Backlash X, µm.
+    pub backlash_x_um: f64,
+    /// Backlash Y, µm.
+    pub backlash_y_um: f64,
+    /// Reversal spikes per run and quadrant point.
+    pub reversal_spikes: Vec<Spike>,
+    /// Servo mismatch, ms (None without both directions or feed).
+    pub servo_mismatch_ms: Option<f64>,
+    /// Scale mismatch sx − sy, ppm.
+    pub scale_mismatch_ppm: f64,
+    /// Squareness, µrad (= µm/m).
+    pub squareness_urad: f64,
+    /// Cyclic error.
+    pub cyclic: Option<Cyclic>,
+    /// Runs used (full revolutions).
+    pub runs_used: usize,
+}
+
+fn sgn(v: f64) -> f64 {
+    if v > 0.0 {
+        1.0
+    } else if v < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// Least squares through the normal equations (the basis is bounded and a
+/// run covers a full revolution, so they are well conditioned; memory stays
+/// O(cols²) for traces of any length). None when rank deficient.
+fn lsq<const N: usize>(
+    rows: impl Iterator<Item = ([f64; N], f64)>,
+    cols: usize,
+) -> Option<DVector<f64>> {
+    let mut m = DMatrix::<f64>::zeros(cols, cols);
+    let mut g = DVector::<f64>::zeros(cols);
+    for (b, y) in rows {
+        for i in 0..cols {
+            g[i] += b[i] * y;
+            for j in i..cols {
+                m[(i, j)] += b[i] * b[j];
+            }
+        }
+    }
+    for i in 0..cols {
+        for j in 0..i {
+            m[(i, j)] = m[(j, i)];
+        }
+    }
+    let big = (0..cols).map(|k| m[(k, k)]).fold(0.0, f64::max);
+    let chol = m.cholesky()?;
+    let l = chol.l();
+    // A pivot below 1e-10 of the largest column norm: rank deficient.
+    if (0..cols).any(|k| l[(k, k)] * l[(k, k)] <= 1e-20 * big) {
+        return None;
+    }
+    let x = chol.solve(&g);
+    Some(x)
+}
+
+/// As [`lsq`], also returning the explained sum of squares xᵀg.
+fn lsq_explained<const N: usize>(
+    rows: impl Iterator<Item = ([f64; N], f64)>,
+    cols: usize,
+) -> Option<(DVector<f64>, f64)> {
+    let rows: Vec<([f64; N], f64)> = rows.collect();
+    let x = lsq(rows.iter().copied(), cols)?;
+    let e = rows
+        .iter()
+        .map(|(b, y)| {
+            b[..cols]
+                .iter()
+                .zip(x.iter())
+                .map(|(p, q)| p * q)
+                .sum::<f64>()
+                * y
+        })
+        .sum();
+    Some((x, e))
+}
+
+/// Columns of the per-run model: 7 signature terms, then orders 3 … 8.
+const COLS: usize = 7 + 2 * 6;
+
+fn basis(t: f64, s: f64) -> [f64; COLS] {
+    let (c, sn) = (t.cos(), t.sin());
+    let mut b = [0.0; COLS];
+    b[..7].copy_from_slice(&[
+        1.0,
+        c,
+        sn,
+        (2.0 * t).cos(),
+        (2.0 * t).sin(),
+        s * sgn(sn) * c / 2.0,
+        -s * sgn(c) * sn / 2.0,
+    ]);
+    for k in 3..=8 {
+        let (sk, ck) = (k as f64 * t).sin_cos();
+        b[7 + 2 * (k - 3)] = ck;
+        b[8 + 2 * (k - 3)] = sk;
+    }
+    b
+}
+
+/// Runs the diagnostics on the runs that cover a full revolution (≥ 355°);
+/// None when there are none.
+///
+/// # Units
+/// See [`Diagnostics`].
+///
+/// # Examples
+/// ```
+/// use mtmotion::ballbar::{diagnostics::diagnose, synthetic_trace, SyntheticConfig};
+/// let t = synthetic_trace(&SyntheticConfig { squareness: 20e-6, ..Default::default() }).unwrap();
+/// let d = diagnose(&t).unwrap();
+/// assert!((d.squareness_urad - 20.0).abs() < 0.1);
+/// ```
+pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
+    let r0 = trace.nominal_radius;
+    let full: Vec<&Run> = trace
+        .runs
+        .iter()
+        .filter(|r| {
+            let (lo, hi) = r
+                .angle
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| {
+                    (a.min(t), b.max(t))
+                });
+            r.angle.len() == r.deviation.len() && hi - lo >= 355f64.to_radians()
+        })
+        .collect();
+    let mut fits = Vec::new();
+    let mut resid: Vec<(f64, f64)> = Vec::new();
+    let mut spikes = Vec::new();
+    for run in &full {
+        let s = run.direction.sign();
+        // Fit without the 10° after each quadrant point in the direction
+        // of travel, where reversal spikes live; the steps stay visible.
+        let keep: Vec<usize> = (0..run.angle.len())
+            .filter(|&i| !after_quadrant(run.angle[i], s, 10f64.to_radians()))
+            .collect();
+        // The model with orders 3–8, so that smooth motion errors are read
+        // neither as spikes nor as cyclic error.
+        let fit = |cols: usize| -> Option<(DVector<f64>, Vec<f64>)> {
+            let coef = lsq(
+                keep.iter()
+                    .map(|&i| (basis(run.angle[i], s), run.deviation[i])),
+                cols,
+            )?;
+            let res = run
+                .angle
+                .iter()
+                .zip(&run.deviation)
+                .map(|(t, d)| {
+                    d - basis(*t, s)
+                        .iter()
+                        .zip(coef.iter())
+                        .map(|(b, c)| b * c)
+                        .sum::<f64>()
+                })
+                .collect();
+            Some((coef, res))
+        };
+        let (coef, res) = fit(COLS)?;
+        spikes.extend(find_spikes(run, &res));
+        resid.extend(run.angle.iter().copied().zip(res.iter().copied()));
+        fits.push((run.direction, coef));
+    }
+    if fits.is_empty() {
+        return None;
+    }
+    let n = fits.len() as f64;
+    let mean = |k: usize| fits.iter().map(|(_, c)| c[k]).sum::<f64>() / n;
+    let s2 = |d: Direction| {
+        let v: Vec<f64> = fits
+            .iter()
+            .filter(|(e, _)| *e == d)
+            .map(|(_, c)| c[4])
+            .collect();
+        (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+    };
+    let (ccw, cw) = (s2(Direction::Ccw), s2(Direction::Cw));
+    let squareness = match (ccw, cw) {
+        (Some(a), Some(b)) => (a + b) / r0,
+        _ => 2.0 * mean(4) / r0,
+    };
+    let servo = match (ccw, cw, trace.feed) {
+        (Some(a), Some(b), Some(f)) if f > 0.0 => Some((a - b) / (f / 60.0) * 1e3),
+        _ => None,
+    };
+    Some(Diagnostics {
+        centre_offset_x_um: mean(1) * 1e3,
+        centre_offset_y_um: mean(2) * 1e3,
+        backlash_x_um: mean(5) * 1e3,
+        backlash_y_um: mean(6) * 1e3,
+        reversal_spikes: spikes,
+        servo_mismatch_ms: servo,
+        scale_mismatch_ppm: 2.0 * mean(3) / r0 * 1e6,
+        squareness_urad: squareness * 1e6,
+        cyclic: cyclic_pitch(&resid, r0).and_then(|p| cyclic_amplitudes(&full, p, r0)),
+        runs_used: fits.len(),
+    })
+}
+
+/// Whether θ lies within `w` after a quadrant point in the direction `s`.
+fn after_quadrant(t: f64, s: f64, w: f64) -> bool {
+    (s * t).rem_euclid(std::f64::consts::FRAC_PI_2) < w
+}
+
+fn find_spikes(run: &Run, res: &[f64]) -> Vec<Spike> {
+    let s = run.direction.sign();
+    let w = 15f64.to_radians();
+    let (lo, hi) = run
+        .angle
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| {
+            (a.min(t), b.max(t))
+        });
+    let q = std::f64::consts::FRAC_PI_2;
+    let mut out = Vec::new();
+    let mut k = (lo / q).ceil() as i64;
+    while (k as f64) * q <= hi {
+        let qa = k as f64 * q;
+        k += 1;
+        // A reversal inside the run, with its window inside the run.
+        let (w0, w1) = if s > 0.0 { (qa, qa + w) } else { (qa - w, qa) };
+        if qa <= lo + 1e-9 || qa >= hi - 1e-9 || w0 < lo || w1 > hi {
+            continue;
+        }
+        let peak = run
+            .angle
+            .iter()
+            .zip(res)
+            .filter(|(t, _)| **t >= w0 && **t <= w1)
+            .map(|(_, r)| *r)
+            .fold(0.0f64, |m, r| if r.abs() > m.abs() { r } else { m });
+        let deg = qa.to_degrees().rem_euclid(360.0);
+        let axis = if ((deg / 90.0).round() as i64) % 2 == 0 {
+            'x'
+        } else {
+            'y'
+        };
+        out.push(Spike {
+            direction: run.direction,
+            axis,
+            angle_deg: deg.round(),
+            height_um: peak * 1e3,
+        });
+    }
+    out
+}
+
+fn cyclic_pitch(resid: &[(f64, f64)], r0: f64) -> Option<f64> {
+    let (pmin, pmax) = (1.0, r0 / 4.0);
+    if resid.len() < 16 || pmax <= pmin {
+        return None;
+    }
+    // Precomputed per point: cos θ, sin θ, and the axis positions.
+    let pts: Vec<[f64; 5]> = resid
+        .iter()
+        .map(|&(t, r)| {
+            let (c, s) = (t.cos(), t.sin());
+            [c, s, r0 * c, r0 * s, r]
+        })
+        .collect();
+    let fit = |p: f64| -> Option<(f64, [f64; 4])> {
+        let k = std::f64::consts::TAU / p;
+        let (mut m, mut g) = ([[0.0f64; 4]; 4], [0.0f64; 4]);
+        for &[c, s, x, y, r] in &pts {
+            let ((sx, cx), (sy, cy)) = ((k * x).sin_cos(), (k * y).sin_cos());
+            let b = [c * sx, c * cx, s * sy, s * cy];
+            for i in 0..4 {
+                g[i] += b[i] * r;
+                for j in i..4 {
+                    m[i][j] += b[i] * b[j];
+                }
+            }
+        }
+        let m = nalgebra::Matrix4::from_fn(|i, j| if i <= j { m[i][j] } else { m[j][i] });
+        let g = nalgebra::Vector4::from(g);
+        let x = m.cholesky()?.solve(&g);
+        Some((x.dot(&g), [x[0], x[1], x[2], x[3]]))
+    };
+    let steps = 150;
+    let ratio = (pmax / pmin).powf(1.0 / steps as f64);
+    let mut best: Option<(f64, f64)> = None; // (explained, pitch)
+    for i in 0..=steps {
+        let p = pmin * ratio.powi(i);
+        if let Some((e, _)) = fit(p) {
+            if best.is_none_or(|(b, _)| e > b) {
+                best = Some((e, p));
+            }
+        }
+    }
+    let (_, mut p) = best?;
+    // Golden-section refinement within one grid step either side.
+    let (mut a, mut b) = (p / ratio, p * ratio);
+    let gr = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..30 {
+        let (c, d) = (b - gr * (b - a), a + gr * (b - a));
+        let (fc, fd) = (fit(c).map_or(0.0, |f| f.0), fit(d).map_or(0.0, |f| f.0));
+        if fc > fd {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    p = (a + b) / 2.0;
+    Some(p)
+}
+
+/// Cyclic amplitudes at pitch `p`, fitted jointly with the run model (the
+/// orders 3–8 would otherwise take up part of the cyclic signature), and
+/// averaged over the runs (the error depends on position, not direction).
+fn cyclic_amplitudes(runs: &[&Run], p0: f64, r0: f64) -> Option<Cyclic> {
+    let joint = |p: f64| -> Option<([f64; 4], f64)> {
+        let k = std::f64::consts::TAU / p;
+        let (mut sum, mut explained) = ([0.0f64; 4], 0.0);
+        for run in runs {
+            let s = run.direction.sign();
+            let w = 10f64.to_radians();
+            let rows = run
+                .angle
+                .iter()
+                .zip(&run.deviation)
+                .filter(|(t, _)| !after_quadrant(**t, s, w))
+                .map(|(&t, &d)| {
+                    let mut b = [0.0f64; COLS + 4];
+                    b[..COLS].copy_from_slice(&basis(t, s));
+                    let (c, sn) = (t.cos(), t.sin());
+                    let ((sx, cx), (sy, cy)) = ((k * r0 * c).sin_cos(), (k * r0 * sn).sin_cos());
+                    b[COLS..].copy_from_slice(&[c * sx, c * cx, sn * sy, sn * cy]);
+                    (b, d)
+                });
+            let (coef, e) = lsq_explained(rows, COLS + 4)?;
+            explained += e;
+            for (j, v) in sum.iter_mut().enumerate() {
+                *v += coef[COLS + j] / runs.len() as f64;
+            }
+        }
+        Some((sum, explained))
+    };
+    // Golden-section refinement of the pitch on the joint model, ±2 %.
+    let (mut a, mut b) = (p0 / 1.02, p0 * 1.02);
+    let gr = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..12 {
+        let (c, d) = (b - gr * (b - a), a + gr * (b - a));
+        if joint(c).map_or(0.0, |f| f.1) > joint(d).map_or(0.0, |f| f.1) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    let p = (a + b) / 2.0;
+    let (sum, _) = joint(p)?;
+    Some(Cyclic {
+        pitch_mm: p,
+        amplitude_x_um: sum[0].hypot(sum[1]) * 1e3,
+        amplitude_y_um: sum[2].hypot(sum[3]) * 1e3,
+    })
+}

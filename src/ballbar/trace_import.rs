@@ -1,0 +1,443 @@
+//! Ball-bar trace import: CSV/TSV (any delimiter [`crate::trace::Table`]
+//! reads) holding either the axis angle and the radial deviation, or X/Y
+//! positions; split into runs by direction of travel (CCW/CW).
+//!
+//! Source: the trace formats of ball-bar software (Renishaw QC20 exports
+//! angle + deviation; controls export X/Y positions) as used for the
+//! ISO 230-4 circular test and for takayama-alignment-travel-range §3.1.2.
+//!
+//! Readings chosen (no standard file format exists):
+//! - columns, case-insensitive, unit suffix in brackets allowed:
+//!   angle `angle`/`theta` (+ `_deg`/`_rad`; degrees unless the name
+//!   says `rad`); deviation `deviation`/`dev`/`dr`/`radial`/`error`
+//!   (+ `_um`/`_mm`; **µm unless the name says mm**, as ball-bar software
+//!   reports µm); or `x`, `y` (mm unless the name says um); optional `time`
+//!   /`t` (s, or ms if the name says ms) and `direction`/`dir` (+1 = CCW,
+//!   −1 = CW);
+//! - angle θ = 0 along +X, growing towards +Y (CCW seen from +Z);
+//! - X/Y traces: the nominal centre is the least-squares circle centre of all
+//!   points and the nominal radius its radius, unless given in the options;
+//! - angle/deviation traces: the nominal radius is 100 mm (the common bar
+//!   length) unless given; it only enters at second order (Δ²/R);
+//! - runs: without a direction column, the trace is split where the angle
+//!   turns back by more than 1° from its running extreme (so noise at a
+//!   standstill does not split it); angles are unwrapped across ±180°;
+//! - feed: from the options, else from the time column (|Δθ|·R/Δt of each
+//!   run, median), else unknown.
+//!
+//! Units: the returned trace is in core units: angle rad, deviation and
+//! radius mm, feed mm/min.
+
+use serde::{Deserialize, Serialize};
+
+use super::fit_circle;
+use crate::trace::{Table, TraceError};
+
+/// Errors of ball-bar trace import.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BallbarTraceError {
+    /// The table itself is malformed (names line and column).
+    #[error(transparent)]
+    Table(#[from] TraceError),
+    /// Neither angle+deviation nor X/Y columns.
+    #[error("no ball-bar columns found: expected 'angle' and 'deviation' (or 'x' and 'y') in the header, found: {0}")]
+    NoColumns(String),
+    /// A point lies at the nominal centre, so it has no angle.
+    #[error("line {0}: the point lies at the nominal centre, so its angle is undefined")]
+    AtCentre(usize),
+    /// A direction value other than ±1.
+    #[error("line {line}: direction must be +1 (CCW) or -1 (CW), got {value}")]
+    BadDirection {
+        /// 1-based line.
+        line: usize,
+        /// The value.
+        value: f64,
+    },
+    /// No run long enough.
+    #[error("line {line}: the trace has no run of at least {min} points in one direction")]
+    TooShort {
+        /// Line of the first data row.
+        line: usize,
+        /// Minimum points per run.
+        min: usize,
+    },
+    /// A bad option value.
+    #[error("{field}: {message}")]
+    BadOption {
+        /// Option name.
+        field: &'static str,
+        /// What was expected.
+        message: String,
+    },
+}
+
+/// Direction of travel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Direction {
+    /// Counter-clockwise, angle increasing.
+    Ccw,
+    /// Clockwise, angle decreasing.
+    Cw,
+}
+
+impl Direction {
+    /// +1 for CCW, −1 for CW.
+    pub fn sign(self) -> f64 {
+        match self {
+            Direction::Ccw => 1.0,
+            Direction::Cw => -1.0,
+        }
+    }
+}
+
+/// One run in one direction.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Run {
+    /// Direction of travel.
+    pub direction: Direction,
+    /// Unwrapped angle, rad.
+    pub angle: Vec<f64>,
+    /// Radial deviation from the nominal radius, mm.
+    pub deviation: Vec<f64>,
+    /// Source line of each sample (empty for synthetic traces).
+    #[serde(default)]
+    pub lines: Vec<usize>,
+}
+
+/// A ball-bar trace in core units.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct BallbarTrace {
+    /// Nominal radius (bar length), mm.
+    pub nominal_radius: f64,
+    /// Feed, mm/min, if known.
+    pub feed: Option<f64>,
+    /// Runs in file order.
+    pub runs: Vec<Run>,
+}
+
+/// Options of [`parse_ballbar_trace`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct ParseOptions {
+    /// Nominal radius, mm.
+    pub nominal_radius: Option<f64>,
+    /// Feed, mm/min.
+    pub feed: Option<f64>,
+}
+
+/// Minimum samples per run.
+pub const MIN_RUN: usize = 8;
+
+fn header_says(t: &Table, k: usize, what: &[&str]) -> bool {
+    let n = t.names[k].to_ascii_lowercase().replace('µ', "u");
+    what.iter().any(|w| n.contains(w))
+}
+
+/// Reads a ball-bar trace.
+///
+/// # Units
+/// See the module header; the result is in rad, mm and mm/min.
+///
+/// # Errors
+/// [`BallbarTraceError`], naming the line wherever a line is at fault.
+///
+/// # Examples
+/// ```
+/// use mtmotion::ballbar::{parse_ballbar_trace, Direction, ParseOptions};
+/// let mut text = String::from("angle [deg],deviation [um]\n");
+/// for i in 0..=36 { text += &format!("{},{}\n", i * 10, 2.0); }
+/// for i in (0..36).rev() { text += &format!("{},{}\n", i * 10, -1.0); }
+/// let t = parse_ballbar_trace(&text, ParseOptions::default()).unwrap();
+/// assert_eq!(t.runs.len(), 2);
+/// assert_eq!(t.runs[1].direction, Direction::Cw);
+/// assert!((t.runs[0].deviation[0] - 0.002).abs() < 1e-15);
+/// let e = parse_ballbar_trace("angle,deviation\n0,1\n10,x\n", ParseOptions::default());
+/// assert!(e.unwrap_err().to_string().starts_with("line 3"));
+/// ```
+pub fn parse_ballbar_trace(
+    text: &str,
+    opts: ParseOptions,
+) -> Result<BallbarTrace, BallbarTraceError> {
+    if let Some(r) = opts.nominal_radius {
+        if !(r.is_finite() && r > 0.0) {
+            return Err(BallbarTraceError::BadOption {
+                field: "nominalRadius",
+                message: format!("expected a radius > 0 mm, got {r}"),
+            });
+        }
+    }
+    if let Some(f) = opts.feed {
+        if !(f.is_finite() && f > 0.0) {
+            return Err(BallbarTraceError::BadOption {
+                field: "feed",
+                message: format!("expected a feed > 0 mm/min, got {f}"),
+            });
+        }
+    }
+    let t = Table::parse(text)?;
+    let ang = t.find(&[
+        "angle",
+        "theta",
+        "angle_deg",
+        "angle_rad",
+        "theta_deg",
+        "theta_rad",
+        "ang",
+    ]);
+    let dev = t.find(&[
+        "deviation",
+        "dev",
+        "dr",
+        "radial",
+        "error",
+        "deviation_um",
+        "dev_um",
+        "deviation_mm",
+        "dev_mm",
+        "radial_deviation",
+    ]);
+    let (xk, yk) = (
+        t.find(&["x", "pos_x", "x_mm", "x_um"]),
+        t.find(&["y", "pos_y", "y_mm", "y_um"]),
+    );
+    let (raw_angle, deviation, radius) = match (ang, dev, xk, yk) {
+        (Some(a), Some(d), _, _) => {
+            let sa = if header_says(&t, a, &["rad"]) {
+                1.0
+            } else {
+                std::f64::consts::PI / 180.0
+            };
+            let sd = if header_says(&t, d, &["mm"]) {
+                1.0
+            } else {
+                1e-3
+            };
+            (
+                t.column_at(a + 1, sa)?,
+                t.column_at(d + 1, sd)?,
+                opts.nominal_radius.unwrap_or(100.0),
+            )
+        }
+        (_, _, Some(xi), Some(yi)) => {
+            let s = |k| {
+                if header_says(&t, k, &["um"]) {
+                    1e-3
+                } else {
+                    1.0
+                }
+            };
+            let (x, y) = (t.column_at(xi + 1, s(xi))?, t.column_at(yi + 1, s(yi))?);
+            // Nominal centre: the LSC of all points (collinear data is caught
+            // here and reported at the first line).
+            let c = fit_circle(&x, &y).map_err(|_| BallbarTraceError::TooShort {
+                line: t.lines[0],
+                min: MIN_RUN,
+            })?;
+            let r0 = opts.nominal_radius.unwrap_or(c.r);
+            let mut a = Vec::with_capacity(x.len());
+            let mut d = Vec::with_capacity(x.len());
+            for (i, (px, py)) in x.iter().zip(&y).enumerate() {
+                let (u, v) = (px - c.cx, py - c.cy);
+                if u.hypot(v) <= 1e-12 * c.r {
+                    return Err(BallbarTraceError::AtCentre(t.lines[i]));
+                }
+                a.push(v.atan2(u));
+                d.push(u.hypot(v) - r0);
+            }
+            (a, d, r0)
+        }
+        _ => return Err(BallbarTraceError::NoColumns(t.names.join(", "))),
+    };
+    // Unwrap the angle across ±180°.
+    let mut angle: Vec<f64> = Vec::with_capacity(raw_angle.len());
+    for &a in &raw_angle {
+        let v = match angle.last() {
+            None => a,
+            Some(&prev) => {
+                let tau = std::f64::consts::TAU;
+                let step = (a - prev).rem_euclid(tau);
+                prev + if step > std::f64::consts::PI {
+                    step - tau
+                } else {
+                    step
+                }
+            }
+        };
+        angle.push(v);
+    }
+    // Direction per sample.
+    let dir_col = t.find(&["direction", "dir"]);
+    let mut bounds = Vec::new(); // (start, end_exclusive, direction)
+    if let Some(k) = dir_col {
+        let mut start = 0;
+        for i in 0..t.rows() {
+            let v = t.columns[k][i];
+            if v != 1.0 && v != -1.0 {
+                return Err(BallbarTraceError::BadDirection {
+                    line: t.lines[i],
+                    value: v,
+                });
+            }
+            if i + 1 == t.rows() || t.columns[k][i + 1] != v {
+                bounds.push((
+                    start,
+                    i + 1,
+                    if v > 0.0 {
+                        Direction::Ccw
+                    } else {
+                        Direction::Cw
+                    },
+                ));
+                start = i + 1;
+            }
+        }
+    } else {
+        let tol = 1f64.to_radians();
+        let (mut start, mut ext, mut dir) = (0usize, 0usize, None::<Direction>);
+        for i in 1..angle.len() {
+            match dir {
+                None => {
+                    if (angle[i] - angle[start]).abs() > tol {
+                        dir = Some(if angle[i] > angle[start] {
+                            Direction::Ccw
+                        } else {
+                            Direction::Cw
+                        });
+                        ext = i;
+                    }
+                }
+                Some(d) => {
+                    let s = d.sign();
+                    if (angle[i] - angle[ext]) * s >= 0.0 {
+                        ext = i;
+                    } else if (angle[ext] - angle[i]) * s > tol {
+                        bounds.push((start, ext + 1, d));
+                        start = ext;
+                        ext = i;
+                        dir = Some(if d == Direction::Ccw {
+                            Direction::Cw
+                        } else {
+                            Direction::Ccw
+                        });
+                    }
+                }
+            }
+        }
+        if let Some(d) = dir {
+            bounds.push((start, angle.len(), d));
+        }
+    }
+    let runs: Vec<Run> = bounds
+        .into_iter()
+        .filter(|(a, b, _)| b - a >= MIN_RUN)
+        .map(|(a, b, direction)| Run {
+            direction,
+            angle: angle[a..b].to_vec(),
+            deviation: deviation[a..b].to_vec(),
+            lines: t.lines[a..b].to_vec(),
+        })
+        .collect();
+    if runs.is_empty() {
+        return Err(BallbarTraceError::TooShort {
+            line: t.lines[0],
+            min: MIN_RUN,
+        });
+    }
+    let feed = opts.feed.or_else(|| {
+        let k = t.find(&["time", "t", "time_s", "time_ms"])?;
+        let scale = if header_says(&t, k, &["ms"]) {
+            1e-3
+        } else {
+            1.0
+        };
+        let time = &t.columns[k];
+        let row = |run: &Run, j: usize| t.lines.iter().position(|&l| l == run.lines[j]);
+        let mut feeds: Vec<f64> = runs
+            .iter()
+            .filter_map(|r| {
+                let (i0, i1) = (row(r, 0)?, row(r, r.lines.len() - 1)?);
+                let dt = (time[i1] - time[i0]) * scale;
+                let da = (r.angle[r.angle.len() - 1] - r.angle[0]).abs();
+                (dt > 0.0).then(|| da * radius / dt * 60.0)
+            })
+            .collect();
+        feeds.sort_by(f64::total_cmp);
+        feeds.get(feeds.len() / 2).copied()
+    });
+    Ok(BallbarTrace {
+        nominal_radius: radius,
+        feed,
+        runs,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn xy_trace_with_time_gives_runs_radius_and_feed() {
+        // CCW full circle of R = 50 about (10, 20) at 1 rev per 6 s, then CW.
+        let mut s = String::from("t [s]\tX\tY\n");
+        for i in 0..=360 {
+            let a = (i as f64).to_radians();
+            s += &format!(
+                "{}\t{}\t{}\n",
+                i as f64 / 60.0,
+                10.0 + 50.0 * a.cos(),
+                20.0 + 50.0 * a.sin()
+            );
+        }
+        for i in 1..=360 {
+            let a = (360.0 - i as f64).to_radians();
+            s += &format!(
+                "{}\t{}\t{}\n",
+                6.0 + i as f64 / 60.0,
+                10.0 + 50.0 * a.cos(),
+                20.0 + 50.0 * a.sin()
+            );
+        }
+        let t = parse_ballbar_trace(&s, ParseOptions::default()).unwrap();
+        assert_eq!(t.runs.len(), 2);
+        assert!((t.nominal_radius - 50.0).abs() < 1e-9);
+        // v = 2π·50 mm / 6 s = 52.36 mm/s = 3141.6 mm/min.
+        assert!((t.feed.unwrap() - 100.0 * std::f64::consts::PI / 6.0 * 60.0).abs() < 1e-6);
+        assert!(t.runs[0].deviation.iter().all(|d| d.abs() < 1e-9));
+        // The angle is unwrapped: the CCW run ends at +2π, not 0.
+        assert!((t.runs[0].angle.last().unwrap() - std::f64::consts::TAU).abs() < 1e-9);
+    }
+
+    #[test]
+    fn malformed_traces_name_the_line() {
+        let o = ParseOptions::default();
+        let e = parse_ballbar_trace("foo,bar\n1,2\n", o)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("'angle' and 'deviation'") && e.contains("foo, bar"),
+            "{e}"
+        );
+        let e = parse_ballbar_trace("angle,dev\n0,1\n1,2\n2\n", o)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("line 4:"), "{e}");
+        let e = parse_ballbar_trace("angle,dev\n0,1\n1,2\n", o)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("at least 8 points"), "{e}");
+        let e = parse_ballbar_trace("angle,dev,dir\n0,1,1\n1,2,0\n", o)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, "line 3: direction must be +1 (CCW) or -1 (CW), got 0");
+        let bad = ParseOptions {
+            nominal_radius: Some(-1.0),
+            feed: None,
+        };
+        assert!(parse_ballbar_trace("angle,dev\n0,1\n", bad)
+            .unwrap_err()
+            .to_string()
+            .starts_with("nominalRadius"));
+    }
+}
