@@ -97,6 +97,19 @@ await run('deep-link-and-print', async (page, check) => {
   await page.waitForFunction(() => document.body.dataset.ready === 'true');
   check(await page.isVisible('#panel-ballbar'), 'a #tab=ballbar link should open the ball-bar panel');
   check(!(await page.isVisible('#panel-servo')), 'only the linked panel shows');
+  // Inputs are restored from the link and the panel's main action re-runs:
+  // a longer acc/dec time must give a larger contour error.
+  const maxErrorFor = async (hash) => {
+    await page.goto(base + 'index.html' + hash);
+    await page.reload();
+    await page.waitForFunction(() => document.body.dataset.ready === 'true');
+    await page.waitForSelector('#toolpath-max-error', { timeout: 60_000 });
+    return parseFloat(await page.textContent('#toolpath-max-error'));
+  };
+  const short = await maxErrorFor('#tab=toolpath&toolpath-ta=20');
+  const long = await maxErrorFor('#tab=toolpath&toolpath-ta=80');
+  check((await page.inputValue('#toolpath-ta')) === '80', 'the link restores tA = 80 ms into its input');
+  check(long > short, `the restored tA must be used: error at tA 80 ms (${long} µm) should exceed tA 20 ms (${short} µm)`);
   await page.emulateMedia({ media: 'print' });
   check(!(await page.isVisible('nav.tabs')), 'the print stylesheet hides the navigation');
   await page.screenshot({ path: `${shots}print.png`, fullPage: true });

@@ -57,7 +57,7 @@ export async function mount(root, api) {
       }
     },
   });
-  const run = h('button', { id: 'ballbar-run', class: 'primary', onclick: () => analyse() }, 'Analyse');
+  const run = h('button', { id: 'ballbar-run', class: 'primary', dataset: { run: '' }, onclick: () => analyse() }, 'Analyse');
   const out = h('div', { id: 'ballbar-results' });
 
   // ---- paper examples -----------------------------------------------------

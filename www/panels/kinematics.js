@@ -177,7 +177,7 @@ export async function mount(root, api) {
     h('div', { class: 'card' }, h('h3', {}, 'ISO 10791-6 cone-frustum ball-bar test'),
       incl.el, feed.el, bar.el, cx.el, cy.el, cz.el,
       h('label', { class: 'field' }, h('span', {}, 'Ideal servos'), ideal),
-      h('button', { id: 'kinematics-cone-run', onclick: runCone }, 'Run 15°/45° × perpendicular/parallel'),
+      h('button', { id: 'kinematics-cone-run', dataset: { run: '' }, onclick: runCone }, 'Run 15°/45° × perpendicular/parallel'),
       progress.el, coneOut),
     h('div', { class: 'card' }, h('h3', {}, '5-axis NC compensation'),
       h('button', { id: 'kinematics-sshape', onclick: loadSShape }, 'Load the ISO 10791-7 S-shape program (Pocket NC, 15 %)'),

@@ -232,7 +232,7 @@ export async function mount(root, api) {
     h('div', { class: 'card' }, h('h3', {}, `Preset ${machine.name}`), h('p', {}, machine.description), h('p', { class: 'lead' }, `Source: ${machine.source}. Edit any value; the C torque limit is ${machine.axes.c.torqueMax} N·m.`), paramTable),
     h('div', { class: 'card' }, h('h3', {}, 'Constant-feed-speed-vector test (§2.3, §3)'), h('div', { class: 'row' }, j1.el, mode.el, omega.el, feed.el, rc.el, rw.el, accel.el, dt.el),
       h('div', { class: 'row' },
-        h('button', { id: 'servo-run', onclick: () => run(false) }, 'Simulate'),
+        h('button', { id: 'servo-run', dataset: { run: '' }, onclick: () => run(false) }, 'Simulate'),
         h('button', { id: 'servo-best', onclick: () => run(true) }, 'Best K_FFP'),
         h('button', { id: 'servo-csv', onclick: csv }, 'Download CSV'),
         h('button', { id: 'servo-json', onclick: json }, 'Download JSON')),

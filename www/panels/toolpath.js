@@ -28,7 +28,7 @@ export async function mount(root, api) {
   const dt = numberField({ label: 'Sampling dt', value: 1, unit: 'ms', step: 0.1, min: 0.01, id: 'toolpath-dt' });
   const magLabel = h('span', { id: 'toolpath-mag-value' }, '×200');
   const mag = h('input', { type: 'range', id: 'toolpath-mag', min: 1, max: 2000, step: 1, value: 200, title: 'error magnification' });
-  const run = h('button', { id: 'toolpath-run', class: 'primary' }, 'Simulate');
+  const run = h('button', { id: 'toolpath-run', class: 'primary', dataset: { run: '' } }, 'Simulate');
   const comp = h('button', { id: 'toolpath-compensate' }, 'Compensate');
   const out = h('div', { id: 'toolpath-out' });
   const pathBox = h('div', { class: 'plot' });
