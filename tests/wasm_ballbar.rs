@@ -96,7 +96,11 @@ fn trace_round_trip_and_circular_test() {
     let d = get(&r, "diagnostics");
     assert!((num(&d, "backlashXUm") - 4.0).abs() < 0.05);
     assert!(num(&r, "hUm") > 3.9);
-    let p = parse_ballbar_trace("angle,deviation\n0,1\n1,x\n", JsValue::UNDEFINED).unwrap_err();
+    let p = parse_ballbar_trace(
+        JsValue::from_str("angle,deviation\n0,1\n1,x\n"),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
     assert_eq!(
         message(p),
         "line 3, column 2 ('deviation'): 'x' is not a number"
@@ -109,8 +113,8 @@ fn trace_round_trip_and_circular_test() {
 
 #[wasm_bindgen_test]
 fn paper_examples_cross() {
-    let e = ballbar_example("fig7", None).unwrap();
+    let e = ballbar_example(JsValue::from_str("fig7"), None).unwrap();
     assert_eq!(Array::from(&get(&e, "curves")).length(), 2);
-    let e = message(ballbar_example("fig99", None).unwrap_err());
+    let e = message(ballbar_example(JsValue::from_str("fig99"), None).unwrap_err());
     assert!(e.contains("unknown example"), "{e}");
 }

@@ -130,7 +130,7 @@ fn cone_frustum_crosses_and_validates() {
 fn compensate_nc5_crosses_and_names_lines() {
     let opts = js(r#"{"machine": "trunnion-ac", "errors": {"location": {"EY0A": 0.03}}}"#);
     let r = k::compensate_nc5(
-        "G90 G21\nG0 X10 Y0 Z5 A10 C0\nG1 X20 Y5 Z5 A20 C30 F500\n",
+        JsValue::from_str("G90 G21\nG0 X10 Y0 Z5 A10 C0\nG1 X20 Y5 Z5 A20 C30 F500\n"),
         opts.clone(),
     )
     .unwrap();
@@ -140,8 +140,12 @@ fn compensate_nc5_crosses_and_names_lines() {
         .unwrap()
         .to_vec();
     assert_eq!(x.len(), 2);
-    let err = message(k::compensate_nc5("G90\nG1 X1 F100\nG2 X2 Y1 R1\n", opts).unwrap_err());
+    let err = message(
+        k::compensate_nc5(JsValue::from_str("G90\nG1 X1 F100\nG2 X2 Y1 R1\n"), opts).unwrap_err(),
+    );
     assert!(err.contains("line 3"), "{err}");
-    let err = message(k::compensate_nc5("G1 X1 F1", js(r#"{"machine": "nope"}"#)).unwrap_err());
+    let err = message(
+        k::compensate_nc5(JsValue::from_str("G1 X1 F1"), js(r#"{"machine": "nope"}"#)).unwrap_err(),
+    );
     assert!(err.contains("nope") && err.contains("trunnion-ac"), "{err}");
 }

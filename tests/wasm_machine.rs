@@ -14,7 +14,7 @@ fn get(v: &JsValue, path: &[&str]) -> JsValue {
 
 #[wasm_bindgen_test]
 fn machine_preset_returns_plain_objects() {
-    let m = mtmotion::wasm::machine::machine_preset("nmv5000").unwrap();
+    let m = mtmotion::wasm::machine::machine_preset("nmv5000".into()).unwrap();
     assert!(!m.is_instance_of::<js_sys::Map>());
     assert_eq!(get(&m, &["axes", "c", "torqueMax"]).as_f64(), Some(725.0));
     assert_eq!(
@@ -26,10 +26,20 @@ fn machine_preset_returns_plain_objects() {
 
 #[wasm_bindgen_test]
 fn unknown_preset_throws_error_listing_names() {
-    let err: JsValue = mtmotion::wasm::machine::machine_preset("dmu50")
+    let err: JsValue = mtmotion::wasm::machine::machine_preset("dmu50".into())
         .unwrap_err()
         .into();
     let err: js_sys::Error = err.dyn_into().expect("a JS Error");
     let msg: String = err.message().into();
     assert!(msg.contains("dmu50") && msg.contains("nmv5000"), "{msg}");
+}
+
+#[wasm_bindgen_test]
+fn a_non_string_name_throws_instead_of_trapping() {
+    let err: JsValue = mtmotion::wasm::machine::machine_preset(JsValue::from_f64(3.0))
+        .unwrap_err()
+        .into();
+    let err: js_sys::Error = err.dyn_into().expect("a JS Error");
+    let msg: String = err.message().into();
+    assert_eq!(msg, "name: expected a string, got number");
 }

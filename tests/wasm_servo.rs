@@ -19,7 +19,7 @@ fn message(e: JsError) -> String {
 }
 
 fn c_axis() -> JsValue {
-    get(&get(&machine_preset("nmv5000").unwrap(), "axes"), "c")
+    get(&get(&machine_preset("nmv5000".into()).unwrap(), "axes"), "c")
 }
 
 #[wasm_bindgen_test]
@@ -107,7 +107,7 @@ fn feed_vector_best_kffp_and_saturation() {
 #[wasm_bindgen_test]
 fn trace_errors_name_line_and_column() {
     let e = analyze_feed_vector_trace(
-        "time,x,y,c\n0,8,0,0\n0.001,8,?,0\n",
+        JsValue::from_str("time,x,y,c\n0,8,0,0\n0.001,8,?,0\n"),
         condition(1.0),
         JsValue::UNDEFINED,
     )

@@ -28,7 +28,10 @@ fn cfg(json: &str) -> JsValue {
 
 #[wasm_bindgen_test]
 fn parse_nc_crosses_as_plain_objects() {
-    let p = tp::parse_nc("N1 G0 X10 Y0 M3\nN2 G3 X-10 Y0 R10 F2000").unwrap();
+    let p = tp::parse_nc(JsValue::from_str(
+        "N1 G0 X10 Y0 M3\nN2 G3 X-10 Y0 R10 F2000",
+    ))
+    .unwrap();
     assert!(!p.is_instance_of::<js_sys::Map>());
     assert_eq!(
         get(&p, &["segments", "1", "motion", "type"])
@@ -47,7 +50,7 @@ fn parse_nc_crosses_as_plain_objects() {
 #[wasm_bindgen_test]
 fn simulate_returns_arrays_and_summary() {
     let r = tp::simulate_tool_path(
-        "G0 X10 Y0\nG3 X10 Y0 I-10 J0 F2000",
+        JsValue::from_str("G0 X10 Y0\nG3 X10 Y0 I-10 J0 F2000"),
         cfg(r#"{"tA":0.04,"T":[0.015,0.015,0.015],"dt":0.001}"#),
     )
     .unwrap();
@@ -84,8 +87,8 @@ fn eq3_and_identification() {
 
 #[wasm_bindgen_test]
 fn reverse_compensation_crosses() {
-    let nc = tp::toolpath_example("arcs").unwrap();
-    let r = tp::reverse_compensate_js(&nc, JsValue::UNDEFINED).unwrap();
+    let nc = tp::toolpath_example(JsValue::from_str("arcs")).unwrap();
+    let r = tp::reverse_compensate_js(JsValue::from_str(&nc), JsValue::UNDEFINED).unwrap();
     let text = get(&r, &["nc"]).as_string().unwrap();
     assert!(text.contains("N40 G3") && text.contains("(C)"));
     let before = get(&r, &["before", "maxErrorUm"]).as_f64().unwrap();
@@ -96,18 +99,19 @@ fn reverse_compensation_crosses() {
 
 #[wasm_bindgen_test]
 fn bad_input_throws_the_core_message() {
-    let e = tp::parse_nc("G0 X0 Y0\nG2 X10 Y0 F100").unwrap_err();
+    let e = tp::parse_nc(JsValue::from_str("G0 X0 Y0\nG2 X10 Y0 F100")).unwrap_err();
     assert_eq!(
         message(e),
         "line 2, column 4: arc (G2) without a centre in the G17 plane; expected I/J or R"
     );
-    let e = tp::simulate_tool_path("G1 X1 F100", cfg(r#"{"dt":0}"#)).unwrap_err();
+    let e =
+        tp::simulate_tool_path(JsValue::from_str("G1 X1 F100"), cfg(r#"{"dt":0}"#)).unwrap_err();
     assert!(message(e).starts_with("dt: expected a sampling interval"));
     let e =
         tp::radius_reduction(cfg(r#"{"feed":2000,"radius":-1,"tA":0.04,"T":0.01}"#)).unwrap_err();
     assert_eq!(message(e), "radius: expected a positive radius in mm");
     let e = tp::identify_acc_dec(cfg(r#"[{"feed":2000,"radius":10,"radiusLoss":0.01},{"feed":4000,"radius":20,"radiusLoss":0.01}]"#)).unwrap_err();
     assert!(message(e).contains("same angular velocity"));
-    let e = tp::toolpath_example("spiral").unwrap_err();
+    let e = tp::toolpath_example(JsValue::from_str("spiral")).unwrap_err();
     assert!(message(e).contains("expected 'arcs' or 'lines'"));
 }

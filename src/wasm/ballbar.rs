@@ -6,7 +6,7 @@
 use js_sys::{Array, Float64Array, Reflect};
 use wasm_bindgen::prelude::*;
 
-use super::convert::{from_js, to_js, Obj};
+use super::convert::{from_js, string_arg, to_js, Obj};
 use crate::alignment::{self, examples, AngleSweepConfig, Section, SweepConfig};
 use crate::ballbar::{self, BallbarTrace, Direction, ParseOptions, Run, SyntheticConfig};
 
@@ -211,9 +211,10 @@ fn trace_from_js(v: &JsValue) -> Result<BallbarTrace, JsError> {
 /// the line.
 #[wasm_bindgen(js_name = parseBallbarTrace, unchecked_return_type = "BallbarTrace")]
 pub fn parse_ballbar_trace(
-    text: &str,
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ParseTraceOptions | undefined")] options: JsValue,
 ) -> Result<JsValue, JsError> {
+    let text: &str = &string_arg(&text, "text")?;
     let opts: ParseOptions = if options.is_undefined() || options.is_null() {
         ParseOptions::default()
     } else {
@@ -246,6 +247,10 @@ pub fn synthetic_ballbar_trace(
 /// The paper's Figs. 6, 7, 8, 12 ("fig6" …) with its quoted numbers;
 /// `radius` 100 mm (default, ball bar) or 0 (DBB5 centre ball).
 #[wasm_bindgen(js_name = ballbarExample, unchecked_return_type = "PaperExample")]
-pub fn ballbar_example(name: &str, radius: Option<f64>) -> Result<JsValue, JsError> {
+pub fn ballbar_example(
+    #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
+    radius: Option<f64>,
+) -> Result<JsValue, JsError> {
+    let name: &str = &string_arg(&name, "name")?;
     to_js(&examples::example(name, radius.unwrap_or(100.0))?)
 }

@@ -71,3 +71,14 @@ impl Obj {
         self.0.into()
     }
 }
+
+/// A string argument. wasm-bindgen's own `&str` conversion traps on a
+/// non-string (memory access out of bounds), so bindings take a `JsValue`
+/// and come here: anything else is a thrown `Error` naming the argument.
+pub fn string_arg(value: &JsValue, what: &str) -> Result<String, JsError> {
+    value.as_string().ok_or_else(|| {
+        let got = value.js_typeof().as_string().unwrap_or_default();
+        let got = if value.is_null() { "null".into() } else { got };
+        JsError::new(&format!("{what}: expected a string, got {got}"))
+    })
+}

@@ -8,7 +8,7 @@ use js_sys::{Array, Function};
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
-use super::convert::{from_js, to_js, Obj};
+use super::convert::{from_js, string_arg, to_js, Obj};
 use crate::compensate::nc5::{self, s_shape};
 use crate::cone_frustum::{self, ConeFrustumConfig};
 use crate::kinematics::{
@@ -288,12 +288,13 @@ fn points_obj(p: &nc5::PointErrors) -> JsValue {
 /// (thasana §II-D).
 #[wasm_bindgen(js_name = compensateNc5, unchecked_return_type = "Nc5Result")]
 pub fn compensate_nc5(
-    text: &str,
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(
         unchecked_param_type = "{ machine: MachineArg; errors?: GeometricErrors; toolLength?: number; monteCarlo?: { seed?: number; sigmaMm?: number; sigmaRad?: number; repeatabilityMm?: number }; cutting?: Record<string, unknown> }"
     )]
     options: JsValue,
 ) -> Result<JsValue, JsError> {
+    let text: &str = &string_arg(&text, "text")?;
     let cfg: nc5::Nc5Config = from_js(options, "options")?;
     let r = nc5::compensate_nc5(text, &cfg)?;
     Ok(Obj::new()

@@ -2,7 +2,7 @@
 
 use wasm_bindgen::prelude::*;
 
-use super::convert::to_js;
+use super::convert::{string_arg, to_js};
 use crate::machine;
 
 #[wasm_bindgen(typescript_custom_section)]
@@ -33,7 +33,10 @@ export interface MachinePreset {
 /// The machine preset called `name`; throws an `Error` listing the known
 /// names when there is none.
 #[wasm_bindgen(js_name = machinePreset, unchecked_return_type = "MachinePreset")]
-pub fn machine_preset(name: &str) -> Result<JsValue, JsError> {
+pub fn machine_preset(
+    #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
+) -> Result<JsValue, JsError> {
+    let name: &str = &string_arg(&name, "name")?;
     to_js(&machine::preset(name)?)
 }
 

@@ -6,7 +6,7 @@
 use js_sys::{Float64Array, Reflect};
 use wasm_bindgen::prelude::*;
 
-use super::convert::{from_js, to_js, Obj};
+use super::convert::{from_js, string_arg, to_js, Obj};
 use crate::best_kffp::{self, saturation};
 use crate::feed_vector::{self, trace_analysis, Condition, FeedVectorResult};
 use crate::machine::{self, Machine};
@@ -142,10 +142,11 @@ pub fn feed_vector_test(
 /// Analyses a measured CSV/TSV trace of the test.
 #[wasm_bindgen(js_name = analyzeFeedVectorTrace, unchecked_return_type = "FeedVectorResult")]
 pub fn analyze_feed_vector_trace(
-    text: &str,
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
     #[wasm_bindgen(unchecked_param_type = "TraceMapping | undefined")] mapping: JsValue,
 ) -> Result<JsValue, JsError> {
+    let text: &str = &string_arg(&text, "text")?;
     let cond: Condition = from_js(condition, "condition")?;
     let map: trace_analysis::ColumnMap = if mapping.is_undefined() || mapping.is_null() {
         trace_analysis::ColumnMap::default()

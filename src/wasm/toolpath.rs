@@ -5,7 +5,7 @@
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
-use super::convert::{from_js, to_js, Obj};
+use super::convert::{from_js, string_arg, to_js, Obj};
 use crate::compensate::reverse::{reverse_compensate, ReverseConfig};
 use crate::nc::program::{parse, Segment, Warning};
 use crate::toolpath::identify::{
@@ -65,7 +65,10 @@ struct Parsed<'a> {
 /// Parses an NC program into motion segments and warnings; throws an
 /// `Error` naming line and column.
 #[wasm_bindgen(js_name = parseNc, unchecked_return_type = "ParsedNc")]
-pub fn parse_nc(text: &str) -> Result<JsValue, JsError> {
+pub fn parse_nc(
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+) -> Result<JsValue, JsError> {
+    let text: &str = &string_arg(&text, "text")?;
     let p = parse(text)?;
     to_js(&Parsed {
         segments: &p.segments,
@@ -106,9 +109,10 @@ fn sim_obj(s: &Simulation, warnings: &[Warning]) -> Result<JsValue, JsError> {
 /// Simulates the program (Eqs. 1–2) and its contour error (§4-2).
 #[wasm_bindgen(js_name = simulateToolPath, unchecked_return_type = "ToolPathSimulation")]
 pub fn simulate_tool_path(
-    text: &str,
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ToolPathConfig")] config: JsValue,
 ) -> Result<JsValue, JsError> {
+    let text: &str = &string_arg(&text, "text")?;
     let cfg: SimConfig = if config.is_undefined() || config.is_null() {
         SimConfig::default()
     } else {
@@ -150,9 +154,10 @@ pub fn identify_acc_dec(
 /// Reverse compensation of the program (§4-3(2)).
 #[wasm_bindgen(js_name = reverseCompensate, unchecked_return_type = "ReverseCompensation")]
 pub fn reverse_compensate_js(
-    text: &str,
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ReverseConfig")] config: JsValue,
 ) -> Result<JsValue, JsError> {
+    let text: &str = &string_arg(&text, "text")?;
     let cfg: ReverseConfig = if config.is_undefined() || config.is_null() {
         ReverseConfig::default()
     } else {
@@ -174,7 +179,10 @@ pub fn reverse_compensate_js(
 /// The built-in test path resembling qiu Fig. 2: `"arcs"` (43 arcs) or
 /// `"lines"` (83 lines).
 #[wasm_bindgen(js_name = toolpathExample)]
-pub fn toolpath_example(kind: &str) -> Result<String, JsError> {
+pub fn toolpath_example(
+    #[wasm_bindgen(unchecked_param_type = "string")] kind: JsValue,
+) -> Result<String, JsError> {
+    let kind: &str = &string_arg(&kind, "kind")?;
     match kind {
         "arcs" => Ok(example::arc_example()),
         "lines" => Ok(example::line_example()),
