@@ -19,7 +19,10 @@ fn message(e: JsError) -> String {
 }
 
 fn c_axis() -> JsValue {
-    get(&get(&machine_preset("nmv5000".into()).unwrap(), "axes"), "c")
+    get(
+        &get(&machine_preset("nmv5000".into()).unwrap(), "axes"),
+        "c",
+    )
 }
 
 #[wasm_bindgen_test]
