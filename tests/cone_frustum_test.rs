@@ -122,8 +122,15 @@ fn c_backlash_with_servo_models() {
         .find(|s| s.name == "c")
         .unwrap()
         .values;
+    let cs0 = base.axes.iter().find(|s| s.axis == "c").unwrap();
     // The backlash part of the reading (servo lag removed by the difference)
     // follows the first-order prediction ∓ S_C·b/2 away from the reversals.
+    // The C error itself is exactly ∓b/2 there (the servo sees nothing of the
+    // play: semi-closed loop), so the reading difference is S_C(actual)·∓b/2
+    // + O(b²) (the O(b²) part is 0.008 % of the peak with ideal servos). The
+    // residual, 0.38 % of the peak, is then S_C(actual) − S_C(command): the
+    // prediction takes S_C at the commanded pose while the machine lags
+    // behind it. 1 % bounds it, as for ideal servos.
     let rev = reversals(&cs.command);
     let peak = sc.iter().fold(0.0f64, |m, v| m.max(v.abs())) * b / 2.0;
     let mut checked = 0;
@@ -135,7 +142,12 @@ fn c_backlash_with_servo_models() {
             cs.command[(i + 1).min(cs.command.len() - 1)] - cs.command[i.saturating_sub(1)];
         let pred = -sc[i] * b / 2.0 * cmd_dir.signum();
         let got = r.deviation[i] - base.deviation[i];
-        assert!((got - pred).abs() < 0.05 * peak, "i={i}: {got} vs {pred}");
+        let dc = cs.actual[i] - cs0.actual[i];
+        assert!(
+            (dc + b / 2.0 * cmd_dir.signum()).abs() < 1e-12,
+            "i={i}: C error {dc}"
+        );
+        assert!((got - pred).abs() < 0.01 * peak, "i={i}: {got} vs {pred}");
         checked += 1;
     }
     assert!(checked > 300);

@@ -329,11 +329,12 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         let act = if cfg.ideal_servo {
             drive::ideal(&params, &cmd)
         } else {
-            drive::servo(&params, dt, &cmd).map_err(|e| ConeFrustumError::Servo {
-                axis: letter.to_uppercase(),
-                why: e.to_string(),
-            })?
-        };
+            drive::servo(&params, dt, &cmd)
+        }
+        .map_err(|e| ConeFrustumError::Servo {
+            axis: letter.to_uppercase(),
+            why: e.to_string(),
+        })?;
         for (q, a) in q_act.iter_mut().zip(&act) {
             q[k] = *a;
         }

@@ -101,7 +101,7 @@ impl AxisParams {
                 });
             }
         }
-        let non_negative: [(&'static str, f64); 8] = [
+        let non_negative: [(&'static str, f64); 7] = [
             ("j1", self.j1),
             ("c", self.c),
             ("kvp", self.kvp),
@@ -109,7 +109,6 @@ impl AxisParams {
             ("ts", self.ts),
             ("ta", self.ta),
             ("tp", self.tp),
-            ("backlash", self.backlash),
         ];
         for (field, value) in non_negative {
             if !(value.is_finite() && value >= 0.0) {
@@ -143,15 +142,7 @@ impl AxisParams {
                 });
             }
         }
-        if let Some(r) = self.gear_ratio {
-            if !(r.is_finite() && r > 0.0) {
-                return Err(ServoError::BadParameter {
-                    field: "gearRatio",
-                    value: r,
-                    expected: "must be > 0 (omit it for a direct drive)",
-                });
-            }
-        }
+        self.validate_mechanism()?;
         match (self.kind, self.lead) {
             (AxisKind::Linear, None) => Err(ServoError::MissingParameter {
                 field: "lead",
@@ -164,5 +155,62 @@ impl AxisParams {
             }),
             _ => Ok(()),
         }
+    }
+
+    /// Checks the fields of the mechanism after the motor (gear ratio,
+    /// backlash, worm-gear pitch error), the only ones an ideal servo uses;
+    /// [`Self::validate`] includes these checks.
+    ///
+    /// # Examples
+    /// ```
+    /// let mut c = mtmotion::machine::preset("nmv5000").unwrap().axes["c"].clone();
+    /// c.kpp = -1.0; // a loop gain: not part of the mechanism
+    /// assert!(c.validate_mechanism().is_ok());
+    /// c.backlash = -1e-4;
+    /// assert!(c.validate_mechanism().unwrap_err().to_string().contains("backlash"));
+    /// ```
+    pub fn validate_mechanism(&self) -> Result<(), ServoError> {
+        if !(self.backlash.is_finite() && self.backlash >= 0.0) {
+            return Err(ServoError::BadParameter {
+                field: "backlash",
+                value: self.backlash,
+                expected: "must be a finite number ≥ 0",
+            });
+        }
+        if let Some(r) = self.gear_ratio {
+            if !(r.is_finite() && r > 0.0) {
+                return Err(ServoError::BadParameter {
+                    field: "gearRatio",
+                    value: r,
+                    expected: "must be > 0 (omit it for a direct drive)",
+                });
+            }
+        }
+        if self.kind == AxisKind::Linear && !self.pitch_error.is_empty() {
+            return Err(ServoError::BadParameter {
+                field: "pitchError",
+                value: self.pitch_error.len() as f64,
+                expected: "worm-gear pitch error applies to rotary axes only; remove it",
+            });
+        }
+        for h in &self.pitch_error {
+            for (field, v) in [("pitchError.w", h.w), ("pitchError.phi", h.phi)] {
+                if !v.is_finite() {
+                    return Err(ServoError::BadParameter {
+                        field,
+                        value: v,
+                        expected: "must be a finite number",
+                    });
+                }
+            }
+            if !(h.n.is_finite() && h.n >= 0.0) {
+                return Err(ServoError::BadParameter {
+                    field: "pitchError.n",
+                    value: h.n,
+                    expected: "peaks per table revolution must be ≥ 0",
+                });
+            }
+        }
+        Ok(())
     }
 }

@@ -26,7 +26,7 @@
 
 use super::discrete::LoopStep;
 use super::precontrol;
-use super::transmission::Transmission;
+use super::transmission::{motor_scale, Transmission};
 use super::{AxisParams, ServoError};
 
 /// Time response of one axis, one sample per command sample.
@@ -139,10 +139,10 @@ pub fn simulate_axis(
 ) -> Result<AxisResponse, ServoError> {
     axis.validate()?;
     check_input(dt, command)?;
+    let sm = motor_scale(axis)?;
     let mut trans = Transmission::new(axis)?;
     let shaped = precontrol::shape(command, dt, axis.ts, axis.ta, axis.tp);
     let step = LoopStep::new(axis, dt);
-    let sm = trans.scale;
     let kf = sm * axis.kffp / 100.0;
     let n = command.len();
     let limit = axis.torque_max.unwrap_or(f64::INFINITY);
@@ -164,9 +164,9 @@ pub fn simulate_axis(
         }
     };
     if !trans.is_rigid() {
-        // the loop saw motor angles s_m·position; map them through gear and backlash
+        // position is the motor angle over s_m; map it through gear and backlash
         for p in position.iter_mut() {
-            *p = trans.table(*p * sm);
+            *p = trans.table(*p);
         }
     }
     Ok(AxisResponse {

@@ -9,109 +9,155 @@
 //! - Nominal scale `s_m` (motor rad per table unit): `R_all = gear_ratio`
 //!   (1 for a direct drive) for rotary axes; `gear_ratio·2π/(lead·1000)`
 //!   for linear axes (table in mm, `lead` in m, `gear_ratio` 1 if absent).
-//!   The command is converted with `s_m`: `θ_ref = s_m·x_s`.
+//!   The command is converted with `s_m`: `θ_ref = s_m·x_s`, and the
+//!   mechanism below is written in the *nominal table position*
+//!   `x = θm/s_m`, so the same mapping serves the servo model (`x` = the
+//!   motor encoder over `s_m`) and an ideal servo (`x` = the command).
 //! - **Eq. 1 reading.** kato writes `R = R_all + Σ W_i sin(N_i R_all θm + φ_i)`
 //!   with `R` the reduction (table per motor) and `N_i` peaks per *table*
 //!   revolution, so kato's `R_all` is table-per-motor, i.e.
 //!   `1/gear_ratio` here. `R` is read as the *local* ratio
 //!   `dθ_table/dθm` (taking `θ_table = R·θm` literally would make the error
-//!   grow without bound with θm). Integrating, with `g = gear_ratio`:
-//!   `θ_gear = θm/g − Σ (W_i g/N_i)[cos(N_i θm/g + φ_i) − cos φ_i]`,
+//!   grow without bound with θm). Integrating, with `g = gear_ratio` and
+//!   `x = θm/g`:
+//!   `θ_gear = x − Σ (W_i g/N_i)[cos(N_i x + φ_i) − cos φ_i]`,
 //!   a periodic pitch error of amplitude `W_i·g/N_i` rad at the table
-//!   (`N_i = 0` gives the constant ratio change `W_i sin φ_i`).
+//!   (`N_i = 0` gives the constant ratio change `W_i sin φ_i`, i.e.
+//!   `θ_gear = x + W_i g sin φ_i · x`). The phase reference is `x = 0`.
 //!   Pitch error is honoured for rotary axes only.
 //! - **Backlash** (full width `b`, table units) sits between the gear and
 //!   the table as a play: the table stays put until the gear side has
 //!   crossed the gap, then follows at `θ_gear ∓ b/2`. It starts centred
 //!   (`θ_table = θ_gear` at t = 0), so the first motion loses `b/2`.
 //!
+//! This file is the only implementation of the mechanism: the ideal drive of
+//! the cone-frustum test (`cone_frustum::drive::ideal`) uses it too.
+//!
 //! # Units
-//! Motor angle in rad; table in mm (linear) or rad (rotary).
+//! Motor angle in rad; nominal and table positions in mm (linear) or rad
+//! (rotary); `s_m` in motor rad per mm or per rad.
 
 use super::{AxisKind, AxisParams, ServoError};
 
-/// The transmission of one axis and its backlash state.
+/// The nominal scale `s_m`: motor rad per table unit (mm or rad).
+///
+/// # Units
+/// Motor rad per mm (linear) or per rad (rotary).
+///
+/// # Examples
+/// ```
+/// use mtmotion::servo::transmission::motor_scale;
+/// let x = mtmotion::machine::preset("nmv5000").unwrap().axes["x"].clone();
+/// // 16 mm lead: one motor turn per 16 mm
+/// assert!((motor_scale(&x).unwrap() - std::f64::consts::TAU / 16.0).abs() < 1e-15);
+/// ```
+pub fn motor_scale(axis: &AxisParams) -> Result<f64, ServoError> {
+    let gear = axis.gear_ratio.unwrap_or(1.0);
+    match (axis.kind, axis.lead) {
+        (AxisKind::Linear, Some(lead)) => Ok(gear * std::f64::consts::TAU / (lead * 1000.0)),
+        (AxisKind::Linear, None) => Err(ServoError::MissingParameter {
+            field: "lead",
+            why: "a linear axis needs its ball-screw lead in m",
+        }),
+        (AxisKind::Rotary, _) => Ok(gear),
+    }
+}
+
+/// The mechanism after the motor of one axis (worm-gear pitch error, then
+/// backlash) and its backlash state, driven by the nominal table position.
 #[derive(Debug, Clone)]
-pub(crate) struct Transmission {
-    /// Motor rad per table unit (nominal).
-    pub scale: f64,
-    gear: f64,
-    /// `(W g / N, N / g, φ)` per harmonic, or for N = 0 `(W sin φ, 0, 0)`.
+pub struct Transmission {
+    /// `(W g / N, N, φ)` per harmonic (argument `N x`), or for N = 0
+    /// `(W g sin φ, 0, 0)` (a ratio change, linear in `x`).
     harmonics: Vec<(f64, f64, f64)>,
     half_gap: f64,
     table: Option<f64>,
 }
 
 impl Transmission {
-    /// Builds the transmission; `axis` must already be valid.
-    pub(crate) fn new(axis: &AxisParams) -> Result<Self, ServoError> {
+    /// Builds the mechanism of `axis`, checking the fields it uses
+    /// ([`AxisParams::validate_mechanism`]); the backlash starts centred.
+    ///
+    /// # Examples
+    /// ```
+    /// use mtmotion::servo::transmission::Transmission;
+    /// let mut c = mtmotion::machine::preset("nmv5000").unwrap().axes["c"].clone();
+    /// c.backlash = 1e-3;
+    /// let mut t = Transmission::new(&c).unwrap();
+    /// assert_eq!(t.table(0.0), 0.0);
+    /// // the first move loses half the gap
+    /// assert!((t.table(0.01) - 0.0095).abs() < 1e-15);
+    /// ```
+    pub fn new(axis: &AxisParams) -> Result<Self, ServoError> {
+        axis.validate_mechanism()?;
         let gear = axis.gear_ratio.unwrap_or(1.0);
-        let scale = match (axis.kind, axis.lead) {
-            (AxisKind::Linear, Some(lead)) => gear * std::f64::consts::TAU / (lead * 1000.0),
-            (AxisKind::Linear, None) => {
-                return Err(ServoError::MissingParameter {
-                    field: "lead",
-                    why: "a linear axis needs its ball-screw lead in m",
-                })
-            }
-            (AxisKind::Rotary, _) => gear,
-        };
-        if axis.kind == AxisKind::Linear && !axis.pitch_error.is_empty() {
-            return Err(ServoError::BadParameter {
-                field: "pitchError",
-                value: axis.pitch_error.len() as f64,
-                expected: "worm-gear pitch error applies to rotary axes only; remove it",
-            });
-        }
-        let mut harmonics = Vec::with_capacity(axis.pitch_error.len());
-        for h in &axis.pitch_error {
-            for (field, v) in [("pitchError.w", h.w), ("pitchError.phi", h.phi)] {
-                if !v.is_finite() {
-                    return Err(ServoError::BadParameter {
-                        field,
-                        value: v,
-                        expected: "must be a finite number",
-                    });
+        let harmonics = axis
+            .pitch_error
+            .iter()
+            .map(|h| {
+                if h.n == 0.0 {
+                    (h.w * gear * h.phi.sin(), 0.0, 0.0)
+                } else {
+                    (h.w * gear / h.n, h.n, h.phi)
                 }
-            }
-            if !(h.n.is_finite() && h.n >= 0.0) {
-                return Err(ServoError::BadParameter {
-                    field: "pitchError.n",
-                    value: h.n,
-                    expected: "peaks per table revolution must be ≥ 0",
-                });
-            }
-            if h.n == 0.0 {
-                harmonics.push((h.w * h.phi.sin(), 0.0, 0.0));
-            } else {
-                harmonics.push((h.w * gear / h.n, h.n / gear, h.phi));
-            }
-        }
+            })
+            .collect();
         Ok(Self {
-            scale,
-            gear,
             harmonics,
             half_gap: 0.5 * axis.backlash,
             table: None,
         })
     }
 
-    /// Table position before the backlash for motor angle `theta_m`.
-    pub(crate) fn gear_side(&self, theta_m: f64) -> f64 {
-        let mut out = theta_m / self.scale;
-        for &(amp, rate, phi) in &self.harmonics {
-            if rate == 0.0 {
-                out += amp * theta_m;
+    /// Table position before the backlash (gear side) for the nominal
+    /// table position `x = θm/s_m`.
+    ///
+    /// # Units
+    /// `x` and the result in mm (linear) or rad (rotary).
+    ///
+    /// # Examples
+    /// ```
+    /// use mtmotion::servo::{transmission::Transmission, WormHarmonic};
+    /// let mut c = mtmotion::machine::preset("nmv5000").unwrap().axes["c"].clone();
+    /// c.gear_ratio = Some(90.0);
+    /// c.pitch_error = vec![WormHarmonic { w: 1e-6, n: 2.0, phi: 0.0 }];
+    /// let t = Transmission::new(&c).unwrap();
+    /// // a quarter period (N x = π/2): −(W g/N)(cos(π/2) − 1) = +45 µrad
+    /// let x = std::f64::consts::FRAC_PI_4;
+    /// assert!((t.gear_side(x) - x - 4.5e-5).abs() < 1e-15);
+    /// ```
+    pub fn gear_side(&self, x: f64) -> f64 {
+        let mut out = x;
+        for &(amp, n, phi) in &self.harmonics {
+            if n == 0.0 {
+                out += amp * x;
             } else {
-                out -= amp * ((rate * theta_m + phi).cos() - phi.cos());
+                out -= amp * ((n * x + phi).cos() - phi.cos());
             }
         }
         out
     }
 
-    /// Table position for motor angle `theta_m`, advancing the backlash state.
-    pub(crate) fn table(&mut self, theta_m: f64) -> f64 {
-        let g = self.gear_side(theta_m);
+    /// Table position for the nominal table position `x`, advancing the
+    /// backlash state: the table stays put inside the gap, then follows the
+    /// gear side at `∓b/2`.
+    ///
+    /// # Units
+    /// `x` and the result in mm (linear) or rad (rotary).
+    ///
+    /// # Examples
+    /// ```
+    /// use mtmotion::servo::transmission::Transmission;
+    /// let mut c = mtmotion::machine::preset("nmv5000").unwrap().axes["c"].clone();
+    /// c.backlash = 0.2;
+    /// let mut t = Transmission::new(&c).unwrap();
+    /// let out: Vec<f64> = [0.0, 0.05, 0.3, 0.5, 0.4, 0.2].iter().map(|&x| t.table(x)).collect();
+    /// for (o, w) in out.iter().zip([0.0, 0.0, 0.2, 0.4, 0.4, 0.3]) {
+    ///     assert!((o - w).abs() < 1e-15, "{out:?}");
+    /// }
+    /// ```
+    pub fn table(&mut self, x: f64) -> f64 {
+        let g = self.gear_side(x);
         let t = match self.table {
             None => g,
             Some(p) if g - p > self.half_gap => g - self.half_gap,
@@ -122,15 +168,9 @@ impl Transmission {
         t
     }
 
-    /// Whether the transmission is the identity up to `scale`.
-    pub(crate) fn is_rigid(&self) -> bool {
+    /// Whether the mechanism is the identity (no pitch error, no backlash).
+    pub fn is_rigid(&self) -> bool {
         self.harmonics.is_empty() && self.half_gap == 0.0
-    }
-
-    /// The nominal gear ratio `R_all` (motor per table), 1 for direct drive.
-    #[allow(dead_code)]
-    pub(crate) fn gear(&self) -> f64 {
-        self.gear
     }
 }
 
@@ -155,9 +195,10 @@ mod tests {
         }];
         let t = Transmission::new(&a).unwrap();
         // dθ_table/dθm = 1/R_all' + W sin(N θm/g + φ) (central difference)
+        let sm = motor_scale(&a).unwrap();
         for tm in [0.0, 1.0, 50.0, 300.0] {
             let h = 1e-4;
-            let d = (t.gear_side(tm + h) - t.gear_side(tm - h)) / (2.0 * h);
+            let d = (t.gear_side((tm + h) / sm) - t.gear_side((tm - h) / sm)) / (2.0 * h);
             let want = 1.0 / 90.0 + 1e-5 * (4.0 * tm / 90.0 + 0.3).sin();
             assert!((d - want).abs() < 1e-10, "{d} vs {want}");
         }
@@ -170,8 +211,8 @@ mod tests {
         a.backlash = 0.002;
         let mut t = Transmission::new(&a).unwrap();
         let p0 = t.table(0.0);
-        let p1 = t.table(0.09 * 90.0); // +0.09 rad at the gear side
-        let p2 = t.table(0.0885 * 90.0); // back 0.0015: inside the gap
+        let p1 = t.table(0.09); // +0.09 rad at the gear side
+        let p2 = t.table(0.0885); // back 0.0015: inside the gap
         let p3 = t.table(0.0); // back to 0
         assert_eq!(p0, 0.0);
         assert!((p1 - 0.089).abs() < 1e-12);
@@ -182,8 +223,10 @@ mod tests {
     #[test]
     fn linear_scale_is_the_lead() {
         let x = crate::machine::preset("nmv5000").unwrap().axes["x"].clone();
-        let t = Transmission::new(&x).unwrap();
         // one motor turn = one lead = 16 mm
-        assert!((t.gear_side(std::f64::consts::TAU) - 16.0).abs() < 1e-12);
+        assert!((std::f64::consts::TAU / motor_scale(&x).unwrap() - 16.0).abs() < 1e-12);
+        let mut t = Transmission::new(&x).unwrap();
+        assert!(t.is_rigid());
+        assert_eq!(t.table(16.0), 16.0);
     }
 }
