@@ -358,7 +358,27 @@ impl Item {
                 q[n] += (self.p0[n] - o[n]) * u + 0.5 * vn * u * u;
                 (p, v, q)
             }
-            _ => (self.pos(u), self.vel(u), self.local_integral(u, o, self.q0)),
+            // The same expressions as `pos`, `vel` and `local_integral`,
+            // written out so the per-sample path has no further calls.
+            Geo::Line { v } => {
+                let (p0, q0) = (self.p0, self.q0);
+                let h = 0.5 * u * u;
+                let mut p = [0.0; 3];
+                let mut q = [0.0; 3];
+                for ax in 0..3 {
+                    p[ax] = p0[ax] + v[ax] * u;
+                    q[ax] = q0[ax] + (p0[ax] - o[ax]) * u + v[ax] * h;
+                }
+                (p, v, q)
+            }
+            Geo::Still => {
+                let (p0, q0) = (self.p0, self.q0);
+                let mut q = [0.0; 3];
+                for ax in 0..3 {
+                    q[ax] = q0[ax] + (p0[ax] - o[ax]) * u;
+                }
+                (p0, [0.0; 3], q)
+            }
         }
     }
 
