@@ -9,9 +9,12 @@
 //! the last nearest point and examines the path elements within
 //! `2·(last error + step) + 0.05 mm` of it (at least the neighbours), so a
 //! path that comes back near itself far along its length is not mistaken
-//! for the local path, and the cost per sample stays a few elements. When
-//! two elements are equally near (a circle programmed twice) the one closer
-//! along the path to the last nearest point wins, so the search moves on.
+//! for the local path, and the cost per sample stays a few elements. If
+//! the window holds nothing as near as a known point of the path (the
+//! commanded point), the search has lost the tool and the whole path is
+//! searched for that sample. When two elements are equally near (a circle
+//! programmed twice) the one closer along the path to the last nearest
+//! point wins, so the search moves on.
 //! Each element carries a bounding sphere; an element whose sphere is
 //! farther than the best distance so far (+ 2 nm) cannot win and is skipped
 //! without computing its nearest point — the result is the same as
@@ -315,6 +318,38 @@ impl Tracker {
     /// The nearest point of `path` to `q`, searched around the last one.
     /// `None` for an empty path.
     pub fn nearest(&mut self, path: &Path, q: [f64; 3]) -> Option<Nearest> {
+        self.nearest_within(path, q, f64::INFINITY)
+    }
+
+    /// As [`Tracker::nearest`], given a distance `known` from `q` to some
+    /// point of the path (the simulator passes the distance to the
+    /// commanded point): when the local search finds nothing that near,
+    /// it has lost the tool — e.g. an arc over 180° followed by moves that
+    /// run back past it, where every element inside the window is farther
+    /// than the path the tool is on — and the whole path is searched
+    /// (elements pruned by their bounding spheres), so the contour error
+    /// never exceeds `known`.
+    pub fn nearest_within(&mut self, path: &Path, q: [f64; 3], known: f64) -> Option<Nearest> {
+        let mut best = self.local(path, q)?;
+        if best.dist > known + 1e-9 {
+            for i in 0..path.elements.len() {
+                if !path.farther_than(i, q, best.dist + 2e-9) {
+                    let cand = path.nearest_on(i, q, self.s);
+                    if self.better(&cand, &best) {
+                        best = cand;
+                    }
+                }
+            }
+        }
+        self.cur = best.element;
+        self.s = best.s;
+        self.err = best.dist;
+        self.last = Some(q);
+        Some(best)
+    }
+
+    /// The nearest point within the window around the last one.
+    fn local(&self, path: &Path, q: [f64; 3]) -> Option<Nearest> {
         let n = path.elements.len();
         if n == 0 {
             return None;
@@ -351,10 +386,6 @@ impl Tracker {
             }
             i += 1;
         }
-        self.cur = best.element;
-        self.s = best.s;
-        self.err = best.dist;
-        self.last = Some(q);
         Some(best)
     }
 }

@@ -148,9 +148,13 @@ pub fn simulate(
     let mut acc = vec![Acc::default(); ne];
     let (mut max_error, mut max_k, mut max_el) = (0.0f64, 0usize, 0usize);
     let (sx, sy, sz) = (&f.sim[0][..n], &f.sim[1][..n], &f.sim[2][..n]);
+    let (cx, cy, cz) = (&f.cmd[0][..n], &f.cmd[1][..n], &f.cmd[2][..n]);
     for k in 0..n {
         let q = [sx[k], sy[k], sz[k]];
-        let Some(nr) = tracker.nearest(&path, q) else {
+        // The commanded point: on the reference path when the reference is
+        // the command, close to it otherwise (reverse compensation).
+        let lag = ((cx[k] - q[0]).powi(2) + (cy[k] - q[1]).powi(2) + (cz[k] - q[2]).powi(2)).sqrt();
+        let Some(nr) = tracker.nearest_within(&path, q, lag) else {
             break;
         };
         error.push(nr.dist);
