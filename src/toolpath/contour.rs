@@ -138,7 +138,7 @@ fn bounding_sphere(geo: &Geo) -> ([f64; 3], f64) {
 impl Path {
     /// The path of `segments`.
     pub fn new(segments: &[Segment]) -> Self {
-        let mut elements = Vec::new();
+        let mut elements = Vec::with_capacity(segments.len());
         let mut s = 0.0;
         for (i, seg) in segments.iter().enumerate() {
             let len = seg.length();
@@ -253,7 +253,9 @@ impl Path {
                     let mut pt = [0.0; 3];
                     pt[u] = c[u] + r * x / rho;
                     pt[v] = c[v] + r * y / rho;
-                    pt[n] = n0 + dn * (phi / sweep.abs()).min(1.0);
+                    // `if` rather than `f64::min`, which is a call in wasm.
+                    let g = phi / sweep.abs();
+                    pt[n] = n0 + dn * if g > 1.0 { 1.0 } else { g };
                     Nearest {
                         element: i,
                         dist: d3(q, pt),
