@@ -6,8 +6,11 @@ import { wasm, bench } from './harness.mjs';
 const arcs = wasm.toolpathExample('arcs');
 const cfg = { tA: 0.04, T: 0.015, dt: 0.001 };
 
+// V8 runs wasm first in its baseline compiler (Liftoff) and swaps in the
+// optimised code (TurboFan) after a budget of calls; on this 2-ms call that
+// takes about a dozen calls, so warm up with 20 for the steady-state rate.
 const n1 = wasm.simulateToolPath(arcs, cfg).t.length;
-bench(`simulateToolPath arc example dt=1 ms (${n1} samples)`, () => wasm.simulateToolPath(arcs, cfg), { perItem: n1, unit: 'sample' });
+bench(`simulateToolPath arc example dt=1 ms (${n1} samples)`, () => wasm.simulateToolPath(arcs, cfg), { perItem: n1, unit: 'sample', warmup: 20 });
 const fine = { ...cfg, dt: 0.0001 };
 const n2 = wasm.simulateToolPath(arcs, fine).t.length;
 bench(`simulateToolPath arc example dt=0.1 ms (${n2} samples)`, () => wasm.simulateToolPath(arcs, fine), { perItem: n2, unit: 'sample', runs: 7 });

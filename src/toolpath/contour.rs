@@ -9,9 +9,17 @@
 //! the last nearest point and examines the path elements within
 //! `2·(last error + step) + 0.05 mm` of it (at least the neighbours), so a
 //! path that comes back near itself far along its length is not mistaken
-//! for the local path, and the cost per sample stays a few elements. When
-//! two elements are equally near (a circle programmed twice) the one closer
-//! along the path to the last nearest point wins, so the search moves on.
+//! for the local path, and the cost per sample stays a few elements. If
+//! the window holds nothing as near as a known point of the path (the
+//! commanded point), the search has lost the tool and the whole path is
+//! searched for that sample. When two elements are equally near (a circle
+//! programmed twice) the one closer along the path to the last nearest
+//! point wins, so the search moves on.
+//! Each element carries a bounding sphere; an element whose sphere is
+//! farther than the best distance so far (+ 2 nm) cannot win and is skipped
+//! without computing its nearest point — the result is the same as
+//! examining it, at a few multiplications instead of square roots and an
+//! `atan2`.
 //!
 //! Units: mm.
 
@@ -28,6 +36,9 @@ pub struct Element {
     pub len: f64,
     /// Rapid move (excluded from the maximum error).
     pub rapid: bool,
+    /// Bounding sphere: every point of the element lies within `.1` mm of
+    /// `.0`.
+    bound: ([f64; 3], f64),
     geo: Geo,
 }
 
@@ -79,10 +90,55 @@ fn d3(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
+/// A sphere around an element. Lines: about the midpoint, radius half the
+/// length. Arcs: about the midpoint of the arc's own chord (in the plane;
+/// at mid-height along a helix's axis), radius the half chord up to 180°
+/// (such an arc lies inside the circle on its chord) or the sagitta
+/// `R(1 − cos(φ/2))` past 180°, plus half a helix's rise, and at least the
+/// distance to the programmed end points (which may sit off the radius by
+/// the interpreter's tolerance); widened by 1e-12 relative and 1 nm against
+/// rounding.
+fn bounding_sphere(geo: &Geo) -> ([f64; 3], f64) {
+    let (m, rad) = match *geo {
+        Geo::Line { p0, d, l2 } => (
+            [p0[0] + 0.5 * d[0], p0[1] + 0.5 * d[1], p0[2] + 0.5 * d[2]],
+            0.5 * l2.sqrt(),
+        ),
+        Geo::Arc {
+            c,
+            r,
+            sc0: (s0, c0),
+            sweep,
+            axes: (u, v, n),
+            n0,
+            dn,
+            p0,
+            p1,
+        } => {
+            let half = 0.5 * sweep.abs();
+            // Direction of the arc's midpoint: the start direction turned
+            // by half the sweep.
+            let (sh, ch) = (0.5 * sweep).sin_cos();
+            let (sm, cm) = (s0 * ch + c0 * sh, c0 * ch - s0 * sh);
+            let (planar, off) = if half <= std::f64::consts::FRAC_PI_2 {
+                (r * half.sin(), r * half.cos())
+            } else {
+                (r * (1.0 - half.cos()), r * half.cos())
+            };
+            let mut m = [0.0; 3];
+            m[u] = c[u] + off * cm;
+            m[v] = c[v] + off * sm;
+            m[n] = n0 + 0.5 * dn;
+            (m, (planar + 0.5 * dn.abs()).max(d3(p0, m)).max(d3(p1, m)))
+        }
+    };
+    (m, rad * (1.0 + 1e-12) + 1e-9)
+}
+
 impl Path {
     /// The path of `segments`.
     pub fn new(segments: &[Segment]) -> Self {
-        let mut elements = Vec::new();
+        let mut elements = Vec::with_capacity(segments.len());
         let mut s = 0.0;
         for (i, seg) in segments.iter().enumerate() {
             let len = seg.length();
@@ -121,11 +177,21 @@ impl Path {
                 s0: s,
                 len,
                 rapid: matches!(seg.motion, Motion::Rapid),
+                bound: bounding_sphere(&geo),
                 geo,
             });
             s += len;
         }
         Self { elements }
+    }
+
+    /// Whether every point of element `i` is farther than `d` from `q`
+    /// (a conservative test on the bounding sphere).
+    #[inline]
+    pub fn farther_than(&self, i: usize, q: [f64; 3], d: f64) -> bool {
+        let (m, rad) = self.elements[i].bound;
+        let reach = rad + d;
+        (q[0] - m[0]).powi(2) + (q[1] - m[1]).powi(2) + (q[2] - m[2]).powi(2) > reach * reach
     }
 
     /// Exact nearest point on element `i` to `q`. `hint` is the arc length
@@ -166,7 +232,7 @@ impl Path {
                 p1,
             } => {
                 let (x, y) = (q[u] - c[u], q[v] - c[v]);
-                let rho = x.hypot(y);
+                let rho = (x * x + y * y).sqrt();
                 // Angle of q from the start, in the sweep's direction.
                 let (s0, c0) = sc0;
                 let mut phi = (c0 * y - s0 * x).atan2(c0 * x + s0 * y);
@@ -187,7 +253,9 @@ impl Path {
                     let mut pt = [0.0; 3];
                     pt[u] = c[u] + r * x / rho;
                     pt[v] = c[v] + r * y / rho;
-                    pt[n] = n0 + dn * (phi / sweep.abs()).min(1.0);
+                    // `if` rather than `f64::min`, which is a call in wasm.
+                    let g = phi / sweep.abs();
+                    pt[n] = n0 + dn * if g > 1.0 { 1.0 } else { g };
                     Nearest {
                         element: i,
                         dist: d3(q, pt),
@@ -252,6 +320,38 @@ impl Tracker {
     /// The nearest point of `path` to `q`, searched around the last one.
     /// `None` for an empty path.
     pub fn nearest(&mut self, path: &Path, q: [f64; 3]) -> Option<Nearest> {
+        self.nearest_within(path, q, f64::INFINITY)
+    }
+
+    /// As [`Tracker::nearest`], given a distance `known` from `q` to some
+    /// point of the path (the simulator passes the distance to the
+    /// commanded point): when the local search finds nothing that near,
+    /// it has lost the tool — e.g. an arc over 180° followed by moves that
+    /// run back past it, where every element inside the window is farther
+    /// than the path the tool is on — and the whole path is searched
+    /// (elements pruned by their bounding spheres), so the contour error
+    /// never exceeds `known`.
+    pub fn nearest_within(&mut self, path: &Path, q: [f64; 3], known: f64) -> Option<Nearest> {
+        let mut best = self.local(path, q)?;
+        if best.dist > known + 1e-9 {
+            for i in 0..path.elements.len() {
+                if !path.farther_than(i, q, best.dist + 2e-9) {
+                    let cand = path.nearest_on(i, q, self.s);
+                    if self.better(&cand, &best) {
+                        best = cand;
+                    }
+                }
+            }
+        }
+        self.cur = best.element;
+        self.s = best.s;
+        self.err = best.dist;
+        self.last = Some(q);
+        Some(best)
+    }
+
+    /// The nearest point within the window around the last one.
+    fn local(&self, path: &Path, q: [f64; 3]) -> Option<Nearest> {
         let n = path.elements.len();
         if n == 0 {
             return None;
@@ -261,34 +361,118 @@ impl Tracker {
         let (lo, hi) = (self.s - w, self.s + w);
         let cur = self.cur.min(n - 1);
         let mut best = path.nearest_on(cur, q, self.s);
+        // An element entirely farther than best + 1 nm can neither be
+        // nearer nor tie (see `better`); 2 nm leaves room for rounding.
+        let mut consider = |i: usize| {
+            if !path.farther_than(i, q, best.dist + 2e-9) {
+                let cand = path.nearest_on(i, q, self.s);
+                if self.better(&cand, &best) {
+                    best = cand;
+                }
+            }
+        };
         let mut i = cur;
         while i > 0 {
             i -= 1;
-            let e = &path.elements[i];
-            let cand = path.nearest_on(i, q, self.s);
-            if self.better(&cand, &best) {
-                best = cand;
-            }
-            if e.s0 < lo {
+            consider(i);
+            if path.elements[i].s0 < lo {
                 break;
             }
         }
         let mut i = cur + 1;
         while i < n {
+            consider(i);
             let e = &path.elements[i];
-            let cand = path.nearest_on(i, q, self.s);
-            if self.better(&cand, &best) {
-                best = cand;
-            }
             if e.s0 + e.len > hi {
                 break;
             }
             i += 1;
         }
-        self.cur = best.element;
-        self.s = best.s;
-        self.err = best.dist;
-        self.last = Some(q);
         Some(best)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::nc::program::parse;
+
+    /// Every point of lines, short and long arcs (both directions), a full
+    /// circle and helices lies inside the element's bounding sphere, and
+    /// the sphere is not needlessly large (it touches the element).
+    #[test]
+    fn bounding_spheres_contain_their_elements() {
+        let p = parse(
+            "G0 X10 Y0 Z0\nG1 X12 Y3 Z1 F1000\nG3 X22 Y3 R5\nG2 X32 Y3 R-5\n\
+             G3 X32 Y3 I-7 J0\nG3 X40 Y-4 Z4 R8\nG2 X30 Y-10 Z2 R-9\nG18 G2 X40 Z6 I5 K2\n\
+             G19 G3 Y-2 Z6 J4 K0\nG17 G3 X40.3 Y-2.2 R0.2",
+        )
+        .unwrap();
+        let path = Path::new(&p.segments);
+        assert_eq!(path.elements.len(), 10);
+        for (i, e) in path.elements.iter().enumerate() {
+            let (m, rad) = e.bound;
+            let mut far: f64 = 0.0;
+            for j in 0..=2000 {
+                let a = j as f64 / 2000.0;
+                let pt = match e.geo {
+                    Geo::Line { p0, d, .. } => {
+                        [p0[0] + a * d[0], p0[1] + a * d[1], p0[2] + a * d[2]]
+                    }
+                    Geo::Arc {
+                        c,
+                        r,
+                        sc0: (s0, c0),
+                        sweep,
+                        axes: (u, v, n),
+                        n0,
+                        dn,
+                        ..
+                    } => {
+                        let th = s0.atan2(c0) + a * sweep;
+                        let mut pt = [0.0; 3];
+                        pt[u] = c[u] + r * th.cos();
+                        pt[v] = c[v] + r * th.sin();
+                        pt[n] = n0 + a * dn;
+                        pt
+                    }
+                };
+                far = far.max(d3(pt, m));
+            }
+            assert!(far <= rad, "element {i}: {far} > {rad}");
+            // Tight: within the helix's half rise (0 when planar) + 1 µm.
+            let rise = match e.geo {
+                Geo::Arc { dn, .. } => 0.5 * dn.abs(),
+                _ => 0.0,
+            };
+            assert!(rad - far <= rise + 1e-6, "element {i}: {rad} vs {far}");
+        }
+    }
+
+    /// The bound's early exit gives the same nearest point as examining
+    /// every element: on the built-in examples the tracked distance equals
+    /// the global minimum over all elements at every sample.
+    #[test]
+    fn tracker_equals_exhaustive_search_on_examples() {
+        for text in [
+            crate::toolpath::example::arc_example(),
+            crate::toolpath::example::line_example(),
+        ] {
+            let p = parse(&text).unwrap();
+            let s = crate::toolpath::simulate_program(&p, &crate::toolpath::SimConfig::default())
+                .unwrap();
+            let path = Path::new(&p.segments);
+            for k in 0..s.t.len() {
+                let q = [s.sim[0][k], s.sim[1][k], s.sim[2][k]];
+                let all = (0..path.elements.len())
+                    .map(|i| path.nearest_on(i, q, 0.0).dist)
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    (s.error[k] - all).abs() < 1e-12,
+                    "k {k}: {} vs {all}",
+                    s.error[k]
+                );
+            }
+        }
     }
 }

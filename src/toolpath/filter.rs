@@ -14,6 +14,7 @@
 //!
 //! Units: mm, s, mm/s.
 
+use super::sampler::Sampler;
 use super::timeline::Timeline;
 
 /// Per-sample series of one run, X/Y/Z each.
@@ -37,16 +38,20 @@ pub struct Filtered {
 pub struct Lag1 {
     a: f64,
     t: f64,
-    dt: f64,
+    /// `T/dt` and `1/T`, so the per-sample steps only multiply.
+    t_dt: f64,
+    inv_t: f64,
 }
 
 impl Lag1 {
     /// Lag `t` sampled at `dt`, s.
     pub fn new(t: f64, dt: f64) -> Self {
+        let lag = t > 0.0;
         Self {
-            a: if t > 0.0 { (-dt / t).exp() } else { 0.0 },
+            a: if lag { (-dt / t).exp() } else { 0.0 },
             t,
-            dt,
+            t_dt: if lag { t / dt } else { 0.0 },
+            inv_t: if lag { 1.0 / t } else { 0.0 },
         }
     }
     /// One step: state `y` at the old sample, input `u0` → `u1`.
@@ -55,7 +60,7 @@ impl Lag1 {
         if self.t <= 0.0 {
             return u1;
         }
-        let ts = self.t * (u1 - u0) / self.dt;
+        let ts = (u1 - u0) * self.t_dt;
         u1 - ts + (y - u0 + ts) * self.a
     }
     /// Velocity output for input `u` and state `y`, given the input's
@@ -65,7 +70,7 @@ impl Lag1 {
         if self.t <= 0.0 {
             du
         } else {
-            (u - y) / self.t
+            (u - y) * self.inv_t
         }
     }
 }
@@ -108,19 +113,49 @@ pub fn filter(tl: &Timeline, t_a: f64, t: [f64; 3], dt: f64, n: usize) -> Filter
         Lag1::new(t[2], dt),
     ];
     let o = tl.origin;
-    let (mut h_now, mut h_back) = (0usize, 0usize);
+    let mut now = Sampler::new(tl, dt, 0.0);
+    let mut back = Sampler::new(tl, dt, t_a);
+    let inv_ta = if t_a > 0.0 { 1.0 / t_a } else { 0.0 };
+    // When tA is a whole number m of samples (to within 1e-15 relative),
+    // the value at t − tA is the one computed m samples earlier: keep the
+    // last m positions and integrals in a ring instead of evaluating the
+    // timeline twice per sample.
+    let m = (t_a / dt).round();
+    let mut ring: Vec<([f64; 3], [f64; 3])> =
+        if t_a > 0.0 && (1.0..1e6).contains(&m) && (m * dt - t_a).abs() <= 1e-15 * t_a {
+            vec![(o, [0.0; 3]); m as usize]
+        } else {
+            Vec::new()
+        };
+    let mut slot = 0usize;
     let mut y = o;
     let mut u_prev = o;
     for k in 0..n {
         let tk = k as f64 * dt;
-        let (p, vb, q1) = tl.eval(tk, &mut h_now);
+        let (p, vb, q1) = now.at(k);
         let (u, fa) = if t_a > 0.0 {
-            let (pb, _, q0) = tl.eval(tk - t_a, &mut h_back);
+            let (pb, q0) = match ring.get_mut(slot) {
+                Some(held) => {
+                    // Before the first m samples the ring holds the start
+                    // (t − tA < 0: origin, Q = 0).
+                    let back_value = *held;
+                    *held = (p, q1);
+                    slot += 1;
+                    if slot == ring.len() {
+                        slot = 0;
+                    }
+                    back_value
+                }
+                None => {
+                    let (pb, _, q0) = back.at(k);
+                    (pb, q0)
+                }
+            };
             let mut u = [0.0; 3];
             let mut fa = [0.0; 3];
             for ax in 0..3 {
-                u[ax] = o[ax] + (q1[ax] - q0[ax]) / t_a;
-                fa[ax] = (p[ax] - pb[ax]) / t_a;
+                u[ax] = o[ax] + (q1[ax] - q0[ax]) * inv_ta;
+                fa[ax] = (p[ax] - pb[ax]) * inv_ta;
             }
             (u, fa)
         } else {

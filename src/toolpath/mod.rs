@@ -6,7 +6,8 @@
 //! acc/dec is the moving average of length `tA` (Eq. 1) and each axis servo
 //! a first-order lag `T` (Eq. 2) ([`filter`]); the per-segment responses are
 //! superposed as the paper does ([`superpose`]), which equals filtering the
-//! whole command directly (tested); the contour error is the exact distance
+//! whole command directly (tested; [`sampler`] is that filter's fast
+//! evaluation of the command); the contour error is the exact distance
 //! from the simulated point to the commanded lines and arcs ([`contour`]).
 //! [`mod@simulate`] ties them together; [`identify`] is Eq. 3 and the
 //! identification of `tA` and `T`; [`example`] holds the built-in test paths
@@ -27,6 +28,7 @@ pub mod contour;
 pub mod example;
 pub mod filter;
 pub mod identify;
+pub mod sampler;
 pub mod simulate;
 pub mod superpose;
 pub mod timeline;

@@ -49,6 +49,17 @@ pub struct SegmentStats {
     pub samples: usize,
 }
 
+/// Running statistics of one reference element.
+#[derive(Debug, Clone, Copy, Default)]
+struct Acc {
+    samples: usize,
+    max_error: f64,
+    sum_dev: f64,
+    n_dev: usize,
+    /// Sum and count of the normal deviation over each half.
+    half: [f64; 4],
+}
+
 /// Result of a simulation.
 #[derive(Debug, Clone, Default)]
 pub struct Simulation {
@@ -134,15 +145,16 @@ pub fn simulate(
         Vec::with_capacity(n),
     ];
     let ne = path.elements.len();
-    let mut max_e = vec![0.0f64; ne];
-    let mut sum_dev = vec![0.0f64; ne];
-    let mut n_dev = vec![0usize; ne];
-    let mut half = vec![[0.0f64; 4]; ne];
-    let mut n_s = vec![0usize; ne];
+    let mut acc = vec![Acc::default(); ne];
     let (mut max_error, mut max_k, mut max_el) = (0.0f64, 0usize, 0usize);
+    let (sx, sy, sz) = (&f.sim[0][..n], &f.sim[1][..n], &f.sim[2][..n]);
+    let (cx, cy, cz) = (&f.cmd[0][..n], &f.cmd[1][..n], &f.cmd[2][..n]);
     for k in 0..n {
-        let q = [f.sim[0][k], f.sim[1][k], f.sim[2][k]];
-        let Some(nr) = tracker.nearest(&path, q) else {
+        let q = [sx[k], sy[k], sz[k]];
+        // The commanded point: on the reference path when the reference is
+        // the command, close to it otherwise (reverse compensation).
+        let lag = ((cx[k] - q[0]).powi(2) + (cy[k] - q[1]).powi(2) + (cz[k] - q[2]).powi(2)).sqrt();
+        let Some(nr) = tracker.nearest_within(&path, q, lag) else {
             break;
         };
         error.push(nr.dist);
@@ -150,17 +162,21 @@ pub fn simulate(
             near[ax].push(nr.point[ax]);
         }
         let e = nr.element;
-        n_s[e] += 1;
-        max_e[e] = max_e[e].max(nr.dist);
-        if nr.normal.is_finite() {
-            sum_dev[e] += nr.normal;
-            n_dev[e] += 1;
-            let el = &path.elements[e];
-            let h = usize::from(nr.s - el.s0 > 0.5 * el.len);
-            half[e][2 * h] += nr.normal;
-            half[e][2 * h + 1] += 1.0;
+        let (Some(a), Some(el)) = (acc.get_mut(e), path.elements.get(e)) else {
+            continue;
+        };
+        a.samples += 1;
+        if nr.dist > a.max_error {
+            a.max_error = nr.dist;
         }
-        if !path.elements[e].rapid && nr.dist > max_error {
+        if nr.normal.is_finite() {
+            a.sum_dev += nr.normal;
+            a.n_dev += 1;
+            let h = usize::from(nr.s - el.s0 > 0.5 * el.len);
+            a.half[2 * h] += nr.normal;
+            a.half[2 * h + 1] += 1.0;
+        }
+        if !el.rapid && nr.dist > max_error {
             max_error = nr.dist;
             max_k = k;
             max_el = e;
@@ -195,12 +211,13 @@ pub fn simulate(
                 kind,
                 length: el.len,
                 radius,
-                max_error_um: max_e[i] * 1e3,
-                mean_deviation: (n_dev[i] > 0).then(|| sum_dev[i] / n_dev[i] as f64),
+                max_error_um: acc[i].max_error * 1e3,
+                mean_deviation: (acc[i].n_dev > 0).then(|| acc[i].sum_dev / acc[i].n_dev as f64),
                 half_deviation: [0, 1].map(|h| {
-                    (half[i][2 * h + 1] > 0.0).then(|| half[i][2 * h] / half[i][2 * h + 1])
+                    let half = &acc[i].half;
+                    (half[2 * h + 1] > 0.0).then(|| half[2 * h] / half[2 * h + 1])
                 }),
-                samples: n_s[i],
+                samples: acc[i].samples,
             }
         })
         .collect();

@@ -306,17 +306,43 @@ impl Item {
     /// sine/cosine evaluation.
     #[inline]
     pub fn eval(&self, u: f64, o: [f64; 3]) -> ([f64; 3], [f64; 3], [f64; 3]) {
+        match self.arc_phase() {
+            Some((th0, w)) => self.eval_with(u, o, (th0 + w * u).sin_cos()),
+            None => self.eval_with(u, o, (0.0, 1.0)),
+        }
+    }
+
+    /// For an arc, its angle at the start and its angular rate `(θ₀, ω)`
+    /// (rad, rad/s): the angle `u` seconds in is `θ₀ + ω·u`. `None` for
+    /// lines and stops.
+    #[inline]
+    pub fn arc_phase(&self) -> Option<(f64, f64)> {
+        match self.geo {
+            Geo::Arc { th0, w, .. } => Some((th0, w)),
+            _ => None,
+        }
+    }
+
+    /// As [`Item::eval`], with the arc angle's `(sin, cos)` at `u` given by
+    /// the caller (ignored for lines and stops), so a sampler can step them
+    /// by a rotation instead of evaluating them afresh.
+    #[inline]
+    pub fn eval_with(
+        &self,
+        u: f64,
+        o: [f64; 3],
+        (s1, c1): (f64, f64),
+    ) -> ([f64; 3], [f64; 3], [f64; 3]) {
         match self.geo {
             Geo::Arc {
                 c,
                 r,
-                th0,
                 w,
                 axes: (a, b, n),
                 vn,
                 sc0: (s0, c0),
+                ..
             } => {
-                let (s1, c1) = (th0 + w * u).sin_cos();
                 let mut p = [0.0; 3];
                 let mut v = [0.0; 3];
                 let mut q = self.q0;
@@ -332,7 +358,27 @@ impl Item {
                 q[n] += (self.p0[n] - o[n]) * u + 0.5 * vn * u * u;
                 (p, v, q)
             }
-            _ => (self.pos(u), self.vel(u), self.local_integral(u, o, self.q0)),
+            // The same expressions as `pos`, `vel` and `local_integral`,
+            // written out so the per-sample path has no further calls.
+            Geo::Line { v } => {
+                let (p0, q0) = (self.p0, self.q0);
+                let h = 0.5 * u * u;
+                let mut p = [0.0; 3];
+                let mut q = [0.0; 3];
+                for ax in 0..3 {
+                    p[ax] = p0[ax] + v[ax] * u;
+                    q[ax] = q0[ax] + (p0[ax] - o[ax]) * u + v[ax] * h;
+                }
+                (p, v, q)
+            }
+            Geo::Still => {
+                let (p0, q0) = (self.p0, self.q0);
+                let mut q = [0.0; 3];
+                for ax in 0..3 {
+                    q[ax] = q0[ax] + (p0[ax] - o[ax]) * u;
+                }
+                (p0, [0.0; 3], q)
+            }
         }
     }
 
