@@ -193,6 +193,16 @@ fn series_obj(items: impl Iterator<Item = (String, Vec<f64>)>) -> JsValue {
     o.build()
 }
 
+/// The ISO 230 location-error symbols a cone-frustum test on this machine
+/// can see (e.g. `EX0C`, `EC0Y`), for building an error table.
+#[wasm_bindgen(js_name = errorSymbols, unchecked_return_type = "string[]")]
+pub fn error_symbols(
+    #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
+) -> Result<JsValue, JsError> {
+    let (_, chain) = machine_of(machine)?;
+    to_js(&crate::cone_frustum::sensitivity::error_symbols(&chain))
+}
+
 /// The simulated ISO 10791-6 cone-frustum ball-bar test (kato).
 #[wasm_bindgen(js_name = coneFrustumTest, unchecked_return_type = "ConeFrustumResult")]
 pub fn cone_frustum_test(

@@ -20,3 +20,11 @@ test('machinePreset returns Table 1 of suzuki-best-kffp', () => {
 test('an unknown preset throws an Error listing the known names', () => {
   assert.throws(() => mt.machinePreset('dmu50'), (e) => e instanceof Error && /dmu50/.test(e.message) && /nmv5000/.test(e.message));
 });
+
+test('errorSymbols lists the location errors a cone-frustum test sees', () => {
+  const s = mt.errorSymbols('trunnion-ac');
+  // C (about Z) and A (about X): two radial offsets and three angles each, plus squareness.
+  for (const sym of ['EX0C', 'EY0C', 'EA0C', 'EB0C', 'EC0C', 'EY0A', 'EZ0A', 'EA0A', 'EB0A', 'EC0A', 'EC0Y', 'EB0Z', 'EA0Z']) assert.ok(s.includes(sym), sym);
+  assert.ok(!s.includes('EZ0C') && !s.includes('EX0A'), 'no translation along an axis of its own');
+  assert.equal(s.length, 13);
+});

@@ -39,6 +39,7 @@ const CASES = [
   ['ballbarExample', [['nope'], ['fig7', -1]]],
   ['forwardKinematics', [['nope', {}], ['pocketnc-v2-10', {}], ['pocketnc-v2-10', { x: NaN, y: 0, z: 0, a: 0, b: 0 }], ['pocketnc-v2-10', { x: 0 }, { location: { bogus: 1 } }]]],
   ['forwardKinematicsBulk', [['pocketnc-v2-10', f64(1, 2, 3)], ['pocketnc-v2-10', f64()], ['nope', f64(0, 0, 0, 0, 0)]]],
+  ['errorSymbols', [['nope'], [{}], [{ name: 'trunnion-ac' }]]],
   ['inverseKinematics', [['pocketnc-v2-10', {}], ['pocketnc-v2-10', { position: [NaN, 0, 0], orientation: [0, 0, 1] }], ['pocketnc-v2-10', { position: [0, 0, 0], orientation: [0, 0, 0] }], ['pocketnc-v2-10', { position: [1e9, 0, 0], orientation: [0, 0, 1] }]]],
   ['coneFrustumTest', [[{}], [{ machine: 'trunnion-ac', halfApexDeg: 90, inclinationDeg: 10, method: 'perpendicular', barLength: 100, feed: 1000 }], [{ machine: 'trunnion-ac', halfApexDeg: 15, inclinationDeg: 10, method: 'sideways', barLength: 100, feed: 1000 }], [{ machine: 'trunnion-ac', halfApexDeg: 15, inclinationDeg: 10, method: 'parallel', barLength: -1, feed: 0 }]]],
   ['compensateNc5', [['', {}], ['G1 X1 Y1 Z1 A0 B0 F100', { machine: 'nope' }], ['G2 X1 Y1 I1 J0 F100', { machine: 'pocketnc-v2-10' }], ['G1 X1e9 F100', { machine: 'pocketnc-v2-10' }]]],

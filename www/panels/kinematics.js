@@ -9,18 +9,6 @@ const MACHINES = [
   ['table-on-table-bc', 'table-on-table-bc — B–C like the NMV5000'],
   ['pocketnc-v2-10', 'pocketnc-v2-10 — Pocket NC V2-10 (thasana Eq. 8)'],
 ];
-const DIR = { a: 'X', b: 'Y', c: 'Z' };
-
-/** ISO 230-7 location-error symbols of each rotary axis and ISO 230-1 squareness errors. */
-function errorSymbols(axes) {
-  const out = [];
-  for (const r of axes.filter((a) => 'abc'.includes(a))) {
-    const R = r.toUpperCase();
-    for (const d of ['X', 'Y', 'Z', 'A', 'B', 'C']) if (d !== DIR[r]) out.push(`E${d}0${R}`);
-  }
-  return [...out, 'EC0Y', 'EB0Z', 'EA0Z'];
-}
-
 export async function mount(root, api) {
   const out = h('div', {});
   const machineSel = selectField({ label: 'Machine', options: MACHINES, value: 'trunnion-ac', id: 'kinematics-machine', onChange: () => loadMachine() });
@@ -33,7 +21,8 @@ export async function mount(root, api) {
       preset = await api.call('machinePreset', [machineSel.value]);
       const axes = Object.keys(preset.limits || {});
       errInputs = {};
-      const rows = errorSymbols(axes).map((s) => {
+      const symbols = await api.call('errorSymbols', [machineSel.value]);
+      const rows = symbols.map((s) => {
         const inp = h('input', { type: 'number', step: 'any', value: '0', id: `kinematics-err-${s}`, style: 'width:8em' });
         errInputs[s] = inp;
         return [s, /^E[XYZ]/.test(s) ? 'mm' : 'rad', inp];
