@@ -3,6 +3,7 @@
 //!
 //! Presets are looked up by name with [`preset`]; [`names`] lists them.
 
+pub mod example_errors;
 mod nmv5000;
 mod pocketnc_v2_10;
 mod table_on_table_bc;
@@ -12,7 +13,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use crate::kinematics::Chain;
+use crate::kinematics::{Chain, GeometricErrors};
 use crate::servo::AxisParams;
 
 /// Errors of the preset registry.
@@ -53,6 +54,11 @@ pub struct Machine {
     /// 5-axis models; absent for machines described by their drives only.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kinematics: Option<Chain>,
+    /// Illustrative geometric errors for the page's "Load example errors"
+    /// (typical ISO 230-7 location errors and worm-gear backlash, see
+    /// [`example_errors`]); not measured values of this machine.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub example_errors: Option<GeometricErrors>,
 }
 
 type Builder = fn() -> Machine;

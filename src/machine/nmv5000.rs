@@ -63,5 +63,6 @@ pub fn machine() -> Machine {
         axes: BTreeMap::from([("x".into(), x), ("y".into(), y), ("c".into(), c)]),
         limits: BTreeMap::new(),
         kinematics: None,
+        example_errors: None,
     }
 }

@@ -92,5 +92,6 @@ pub fn machine() -> Machine {
             ("b".into(), [-360.0, 360.0]),
         ]),
         kinematics: Some(chain()),
+        example_errors: Some(super::example_errors::pocketnc_v2_10()),
     }
 }

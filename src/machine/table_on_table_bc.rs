@@ -59,5 +59,6 @@ pub fn machine() -> Machine {
             ("c".into(), [-360.0, 360.0]),
         ]),
         kinematics: Some(chain()),
+        example_errors: Some(super::example_errors::table_on_table_bc()),
     }
 }

@@ -63,5 +63,6 @@ pub fn machine() -> Machine {
             ("c".into(), [-360.0, 360.0]),
         ]),
         kinematics: Some(chain()),
+        example_errors: Some(super::example_errors::trunnion_ac()),
     }
 }

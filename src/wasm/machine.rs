@@ -26,6 +26,8 @@ export interface MachinePreset {
   axes: Record<string, AxisParams>;
   /** mm for linear axes, degrees for rotary axes. */
   limits?: Record<string, [number, number]>;
+  /** Illustrative ISO 230-7 location errors and backlash for the page (not measured). */
+  exampleErrors?: GeometricErrors;
   [extra: string]: unknown;
 }
 "#;
