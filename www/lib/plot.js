@@ -330,3 +330,116 @@ export function barChart(el, opts) {
     return [];
   });
 }
+
+/**
+ * 3D path on a canvas: orthographic projection, equal scale on x, y and z
+ * (fixed by the bounding sphere, so rotating never rescales), drag to rotate,
+ * axes triad in the lower-left corner.
+ * opts: { title, traces: [{ x, y, z, label, color?, width? }], height? }.
+ */
+export function xyzChart(el, opts) {
+  const view = { az: (-35 * Math.PI) / 180, el: (25 * Math.PI) / 180 };
+  let canvas;
+  let ctx;
+  let w = 0;
+  let hgt = 0;
+  const project = (x, y, z) => {
+    const ca = Math.cos(view.az), sa = Math.sin(view.az), ce = Math.cos(view.el), se = Math.sin(view.el);
+    const x1 = x * ca - y * sa;
+    const y1 = x * sa + y * ca;
+    return [x1, z * ce + y1 * se];
+  };
+  const draw = () => {
+    const traces = opts.traces || [];
+    ctx.clearRect(0, 0, w, hgt);
+    // Centre and radius of the bounding box: one scale for all three axes.
+    const lo = [Infinity, Infinity, Infinity];
+    const hi = [-Infinity, -Infinity, -Infinity];
+    for (const t of traces) {
+      [t.x, t.y, t.z].forEach((a, k) => {
+        for (const v of a) if (Number.isFinite(v)) [lo[k], hi[k]] = [Math.min(lo[k], v), Math.max(hi[k], v)];
+      });
+    }
+    if (!Number.isFinite(lo[0])) return;
+    const c = lo.map((l, k) => (l + hi[k]) / 2);
+    const r = Math.hypot(...lo.map((l, k) => (hi[k] - l) / 2)) || 1;
+    const s = (0.45 * Math.min(w, hgt)) / r;
+    const P = (x, y, z) => {
+      const [u, v] = project(x - c[0], y - c[1], z - c[2]);
+      return [w / 2 + s * u, hgt / 2 - s * v];
+    };
+    traces.forEach((t, k) => {
+      ctx.strokeStyle = t.color || PALETTE[k % PALETTE.length];
+      ctx.lineWidth = t.width || 1.5;
+      ctx.beginPath();
+      for (let i = 0; i < t.x.length; i++) (i ? ctx.lineTo : ctx.moveTo).apply(ctx, P(t.x[i], t.y[i], t.z[i]));
+      ctx.stroke();
+    });
+    // Axes triad: unit vectors of the data frame, 28 px long.
+    const o = [36, hgt - 36];
+    [['x', [1, 0, 0], '#d9480f'], ['y', [0, 1, 0], '#2b8a3e'], ['z', [0, 0, 1], '#0b6bcb']].forEach(([name, e, col]) => {
+      const [u, v] = project(...e);
+      const tip = [o[0] + 28 * u, o[1] - 28 * v];
+      ctx.strokeStyle = col;
+      ctx.fillStyle = col;
+      ctx.lineWidth = 2;
+      ctx.beginPath();
+      ctx.moveTo(...o);
+      ctx.lineTo(...tip);
+      ctx.stroke();
+      ctx.fillText(name, tip[0] + 3 * Math.sign(u || 1), tip[1] - 3 * Math.sign(v || 1));
+    });
+    ctx.fillStyle = '#5b6673';
+    ctx.fillText(`equal scale; ${tick(2 * r)} mm across — drag to rotate`, 8, 14);
+  };
+  const paint = () => {
+    frame(el, opts.title);
+    canvas = document.createElement('canvas');
+    canvas.style.cursor = 'grab';
+    canvas.style.touchAction = 'none';
+    el.append(canvas);
+    w = Math.max(200, el.clientWidth || 400);
+    hgt = opts.height || Math.min(420, Math.max(240, w * 0.75));
+    const dpr = window.devicePixelRatio || 1;
+    canvas.width = w * dpr;
+    canvas.height = hgt * dpr;
+    canvas.style.height = `${hgt}px`;
+    ctx = canvas.getContext('2d');
+    ctx.scale(dpr, dpr);
+    ctx.font = '11px system-ui';
+    let last = null;
+    canvas.addEventListener('pointerdown', (e) => {
+      last = [e.clientX, e.clientY];
+      canvas.setPointerCapture(e.pointerId);
+    });
+    canvas.addEventListener('pointermove', (e) => {
+      if (!last) return;
+      view.az += (e.clientX - last[0]) * 0.01;
+      view.el = Math.max(-Math.PI / 2, Math.min(Math.PI / 2, view.el + (e.clientY - last[1]) * 0.01));
+      last = [e.clientX, e.clientY];
+      draw();
+    });
+    canvas.addEventListener('pointerup', () => (last = null));
+    draw();
+    const legend = (opts.traces || []).filter((t) => t.label);
+    if (legend.length) {
+      const lg = Object.assign(document.createElement('div'), { className: 'legend' });
+      legend.forEach((t) => {
+        const sw = document.createElement('i');
+        sw.style.background = t.color || PALETTE[(opts.traces || []).indexOf(t) % PALETTE.length];
+        const item = document.createElement('span');
+        item.append(sw, t.label);
+        lg.append(item);
+      });
+      el.append(lg);
+    }
+  };
+  paint();
+  return {
+    el,
+    update(o) {
+      Object.assign(opts, o);
+      paint();
+    },
+  };
+}

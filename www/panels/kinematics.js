@@ -2,7 +2,7 @@
 // errors, run the ISO 10791-6 cone-frustum test (kato) and compensate a
 // 5-axis NC program (thasana). All numbers come from the core.
 import { h, numberField, selectField, table, downloadText, toCsv, progressBar, showError, fmt } from '../lib/ui.js';
-import { lineChart, xyChart, polarChart, barChart } from '../lib/plot.js';
+import { lineChart, xyChart, xyzChart, polarChart, barChart } from '../lib/plot.js';
 
 const MACHINES = [
   ['trunnion-ac', 'trunnion-ac — A–C tilting rotary table (kato)'],
@@ -37,10 +37,24 @@ export async function mount(root, api) {
         table(['ISO 230 error', 'unit', 'value'], rows),
         table(['axis', 'min', 'max'], axes.map((a) => [a.toUpperCase(), fmt(preset.limits[a][0], 4), fmt(preset.limits[a][1], 4)])),
       );
+      exampleBtn.disabled = !preset.exampleErrors;
       if (machineSel.value === 'pocketnc-v2-10') loadSShape();
     } catch (e) {
       showError(out, e);
     }
+  }
+
+  // Illustrative errors from the preset (Rust: machine::example_errors):
+  // copy them into the inputs, zero the rest, and re-run the test.
+  const exampleBtn = h('button', { id: 'kinematics-example', onclick: () => loadExample() }, 'Load example errors');
+  function loadExample() {
+    const ex = preset?.exampleErrors;
+    if (!ex) return;
+    for (const [k, inp] of Object.entries(errInputs)) {
+      const v = k.startsWith('backlash.') ? ex.backlash?.[k.slice(9)] : ex.location?.[k];
+      inp.value = String(v ?? 0);
+    }
+    runCone();
   }
 
   function errors() {
@@ -91,12 +105,13 @@ export async function mount(root, api) {
     const sensBar = h('div', {});
     const xy = h('div', {});
     const xz = h('div', {});
+    const xyz = h('div', { id: 'kinematics-path3d' });
     const summary = table(['θ', 'bar', 'min [µm]', 'max [µm]'], results.map((r, i) => [`${combos[i][0]}°`, combos[i][1], fmt(r.minDeviation * 1e3, 4), fmt(r.maxDeviation * 1e3, 4)]));
     summary.id = 'kinematics-cone-table';
     const worst = Math.max(...results.map((r) => Math.max(Math.abs(r.minDeviation), Math.abs(r.maxDeviation))));
     coneOut.replaceChildren(
       h('p', {}, 'Largest |bar deviation| over the four runs: ', h('b', { id: 'kinematics-cone-max' }, `${fmt(worst * 1e3, 4)} µm`)),
-      summary, polar, dev, xy, xz, sens, sensBar,
+      summary, polar, dev, h('div', { class: 'grid' }, xy, xz, xyz), sens, sensBar,
       h('button', { id: 'kinematics-cone-csv', onclick: () => downloadText('cone-frustum.csv', toCsv({ angle_deg: results[0].angle, ...Object.fromEntries(results.map((r, i) => [`dev_mm_${combos[i][0]}_${combos[i][1]}`, r.deviation])) }), 'text/csv') }, 'Download deviations (CSV)'),
     );
     polarChart(polar, {
@@ -108,6 +123,7 @@ export async function mount(root, api) {
     const r0 = results[2];
     xyChart(xy, { title: 'Spindle-ball path, XY (workpiece frame, 45° perpendicular)', xLabel: 'x [mm]', yLabel: 'y [mm]', traces: [{ x: r0.path.x, y: r0.path.y, label: 'path', values: r0.deviation }], colorLabel: 'deviation [mm]' });
     xyChart(xz, { title: 'Spindle-ball path, XZ', xLabel: 'x [mm]', yLabel: 'z [mm]', traces: [{ x: r0.path.x, y: r0.path.z, label: 'path' }] });
+    xyzChart(xyz, { title: 'Spindle-ball path in 3D (workpiece frame)', traces: [0, 2].map((i) => ({ x: results[i].path.x, y: results[i].path.y, z: results[i].path.z, label: `${combos[i][0]}° ${combos[i][1]}`, color: colors[i] })) });
     const axNames = Object.keys(r0.sensitivity.axes);
     lineChart(sens, { title: 'Sensitivity of the bar to each axis (45° perpendicular): mm/mm (linear), mm/rad (rotary)', xLabel: 'angle [°]', yLabel: 'sensitivity', series: axNames.map((a) => ({ label: a.toUpperCase() })), data: [r0.angle, ...axNames.map((a) => r0.sensitivity.axes[a])] });
     const errNames = Object.keys(r0.sensitivity.errors);
@@ -162,7 +178,9 @@ export async function mount(root, api) {
   }
 
   root.replaceChildren(
-    h('div', { class: 'card' }, h('h3', {}, 'Machine and geometric errors'), machineSel.el, errBox),
+    h('div', { class: 'card' }, h('h3', {}, 'Machine and geometric errors'), machineSel.el,
+      exampleBtn, h('small', {}, ' illustrative ISO 230-7 location errors and worm-gear backlash (not measured), then runs the cone-frustum test'),
+      errBox),
     h('div', { class: 'card' }, h('h3', {}, 'ISO 10791-6 cone-frustum ball-bar test'),
       incl.el, feed.el, bar.el, cx.el, cy.el, cz.el,
       h('label', { class: 'field' }, h('span', {}, 'Ideal servos'), ideal),
