@@ -55,6 +55,17 @@ pub enum ConeFrustumError {
         /// Upper limit.
         max: f64,
     },
+    /// No inverse-kinematics branch follows the whole path continuously
+    /// inside the limits: some axis would have to jump.
+    #[error("cone-frustum test: no continuous axis motion inside the limits follows this path; {axis} would have to jump by {jump_deg:.1}° at {angle_deg:.1}° (a branch change the drives cannot make); move `centre`, change the angles or widen the {axis} limits")]
+    BranchJump {
+        /// Axis letter of the largest jump.
+        axis: String,
+        /// Size of the jump, degrees.
+        jump_deg: f64,
+        /// Path angle, degrees.
+        angle_deg: f64,
+    },
     /// A servo axis is missing or invalid.
     #[error("cone-frustum test, axis {axis}: {why}")]
     Servo {

@@ -8,9 +8,14 @@
 //! that lets the drives leave their start transient (dropped from the
 //! result). `radius`, if given, sets the spindle-ball circle radius and
 //! the bar length follows from it (`L = radius / cos θ` perpendicular,
-//! `L = radius` parallel). The inverse-kinematics branch at the start is
-//! the one inside the limits with the smallest rotary angles; later points
-//! take the branch nearest the previous one.
+//! `L = radius` parallel). Axis commands must be continuous, as on a real
+//! machine: every later point takes the branch nearest the previous one,
+//! and the start branch is the one, in order of smallest rotary angles,
+//! whose continuation stays inside the limits without any rotary axis
+//! moving more than [`MAX_ROTARY_STEP`] in one sample (a branch change,
+//! e.g. A → −A with C + 180°, which an ideal drive would pass unnoticed
+//! but a servo cannot follow). If no start branch does, the test refuses
+//! with [`ConeFrustumError::BranchJump`].
 //!
 //! Units: config in degrees, mm and mm/min; results in mm, rad, s (the JS
 //! binding gives rotary axis positions in degrees).
@@ -244,8 +249,9 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
     // Commands.
     let ik = crate::kinematics::inverse::Inverse::new(&chain, cfg.tool_length)?;
     let total = lead + n;
-    let mut q_cmd: Vec<[f64; 6]> = Vec::with_capacity(total);
+    // Every point's within-limit solutions, once.
     let mut points = Vec::with_capacity(total);
+    let mut candidates: Vec<Vec<[f64; 6]>> = Vec::with_capacity(total);
     for i in 0..total {
         let phi = dir * TAU * (i as f64 - lead as f64) / n as f64;
         let pt = geo.point(phi);
@@ -254,51 +260,20 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
             orientation: pt.axis.into(),
         };
         let sols = ik.solve(&pose, &limits)?;
-        let pick = match q_cmd.last() {
-            None => sols.iter().filter(|s| s.within_limits).min_by(|a, b| {
-                let m =
-                    |s: &crate::kinematics::Solution| s.q[3..].iter().map(|v| v.abs()).sum::<f64>();
-                m(a).total_cmp(&m(b))
-            }),
-            Some(prev) => sols.iter().filter(|s| s.within_limits).min_by(|a, b| {
-                let d = |s: &crate::kinematics::Solution| {
-                    (0..6)
-                        .map(|k| ((s.q[k] - prev[k]) * if k >= 3 { 1000.0 } else { 1.0 }).powi(2))
-                        .sum::<f64>()
-                };
-                d(a).total_cmp(&d(b))
-            }),
-        };
-        let Some(sol) = pick else {
-            // Name the worst axis of the branch that misses the limits least.
-            let excess = |q: &[f64; 6]| {
-                (0..6)
-                    .map(|k| (k, (limits[k][0] - q[k]).max(q[k] - limits[k][1])))
-                    .max_by(|a, b| a.1.total_cmp(&b.1))
-                    .unwrap_or((0, 0.0))
-            };
-            let s = sols
-                .iter()
-                .map(|s| s.q)
-                .min_by(|a, b| excess(a).1.total_cmp(&excess(b).1))
-                .unwrap_or([0.0; 6]);
-            let (k, _) = excess(&s);
-            let scale = if k >= 3 {
-                180.0 / std::f64::consts::PI
-            } else {
-                1.0
-            };
-            return Err(ConeFrustumError::OutOfLimits {
-                axis: AXES[k].to_uppercase(),
-                value: s[k] * scale,
-                angle_deg: phi.to_degrees(),
-                min: limits[k][0] * scale,
-                max: limits[k][1] * scale,
-            });
-        };
-        q_cmd.push(sol.q);
+        let inside: Vec<[f64; 6]> = sols
+            .iter()
+            .filter(|s| s.within_limits)
+            .map(|s| s.q)
+            .collect();
+        if inside.is_empty() {
+            return Err(out_of_limits(&sols, &limits, phi));
+        }
+        candidates.push(inside);
         points.push(pt);
     }
+    let q_cmd = continuous_commands(&candidates, |i| {
+        (dir * TAU * (i as f64 - lead as f64) / n as f64).to_degrees()
+    })?;
     // Drives.
     let mut q_act = q_cmd.clone();
     let mut series = Vec::new();
@@ -410,4 +385,90 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
 /// The chain of a machine reference (for callers that need it).
 pub fn chain_of(m: &MachineRef) -> Result<Chain, ConeFrustumError> {
     Ok(m.resolve()?.1)
+}
+
+/// Largest change of a rotary axis between two samples that still counts
+/// as continuous motion, rad (10°; the test's own steps are ~0.1°).
+pub const MAX_ROTARY_STEP: f64 = 10.0 * std::f64::consts::PI / 180.0;
+
+/// Follows the nearest branch from each possible start (smallest rotary
+/// angles first) and returns the first continuous command sequence.
+fn continuous_commands(
+    candidates: &[Vec<[f64; 6]>],
+    angle_deg: impl Fn(usize) -> f64,
+) -> Result<Vec<[f64; 6]>, ConeFrustumError> {
+    let nearest = |prev: &[f64; 6], options: &[[f64; 6]]| -> [f64; 6] {
+        let d = |q: &[f64; 6]| {
+            (0..6)
+                .map(|k| ((q[k] - prev[k]) * if k >= 3 { 1000.0 } else { 1.0 }).powi(2))
+                .sum::<f64>()
+        };
+        *options
+            .iter()
+            .min_by(|a, b| d(a).total_cmp(&d(b)))
+            .unwrap_or(prev)
+    };
+    let mut starts = candidates.first().cloned().unwrap_or_default();
+    let rot = |q: &[f64; 6]| q[3..].iter().map(|v| v.abs()).sum::<f64>();
+    starts.sort_by(|a, b| rot(a).total_cmp(&rot(b)));
+    let mut first_jump: Option<(usize, usize, f64)> = None;
+    'start: for start in starts {
+        let mut q = Vec::with_capacity(candidates.len());
+        q.push(start);
+        for (i, options) in candidates.iter().enumerate().skip(1) {
+            let prev = q[i - 1];
+            let next = nearest(&prev, options);
+            if let Some((k, jump)) = (3..6)
+                .map(|k| (k, (next[k] - prev[k]).abs()))
+                .filter(|(_, j)| *j > MAX_ROTARY_STEP)
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+            {
+                if first_jump.is_none() {
+                    first_jump = Some((i, k, jump));
+                }
+                continue 'start;
+            }
+            q.push(next);
+        }
+        return Ok(q);
+    }
+    let (i, k, jump) = first_jump.unwrap_or((0, 3, 0.0));
+    Err(ConeFrustumError::BranchJump {
+        axis: AXES[k].to_uppercase(),
+        jump_deg: jump.to_degrees(),
+        angle_deg: angle_deg(i),
+    })
+}
+
+/// The error for a point no solution reaches: names the worst axis of the
+/// branch that misses the limits least.
+fn out_of_limits(
+    sols: &[crate::kinematics::Solution],
+    limits: &[[f64; 2]; 6],
+    phi: f64,
+) -> ConeFrustumError {
+    let excess = |q: &[f64; 6]| {
+        (0..6)
+            .map(|k| (k, (limits[k][0] - q[k]).max(q[k] - limits[k][1])))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap_or((0, 0.0))
+    };
+    let s = sols
+        .iter()
+        .map(|s| s.q)
+        .min_by(|a, b| excess(a).1.total_cmp(&excess(b).1))
+        .unwrap_or([0.0; 6]);
+    let (k, _) = excess(&s);
+    let scale = if k >= 3 {
+        180.0 / std::f64::consts::PI
+    } else {
+        1.0
+    };
+    ConeFrustumError::OutOfLimits {
+        axis: AXES[k].to_uppercase(),
+        value: s[k] * scale,
+        angle_deg: phi.to_degrees(),
+        min: limits[k][0] * scale,
+        max: limits[k][1] * scale,
+    }
 }
