@@ -62,13 +62,9 @@ mod native {
         g.bench_function("cone_frustum_3600_servo", |b| {
             b.iter(|| cone_frustum_test(black_box(&cfg)).unwrap())
         });
-        let program = s_shape::s_shape(&s_shape::SShapeOptions {
-            machine: MachineRef::Name("pocketnc-v2-10".into()),
-            scale: 0.15,
-            tool_length: 0.0,
-            origin: [0.0; 3],
-            feed: 200.0,
-        })
+        let program = s_shape::s_shape(&s_shape::SShapeOptions::paper(MachineRef::Name(
+            "pocketnc-v2-10".into(),
+        )))
         .unwrap()
         .nc;
         let nc_cfg = Nc5Config {

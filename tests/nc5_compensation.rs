@@ -14,13 +14,9 @@ use mtmotion::compensate::nc5::{compensate_nc5, Nc5Config};
 use mtmotion::kinematics::{GeometricErrors, MachineRef};
 
 fn program() -> String {
-    s_shape(&SShapeOptions {
-        machine: MachineRef::Name("pocketnc-v2-10".into()),
-        scale: 0.15,
-        tool_length: 0.0,
-        origin: [0.0; 3],
-        feed: 200.0,
-    })
+    s_shape(&SShapeOptions::paper(MachineRef::Name(
+        "pocketnc-v2-10".into(),
+    )))
     .unwrap()
     .nc
 }

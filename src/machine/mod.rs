@@ -9,6 +9,31 @@ mod pocketnc_v2_10;
 mod table_on_table_bc;
 mod trunnion_ac;
 
+/// Chain of a C rotary table carried by a tilting axis (`tilt`, e.g. "a"
+/// about x or "b" about y) whose axis lies `table_height` mm below the
+/// table face, then X, Y, Z in the column and head; workpiece → tool. At
+/// q = 0 the tool tip is at the centre of the table face, tool axis +z.
+fn tilting_table_chain(
+    tilt_name: &str,
+    tilt: &str,
+    tilt_dir: crate::kinematics::htm::Dir,
+    table_height: f64,
+) -> crate::kinematics::Chain {
+    use crate::kinematics::htm::Dir;
+    use crate::kinematics::{Chain, Link};
+    Chain {
+        links: vec![
+            Link::rotary("C table", [0.0; 3], "c", Dir::Z),
+            Link::rotary(tilt_name, [0.0, 0.0, -table_height], tilt, tilt_dir),
+            Link::linear("X", [0.0, 0.0, table_height], "x", Dir::X),
+            Link::linear("Y", [0.0; 3], "y", Dir::Y),
+            Link::linear("Z head", [0.0; 3], "z", Dir::Z),
+        ],
+        tool_point: [0.0; 3],
+        tool_axis: [0.0, 0.0, 1.0],
+    }
+}
+
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};

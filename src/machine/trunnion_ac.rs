@@ -18,24 +18,14 @@ use std::collections::BTreeMap;
 
 use super::Machine;
 use crate::kinematics::htm::Dir;
-use crate::kinematics::{Chain, Link};
+use crate::kinematics::Chain;
 
 /// Height of the table face over the A axis, mm.
 pub const TABLE_HEIGHT: f64 = 50.0;
 
 /// The chain.
 pub fn chain() -> Chain {
-    Chain {
-        links: vec![
-            Link::rotary("C table", [0.0; 3], "c", Dir::Z),
-            Link::rotary("A trunnion", [0.0, 0.0, -TABLE_HEIGHT], "a", Dir::X),
-            Link::linear("X", [0.0, 0.0, TABLE_HEIGHT], "x", Dir::X),
-            Link::linear("Y", [0.0; 3], "y", Dir::Y),
-            Link::linear("Z head", [0.0; 3], "z", Dir::Z),
-        ],
-        tool_point: [0.0; 3],
-        tool_axis: [0.0, 0.0, 1.0],
-    }
+    super::tilting_table_chain("A trunnion", "a", Dir::X, TABLE_HEIGHT)
 }
 
 /// The preset.

@@ -50,6 +50,20 @@ pub struct SShapeOptions {
     pub feed: f64,
 }
 
+impl SShapeOptions {
+    /// thasana §II-D's test piece: 15 % scale, F200, no tool length, part
+    /// origin at the workpiece origin.
+    pub fn paper(machine: MachineRef) -> Self {
+        Self {
+            machine,
+            scale: scale_default(),
+            tool_length: 0.0,
+            origin: [0.0; 3],
+            feed: feed_default(),
+        }
+    }
+}
+
 /// The test piece's evaluation points and program.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
@@ -71,8 +85,7 @@ pub struct SShape {
 /// ```
 /// use mtmotion::compensate::nc5::s_shape::{s_shape, SShapeOptions};
 /// use mtmotion::kinematics::MachineRef;
-/// let s = s_shape(&SShapeOptions { machine: MachineRef::Name("pocketnc-v2-10".into()),
-///     scale: 0.15, tool_length: 0.0, origin: [0.0; 3], feed: 200.0 }).unwrap();
+/// let s = s_shape(&SShapeOptions::paper(MachineRef::Name("pocketnc-v2-10".into()))).unwrap();
 /// assert_eq!(s.points.len(), 64);
 /// assert_eq!(s.points.iter().filter(|p| p[2].abs() < 1e-12).count(), 32);
 /// assert_eq!(s.points.iter().filter(|p| (p[2] + 12.0).abs() < 1e-12).count(), 32);
