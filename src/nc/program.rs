@@ -324,6 +324,7 @@ fn interpret_block(
             start: st.pos,
             end: st.pos,
             feed: 0.0,
+            fixed: false,
         }));
     }
     if let Some((_, m)) = motion_word {
@@ -410,6 +411,7 @@ fn interpret_block(
         start,
         end,
         feed,
+        fixed: false,
     }))
 }
 

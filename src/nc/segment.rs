@@ -182,6 +182,12 @@ pub struct Segment {
     pub end: Pose,
     /// Programmed feed, mm/min (0 for rapids and dwells).
     pub feed: f64,
+    /// True when the segment's end point is not written literally, once, in
+    /// its source block: a canned-cycle expansion, a subprogram body, a
+    /// macro-computed word. A compensation must not move it (its source
+    /// words cannot be edited for this one execution only).
+    #[serde(default)]
+    pub fixed: bool,
 }
 
 impl Segment {

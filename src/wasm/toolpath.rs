@@ -21,7 +21,7 @@ export type NcMotion =
   | { type: 'arc'; center: [number, number, number]; radius: number; plane: 'XY' | 'ZX' | 'YZ'; sweep: number; rForm: boolean }
   | { type: 'dwell'; seconds: number };
 /** One motion segment; mm, degrees for a/b/c, feed in mm/min. */
-export interface NcSegment { block: number | null; line: number; motion: NcMotion; start: Pose; end: Pose; feed: number }
+export interface NcSegment { block: number | null; line: number; motion: NcMotion; start: Pose; end: Pose; feed: number; fixed: boolean }
 export interface NcWarning { line: number; column: number; message: string }
 export interface ParsedNc { segments: NcSegment[]; warnings: NcWarning[] }
 /** tA and T in s (T one value or [Tx, Ty, Tz]), dt in s, rapidFeed in mm/min, feedOverride as a fraction. */
