@@ -4,8 +4,8 @@
 //! centres, above all 5-axis ones. The core is plain Rust (units: mm, s, rad,
 //! N·m, kg·m²); `wasm` is a thin binding layer compiled for `wasm32` only.
 //!
-//! The catalogue — one line per model, with its source (papers in
-//! `shared/papers/`):
+//! The catalogue — one line per model, with its source (full citations in
+//! `docs/references.md`):
 //!
 //! | module | model | source |
 //! |---|---|---|
