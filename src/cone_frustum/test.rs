@@ -28,7 +28,8 @@ use serde::{Deserialize, Serialize};
 use super::path::{Geometry, Method};
 use super::{drive, sensitivity, ConeFrustumError};
 use crate::kinematics::inverse::limits_from_degrees;
-use crate::kinematics::{Chain, GeometricErrors, MachineRef, Model, Pose, AXES};
+use crate::kinematics::{Chain, GeometricErrors, Model, Pose, AXES};
+use crate::machine::MachineRef;
 use crate::servo::{AxisKind, AxisParams};
 
 fn perpendicular() -> Method {
@@ -167,7 +168,8 @@ fn placeholder_axis(kind: AxisKind) -> AxisParams {
 /// # Examples
 /// ```
 /// use mtmotion::cone_frustum::{cone_frustum_test, ConeFrustumConfig, Method};
-/// use mtmotion::kinematics::{GeometricErrors, MachineRef};
+/// use mtmotion::kinematics::GeometricErrors;
+/// use mtmotion::machine::MachineRef;
 /// let cfg = ConeFrustumConfig {
 ///     machine: MachineRef::Name("trunnion-ac".into()), half_apex_deg: 45.0,
 ///     inclination_deg: 10.0, method: Method::Perpendicular, bar_length: 100.0,
@@ -322,7 +324,7 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
     // Bar readings.
     let model = Model::new(&chain, &cfg.errors, cfg.tool_length)?;
     let nominal = Model::new(&chain, &GeometricErrors::default(), cfg.tool_length)?;
-    let symbols = sensitivity::error_symbols(&chain);
+    let symbols = crate::kinematics::errors::error_symbols(&chain);
     let perturbed = symbols
         .iter()
         .map(|s| sensitivity::perturbed(&chain, &GeometricErrors::default(), cfg.tool_length, s))

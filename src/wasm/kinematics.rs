@@ -11,9 +11,8 @@ use wasm_bindgen::prelude::*;
 use super::convert::{from_js, string_arg, to_js, Obj};
 use crate::compensate::nc5::{self, s_shape};
 use crate::cone_frustum::{self, ConeFrustumConfig};
-use crate::kinematics::{
-    self, inverse::limits_from_degrees, GeometricErrors, MachineRef, Model, Pose, AXES,
-};
+use crate::kinematics::{self, inverse::limits_from_degrees, GeometricErrors, Model, Pose, AXES};
+use crate::machine::MachineRef;
 
 #[wasm_bindgen(typescript_custom_section)]
 const TS: &str = r#"
@@ -200,7 +199,7 @@ pub fn error_symbols(
     #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
 ) -> Result<JsValue, JsError> {
     let (_, chain) = machine_of(machine)?;
-    to_js(&crate::cone_frustum::sensitivity::error_symbols(&chain))
+    to_js(&crate::kinematics::errors::error_symbols(&chain))
 }
 
 /// The simulated ISO 10791-6 cone-frustum ball-bar test (kato).
