@@ -14,7 +14,7 @@
 //!
 //! Units: mm, rad (limits in mm and rad here; the JS API converts degrees).
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
@@ -64,14 +64,7 @@ fn sp1(w: &Vector3<f64>, a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     w.dot(&ap.cross(&bp)).atan2(ap.dot(&bp))
 }
 
-fn wrap(a: f64) -> f64 {
-    let r = (a + PI).rem_euclid(TAU) - PI;
-    if r <= -PI {
-        r + TAU
-    } else {
-        r
-    }
-}
+use crate::numeric::wrap_angle as wrap;
 
 /// Every inverse-kinematics branch of the nominal `chain` for `pose`.
 ///
