@@ -94,6 +94,8 @@ pub struct ConeFrustumConfig {
 pub struct AxisSeries {
     /// Axis letter.
     pub axis: String,
+    /// Linear (positions in mm) or rotary (positions in rad).
+    pub kind: AxisKind,
     /// Commanded position, mm or rad.
     pub command: Vec<f64>,
     /// Actual (table) position, mm or rad.
@@ -133,6 +135,10 @@ pub struct ConeFrustumResult {
     pub radius: f64,
     /// Duration of one revolution, s.
     pub duration: f64,
+    /// Largest bar-length change, mm.
+    pub max_deviation: f64,
+    /// Smallest (most negative) bar-length change, mm.
+    pub min_deviation: f64,
 }
 
 fn bad(field: &'static str, value: f64, why: &'static str) -> ConeFrustumError {
@@ -317,6 +323,7 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         }
         series.push(AxisSeries {
             axis: letter.to_string(),
+            kind,
             command: cmd[lead..].to_vec(),
             actual: act[lead..].to_vec(),
         });
@@ -359,6 +366,8 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         angle_deg.push(360.0 * j / n as f64);
         time.push(j * dt);
     }
+    let max_deviation = deviation.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let min_deviation = deviation.iter().copied().fold(f64::INFINITY, f64::min);
     Ok(ConeFrustumResult {
         angle_deg,
         time,
@@ -381,6 +390,8 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         bar_length,
         radius,
         duration,
+        max_deviation,
+        min_deviation,
     })
 }
 
