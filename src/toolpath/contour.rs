@@ -5,16 +5,19 @@
 //! helical arc the normal offset is taken at the point's angle, which is
 //! exact for planar arcs and a close approximation for helices).
 //!
-//! The search is local along the path: it keeps the arc-length position of
-//! the last nearest point and examines the path elements within
-//! `2·(last error + step) + 0.05 mm` of it (at least the neighbours), so a
-//! path that comes back near itself far along its length is not mistaken
-//! for the local path, and the cost per sample stays a few elements. If
-//! the window holds nothing as near as a known point of the path (the
-//! commanded point), the search has lost the tool and the whole path is
-//! searched for that sample. When two elements are equally near (a circle
-//! programmed twice) the one closer along the path to the last nearest
-//! point wins, so the search moves on.
+//! The contour error is the distance to the nearest point of the WHOLE
+//! path. The search starts locally: it keeps the arc-length position of the
+//! last nearest point and examines the elements within
+//! `2·(last error + step) + 0.05 mm` of it (at least the neighbours), which
+//! is almost always the answer and costs a few elements. The result is then
+//! checked against the whole path through a bounding-volume hierarchy
+//! ([`super::bvh`]): any element nearer by more than [`EXACT_SLACK`] wins
+//! and the tracker moves on from there. So a path that revisits itself (a
+//! return pass, a retract over the part, a reversal) is measured against
+//! its nearest part, as an exhaustive search would, and a local search that
+//! followed the wrong pass cannot inflate the error. When two elements are
+//! equally near (a circle programmed twice) the one closer along the path
+//! to the last nearest point wins, so the search moves on.
 //! Each element carries a bounding sphere; an element whose sphere is
 //! farther than the best distance so far (+ 2 nm) cannot win and is skipped
 //! without computing its nearest point — the result is the same as
@@ -23,6 +26,7 @@
 //!
 //! Units: mm.
 
+use super::bvh::Bvh;
 use crate::nc::program::{Motion, Segment};
 
 /// One element of the reference path.
@@ -84,6 +88,8 @@ pub struct Nearest {
 pub struct Path {
     /// Elements in path order (dwells and zero-length moves dropped).
     pub elements: Vec<Element>,
+    /// Hierarchy over the elements' bounding spheres, for the exact check.
+    bvh: Bvh,
 }
 
 fn d3(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -182,7 +188,11 @@ impl Path {
             });
             s += len;
         }
-        Self { elements }
+        let spheres: Vec<([f64; 3], f64)> = elements.iter().map(|e| e.bound).collect();
+        Self {
+            elements,
+            bvh: Bvh::new(&spheres),
+        }
     }
 
     /// Whether every point of element `i` is farther than `d` from `q`
@@ -288,7 +298,13 @@ impl Path {
     }
 }
 
-/// A local nearest-point search that follows the tool along the path.
+/// How much nearer than the local result another element must be for the
+/// exact check to take it, mm (1 nm: ties — a path programmed twice — stay
+/// with the element closer along the path).
+pub const EXACT_SLACK: f64 = 1e-6;
+
+/// A nearest-point search that follows the tool along the path and checks
+/// its result against the whole path.
 #[derive(Debug, Clone)]
 pub struct Tracker {
     cur: usize,
@@ -323,24 +339,36 @@ impl Tracker {
         self.nearest_within(path, q, f64::INFINITY)
     }
 
-    /// As [`Tracker::nearest`], given a distance `known` from `q` to some
-    /// point of the path (the simulator passes the distance to the
-    /// commanded point): when the local search finds nothing that near,
-    /// it has lost the tool — e.g. an arc over 180° followed by moves that
-    /// run back past it, where every element inside the window is farther
-    /// than the path the tool is on — and the whole path is searched
-    /// (elements pruned by their bounding spheres), so the contour error
-    /// never exceeds `known`.
+    /// As [`Tracker::nearest`]. The local search gives a candidate; the
+    /// whole path is then searched through the bounding-volume hierarchy
+    /// for anything nearer by more than [`EXACT_SLACK`], so the distance
+    /// equals an exhaustive nearest-point search to within that slack
+    /// wherever the path revisits itself (a return pass, a retract over
+    /// the part, a reversal), and the tracker moves on to the element it
+    /// finds. `known` (a distance from `q` to some point of the path, e.g.
+    /// the commanded point) is kept for callers; the exact check makes it
+    /// unnecessary.
     pub fn nearest_within(&mut self, path: &Path, q: [f64; 3], known: f64) -> Option<Nearest> {
+        let _ = known;
         let mut best = self.local(path, q)?;
-        if best.dist > known + 1e-9 {
-            for i in 0..path.elements.len() {
-                if !path.farther_than(i, q, best.dist + 2e-9) {
-                    let cand = path.nearest_on(i, q, self.s);
-                    if self.better(&cand, &best) {
-                        best = cand;
+        if best.dist > EXACT_SLACK {
+            let mut found: Option<Nearest> = None;
+            let bound = std::cell::Cell::new(best.dist - EXACT_SLACK);
+            path.bvh.visit_near(
+                q,
+                || bound.get(),
+                |i| {
+                    if !path.farther_than(i, q, bound.get()) {
+                        let cand = path.nearest_on(i, q, self.s);
+                        if cand.dist < bound.get() {
+                            bound.set(cand.dist);
+                            found = Some(cand);
+                        }
                     }
-                }
+                },
+            );
+            if let Some(f) = found {
+                best = f;
             }
         }
         self.cur = best.element;

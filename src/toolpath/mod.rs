@@ -24,6 +24,7 @@
 
 #![allow(clippy::needless_range_loop)] // per-axis loops index several arrays at once
 
+pub mod bvh;
 pub mod contour;
 pub mod example;
 pub mod filter;
