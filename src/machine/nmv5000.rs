@@ -64,5 +64,6 @@ pub fn machine() -> Machine {
         limits: BTreeMap::new(),
         kinematics: None,
         example_errors: None,
+        saturation_readings: crate::best_kffp::saturation::READINGS.iter().map(|s| s.to_string()).collect(),
     }
 }

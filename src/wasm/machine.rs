@@ -28,6 +28,8 @@ export interface MachinePreset {
   limits?: Record<string, [number, number]>;
   /** Illustrative ISO 230-7 location errors and backlash for the page (not measured). */
   exampleErrors?: GeometricErrors;
+  /** Readings `torqueSaturation` accepts (first = default). */
+  saturationReadings?: string[];
   [extra: string]: unknown;
 }
 "#;

@@ -46,7 +46,9 @@ export interface BestKffpResult {
   kffp: KffpSet; before: FeedVectorSummary; after: FeedVectorSummary; method: 'analytic' | 'simulated';
   alphaTh: number; residualX: number; residualY: number;
 }
-export interface SaturationQuery { j1: number[]; torqueMax: number; accelTime: number; /** mm/min */ feedAtCuttingPoint: number; dt?: number }
+export interface SaturationQuery { j1: number[]; torqueMax: number; accelTime: number; /** mm/min */ feedAtCuttingPoint: number; dt?: number;
+  /** How the paper's saturation point is read; names in `machinePreset('nmv5000').saturationReadings` (default 'preControlOff'). */
+  reading?: 'preControlOff' | 'presetKffp' | 'inertiaOnly' }
 export interface SaturationPoint { jTotal: number; accelSat: number; omegaSat: number; rcMin: number; torquePerOmega: number }
 "#;
 
