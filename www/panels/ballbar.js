@@ -61,7 +61,7 @@ export async function mount(root, api) {
   const out = h('div', { id: 'ballbar-results' });
 
   // ---- paper examples -----------------------------------------------------
-  const exName = selectField({ label: 'Paper figure', id: 'ballbar-example', value: 'fig7', options: [['fig6', 'Fig. 6: single harmonics, 180°'], ['fig7', 'Fig. 7: travel range 90…360°'], ['fig8', 'Fig. 8: four offset positions'], ['fig12', 'Fig. 12: angle error 10 µm/350 mm']] });
+  const exName = selectField({ label: 'Paper figure', id: 'ballbar-example', value: 'fig7', options: [['fig6', 'Fig. 6: single harmonics, 180°'], ['fig7', 'Fig. 7: travel range 90…360°'], ['fig8', 'Fig. 8: four offset positions'], ['fig12', 'Fig. 12: angle error 10 µm/350 mm'], ['fig7-phased', 'Fig. 7 with phases 26°/25°/200° (reproduces X and Z)']] });
   const exReading = selectField({ label: 'Reading', id: 'ballbar-example-reading', value: '100', options: [['100', 'Ball bar, 100 mm (default)'], ['0', 'DBB5 centre ball (radius 0)']] });
   const exOut = h('div', { id: 'ballbar-example-results' });
   const exRun = h('button', { id: 'ballbar-example-run', onclick: () => example() }, 'Run example');
