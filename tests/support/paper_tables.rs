@@ -281,6 +281,43 @@ fn qiu(r: &mut Rows) {
         "s",
         3,
     );
+    // G4 with an exact stop (tA + 5·max T before each dwell), one round
+    let stop_cfg = ReverseConfig {
+        dwell: Some(0.1),
+        iterations: 1,
+        sim: mtmotion::toolpath::SimConfig {
+            dwell_exact_stop: true,
+            ..Default::default()
+        },
+    };
+    let stop = reverse_compensate(&src, &stop_cfg).unwrap();
+    r.push(
+        "qiu.arc.oneRoundExactStop.motionTime".into(),
+        QIU,
+        "motion time, compensated, one round, G4 with exact stop (dwellExactStop)".into(),
+        "11.445",
+        stop.after.motion_time,
+        "s",
+        3,
+    );
+    r.push(
+        "qiu.arc.oneRoundExactStop.addedTime".into(),
+        QIU,
+        "motion time added by the compensation, G4 with exact stop".into(),
+        "0.427",
+        stop.after.motion_time - stop.before.motion_time,
+        "s",
+        3,
+    );
+    r.push(
+        "qiu.arc.oneRoundExactStop.maxError".into(),
+        QIU,
+        "max error, compensated, one round, G4 with exact stop".into(),
+        "18.2",
+        stop.after.max_error_um,
+        "µm",
+        1,
+    );
     let line =
         reverse_compensate(&toolpath_example::line_example(), &ReverseConfig::default()).unwrap();
     r.push(
