@@ -173,6 +173,80 @@ fn suzuki(r: &mut Rows) {
             0,
         );
     }
+    // Fig. 16: time at which each side first reaches 99 % of ω = 3.2π
+    // (J + J1 = 5.9, saturating), acc/dec applied twice (ramp accelTime,
+    // then each axis's Ts: the default) or once (accelTime = 0: the
+    // command steps to ω and only Ts ramps it).
+    for (acc, name) in [(0.064, "twice"), (0.0, "once")] {
+        let w = 3.2 * PI;
+        let cond = Condition {
+            accel_time: acc,
+            ..Condition::paper(w)
+        };
+        let res = feed_vector_test(&m, &cond).unwrap();
+        let reach = |v: &[f64]| {
+            res.series.t[v.iter().position(|x| *x >= 0.99 * w).unwrap_or(v.len() - 1)] * 1e3
+        };
+        r.push(
+            format!("suzuki.fig16.{name}.linear"),
+            SUZUKI,
+            format!("Fig. 16: linear axes reach 99 % of ω = 3.2π, acc/dec {name}"),
+            "236",
+            reach(&res.series.omega_l),
+            "ms",
+            0,
+        );
+        r.push(
+            format!("suzuki.fig16.{name}.rotary"),
+            SUZUKI,
+            format!("Fig. 16: rotary axis reaches 99 % of ω = 3.2π, acc/dec {name}"),
+            "263",
+            reach(&res.series.omega_c),
+            "ms",
+            0,
+        );
+        r.push(
+            format!("suzuki.fig16.{name}.lag"),
+            SUZUKI,
+            format!("Fig. 16: rotary minus linear reach time, acc/dec {name}"),
+            "27",
+            reach(&res.series.omega_c) - reach(&res.series.omega_l),
+            "ms",
+            0,
+        );
+        r.push(
+            format!("suzuki.fig16.{name}.meanAngleDiff"),
+            SUZUKI,
+            format!("mean α − β at ω = 3.2π, acc/dec {name}"),
+            "—",
+            res.summary.mean_angle_diff * 1e3,
+            "mrad",
+            1,
+        );
+    }
+    // acc/dec once: the saturation speed with the command stepping to ω
+    // (only Ts ramps it), C K_FFP = 0 as in the default reading
+    let once = torque_saturation(
+        &m,
+        &SaturationQuery {
+            j1: vec![1.7],
+            torque_max: 725.0,
+            accel_time: 0.0,
+            feed_at_cutting_point: 200.0,
+            dt: None,
+            reading: SaturationReading::PreControlOff,
+        },
+    )
+    .unwrap()[0];
+    r.push(
+        "suzuki.saturation.accDecOnce.5.9.omegaSat".into(),
+        SUZUKI,
+        "ω_sat, J + J1 = 5.9, acc/dec once (accelTime 0, Ts only), K_FFP 0".into(),
+        "9.39",
+        once.omega_sat,
+        "rad/s",
+        2,
+    );
     for k in [0.5, 1.0, 1.5, 2.0] {
         let b = best_kffp(&m, &Condition::paper(k * PI), &Options::default()).unwrap();
         r.push(
