@@ -18,8 +18,6 @@ fn committed() -> Vec<Row> {
 
 #[test]
 fn committed_paper_tables_match_a_fresh_computation() {
-    let heavy =
-        !cfg!(debug_assertions) || std::env::var("MTMOTION_PAPER_TABLES").as_deref() == Ok("all");
     let old = committed();
     let new = compute();
     let diff = differences(&old, &new);

@@ -148,7 +148,7 @@ pub fn torque_saturation(
         let mut axes = feed_vector::axes_for(machine, &cond)?;
         axes[2].torque_max = None;
         if q.reading == SaturationReading::InertiaOnly {
-            if !(q.accel_time > 0.0) {
+            if q.accel_time.is_nan() || q.accel_time <= 0.0 {
                 return Err(BestKffpError::BadQuery {
                     field: "accelTime",
                     value: q.accel_time,
