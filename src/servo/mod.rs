@@ -14,6 +14,7 @@
 
 pub mod axis;
 pub mod discrete;
+pub mod identify;
 pub mod pitch_identify;
 pub mod precontrol;
 pub mod response;

@@ -55,6 +55,9 @@ export interface PitchIdentifyOptions { samples?: number; maxOrder?: number; /**
 /** a·sin(N θ + ψ): amplitude in rad at the table (the additive reading of Eq. 1). */
 export interface PitchPeak { order: number; amplitude: number; phase: number }
 export interface PitchIdentification { revolutions: number; spectrum: number[]; peaks: PitchPeak[] }
+/** suzuki Table 1 identification: a measured response to a known command (one sample per dt). */
+export interface MeasuredTrace { /** s */ dt: number; command: number[]; position: number[]; /** N·m; needed to identify J */ torque?: number[] }
+export interface IdentifiedAxis { axis: AxisParams; jIdentified: boolean; rmsPosition: number; rmsTorque: number; iterations: number }
 "#;
 
 /// A machine given as a preset name or as a full machine object.
@@ -208,4 +211,16 @@ pub fn identify_pitch_error(
     to_js(&crate::servo::pitch_identify::identify_pitch_error(
         angle, error, &o,
     )?)
+}
+
+/// suzuki Table 1: J, C, Kvp and Kpp of `initial` fitted to a measured
+/// trace by least squares against the simulation.
+#[wasm_bindgen(js_name = identifyAxis, unchecked_return_type = "IdentifiedAxis")]
+pub fn identify_axis(
+    #[wasm_bindgen(unchecked_param_type = "AxisParams")] initial: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "MeasuredTrace")] trace: JsValue,
+) -> Result<JsValue, JsError> {
+    let a: AxisParams = from_js(initial, "initial")?;
+    let t: crate::servo::identify::MeasuredTrace = from_js(trace, "trace")?;
+    to_js(&crate::servo::identify::identify_axis(&a, &t)?)
 }
