@@ -73,6 +73,7 @@ mod native {
             tool_length: 0.0,
             monte_carlo: Some(Default::default()),
             cutting: None,
+            compensate_axes: None,
         };
         g.bench_function("compensate_nc5_s_shape_64", |b| {
             b.iter(|| compensate_nc5(black_box(&program), &nc_cfg).unwrap())

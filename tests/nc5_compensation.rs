@@ -34,6 +34,7 @@ fn compensation_cuts_std_by_at_least_80_percent() {
             repeatability_mm: 0.001,
         }),
         cutting: Some(Cutting::default()),
+        compensate_axes: None,
     };
     let r = compensate_nc5(&program(), &cfg).unwrap();
     assert_eq!(r.lines.len(), 64);
@@ -68,6 +69,7 @@ fn zero_errors_leave_the_motion_unchanged() {
         tool_length: 0.0,
         monte_carlo: None,
         cutting: None,
+        compensate_axes: None,
     };
     let nc = program();
     let r = compensate_nc5(&nc, &cfg).unwrap();
@@ -89,6 +91,7 @@ fn errors_name_the_line() {
         tool_length: 0.0,
         monte_carlo: None,
         cutting: None,
+        compensate_axes: None,
     };
     let e = compensate_nc5("G90\nG1 X1 F100\nG2 X2 Y1 R1\n", &cfg)
         .unwrap_err()
@@ -98,4 +101,52 @@ fn errors_name_the_line() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("line 2"), "{e}");
+}
+
+/// thasana §II-D corrects only X, Y, A and B. On the Pocket NC (X Y Z A B)
+/// that leaves Z as programmed: the written program's Z words equal the
+/// original's, the reduction of the X, Y, A, B std stays large, and Z's
+/// error is not corrected (its std does not fall as far as with all axes).
+#[test]
+fn compensating_only_x_y_a_b_leaves_z_as_programmed() {
+    let base = Nc5Config {
+        machine: MachineRef::Name("pocketnc-v2-10".into()),
+        errors: GeometricErrors::default(),
+        tool_length: 0.0,
+        monte_carlo: Some(MonteCarlo {
+            seed: 42,
+            sigma_mm: 0.02,
+            sigma_rad: 1e-3,
+            repeatability_mm: 0.0,
+        }),
+        cutting: Some(Cutting::default()),
+        compensate_axes: None,
+    };
+    let only = Nc5Config {
+        compensate_axes: Some(vec!["x".into(), "y".into(), "a".into(), "b".into()]),
+        ..base.clone()
+    };
+    let nc = program();
+    let all = compensate_nc5(&nc, &base).unwrap();
+    let part = compensate_nc5(&nc, &only).unwrap();
+    let a = mtmotion::nc::program::parse(&nc).unwrap();
+    let b = mtmotion::nc::program::parse(&part.nc).unwrap();
+    for (s, t) in a.segments.iter().zip(&b.segments) {
+        assert!((s.end.get(2) - t.end.get(2)).abs() < 1e-9, "Z moved");
+    }
+    println!(
+        "all {:?}\nxyab {:?}",
+        all.reduction_percent, part.reduction_percent
+    );
+    assert!(part.after.std_mm[2] > all.after.std_mm[2]);
+    let e = compensate_nc5(
+        &nc,
+        &Nc5Config {
+            compensate_axes: Some(vec!["x".into(), "c".into()]),
+            ..base
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("compensateAxes[1]") && e.contains("'c'"), "{e}");
 }

@@ -68,6 +68,16 @@ pub enum Nc5Error {
         /// Why.
         why: String,
     },
+    /// An axis in `compensateAxes` the machine does not have.
+    #[error("compensateNc5: `compensateAxes[{index}]` = '{axis}': expected one of the machine's axes {known}")]
+    BadAxis {
+        /// Position in the list.
+        index: usize,
+        /// The letter given.
+        axis: String,
+        /// The machine's axes.
+        known: String,
+    },
     /// A configuration value is out of range.
     #[error("compensateNc5: `{field}` = {value}: {why}")]
     BadConfig {
@@ -98,6 +108,12 @@ pub struct Nc5Config {
     /// Include the cutting-force deflection `E_ST`.
     #[serde(default)]
     pub cutting: Option<Cutting>,
+    /// The axes the compensation may move (lower-case letters); default
+    /// all of the machine's axes. thasana §II-D corrects only X, Y, A and
+    /// B: `["x", "y", "a", "b"]` (Z and C are then left as programmed and
+    /// the pose is met in the least-squares sense).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub compensate_axes: Option<Vec<String>>,
 }
 
 /// Mean and standard deviation of the errors at the evaluation points.
@@ -247,7 +263,7 @@ fn points_of(segments: &[Segment]) -> Result<Vec<EvalPoint>, Nc5Error> {
 /// errors.location.insert("EY0A".into(), 0.03);
 /// errors.location.insert("EB0C".into(), 2e-4);
 /// let cfg = Nc5Config { machine: MachineRef::Name("trunnion-ac".into()), errors,
-///     tool_length: 50.0, monte_carlo: None, cutting: None };
+///     tool_length: 50.0, monte_carlo: None, cutting: None, compensate_axes: None };
 /// let nc = "G90 G21\nG0 X10 Y0 Z5 A10 C0\nG1 X20 Y5 Z5 A20 C30 F500\nG1 X30 Y-5 Z0 A30 C90\n";
 /// let r = compensate_nc5(nc, &cfg).unwrap();
 /// assert_eq!(r.lines, vec![2, 3, 4]);
@@ -312,9 +328,25 @@ pub fn compensate_nc5(text: &str, cfg: &Nc5Config) -> Result<Nc5Result, Nc5Error
         deflection,
         noise,
     };
-    let axes: Vec<usize> = (0..6)
+    let mut axes: Vec<usize> = (0..6)
         .filter(|i| chain.axes().contains(&AXES[*i]))
         .collect();
+    if let Some(only) = &cfg.compensate_axes {
+        let mut chosen = Vec::with_capacity(only.len());
+        for (index, a) in only.iter().enumerate() {
+            match axes.iter().find(|&&i| AXES[i] == a.as_str()) {
+                Some(&i) => chosen.push(i),
+                None => {
+                    return Err(Nc5Error::BadAxis {
+                        index,
+                        axis: a.clone(),
+                        known: axes.iter().map(|&i| AXES[i]).collect::<Vec<_>>().join(", "),
+                    })
+                }
+            }
+        }
+        axes = chosen;
+    }
     let mut before = PointErrors::default();
     let mut corrected = Vec::with_capacity(pts.len());
     for (i, (line, q, dir)) in pts.iter().enumerate() {
@@ -325,7 +357,12 @@ pub fn compensate_nc5(text: &str, cfg: &Nc5Config) -> Result<Nc5Result, Nc5Error
             position: (pn - eval.defl(&kn, dir)).into(),
             orientation: kn.into(),
         };
-        let qc = newton::solve(&eval.model, &target, q, &axes, &format!("line {line}"))?;
+        let context = format!("line {line}");
+        let qc = if cfg.compensate_axes.is_some() {
+            newton::solve_least_squares(&eval.model, &target, q, &axes, &context)?
+        } else {
+            newton::solve(&eval.model, &target, q, &axes, &context)?
+        };
         corrected.push(qc);
     }
     // Write the corrected program.
