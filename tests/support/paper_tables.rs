@@ -84,6 +84,53 @@ const SUZUKI: &str = "suzuki-best-kffp";
 const QIU: &str = "qiu-toolpath-error-reverse-compensation";
 const TAKAYAMA: &str = "takayama-alignment-travel-range";
 const THASANA: &str = "thasana-htm-nc-compensation";
+const KATO: &str = "kato-cone-frustum-ballbar";
+
+fn kato(r: &mut Rows) {
+    use mtmotion::cone_frustum::{cone_frustum_test, ConeFrustumConfig, Method};
+    for (machine, tilt) in [("trunnion-ac", "a"), ("table-on-table-bc", "b")] {
+        for (theta, beta) in [(15.0, 10.0), (45.0, 30.0)] {
+            for (method, name) in [
+                (Method::Perpendicular, "perpendicular"),
+                (Method::Parallel, "parallel"),
+            ] {
+                let cfg = ConeFrustumConfig {
+                    machine: MachineRef::Name(machine.into()),
+                    half_apex_deg: theta,
+                    inclination_deg: beta,
+                    method,
+                    bar_length: 100.0,
+                    feed: 1000.0,
+                    radius: None,
+                    centre: None,
+                    errors: GeometricErrors::default(),
+                    ideal_servo: true,
+                    tool_length: 0.0,
+                    points: 360,
+                    clockwise: false,
+                    lead_in_deg: 0.0,
+                };
+                let res = cone_frustum_test(&cfg).unwrap();
+                let s = res
+                    .axis_sensitivity
+                    .iter()
+                    .find(|s| s.name == tilt)
+                    .unwrap();
+                let rms =
+                    (s.values.iter().map(|v| v * v).sum::<f64>() / s.values.len() as f64).sqrt();
+                r.push(
+                    format!("kato.sensitivity.{machine}.{theta}.{name}"),
+                    KATO,
+                    format!("RMS sensitivity of the bar to {tilt}, {machine}, θ = {theta}°, β = {beta}°, {name} bar"),
+                    "strongly direction-dependent at 45°",
+                    rms,
+                    "mm/rad",
+                    2,
+                );
+            }
+        }
+    }
+}
 
 fn suzuki(r: &mut Rows) {
     let m = machine::preset("nmv5000").unwrap();
@@ -636,6 +683,7 @@ pub fn compute() -> Vec<Row> {
     qiu(&mut r);
     takayama(&mut r);
     thasana(&mut r);
+    kato(&mut r);
     r.rows
 }
 
