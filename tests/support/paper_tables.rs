@@ -294,6 +294,26 @@ fn suzuki(r: &mut Rows) {
         "rad/s",
         2,
     );
+    // Eq. 12: |G_L(jω)| of X and Y as Table 1 is printed (X's velocity
+    // loop Kvp/J ≈ 39 rad/s < Kpp = 60: underdamped, |G_X| > 1 at 2π)
+    for name in ["x", "y"] {
+        let ws: Vec<f64> = [0.5, 1.0, 2.0, 3.2].iter().map(|k| k * PI).collect();
+        let fr = mtmotion::servo::response::frequency_response(&m.axes[name], &ws).unwrap();
+        for (k, g) in [0.5, 1.0, 2.0, 3.2].iter().zip(&fr.magnitude) {
+            r.push(
+                format!("suzuki.gain.{name}.{k}pi"),
+                SUZUKI,
+                format!(
+                    "|G_{}(jω)| at ω = {k}π (Eq. 12; < 1 means the radius shrinks)",
+                    name.to_uppercase()
+                ),
+                "< 1 (ΔR > 0, Figs. 12, 14)",
+                *g,
+                "",
+                4,
+            );
+        }
+    }
     for k in [0.5, 1.0, 1.5, 2.0] {
         let b = best_kffp(&m, &Condition::paper(k * PI), &Options::default()).unwrap();
         r.push(
@@ -744,8 +764,8 @@ pub fn markdown(rows: &[Row]) -> String {
             s.push_str(&format!(
                 "| `{}` | {} | {} | {} | {} |\n",
                 r.id,
-                r.quantity,
-                r.paper_value,
+                r.quantity.replace('|', "\\|"),
+                r.paper_value.replace('|', "\\|"),
                 fmt(r.ours, r.digits),
                 r.unit
             ));
