@@ -15,6 +15,7 @@
 pub mod axis;
 pub mod discrete;
 pub mod identify;
+pub mod pid;
 pub mod pitch_identify;
 pub mod precontrol;
 pub mod response;
