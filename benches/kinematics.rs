@@ -74,6 +74,7 @@ mod native {
             monte_carlo: Some(Default::default()),
             cutting: None,
             compensate_axes: None,
+            feed_drive: None,
         };
         g.bench_function("compensate_nc5_s_shape_64", |b| {
             b.iter(|| compensate_nc5(black_box(&program), &nc_cfg).unwrap())

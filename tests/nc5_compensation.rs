@@ -35,6 +35,7 @@ fn compensation_cuts_std_by_at_least_80_percent() {
         }),
         cutting: Some(Cutting::default()),
         compensate_axes: None,
+        feed_drive: None,
     };
     let r = compensate_nc5(&program(), &cfg).unwrap();
     assert_eq!(r.lines.len(), 64);
@@ -70,6 +71,7 @@ fn zero_errors_leave_the_motion_unchanged() {
         monte_carlo: None,
         cutting: None,
         compensate_axes: None,
+        feed_drive: None,
     };
     let nc = program();
     let r = compensate_nc5(&nc, &cfg).unwrap();
@@ -92,6 +94,7 @@ fn errors_name_the_line() {
         monte_carlo: None,
         cutting: None,
         compensate_axes: None,
+        feed_drive: None,
     };
     let e = compensate_nc5("G90\nG1 X1 F100\nG2 X2 Y1 R1\n", &cfg)
         .unwrap_err()
@@ -121,6 +124,7 @@ fn compensating_only_x_y_a_b_leaves_z_as_programmed() {
         }),
         cutting: Some(Cutting::default()),
         compensate_axes: None,
+        feed_drive: None,
     };
     let only = Nc5Config {
         compensate_axes: Some(vec!["x".into(), "y".into(), "a".into(), "b".into()]),
@@ -149,4 +153,67 @@ fn compensating_only_x_y_a_b_leaves_z_as_programmed() {
     .unwrap_err()
     .to_string();
     assert!(e.contains("compensateAxes[1]") && e.contains("'c'"), "{e}");
+}
+
+/// thasana Eq. 9 / Fig. 8: with PID feed drives on every axis the errors
+/// are read where the drives are. Oracle for the plumbing: a drive so stiff
+/// that it follows to < 1 nm gives the same statistics as no drive; the
+/// paper's gains on the unit plant (the reading of `servo::pid`) lag the
+/// S-shape program and add error the geometric compensation does not remove.
+#[test]
+fn pid_feed_drives_in_the_s_shape_simulation() {
+    use mtmotion::servo::pid::PidDrive;
+    let base = Nc5Config {
+        machine: MachineRef::Name("pocketnc-v2-10".into()),
+        errors: GeometricErrors::default(),
+        tool_length: 0.0,
+        monte_carlo: Some(MonteCarlo {
+            seed: 42,
+            sigma_mm: 0.02,
+            sigma_rad: 1e-3,
+            repeatability_mm: 0.0,
+        }),
+        cutting: None,
+        compensate_axes: None,
+        feed_drive: None,
+    };
+    let nc = program();
+    let none = compensate_nc5(&nc, &base).unwrap();
+    let stiff = PidDrive {
+        p: 400.0,
+        i: 0.0,
+        d: 0.0,
+        n: 100.0,
+        k: 1e4,
+        a: 200.0,
+    };
+    let with_stiff = compensate_nc5(
+        &nc,
+        &Nc5Config {
+            feed_drive: Some(stiff),
+            ..base.clone()
+        },
+    )
+    .unwrap();
+    for i in 0..3 {
+        assert!(
+            (with_stiff.before.std_mm[i] - none.before.std_mm[i]).abs() < 2e-4,
+            "{:?} vs {:?}",
+            with_stiff.before,
+            none.before
+        );
+    }
+    let paper = compensate_nc5(
+        &nc,
+        &Nc5Config {
+            feed_drive: Some(PidDrive::paper()),
+            ..base
+        },
+    )
+    .unwrap();
+    println!(
+        "no drive: {:?} → {:?}\npaper PID: {:?} → {:?}, total {} %",
+        none.before, none.after, paper.before, paper.after, paper.total_reduction_percent
+    );
+    assert!(paper.after.std_mm[0] > 10.0 * none.after.std_mm[0]);
 }

@@ -558,15 +558,65 @@ fn thasana(r: &mut Rows) {
             }),
             cutting: Some(Cutting::default()),
             compensate_axes: None,
+            feed_drive: None,
         };
         let res = compensate_nc5(&nc, &cfg).unwrap();
         let um = rep * 1e3;
         if rep == 0.001 {
+            // Eq. 9 PID feed drives (P 2, I 2, D 0.5, N 100) on two plants
+            for (name, k, a) in [("unitPlant", 1.0, 1.0), ("stiffPlant", 1000.0, 10.0)] {
+                let drive = mtmotion::servo::pid::PidDrive {
+                    k,
+                    a,
+                    ..mtmotion::servo::pid::PidDrive::paper()
+                };
+                let pid = compensate_nc5(
+                    &nc,
+                    &Nc5Config {
+                        feed_drive: Some(drive),
+                        ..cfg.clone()
+                    },
+                )
+                .unwrap();
+                for (a_, before, after) in [
+                    ("x", pid.before.std_mm[0], pid.after.std_mm[0]),
+                    ("y", pid.before.std_mm[1], pid.after.std_mm[1]),
+                ] {
+                    r.push(
+                        format!("thasana.pid.{name}.std.{a_}.before"),
+                        THASANA,
+                        format!("std of {a_} errors before compensation, PID drives, plant k = {k}, a = {a}"),
+                        "—",
+                        before,
+                        "mm",
+                        4,
+                    );
+                    r.push(
+                        format!("thasana.pid.{name}.std.{a_}.after"),
+                        THASANA,
+                        format!("std of {a_} errors after compensation, PID drives, plant k = {k}, a = {a}"),
+                        "—",
+                        after,
+                        "mm",
+                        4,
+                    );
+                }
+                r.push(
+                    format!("thasana.pid.{name}.total"),
+                    THASANA,
+                    format!("total std reduction with PID drives, plant k = {k}, a = {a}"),
+                    "80.73",
+                    pid.total_reduction_percent,
+                    "%",
+                    1,
+                );
+            }
             // the paper corrects only X, Y, A and B
             let xyab = compensate_nc5(
                 &nc,
                 &Nc5Config {
                     compensate_axes: Some(vec!["x".into(), "y".into(), "a".into(), "b".into()]),
+                    feed_drive: None,
                     ..cfg.clone()
                 },
             )
