@@ -44,6 +44,9 @@ fn axis(kind: AxisKind, j: f64, c: f64, kvp: f64, kvi: f64, ts: f64, tp: f64) ->
         gear_ratio: None,
         backlash: 0.0,
         pitch_error: Vec::new(),
+        pitch_reading: Default::default(),
+        friction: 0.0,
+        gravity: 0.0,
     }
 }
 

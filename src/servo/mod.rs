@@ -22,7 +22,7 @@ pub mod response;
 pub mod simulate;
 pub mod transmission;
 
-pub use axis::{AxisKind, AxisParams, WormHarmonic};
+pub use axis::{AxisKind, AxisParams, PitchReading, WormHarmonic};
 
 /// Errors of the servo models.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
