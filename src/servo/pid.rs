@@ -9,7 +9,7 @@
 //! P = 2, I = 2, D = 0.5, N = 100 ([`PidDrive::paper`]).
 //!
 //! # Reading: the plant
-//! The paper takes its motor parameters from its reference [37] and does not
+//! The paper takes its motor parameters from its reference \[37\] and does not
 //! print them, so `k` and `a` are inputs. [`PidDrive::paper`] uses the unit
 //! plant `k = 1 s⁻²`, `a = 1 s⁻¹`; every figure obtained with it (its
 //! effect on the S-shape, `docs/readings.md`) holds for that reading only.

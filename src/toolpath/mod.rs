@@ -78,7 +78,7 @@ pub struct SimConfig {
     /// A G4 dwell starts with an exact stop: the tool waits `tA + 5·max T`
     /// (the command's acc/dec, then the lag decayed to e⁻⁵ ≈ 0.7 %, an
     /// in-position check) before the dwell's own time. Default off: the
-    /// dwell adds only its own time (see [`simulate`]).
+    /// dwell adds only its own time (see [`mod@simulate`]).
     #[serde(rename = "dwellExactStop")]
     pub dwell_exact_stop: bool,
 }
