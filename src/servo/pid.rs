@@ -140,12 +140,12 @@ impl PidDrive {
 /// # Examples
 /// ```
 /// use mtmotion::servo::pid::{simulate_pid, PidDrive};
-/// // a step of 1 mm settles on 1 mm (integral action)
-/// let cmd = vec![1.0; 40_000];
-/// let mut c = cmd.clone();
+/// // a step of 1 mm settles on 1 mm (slowest poles −0.146 ± 1.28j:
+/// // e^{−0.146·200} ≈ 2e-13 after 200 s)
+/// let mut c = vec![1.0; 200_000];
 /// c[0] = 0.0;
 /// let x = simulate_pid(&PidDrive::paper(), 1e-3, &c).unwrap();
-/// assert!((x[39_999] - 1.0).abs() < 1e-6);
+/// assert!((x[199_999] - 1.0).abs() < 1e-9);
 /// ```
 pub fn simulate_pid(drive: &PidDrive, dt: f64, command: &[f64]) -> Result<Vec<f64>, ServoError> {
     drive.validate()?;
