@@ -74,6 +74,8 @@ mod native {
             tool_length: 0.0,
             monte_carlo: Some(Default::default()),
             cutting: None,
+            compensate_axes: None,
+            feed_drive: None,
         };
         g.bench_function("compensate_nc5_s_shape_64", |b| {
             b.iter(|| compensate_nc5(black_box(&program), &nc_cfg).unwrap())

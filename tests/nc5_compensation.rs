@@ -35,6 +35,8 @@ fn compensation_cuts_std_by_at_least_80_percent() {
             repeatability_mm: 0.001,
         }),
         cutting: Some(Cutting::default()),
+        compensate_axes: None,
+        feed_drive: None,
     };
     let r = compensate_nc5(&program(), &cfg).unwrap();
     assert_eq!(r.lines.len(), 64);
@@ -69,6 +71,8 @@ fn zero_errors_leave_the_motion_unchanged() {
         tool_length: 0.0,
         monte_carlo: None,
         cutting: None,
+        compensate_axes: None,
+        feed_drive: None,
     };
     let nc = program();
     let r = compensate_nc5(&nc, &cfg).unwrap();
@@ -90,6 +94,8 @@ fn errors_name_the_line() {
         tool_length: 0.0,
         monte_carlo: None,
         cutting: None,
+        compensate_axes: None,
+        feed_drive: None,
     };
     let e = compensate_nc5("G90\nG1 X1 F100\nG2 X2 Y1 R1\n", &cfg)
         .unwrap_err()
@@ -99,4 +105,116 @@ fn errors_name_the_line() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("line 2"), "{e}");
+}
+
+/// thasana §II-D corrects only X, Y, A and B. On the Pocket NC (X Y Z A B)
+/// that leaves Z as programmed: the written program's Z words equal the
+/// original's, the reduction of the X, Y, A, B std stays large, and Z's
+/// error is not corrected (its std does not fall as far as with all axes).
+#[test]
+fn compensating_only_x_y_a_b_leaves_z_as_programmed() {
+    let base = Nc5Config {
+        machine: MachineRef::Name("pocketnc-v2-10".into()),
+        errors: GeometricErrors::default(),
+        tool_length: 0.0,
+        monte_carlo: Some(MonteCarlo {
+            seed: 42,
+            sigma_mm: 0.02,
+            sigma_rad: 1e-3,
+            repeatability_mm: 0.0,
+        }),
+        cutting: Some(Cutting::default()),
+        compensate_axes: None,
+        feed_drive: None,
+    };
+    let only = Nc5Config {
+        compensate_axes: Some(vec!["x".into(), "y".into(), "a".into(), "b".into()]),
+        ..base.clone()
+    };
+    let nc = program();
+    let all = compensate_nc5(&nc, &base).unwrap();
+    let part = compensate_nc5(&nc, &only).unwrap();
+    let a = mtmotion::nc::program::parse(&nc).unwrap();
+    let b = mtmotion::nc::program::parse(&part.nc).unwrap();
+    for (s, t) in a.segments.iter().zip(&b.segments) {
+        assert!((s.end.get(2) - t.end.get(2)).abs() < 1e-9, "Z moved");
+    }
+    println!(
+        "all {:?}\nxyab {:?}",
+        all.reduction_percent, part.reduction_percent
+    );
+    assert!(part.after.std_mm[2] > all.after.std_mm[2]);
+    let e = compensate_nc5(
+        &nc,
+        &Nc5Config {
+            compensate_axes: Some(vec!["x".into(), "c".into()]),
+            ..base
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("compensateAxes[1]") && e.contains("'c'"), "{e}");
+}
+
+/// thasana Eq. 9 / Fig. 8: with PID feed drives on every axis the errors
+/// are read where the drives are. Oracle for the plumbing: a drive so stiff
+/// that it follows to < 1 nm gives the same statistics as no drive; the
+/// paper's gains on the unit plant (the reading of `servo::pid`) lag the
+/// S-shape program and add error the geometric compensation does not remove.
+#[test]
+fn pid_feed_drives_in_the_s_shape_simulation() {
+    use mtmotion::servo::pid::PidDrive;
+    let base = Nc5Config {
+        machine: MachineRef::Name("pocketnc-v2-10".into()),
+        errors: GeometricErrors::default(),
+        tool_length: 0.0,
+        monte_carlo: Some(MonteCarlo {
+            seed: 42,
+            sigma_mm: 0.02,
+            sigma_rad: 1e-3,
+            repeatability_mm: 0.0,
+        }),
+        cutting: None,
+        compensate_axes: None,
+        feed_drive: None,
+    };
+    let nc = program();
+    let none = compensate_nc5(&nc, &base).unwrap();
+    let stiff = PidDrive {
+        p: 400.0,
+        i: 0.0,
+        d: 0.0,
+        n: 100.0,
+        k: 1e4,
+        a: 200.0,
+    };
+    let with_stiff = compensate_nc5(
+        &nc,
+        &Nc5Config {
+            feed_drive: Some(stiff),
+            ..base.clone()
+        },
+    )
+    .unwrap();
+    for i in 0..3 {
+        assert!(
+            (with_stiff.before.std_mm[i] - none.before.std_mm[i]).abs() < 2e-4,
+            "{:?} vs {:?}",
+            with_stiff.before,
+            none.before
+        );
+    }
+    let paper = compensate_nc5(
+        &nc,
+        &Nc5Config {
+            feed_drive: Some(PidDrive::paper()),
+            ..base
+        },
+    )
+    .unwrap();
+    println!(
+        "no drive: {:?} → {:?}\npaper PID: {:?} → {:?}, total {} %",
+        none.before, none.after, paper.before, paper.after, paper.total_reduction_percent
+    );
+    assert!(paper.after.std_mm[0] > 10.0 * none.after.std_mm[0]);
 }

@@ -37,6 +37,9 @@ fn axis() -> impl Strategy<Value = AxisParams> {
             gear_ratio: None,
             backlash: 0.0,
             pitch_error: Vec::new(),
+            pitch_reading: Default::default(),
+            friction: 0.0,
+            gravity: 0.0,
         })
 }
 

@@ -163,6 +163,9 @@ fn placeholder_axis(kind: AxisKind) -> AxisParams {
         gear_ratio: None,
         backlash: 0.0,
         pitch_error: Vec::new(),
+        pitch_reading: Default::default(),
+        friction: 0.0,
+        gravity: 0.0,
     }
 }
 

@@ -84,6 +84,11 @@ pub struct Machine {
     /// [`example_errors`]); not measured values of this machine.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub example_errors: Option<GeometricErrors>,
+    /// Names of the readings `torqueSaturation` accepts for this machine
+    /// (first = default; see [`crate::best_kffp::saturation`]); empty when
+    /// the machine has no torque-limited rotary axis of the feed-vector test.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub saturation_readings: Vec<String>,
 }
 
 type Builder = fn() -> Machine;

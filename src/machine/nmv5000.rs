@@ -44,6 +44,9 @@ fn axis(kind: AxisKind, j: f64, c: f64, kvp: f64, kvi: f64, ts: f64, tp: f64) ->
         gear_ratio: None,
         backlash: 0.0,
         pitch_error: Vec::new(),
+        pitch_reading: Default::default(),
+        friction: 0.0,
+        gravity: 0.0,
     }
 }
 
@@ -64,5 +67,6 @@ pub fn machine() -> Machine {
         limits: BTreeMap::new(),
         kinematics: None,
         example_errors: None,
+        saturation_readings: crate::best_kffp::saturation::READINGS.iter().map(|s| s.to_string()).collect(),
     }
 }

@@ -50,5 +50,6 @@ pub fn machine() -> Machine {
         ]),
         kinematics: Some(chain()),
         example_errors: Some(super::example_errors::table_on_table_bc()),
+        saturation_readings: Vec::new(),
     }
 }

@@ -73,6 +73,41 @@ pub struct AxisParams {
     /// Worm-gear pitch-error harmonics (kato Eq. 1).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pitch_error: Vec<WormHarmonic>,
+    /// How `pitch_error[i].w` is read (kato Eq. 1; see
+    /// [`super::transmission`]); default `gearRatio`.
+    #[serde(default, skip_serializing_if = "PitchReading::is_default")]
+    pub pitch_reading: PitchReading,
+    /// Coulomb friction torque F at the motor, N·m (kato Fig. 2, linear
+    /// axes): `F·sign(ω)` opposes the motor speed at the start of each step.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub friction: f64,
+    /// Constant load torque G at the motor, N·m (kato Fig. 2: gravity on
+    /// the Z axis), positive opposing positive motion.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub gravity: f64,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+/// The reading of kato Eq. 1's amplitude `W_i`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum PitchReading {
+    /// `R` is the local ratio `dθ_table/dθm`: the table error is
+    /// `(W g/N)[…]`, W dimensionless like R.
+    #[default]
+    GearRatio,
+    /// `θ_table = x + Σ W sin(N x + φ)` (referenced to 0 at x = 0): W is
+    /// the angle amplitude in rad, as a measurement gives it.
+    Additive,
+}
+
+impl PitchReading {
+    fn is_default(&self) -> bool {
+        *self == Self::GearRatio
+    }
 }
 
 impl AxisParams {
@@ -141,6 +176,20 @@ impl AxisParams {
                     expected: "must be > 0 (omit it for no limit)",
                 });
             }
+        }
+        if !(self.friction.is_finite() && self.friction >= 0.0) {
+            return Err(ServoError::BadParameter {
+                field: "friction",
+                value: self.friction,
+                expected: "the Coulomb friction torque must be a finite number ≥ 0 N·m",
+            });
+        }
+        if !self.gravity.is_finite() {
+            return Err(ServoError::BadParameter {
+                field: "gravity",
+                value: self.gravity,
+                expected: "the load torque must be a finite number of N·m",
+            });
         }
         self.validate_mechanism()?;
         match (self.kind, self.lead) {

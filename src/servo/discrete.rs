@@ -41,6 +41,9 @@ pub(crate) struct LoopStep {
     phi1: f64,
     phi2: f64,
     decay: f64,
+    /// State change over one step per N·m of constant load torque
+    /// (friction, gravity: kato Fig. 2), `∫ e^{Aσ} b_d dσ`, `b_d = [0, −1/J, 0]`.
+    gd: [f64; 3],
 }
 
 impl LoopStep {
@@ -64,6 +67,12 @@ impl LoopStep {
         // input slopes
         m[(3, 5)] = 1.0;
         m[(4, 6)] = 1.0;
+        let mut md = SMatrix::<f64, 4, 4>::zeros();
+        md.fixed_view_mut::<3, 3>(0, 0)
+            .copy_from(&m.fixed_view::<3, 3>(0, 0));
+        md[(1, 3)] = -1.0 / jt;
+        let ed = (md * dt).exp();
+        let gd = [ed[(0, 3)], ed[(1, 3)], ed[(2, 3)]];
         let e = (m * dt).exp();
         let mut phi = [[0.0; 3]; 3];
         let mut g0 = [[0.0; 2]; 3];
@@ -100,6 +109,7 @@ impl LoopStep {
             phi1,
             phi2,
             decay: (-x).exp(),
+            gd,
         }
     }
 
@@ -130,7 +140,17 @@ impl LoopStep {
         *z = out;
     }
 
-    /// Saturated step with constant motor torque `tau`; the integrator is held.
+    /// Adds the effect of a load torque `d` (N·m, opposing positive motion)
+    /// held constant over the unsaturated step just taken (superposition).
+    #[inline]
+    pub(crate) fn load(&self, z: &mut [f64; 3], d: f64) {
+        for (zi, g) in z.iter_mut().zip(&self.gd) {
+            *zi += g * d;
+        }
+    }
+
+    /// Saturated step with constant motor torque `tau` (net of any load
+    /// torque); the integrator is held.
     #[inline]
     pub(crate) fn saturated(&self, z: &mut [f64; 3], tau: f64) {
         let acc = tau / self.inertia;

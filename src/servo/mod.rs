@@ -14,12 +14,15 @@
 
 pub mod axis;
 pub mod discrete;
+pub mod identify;
+pub mod pid;
+pub mod pitch_identify;
 pub mod precontrol;
 pub mod response;
 pub mod simulate;
 pub mod transmission;
 
-pub use axis::{AxisKind, AxisParams, WormHarmonic};
+pub use axis::{AxisKind, AxisParams, PitchReading, WormHarmonic};
 
 /// Errors of the servo models.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

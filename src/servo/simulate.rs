@@ -14,6 +14,12 @@
 //! 3. the motor angle is mapped to the table through the gear (Eq. 1) and
 //!    the backlash.
 //!
+//! Load torques of kato Fig. 2: gravity `G` (constant) and Coulomb friction
+//! `F·sign(ω)` (sign of the motor speed at the start of each step, 0 at
+//! rest: no stiction) enter as a torque held over the step, added exactly by
+//! superposition ([`super::discrete`]); kato's velocity-loop integration
+//! time `T_i` is `Kvp/Kvi` in this parameter set.
+//!
 //! The axis starts at rest on `command[0]`. Outputs are sampled at the same
 //! instants as the command. Without saturation, backlash and pitch error the
 //! steady state agrees with [`super::response::frequency_response`] (tested
@@ -70,11 +76,13 @@ fn check_input(dt: f64, command: &[f64]) -> Result<(), ServoError> {
 /// Returns nominal positions (motor angle over `s_m`), velocities, applied
 /// torques and the saturation flag.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn run(
     step: &LoopStep,
     sm: f64,
     kf: f64,
     limit: f64,
+    load: (f64, f64),
     n: usize,
     input: impl Fn(usize) -> (f64, f64),
 ) -> (Vec<f64>, Vec<f64>, Vec<f64>, bool) {
@@ -103,10 +111,17 @@ fn run(
         }
         let (x1, v1) = input(i + 1);
         let u1 = [sm * x1, kf * v1];
+        // load torque (kato Fig. 2): gravity G plus Coulomb friction F
+        // against the motor speed at the start of the step
+        let (gravity, friction) = load;
+        let d = gravity + friction * z[1].signum() * f64::from(u8::from(z[1] != 0.0));
         if sat {
-            step.saturated(&mut z, applied);
+            step.saturated(&mut z, applied - d);
         } else {
             step.linear(&mut z, u0, u1);
+            if d != 0.0 {
+                step.load(&mut z, d);
+            }
         }
         u0 = u1;
     }
@@ -146,6 +161,7 @@ pub fn simulate_axis(
     let kf = sm * axis.kffp / 100.0;
     let n = command.len();
     let limit = axis.torque_max.unwrap_or(f64::INFINITY);
+    let load = (axis.gravity, axis.friction);
     let (mut position, velocity, torque, saturated) = match &shaped {
         precontrol::Shaped::Grid {
             grid,
@@ -155,12 +171,12 @@ pub fn simulate_axis(
         } => {
             let (e, w, scale) = (*e, *window, *scale);
             // x_s(i) and v_ff(i) read from the grid (precontrol::Shaped::at)
-            run(&step, sm, kf, limit, n, |i| {
+            run(&step, sm, kf, limit, load, n, |i| {
                 (grid[w + i], (grid[w + i + e] - grid[i + e]) * scale)
             })
         }
         precontrol::Shaped::Samples { xs, vff } => {
-            run(&step, sm, kf, limit, n, |i| (xs[i], vff[i]))
+            run(&step, sm, kf, limit, load, n, |i| (xs[i], vff[i]))
         }
     };
     if !trans.is_rigid() {

@@ -25,6 +25,11 @@
 //!   (`N_i = 0` gives the constant ratio change `W_i sin φ_i`, i.e.
 //!   `θ_gear = x + W_i g sin φ_i · x`). The phase reference is `x = 0`.
 //!   Pitch error is honoured for rotary axes only.
+//! - **Additive reading** (`pitchReading: 'additive'`): W is the angle
+//!   amplitude at the table, `θ_gear = x + Σ W_i [sin(N_i x + φ_i) − sin φ_i]`
+//!   (referenced to 0 at x = 0 like the default); a measured spectrum
+//!   ([`super::pitch_identify`]) gives these amplitudes directly. Entering
+//!   them under the default reading would scale them by g/N.
 //! - **Backlash** (full width `b`, table units) sits between the gear and
 //!   the table as a play: the table stays put until the gear side has
 //!   crossed the gap, then follows at `θ_gear ∓ b/2`. It starts centred
@@ -37,7 +42,7 @@
 //! Motor angle in rad; nominal and table positions in mm (linear) or rad
 //! (rotary); `s_m` in motor rad per mm or per rad.
 
-use super::{AxisKind, AxisParams, ServoError};
+use super::{AxisKind, AxisParams, PitchReading, ServoError};
 
 /// The nominal scale `s_m`: motor rad per table unit (mm or rad).
 ///
@@ -94,12 +99,13 @@ impl Transmission {
         let harmonics = axis
             .pitch_error
             .iter()
-            .map(|h| {
-                if h.n == 0.0 {
-                    (h.w * gear * h.phi.sin(), 0.0, 0.0)
-                } else {
-                    (h.w * gear / h.n, h.n, h.phi)
-                }
+            .map(|h| match axis.pitch_reading {
+                PitchReading::GearRatio if h.n == 0.0 => (h.w * gear * h.phi.sin(), 0.0, 0.0),
+                PitchReading::GearRatio => (h.w * gear / h.n, h.n, h.phi),
+                // W sin(N x + φ) − W sin φ = −W[cos(N x + φ + π/2) − cos(φ + π/2)];
+                // N = 0 is a constant, removed by the reference at x = 0
+                PitchReading::Additive if h.n == 0.0 => (0.0, 0.0, 0.0),
+                PitchReading::Additive => (h.w, h.n, h.phi + std::f64::consts::FRAC_PI_2),
             })
             .collect();
         Ok(Self {

@@ -76,6 +76,12 @@ pub struct SimConfig {
     /// Feed override as a fraction (1 = 100 %), applied to cutting feeds.
     #[serde(rename = "feedOverride")]
     pub feed_override: f64,
+    /// A G4 dwell starts with an exact stop: the tool waits `tA + 5·max T`
+    /// (the command's acc/dec, then the lag decayed to e⁻⁵ ≈ 0.7 %, an
+    /// in-position check) before the dwell's own time. Default off: the
+    /// dwell adds only its own time (see [`mod@simulate`]).
+    #[serde(rename = "dwellExactStop")]
+    pub dwell_exact_stop: bool,
 }
 
 impl Default for SimConfig {
@@ -86,6 +92,7 @@ impl Default for SimConfig {
             dt: 0.001,
             rapid_feed: 20_000.0,
             feed_override: 1.0,
+            dwell_exact_stop: false,
         }
     }
 }

@@ -11,7 +11,10 @@
 //! 1 µm of the program's end point — the closest model counterpart of the
 //! paper's "actual motion time". The reference path is normally the program
 //! itself; reverse compensation simulates the corrected program against the
-//! original path.
+//! original path. A G4 dwell adds only its own time unless
+//! `dwellExactStop` is set: then it first waits `tA + 5·max T`, the exact
+//! stop and in-position check of a real NC (qiu's +0.427 s for two 0.1 s
+//! dwells is more than the dwells alone).
 //!
 //! Units: mm, s; errors in mm (µm only in field names that say so).
 
@@ -116,11 +119,17 @@ pub fn simulate(
 ) -> Result<Simulation, ToolpathError> {
     cfg.validate()?;
     let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
-    let tl = Timeline::with_rapid_stop(
+    let dwell_stop = if cfg.dwell_exact_stop {
+        cfg.t_a + 5.0 * tmax
+    } else {
+        0.0
+    };
+    let tl = Timeline::with_stops(
         command,
         cfg.rapid_feed,
         cfg.feed_override,
         cfg.t_a + 10.0 * tmax,
+        dwell_stop,
     );
     let path = Path::new(reference);
     if path.elements.is_empty() || tl.items.is_empty() {

@@ -88,6 +88,28 @@ impl Timeline {
         feed_override: f64,
         rapid_stop: f64,
     ) -> Self {
+        Self::with_stops(segments, rapid_feed, feed_override, rapid_stop, 0.0)
+    }
+
+    /// As [`Timeline::with_rapid_stop`], and every G4 dwell also waits
+    /// `dwell_stop` seconds before its own time (the exact stop and
+    /// in-position check a real NC makes before dwelling; qiu §4-3(2)).
+    ///
+    /// # Examples
+    /// ```
+    /// use mtmotion::{nc::program::parse, toolpath::timeline::Timeline};
+    /// let p = parse("G1 X10 F600\nG4 P0.1\nG1 X20").unwrap();
+    /// let plain = Timeline::new(&p.segments, 2e4, 1.0).end_time;
+    /// let stop = Timeline::with_stops(&p.segments, 2e4, 1.0, 0.0, 0.05).end_time;
+    /// assert!((plain - 2.1).abs() < 1e-12 && (stop - 2.15).abs() < 1e-12);
+    /// ```
+    pub fn with_stops(
+        segments: &[Segment],
+        rapid_feed: f64,
+        feed_override: f64,
+        rapid_stop: f64,
+        dwell_stop: f64,
+    ) -> Self {
         let origin = segments.first().map_or([0.0; 3], |s| s.start.p());
         let mut items = Vec::with_capacity(segments.len());
         let mut t = 0.0;
@@ -97,7 +119,7 @@ impl Timeline {
             let p0 = s.start.p();
             let p1 = s.end.p();
             let (tau, geo) = match s.motion {
-                Motion::Dwell { seconds } => (seconds, Geo::Still),
+                Motion::Dwell { seconds } => (seconds + dwell_stop, Geo::Still),
                 m => {
                     let len = s.length();
                     let feed = match m {

@@ -294,7 +294,7 @@ fn points_obj(p: &nc5::PointErrors) -> JsValue {
 pub fn compensate_nc5(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(
-        unchecked_param_type = "{ machine: MachineArg; errors?: GeometricErrors; toolLength?: number; monteCarlo?: { seed?: number; sigmaMm?: number; sigmaRad?: number; repeatabilityMm?: number }; cutting?: Record<string, unknown> }"
+        unchecked_param_type = "{ machine: MachineArg; errors?: GeometricErrors; toolLength?: number; monteCarlo?: { seed?: number; sigmaMm?: number; sigmaRad?: number; repeatabilityMm?: number }; cutting?: Record<string, unknown>; compensateAxes?: string[]; feedDrive?: { p: number; i: number; d: number; n: number; k: number; a: number } }"
     )]
     options: JsValue,
 ) -> Result<JsValue, JsError> {

@@ -20,6 +20,8 @@ export interface AxisParams {
   /** Torque limit, N·m. */ torqueMax?: number;
   /** Ball-screw lead, m. */ lead?: number;
   gearRatio?: number; backlash?: number; pitchError?: WormHarmonic[];
+  /** kato Eq. 1: 'gearRatio' (W·g/N at the table, default) or 'additive' (W in rad). */ pitchReading?: 'gearRatio' | 'additive';
+  /** kato Fig. 2: Coulomb friction F and load torque G at the motor, N·m. */ friction?: number; gravity?: number;
 }
 export interface MachinePreset {
   name: string; description: string; source: string;
@@ -28,6 +30,8 @@ export interface MachinePreset {
   limits?: Record<string, [number, number]>;
   /** Illustrative ISO 230-7 location errors and backlash for the page (not measured). */
   exampleErrors?: GeometricErrors;
+  /** Readings `torqueSaturation` accepts (first = default). */
+  saturationReadings?: string[];
   [extra: string]: unknown;
 }
 "#;

@@ -46,8 +46,18 @@ export interface BestKffpResult {
   kffp: KffpSet; before: FeedVectorSummary; after: FeedVectorSummary; method: 'analytic' | 'simulated';
   alphaTh: number; residualX: number; residualY: number;
 }
-export interface SaturationQuery { j1: number[]; torqueMax: number; accelTime: number; /** mm/min */ feedAtCuttingPoint: number; dt?: number }
+export interface SaturationQuery { j1: number[]; torqueMax: number; accelTime: number; /** mm/min */ feedAtCuttingPoint: number; dt?: number;
+  /** How the paper's saturation point is read; names in `machinePreset('nmv5000').saturationReadings` (default 'preControlOff'). */
+  reading?: 'preControlOff' | 'presetKffp' | 'inertiaOnly' }
 export interface SaturationPoint { jTotal: number; accelSat: number; omegaSat: number; rcMin: number; torquePerOmega: number }
+/** kato Fig. 3: options of identifyPitchError. */
+export interface PitchIdentifyOptions { samples?: number; maxOrder?: number; /** rad */ threshold?: number; maxPeaks?: number }
+/** a·sin(N θ + ψ): amplitude in rad at the table (the additive reading of Eq. 1). */
+export interface PitchPeak { order: number; amplitude: number; phase: number }
+export interface PitchIdentification { revolutions: number; spectrum: number[]; peaks: PitchPeak[] }
+/** suzuki Table 1 identification: a measured response to a known command (one sample per dt). */
+export interface MeasuredTrace { /** s */ dt: number; command: number[]; position: number[]; /** N·m; needed to identify J */ torque?: number[] }
+export interface IdentifiedAxis { axis: AxisParams; jIdentified: boolean; rmsPosition: number; rmsTorque: number; iterations: number }
 "#;
 
 /// A machine given as a preset name or as a full machine object.
@@ -182,4 +192,35 @@ pub fn torque_saturation(
     let m = machine_arg(machine)?;
     let q: saturation::SaturationQuery = from_js(query, "query")?;
     to_js(&saturation::torque_saturation(&m, &q)?)
+}
+
+/// kato Fig. 3: the pitch-error harmonics of a rotary axis from its error
+/// trace (commanded table angle and error, rad), by Fourier analysis.
+#[wasm_bindgen(js_name = identifyPitchError, unchecked_return_type = "PitchIdentification")]
+pub fn identify_pitch_error(
+    angle: &[f64],
+    error: &[f64],
+    #[wasm_bindgen(unchecked_param_type = "PitchIdentifyOptions | undefined")] options: JsValue,
+) -> Result<JsValue, JsError> {
+    let o: crate::servo::pitch_identify::PitchIdentifyOptions =
+        if options.is_undefined() || options.is_null() {
+            Default::default()
+        } else {
+            from_js(options, "options")?
+        };
+    to_js(&crate::servo::pitch_identify::identify_pitch_error(
+        angle, error, &o,
+    )?)
+}
+
+/// suzuki Table 1: J, C, Kvp and Kpp of `initial` fitted to a measured
+/// trace by least squares against the simulation.
+#[wasm_bindgen(js_name = identifyAxis, unchecked_return_type = "IdentifiedAxis")]
+pub fn identify_axis(
+    #[wasm_bindgen(unchecked_param_type = "AxisParams")] initial: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "MeasuredTrace")] trace: JsValue,
+) -> Result<JsValue, JsError> {
+    let a: AxisParams = from_js(initial, "initial")?;
+    let t: crate::servo::identify::MeasuredTrace = from_js(trace, "trace")?;
+    to_js(&crate::servo::identify::identify_axis(&a, &t)?)
 }

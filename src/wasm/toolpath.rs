@@ -24,8 +24,8 @@ export type NcMotion =
 export interface NcSegment { block: number | null; line: number; motion: NcMotion; start: Pose; end: Pose; feed: number; fixed: boolean }
 export interface NcWarning { line: number; column: number; message: string }
 export interface ParsedNc { segments: NcSegment[]; warnings: NcWarning[] }
-/** tA and T in s (T one value or [Tx, Ty, Tz]), dt in s, rapidFeed in mm/min, feedOverride as a fraction. */
-export interface ToolPathConfig { tA?: number; T?: number | [number, number, number]; dt?: number; rapidFeed?: number; feedOverride?: number }
+/** tA and T in s (T one value or [Tx, Ty, Tz]), dt in s, rapidFeed in mm/min, feedOverride as a fraction; dwellExactStop: every G4 first waits tA + 5·max T (exact stop, in-position check). */
+export interface ToolPathConfig { tA?: number; T?: number | [number, number, number]; dt?: number; rapidFeed?: number; feedOverride?: number; dwellExactStop?: boolean }
 export interface SegmentStats {
   segment: number; line: number; kind: 'line' | 'arc' | 'rapid'; length: number; radius: number;
   maxErrorUm: number; meanDeviation: number | null; halfDeviation: [number | null, number | null]; samples: number;

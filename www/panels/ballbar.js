@@ -61,7 +61,7 @@ export async function mount(root, api) {
   const out = h('div', { id: 'ballbar-results' });
 
   // ---- paper examples -----------------------------------------------------
-  const exName = selectField({ label: 'Paper figure', id: 'ballbar-example', value: 'fig7', options: [['fig6', 'Fig. 6: single harmonics, 180°'], ['fig7', 'Fig. 7: travel range 90…360°'], ['fig8', 'Fig. 8: four offset positions'], ['fig12', 'Fig. 12: angle error 10 µm/350 mm']] });
+  const exName = selectField({ label: 'Paper figure', id: 'ballbar-example', value: 'fig7', options: [['fig6', 'Fig. 6: single harmonics, 180°'], ['fig7', 'Fig. 7: travel range 90…360°'], ['fig8', 'Fig. 8: four offset positions'], ['fig12', 'Fig. 12: angle error 10 µm/350 mm'], ['fig7-phased', 'Fig. 7 with phases 26°/25°/200° (reproduces X and Z)']] });
   const exReading = selectField({ label: 'Reading', id: 'ballbar-example-reading', value: '100', options: [['100', 'Ball bar, 100 mm (default)'], ['0', 'DBB5 centre ball (radius 0)']] });
   const exOut = h('div', { id: 'ballbar-example-results' });
   const exRun = h('button', { id: 'ballbar-example-run', onclick: () => example() }, 'Run example');
@@ -194,7 +194,15 @@ export async function mount(root, api) {
       const paper = table(['quantity', 'range [°]', 'paper', 'ours'], ex.paper.map((p) => [p.label, p.rangeDeg || '—', p.paper, fmt(p.ours, 2)]));
       paper.querySelector('table').id = 'ballbar-paper-table';
       const chartEl = h('div', { id: 'ballbar-example-chart' });
-      exOut.replaceChildren(h('p', {}, ex.description), paper, chartEl);
+      // paper / ours / why (docs/readings.md)
+      const why = {
+        fig6: 'Why 0.15, not ≈ 0.25: the ball bar gives at most 0.15 for any common phase; the DBB5 reading (radius 0) reaches the paper’s ratio.',
+        fig7: 'Why Z = 0: with all phases 0 the ball-bar locus is symmetric about Z. “Fig. 7 with phases” reproduces X and Z within 0.3 µm.',
+        'fig7-phased': 'Why these phases (26°, 25°, 200°): a grid search for the paper’s four numbers; the paper itself says “all phases 0°”, which cannot give its Z.',
+        fig8: 'Why every offset gives the same value: the ball-bar reading is translation invariant; DBB5 (radius 0) depends on the offset.',
+        fig12: 'Why ≈ 0 with the ball bar: a motion error common to both sections cancels in the angle estimate; DBB5 gives the paper’s order for ΔBz only.',
+      }[ex.name];
+      exOut.replaceChildren(h('p', {}, ex.description), paper, ...(why ? [h('p', { class: 'note' }, why)] : []), chartEl);
       if (ex.angle.length) {
         lineChart(chartEl, { title: 'Angle-error estimate error', xLabel: 'travel range [°]', yLabel: 'µm / 700 mm', series: [{ label: 'ΔBz' }, { label: 'ΔBx' }], data: [ex.angle.map((p) => p.rangeDeg), ex.angle.map((p) => (p.errorBz * 700) / UM), ex.angle.map((p) => (p.errorBx * 700) / UM)] });
       } else if (ex.name === 'fig6') {

@@ -169,7 +169,10 @@ export async function mount(root, api) {
       const els = [h('div'), h('div'), h('div')];
       const t = table(['J+J1 [kg·m²]', 'ω', 'α−β [mrad]', 'half ampl. [µm]', 'saturated', 'method', 'Best K_FFP X [%]', 'Best K_FFP Y [%]', 'α−β after [mrad]', 'half ampl. after [µm]'], rows);
       t.querySelector('table').id = 'servo-sweep-table';
-      const satTable = table(['J+J1 [kg·m²]', 'accelSat [rad/s²]', 'ωsat [rad/s]', 'R_C min at 200 mm/min [mm]'], sat.map((p) => [fmt(p.jTotal, 2), fmt(p.accelSat, 1), fmt(p.omegaSat, 3), fmt(p.rcMin, 3)]));
+      // paper / ours / why: suzuki §5.2 quotes these three points (J + J1 = 5.9, 7.4, 8.9 kg·m²).
+      const paperSat = [[146.7, 0.36], [118.5, 0.44], [91.1, 0.57]];
+      const satTable = table(['J+J1 [kg·m²]', 'accelSat paper / ours [rad/s²]', 'ωsat [rad/s]', 'R_C min paper / ours at 200 mm/min [mm]'], sat.map((p, i) => [fmt(p.jTotal, 2), `${paperSat[i][0]} / ${fmt(p.accelSat, 1)}`, fmt(p.omegaSat, 3), `${paperSat[i][1]} / ${fmt(p.rcMin, 3)}`]));
+      satTable.append(h('p', { class: 'note' }, "Why: reading 'preControlOff' (commanded acceleration ω/0.064 s, C loop with K_FFP = 0; the paper does not state Fig. 17's K_FFP). The paper's three points scatter ±4.7 % in ω·J, so no reading matches all three within 2 %; see docs/readings.md."));
       satTable.querySelector('table').id = 'servo-saturation-table';
       sweepBox.replaceChildren(...els, t, h('h4', {}, 'Torque-saturation limits (Figs. 17, 21)'), satTable);
       const series = sat.map((p) => ({ label: `J+J1 = ${fmt(p.jTotal, 2)}` }));

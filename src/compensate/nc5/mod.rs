@@ -34,6 +34,7 @@
 //! Units: mm, rad in results; the program in mm (or inch) and degrees.
 
 pub mod cutting_force;
+pub mod feed_drive;
 pub mod monte_carlo;
 pub mod s_shape;
 
@@ -69,6 +70,19 @@ pub enum Nc5Error {
         /// Why.
         why: String,
     },
+    /// The feed-drive parameters are out of range.
+    #[error("compensateNc5: feedDrive: {0}")]
+    FeedDrive(#[from] crate::servo::ServoError),
+    /// An axis in `compensateAxes` the machine does not have.
+    #[error("compensateNc5: `compensateAxes[{index}]` = '{axis}': expected one of the machine's axes {known}")]
+    BadAxis {
+        /// Position in the list.
+        index: usize,
+        /// The letter given.
+        axis: String,
+        /// The machine's axes.
+        known: String,
+    },
     /// A configuration value is out of range.
     #[error("compensateNc5: `{field}` = {value}: {why}")]
     BadConfig {
@@ -99,6 +113,18 @@ pub struct Nc5Config {
     /// Include the cutting-force deflection `E_ST`.
     #[serde(default)]
     pub cutting: Option<Cutting>,
+    /// The axes the compensation may move (lower-case letters); default
+    /// all of the machine's axes. thasana §II-D corrects only X, Y, A and
+    /// B: `["x", "y", "a", "b"]` (Z and C are then left as programmed and
+    /// the pose is met in the least-squares sense).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub compensate_axes: Option<Vec<String>>,
+    /// thasana Eq. 9 / Fig. 8 PID feed drives on every axis: the errors
+    /// (before and after) are read where the drives are at the end of each
+    /// block's command ([`feed_drive`]). The compensation itself inverts
+    /// the geometric model only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub feed_drive: Option<crate::servo::pid::PidDrive>,
 }
 
 /// Mean and standard deviation of the errors at the evaluation points.
@@ -249,7 +275,8 @@ fn points_of(segments: &[Segment]) -> Result<Vec<EvalPoint>, Nc5Error> {
 /// errors.location.insert("EY0A".into(), 0.03);
 /// errors.location.insert("EB0C".into(), 2e-4);
 /// let cfg = Nc5Config { machine: MachineRef::Name("trunnion-ac".into()), errors,
-///     tool_length: 50.0, monte_carlo: None, cutting: None };
+///     tool_length: 50.0, monte_carlo: None, cutting: None, compensate_axes: None,
+///     feed_drive: None };
 /// let nc = "G90 G21\nG0 X10 Y0 Z5 A10 C0\nG1 X20 Y5 Z5 A20 C30 F500\nG1 X30 Y-5 Z0 A30 C90\n";
 /// let r = compensate_nc5(nc, &cfg).unwrap();
 /// assert_eq!(r.lines, vec![2, 3, 4]);
@@ -314,20 +341,46 @@ pub fn compensate_nc5(text: &str, cfg: &Nc5Config) -> Result<Nc5Result, Nc5Error
         deflection,
         noise,
     };
-    let axes: Vec<usize> = (0..6)
+    let mut axes: Vec<usize> = (0..6)
         .filter(|i| chain.axes().contains(&AXES[*i]))
         .collect();
+    if let Some(only) = &cfg.compensate_axes {
+        let mut chosen = Vec::with_capacity(only.len());
+        for (index, a) in only.iter().enumerate() {
+            match axes.iter().find(|&&i| AXES[i] == a.as_str()) {
+                Some(&i) => chosen.push(i),
+                None => {
+                    return Err(Nc5Error::BadAxis {
+                        index,
+                        axis: a.clone(),
+                        known: axes.iter().map(|&i| AXES[i]).collect::<Vec<_>>().join(", "),
+                    })
+                }
+            }
+        }
+        axes = chosen;
+    }
+    let driven = match &cfg.feed_drive {
+        Some(d) => Some(feed_drive::positions_at_block_ends(&program.segments, d)?),
+        None => None,
+    };
     let mut before = PointErrors::default();
     let mut corrected = Vec::with_capacity(pts.len());
     for (i, (line, q, dir)) in pts.iter().enumerate() {
-        eval.push(&mut before, i, q, q, dir);
+        let actual = driven.as_ref().map_or(q, |d| &d[i]);
+        eval.push(&mut before, i, actual, q, dir);
         let (pn, kn) = eval.nominal.eval(q);
         // Target: the tool tip must land on the nominal point after deflection.
         let target = crate::kinematics::Pose {
             position: (pn - eval.defl(&kn, dir)).into(),
             orientation: kn.into(),
         };
-        let qc = newton::solve(&eval.model, &target, q, &axes, &format!("line {line}"))?;
+        let context = format!("line {line}");
+        let qc = if cfg.compensate_axes.is_some() {
+            newton::solve_least_squares(&eval.model, &target, q, &axes, &context)?
+        } else {
+            newton::solve(&eval.model, &target, q, &axes, &context)?
+        };
         corrected.push(qc);
     }
     // Write the corrected program.
@@ -358,9 +411,14 @@ pub fn compensate_nc5(text: &str, cfg: &Nc5Config) -> Result<Nc5Result, Nc5Error
     // Evaluate the program as written.
     let written = parse(&nc)?;
     let wpts = points_of(&written.segments)?;
+    let driven_after = match &cfg.feed_drive {
+        Some(d) => Some(feed_drive::positions_at_block_ends(&written.segments, d)?),
+        None => None,
+    };
     let mut after = PointErrors::default();
     for (i, ((_, qw, _), (_, qn, dir))) in wpts.iter().zip(&pts).enumerate() {
-        eval.push(&mut after, i, qw, qn, dir);
+        let actual = driven_after.as_ref().map_or(qw, |d| &d[i]);
+        eval.push(&mut after, i, actual, qn, dir);
     }
     let (b, a) = (stats(&before), stats(&after));
     let red = |x: f64, y: f64| if x > 0.0 { 100.0 * (1.0 - y / x) } else { 0.0 };

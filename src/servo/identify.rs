@@ -1,0 +1,274 @@
+//! Identification of the feed-drive parameters J, C, Kvp and Kpp of
+//! suzuki-best-kffp Table 1 from a measured trace ("these parameters were
+//! identified using simulation software", §4.5): the least-squares match of
+//! [`super::simulate::simulate_axis`] to a measured position (and torque)
+//! response to a known command — a step, a ramp or the circle of the
+//! feed-vector test.
+//!
+//! Method: Levenberg–Marquardt on `ln J, ln C, ln Kvp, ln Kpp` (all stay
+//! positive), forward-difference Jacobian (relative step 1e-6), residuals
+//! `(p_sim − p_meas)/s_p` and `(τ_sim − τ_meas)/s_τ` with `s_p` the RMS of
+//! the measured following error `p_meas − command` and `s_τ` the RMS of the
+//! measured torque, so both signals weigh alike whatever their units. The
+//! other parameters (Kvi, K_FFP, Ts, Ta, Tp, J1, lead, gear) are the NC's
+//! set values and are taken from the `initial` axis.
+//!
+//! # Reading: what a position-only trace can identify
+//! The velocity loop `T_v = (Kvp s + Kvi)/(J s² + (C + Kvp) s + Kvi)` is
+//! unchanged when J, C, Kvp and Kvi are scaled together, and Kvi is
+//! negligible in Table 1 (`Kvi/Kvp ≈ 6·10⁻⁵ rad/s`), so a position trace
+//! fixes only the ratios. With a torque trace all four are identified; with
+//! none, J is held at its initial value and C, Kvp, Kpp are identified
+//! (the result then scales with the J given).
+//!
+//! # Units
+//! As [`super::AxisParams`]; `dt` in s; command and position in mm
+//! (linear) or rad (rotary); torque in N·m at the motor.
+
+use serde::{Deserialize, Serialize};
+
+use super::simulate::simulate_axis;
+use super::{AxisParams, ServoError};
+
+/// Errors of the identification.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum IdentifyError {
+    /// The trace is unusable.
+    #[error("`{field}`: {message}")]
+    BadTrace {
+        /// The field, e.g. `position[3]`.
+        field: String,
+        /// What is wrong and what was expected.
+        message: String,
+    },
+    /// The initial axis or a trial point is not a valid axis.
+    #[error(transparent)]
+    Servo(#[from] ServoError),
+}
+
+fn bad(field: impl Into<String>, message: impl Into<String>) -> IdentifyError {
+    IdentifyError::BadTrace {
+        field: field.into(),
+        message: message.into(),
+    }
+}
+
+/// A measured response of one axis.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct MeasuredTrace {
+    /// Sampling interval, s.
+    pub dt: f64,
+    /// The command (interpolator output), one sample per `dt`.
+    pub command: Vec<f64>,
+    /// The measured position, same length.
+    pub position: Vec<f64>,
+    /// The measured motor torque, same length (optional; needed for J).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torque: Option<Vec<f64>>,
+}
+
+/// The identified parameters.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Identified {
+    /// The axis with J, C, Kvp and Kpp replaced.
+    pub axis: AxisParams,
+    /// Whether J was identified (a torque trace was given) or held.
+    pub j_identified: bool,
+    /// RMS position residual, mm or rad.
+    pub rms_position: f64,
+    /// RMS torque residual, N·m (0 without a torque trace).
+    pub rms_torque: f64,
+    /// Levenberg–Marquardt iterations.
+    pub iterations: usize,
+}
+
+fn with(initial: &AxisParams, p: &[f64; 4]) -> AxisParams {
+    AxisParams {
+        j: p[0].exp(),
+        c: p[1].exp(),
+        kvp: p[2].exp(),
+        kpp: p[3].exp(),
+        ..initial.clone()
+    }
+}
+
+fn rms(v: impl Iterator<Item = f64>) -> f64 {
+    let (mut s, mut n) = (0.0, 0usize);
+    for x in v {
+        s += x * x;
+        n += 1;
+    }
+    (s / n.max(1) as f64).sqrt()
+}
+
+fn check(tr: &MeasuredTrace) -> Result<(), IdentifyError> {
+    if !(tr.dt.is_finite() && tr.dt > 0.0) {
+        return Err(bad("dt", format!("{}: expected a time step > 0 s", tr.dt)));
+    }
+    let n = tr.command.len();
+    if n < 10 {
+        return Err(bad("command", format!("{n} samples; give at least 10")));
+    }
+    let mut arrays = vec![("command", &tr.command), ("position", &tr.position)];
+    if let Some(t) = &tr.torque {
+        arrays.push(("torque", t));
+    }
+    for (name, v) in arrays {
+        if v.len() != n {
+            return Err(bad(
+                name,
+                format!("{} samples, but the command has {n}", v.len()),
+            ));
+        }
+        if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+            return Err(bad(
+                format!("{name}[{i}]"),
+                format!("{} is not a finite number", v[i]),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Identifies J, C, Kvp and Kpp of `initial` from `trace` (module header).
+///
+/// # Errors
+/// A trace with mismatched or non-finite samples, a bad `dt`, or an initial
+/// axis whose J, C, Kvp or Kpp is not > 0.
+pub fn identify_axis(
+    initial: &AxisParams,
+    trace: &MeasuredTrace,
+) -> Result<Identified, IdentifyError> {
+    check(trace)?;
+    initial.validate()?;
+    for (f, v) in [
+        ("j", initial.j),
+        ("c", initial.c),
+        ("kvp", initial.kvp),
+        ("kpp", initial.kpp),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(bad(
+                format!("initial.{f}"),
+                format!("{v}: the initial guess must be > 0 (the fit works on its logarithm)"),
+            ));
+        }
+    }
+    let lag = rms(trace
+        .position
+        .iter()
+        .zip(&trace.command)
+        .map(|(p, c)| p - c));
+    if lag <= 0.0 {
+        return Err(bad(
+            "position",
+            "equals the command: a trace without following error identifies nothing",
+        ));
+    }
+    let tq = trace.torque.as_ref().map(|t| (t, rms(t.iter().copied())));
+    if let Some((_, s)) = tq {
+        if s <= 0.0 {
+            return Err(bad(
+                "torque",
+                "is zero throughout: give the measured torque or omit it",
+            ));
+        }
+    }
+    let free: Vec<usize> = if tq.is_some() {
+        vec![0, 1, 2, 3]
+    } else {
+        vec![1, 2, 3]
+    };
+    let residuals = |p: &[f64; 4]| -> Result<Vec<f64>, IdentifyError> {
+        let a = with(initial, p);
+        let r = simulate_axis(&a, trace.dt, &trace.command)?;
+        let mut out: Vec<f64> = r
+            .position
+            .iter()
+            .zip(&trace.position)
+            .map(|(s, m)| (s - m) / lag)
+            .collect();
+        if let Some((t, s)) = tq {
+            out.extend(r.torque.iter().zip(t).map(|(a, b)| (a - b) / s));
+        }
+        Ok(out)
+    };
+    let cost = |r: &[f64]| r.iter().map(|x| x * x).sum::<f64>();
+    let mut p = [
+        initial.j.ln(),
+        initial.c.ln(),
+        initial.kvp.ln(),
+        initial.kpp.ln(),
+    ];
+    let mut r = residuals(&p)?;
+    let mut f = cost(&r);
+    let mut lambda = 1e-3;
+    let mut iterations = 0;
+    let k = free.len();
+    while iterations < 200 {
+        iterations += 1;
+        // Jacobian by forward differences
+        let h = 1e-6;
+        let mut jac: Vec<Vec<f64>> = Vec::with_capacity(k);
+        for &i in &free {
+            let mut q = p;
+            q[i] += h;
+            let rq = residuals(&q)?;
+            jac.push(rq.iter().zip(&r).map(|(a, b)| (a - b) / h).collect());
+        }
+        let mut jtj = vec![vec![0.0; k]; k];
+        let mut jtr = vec![0.0; k];
+        for a in 0..k {
+            for b in 0..k {
+                jtj[a][b] = jac[a].iter().zip(&jac[b]).map(|(x, y)| x * y).sum();
+            }
+            jtr[a] = jac[a].iter().zip(&r).map(|(x, y)| x * y).sum();
+        }
+        let mut improved = false;
+        for _ in 0..30 {
+            let mut m = nalgebra::DMatrix::from_fn(k, k, |a, b| jtj[a][b]);
+            for a in 0..k {
+                m[(a, a)] += lambda * jtj[a][a].max(1e-12);
+            }
+            let rhs = nalgebra::DVector::from_iterator(k, jtr.iter().map(|x| -x));
+            let Some(step) = m.lu().solve(&rhs) else {
+                lambda *= 10.0;
+                continue;
+            };
+            let mut q = p;
+            for (a, &i) in free.iter().enumerate() {
+                q[i] += step[a].clamp(-1.0, 1.0);
+            }
+            match residuals(&q) {
+                Ok(rq) if cost(&rq) < f => {
+                    let fq = cost(&rq);
+                    let small =
+                        (f - fq) <= 1e-15 * f.max(1e-300) || step.iter().all(|s| s.abs() < 1e-12);
+                    p = q;
+                    r = rq;
+                    f = fq;
+                    lambda = (lambda * 0.3).max(1e-12);
+                    improved = !small;
+                    break;
+                }
+                _ => lambda *= 10.0,
+            }
+        }
+        if !improved {
+            break;
+        }
+    }
+    let axis = with(initial, &p);
+    let n = trace.command.len();
+    let rms_position = rms(r[..n].iter().map(|x| x * lag));
+    let rms_torque = tq.map_or(0.0, |(_, s)| rms(r[n..].iter().map(|x| x * s)));
+    Ok(Identified {
+        axis,
+        j_identified: tq.is_some(),
+        rms_position,
+        rms_torque,
+        iterations,
+    })
+}
