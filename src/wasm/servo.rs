@@ -59,6 +59,7 @@ fn machine_arg(value: JsValue) -> Result<Machine, JsError> {
 }
 
 /// `G(jω)` of `axis` at each ω (rad/s): magnitude and phase (rad).
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = frequencyResponse, unchecked_return_type = "FrequencyResponse")]
 pub fn frequency_response(
     #[wasm_bindgen(unchecked_param_type = "AxisParams")] axis: JsValue,
@@ -73,6 +74,7 @@ pub fn frequency_response(
 }
 
 /// Fixed-step simulation of one axis following `input.position`.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = simulateAxis, unchecked_return_type = "AxisResponse")]
 pub fn simulate_axis(
     #[wasm_bindgen(unchecked_param_type = "AxisParams")] axis: JsValue,
@@ -129,6 +131,7 @@ fn result_js(r: &FeedVectorResult) -> Result<JsValue, JsError> {
 }
 
 /// Simulates the constant-feed-speed-vector test (suzuki §2.3, §3).
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = feedVectorTest, unchecked_return_type = "FeedVectorResult")]
 pub fn feed_vector_test(
     #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
@@ -140,6 +143,7 @@ pub fn feed_vector_test(
 }
 
 /// Analyses a measured CSV/TSV trace of the test.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = analyzeFeedVectorTrace, unchecked_return_type = "FeedVectorResult")]
 pub fn analyze_feed_vector_trace(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
@@ -157,6 +161,7 @@ pub fn analyze_feed_vector_trace(
 }
 
 /// The Best K_FFP per axis (Eq. 20), checked by simulation.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = bestKffp, unchecked_return_type = "BestKffpResult")]
 pub fn best_kffp(
     #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
