@@ -9,7 +9,8 @@ mod native {
     use mtmotion::compensate::nc5::{compensate_nc5, s_shape, Nc5Config};
     use mtmotion::cone_frustum::{cone_frustum_test, ConeFrustumConfig, Method};
     use mtmotion::kinematics::inverse::NO_LIMITS;
-    use mtmotion::kinematics::{inverse, GeometricErrors, MachineRef, Model};
+    use mtmotion::kinematics::{inverse, GeometricErrors, Model};
+    use mtmotion::machine::MachineRef;
 
     fn kinematics(c: &mut Criterion) {
         let chain = mtmotion::machine::preset("trunnion-ac")

@@ -44,7 +44,7 @@ const swaps = [
   [/<script type="module" src="main\.js"><\/script>/, `<script type="module">\n${safe(pageJs)}\n</script>`],
 ];
 for (const [re, rep] of swaps) {
-  if (!re.test(html)) throw new Error(`build-standalone: index.html no longer matches ${re}`);
+  if (!re.test(html)) throw new Error(`bundle: index.html no longer matches ${re}`);
   html = html.replace(re, () => rep);
 }
 writeFileSync(new URL('mtmotion-standalone.html', dist), html);

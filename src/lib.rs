@@ -4,8 +4,8 @@
 //! centres, above all 5-axis ones. The core is plain Rust (units: mm, s, rad,
 //! N·m, kg·m²); `wasm` is a thin binding layer compiled for `wasm32` only.
 //!
-//! The catalogue — one line per model, with its source (papers in
-//! `shared/papers/`):
+//! The catalogue — one line per model, with its source (full citations in
+//! `docs/references.md`):
 //!
 //! | module | model | source |
 //! |---|---|---|
@@ -25,6 +25,7 @@
 //! | [`machine`] | machine presets as data, each citing its source | suzuki Table 1; thasana §II-D |
 //! | [`nc`] | NC program lexer, interpreter (G0–G3, G4, G17–G19, G90/G91, G20/G21, modal F, A/B/C) and writer | RS-274 / ISO 6983 |
 //! | [`trace`] | CSV/TSV trace import with line- and column-naming errors | — |
+//! | [`numeric`] | shared kernels: Brent, Levenberg–Marquardt, angle wrap | Brent 1973; Marquardt 1963 |
 //! | `wasm` | the JS binding layer (wasm32 only) | — |
 
 pub mod alignment;
@@ -36,6 +37,7 @@ pub mod feed_vector;
 pub mod kinematics;
 pub mod machine;
 pub mod nc;
+pub mod numeric;
 pub mod servo;
 pub mod toolpath;
 pub mod trace;

@@ -10,7 +10,8 @@
 
 use mtmotion::cone_frustum::{cone_frustum_test, ConeFrustumConfig, Method};
 use mtmotion::kinematics::propagation::sensitivity;
-use mtmotion::kinematics::{GeometricErrors, MachineRef};
+use mtmotion::kinematics::GeometricErrors;
+use mtmotion::machine::MachineRef;
 
 fn cfg(machine: &str, theta: f64, beta: f64, method: Method) -> ConeFrustumConfig {
     ConeFrustumConfig {

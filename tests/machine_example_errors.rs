@@ -10,10 +10,11 @@
 //! NC's travel (X −114…0 mm) cannot host the 100 mm bar at this centre.
 #![cfg(not(target_arch = "wasm32"))]
 
-use mtmotion::cone_frustum::sensitivity::error_symbols;
 use mtmotion::cone_frustum::{cone_frustum_test, ConeFrustumConfig, Method};
-use mtmotion::kinematics::{GeometricErrors, MachineRef};
+use mtmotion::kinematics::errors::error_symbols;
+use mtmotion::kinematics::GeometricErrors;
 use mtmotion::machine;
+use mtmotion::machine::MachineRef;
 
 fn worst(machine: &str, errors: GeometricErrors) -> f64 {
     let r = cone_frustum_test(&ConeFrustumConfig {

@@ -11,7 +11,8 @@ use mtmotion::compensate::nc5::cutting_force::Cutting;
 use mtmotion::compensate::nc5::monte_carlo::MonteCarlo;
 use mtmotion::compensate::nc5::s_shape::{s_shape, SShapeOptions};
 use mtmotion::compensate::nc5::{compensate_nc5, Nc5Config};
-use mtmotion::kinematics::{GeometricErrors, MachineRef};
+use mtmotion::kinematics::GeometricErrors;
+use mtmotion::machine::MachineRef;
 
 fn program() -> String {
     s_shape(&SShapeOptions::paper(MachineRef::Name(

@@ -1,4 +1,4 @@
-//! Proves the NC interpreter and writer: every error case of issue 4 names
+//! Proves the NC interpreter and writer: every error case names
 //! its line and column and says what was expected; warnings are raised for
 //! ignored words; and parse → write → parse gives the same segments back
 //! (including G91, G20, R arcs over 180°, full circles, dwells, rotary words).

@@ -1,6 +1,6 @@
 // Entry of the single-file page (dist/mtmotion-standalone.html), which works
 // from file://. The wasm bytes and the worker's code are inlined by
-// scripts/build-standalone.mjs; panels are imported statically because
+// scripts/bundle.mjs; panels are imported statically because
 // browsers block module fetches from file://. The core runs in a worker made
 // from a blob URL; where the browser refuses that, it runs in-page.
 /* global __MTMOTION_WASM_BASE64__, __MTMOTION_WORKER_SOURCE__ */

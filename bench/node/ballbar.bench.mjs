@@ -1,4 +1,4 @@
-// Ball-bar and alignment benchmarks of the wasm build (issue 5 targets):
+// Ball-bar and alignment benchmarks of the wasm build (targets):
 //   fitCircle on 1e6 points < 50 ms; travelRangeSweep, 10 ranges at 1000 samples < 10 ms.
 // Run: node bench/node/run.mjs ballbar   (needs pkg/ from wasm-pack build --release)
 import { wasm, bench } from './harness.mjs';

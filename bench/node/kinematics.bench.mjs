@@ -1,5 +1,5 @@
 // Node benchmarks of the kinematics bindings (wasm build in pkg/).
-// Targets (issue 6): forward kinematics ≥ 5 M evaluations/s (bulk entry
+// Targets: forward kinematics ≥ 5 M evaluations/s (bulk entry
 // point, so the model is measured, not the per-call boundary); a 3600-point
 // cone-frustum test with servo models < 50 ms.
 import { wasm, bench } from './harness.mjs';

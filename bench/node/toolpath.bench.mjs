@@ -1,5 +1,5 @@
 // Node benchmarks of the tool-path bindings (wasm build in pkg/).
-// Targets (issue 4): simulateToolPath ≥ 5 M samples/s; a 10,000-segment
+// Targets: simulateToolPath ≥ 5 M samples/s; a 10,000-segment
 // program at dt = 1 ms in < 1 s; reverseCompensate of the example < 500 ms.
 import { wasm, bench } from './harness.mjs';
 

@@ -19,7 +19,10 @@
 //! Units: whatever the inputs are in (mm in the core); the outputs are in the
 //! same unit.
 
+use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
+
+use crate::numeric::{levenberg_marquardt, LmOptions, Normal};
 
 /// Errors of the circle fit.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -147,16 +150,16 @@ pub fn fit_circle(x: &[f64], y: &[f64]) -> Result<Circle, FitError> {
     let d = -(svv * suz - suv * svz) / det;
     let e = -(suu * svz - suv * suz) / det;
     let f = -sz / nf;
-    let (mut a, mut b) = (-d / 2.0, -e / 2.0);
-    let mut r = (a * a + b * b - f).max(0.0).sqrt();
-    // Levenberg–Marquardt on (a, b, r) in scaled coordinates. One pass over
-    // the points per iteration: the pass at a trial point gives its cost
-    // and its normal equations; a trial that raises the cost is undone and
-    // the damping raised.
+    let (a, b) = (-d / 2.0, -e / 2.0);
+    let r = (a * a + b * b - f).max(0.0).sqrt();
+    // Levenberg–Marquardt on (a, b, r) in scaled coordinates
+    // ([`crate::numeric::levenberg_marquardt`]). One pass over the points
+    // per evaluation gives the cost and the normal equations together.
     let inv = 1.0 / s;
-    let pass = |a: f64, b: f64, r: f64| -> ([f64; 6], [f64; 3], f64) {
-        // JᵀJ (aa ab ar bb br rr), Jᵀe and the cost, with J = [−u/d, −v/d, −1].
-        let (mut m, mut g, mut cost) = ([0.0f64; 6], [0.0f64; 3], 0.0);
+    let pass = |p: &Vector3<f64>| -> Normal<3> {
+        // J = [−u/d, −v/d, −1] per point, accumulated into JᵀJ and Jᵀe.
+        let (a, b, r) = (p[0], p[1], p[2]);
+        let (mut m, mut g, mut cost) = ([0.0f64; 5], [0.0f64; 3], 0.0);
         for (&px, &py) in x.iter().zip(y) {
             let (u, v) = ((px - mx) * inv - a, (py - my) * inv - b);
             let dist = (u * u + v * v).sqrt();
@@ -176,54 +179,22 @@ pub fn fit_circle(x: &[f64], y: &[f64]) -> Result<Circle, FitError> {
             g[2] -= res;
             cost += res * res;
         }
-        m[5] = nf;
-        (m, g, cost)
+        Normal {
+            jtj: Matrix3::new(m[0], m[1], m[2], m[1], m[3], m[4], m[2], m[4], nf),
+            jtr: Vector3::new(g[0], g[1], g[2]),
+            cost,
+        }
     };
-    let mut lambda = 1e-6;
-    let (mut m, mut g, mut cost) = pass(a, b, r);
-    let mut accepted = (a, b, r);
-    for _ in 0..60 {
-        // Converged: the gradient vanishes to rounding (scaled units).
-        if (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt() <= 1e-13 * nf {
-            break;
-        }
-        let mat = nalgebra::Matrix3::new(
-            m[0] * (1.0 + lambda),
-            m[1],
-            m[2],
-            m[1],
-            m[3] * (1.0 + lambda),
-            m[4],
-            m[2],
-            m[4],
-            m[5] * (1.0 + lambda),
-        );
-        let rhs = nalgebra::Vector3::new(-g[0], -g[1], -g[2]);
-        let Some(step) = mat.cholesky().map(|c| c.solve(&rhs)) else {
-            lambda *= 10.0;
-            continue;
-        };
-        if step.norm() < 1e-15 * (1.0 + r) {
-            break;
-        }
-        let (na, nb, nr) = (a + step[0], b + step[1], r + step[2]);
-        let (tm, tg, tc) = pass(na, nb, nr);
-        if tc <= cost {
-            let drop = cost - tc;
-            (a, b, r, m, g, cost) = (na, nb, nr, tm, tg, tc);
-            accepted = (a, b, r);
-            lambda = (lambda * 0.1).max(1e-12);
-            if drop <= 1e-28 * nf {
-                break;
-            }
-        } else {
-            (a, b, r) = accepted;
-            lambda *= 10.0;
-            if lambda > 1e12 {
-                break;
-            }
-        }
-    }
+    let opts = LmOptions {
+        max_iterations: 60,
+        // Converged: the gradient vanishes to rounding (scaled units) …
+        gradient_tol: 1e-13 * nf,
+        // … or the cost no longer drops.
+        cost_drop_tol: 1e-28 * nf,
+        ..LmOptions::default()
+    };
+    let fit = levenberg_marquardt(Vector3::new(a, b, r), pass, |p| p, &opts);
+    let (a, b, r, cost) = (fit.p[0], fit.p[1], fit.p[2], fit.normal.cost);
     if !(a.is_finite() && b.is_finite() && r.is_finite()) {
         return Err(FitError::Collinear);
     }

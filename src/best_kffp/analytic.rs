@@ -14,81 +14,9 @@
 //! ω in rad/s; K_FFP in %; angles in rad.
 
 use super::BestKffpError;
+use crate::numeric::brent;
 use crate::servo::response::{alpha_th, beta_th};
 use crate::servo::AxisParams;
-
-/// Brent's method on `f` over `[a, b]` with `f(a)·f(b) ≤ 0`.
-pub(crate) fn brent(
-    mut f: impl FnMut(f64) -> f64,
-    mut a: f64,
-    mut b: f64,
-    tol: f64,
-) -> Option<f64> {
-    let (mut fa, mut fb) = (f(a), f(b));
-    if !(fa.is_finite() && fb.is_finite()) || fa * fb > 0.0 {
-        return None;
-    }
-    if fa == 0.0 {
-        return Some(a);
-    }
-    let (mut c, mut fc) = (a, fa);
-    let mut d = b - a;
-    let mut e = d;
-    for _ in 0..200 {
-        if fb * fc > 0.0 {
-            c = a;
-            fc = fa;
-            d = b - a;
-            e = d;
-        }
-        if fc.abs() < fb.abs() {
-            a = b;
-            b = c;
-            c = a;
-            fa = fb;
-            fb = fc;
-            fc = fa;
-        }
-        let tol1 = 2.0 * f64::EPSILON * b.abs() + 0.5 * tol;
-        let m = 0.5 * (c - b);
-        if m.abs() <= tol1 || fb == 0.0 {
-            return Some(b);
-        }
-        if e.abs() >= tol1 && fa.abs() > fb.abs() {
-            let s = fb / fa;
-            let (mut p, mut q);
-            if a == c {
-                p = 2.0 * m * s;
-                q = 1.0 - s;
-            } else {
-                let qq = fa / fc;
-                let r = fb / fc;
-                p = s * (2.0 * m * qq * (qq - r) - (b - a) * (r - 1.0));
-                q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
-            }
-            if p > 0.0 {
-                q = -q;
-            } else {
-                p = -p;
-            }
-            if 2.0 * p < (3.0 * m * q - (tol1 * q).abs()).min((e * q).abs()) {
-                e = d;
-                d = p / q;
-            } else {
-                d = m;
-                e = d;
-            }
-        } else {
-            d = m;
-            e = d;
-        }
-        a = b;
-        fa = fb;
-        b += if d.abs() > tol1 { d } else { tol1.copysign(m) };
-        fb = f(b);
-    }
-    Some(b)
-}
 
 /// The K_FFP (%) of a linear axis whose phase lag at ω equals `target`
 /// (rad), searched in `[k_min, k_max]`.
@@ -155,16 +83,4 @@ pub fn solve(
     let kx = match_lag(x, omega, alpha, k_min, k_max, "x")?;
     let ky = match_lag(y, omega, alpha, k_min, k_max, "y")?;
     Ok((kx, ky))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn brent_finds_a_cubic_root() {
-        let r = brent(|x| x * x * x - 2.0 * x - 5.0, 2.0, 3.0, 1e-14).unwrap();
-        assert!((r - 2.094_551_481_542_327).abs() < 1e-12);
-        assert!(brent(|x| x * x + 1.0, -1.0, 1.0, 1e-12).is_none());
-    }
 }

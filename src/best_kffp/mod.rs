@@ -255,7 +255,7 @@ fn simulated_shift(
         return Ok(d1);
     }
     let (lo, hi) = (opts.k_min - kx.min(ky), opts.k_max - kx.max(ky));
-    analytic::brent(&mut eval, lo, hi, 1e-6).ok_or(BestKffpError::NoRoot {
+    crate::numeric::brent(&mut eval, lo, hi, 1e-6).ok_or(BestKffpError::NoRoot {
         axis: "x",
         k_min: opts.k_min,
         k_max: opts.k_max,

@@ -15,8 +15,7 @@
 
 use nalgebra::Vector3;
 
-use crate::kinematics::errors::{symbol_name, Symbol};
-use crate::kinematics::{Chain, GeometricErrors, JointKind, KinematicsError, Model};
+use crate::kinematics::{Chain, GeometricErrors, KinematicsError, Model};
 
 const H: f64 = 1e-6;
 
@@ -31,51 +30,6 @@ pub fn axes(model: &Model, q: &[f64; 6], bar: &Vector3<f64>, axes: &[usize]) -> 
             bar.dot(&(model.eval(&qp).0 - model.eval(&qm).0)) / (2.0 * H)
         })
         .collect()
-}
-
-/// The location errors a cone-frustum test can see: for each rotary axis
-/// its two radial offsets and three angular errors (the own-axis angle is
-/// the zero-position error); for the linear axes the squareness errors
-/// `EC0Y`, `EB0Z`, `EA0Z`.
-///
-/// # Examples
-/// ```
-/// let chain = mtmotion::machine::preset("trunnion-ac").unwrap().kinematics.unwrap();
-/// let s = mtmotion::cone_frustum::sensitivity::error_symbols(&chain);
-/// assert!(s.contains(&"EX0C".to_string()) && s.contains(&"EY0A".to_string()));
-/// assert!(!s.contains(&"EZ0C".to_string()) && !s.contains(&"EX0A".to_string()));
-/// ```
-pub fn error_symbols(chain: &Chain) -> Vec<String> {
-    let mut out = Vec::new();
-    for (_, j) in chain.joints() {
-        if j.kind != JointKind::Rotary {
-            continue;
-        }
-        let Some(axis) = Chain::axis_index(&j.axis) else {
-            continue;
-        };
-        for d in 0..6 {
-            if d == j.dir.index() {
-                continue; // translation along its own axis: no effect
-            }
-            out.push(symbol_name(Symbol {
-                d,
-                axis,
-                location: true,
-            }));
-        }
-    }
-    let present = chain.axes();
-    for (sym, need) in [
-        ("EC0Y", ["x", "y"]),
-        ("EB0Z", ["x", "z"]),
-        ("EA0Z", ["y", "z"]),
-    ] {
-        if need.iter().all(|a| present.contains(a)) {
-            out.push(sym.to_string());
-        }
-    }
-    out
 }
 
 /// Models with `±1e-6` of the error `symbol` added to `base`.

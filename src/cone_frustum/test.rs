@@ -28,7 +28,8 @@ use serde::{Deserialize, Serialize};
 use super::path::{Geometry, Method};
 use super::{drive, sensitivity, ConeFrustumError};
 use crate::kinematics::inverse::limits_from_degrees;
-use crate::kinematics::{Chain, GeometricErrors, MachineRef, Model, Pose, AXES};
+use crate::kinematics::{Chain, GeometricErrors, Model, Pose, AXES};
+use crate::machine::MachineRef;
 use crate::servo::{AxisKind, AxisParams};
 
 fn perpendicular() -> Method {
@@ -93,6 +94,8 @@ pub struct ConeFrustumConfig {
 pub struct AxisSeries {
     /// Axis letter.
     pub axis: String,
+    /// Linear (positions in mm) or rotary (positions in rad).
+    pub kind: AxisKind,
     /// Commanded position, mm or rad.
     pub command: Vec<f64>,
     /// Actual (table) position, mm or rad.
@@ -132,6 +135,10 @@ pub struct ConeFrustumResult {
     pub radius: f64,
     /// Duration of one revolution, s.
     pub duration: f64,
+    /// Largest bar-length change, mm.
+    pub max_deviation: f64,
+    /// Smallest (most negative) bar-length change, mm.
+    pub min_deviation: f64,
 }
 
 fn bad(field: &'static str, value: f64, why: &'static str) -> ConeFrustumError {
@@ -167,7 +174,8 @@ fn placeholder_axis(kind: AxisKind) -> AxisParams {
 /// # Examples
 /// ```
 /// use mtmotion::cone_frustum::{cone_frustum_test, ConeFrustumConfig, Method};
-/// use mtmotion::kinematics::{GeometricErrors, MachineRef};
+/// use mtmotion::kinematics::GeometricErrors;
+/// use mtmotion::machine::MachineRef;
 /// let cfg = ConeFrustumConfig {
 ///     machine: MachineRef::Name("trunnion-ac".into()), half_apex_deg: 45.0,
 ///     inclination_deg: 10.0, method: Method::Perpendicular, bar_length: 100.0,
@@ -315,6 +323,7 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         }
         series.push(AxisSeries {
             axis: letter.to_string(),
+            kind,
             command: cmd[lead..].to_vec(),
             actual: act[lead..].to_vec(),
         });
@@ -322,7 +331,7 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
     // Bar readings.
     let model = Model::new(&chain, &cfg.errors, cfg.tool_length)?;
     let nominal = Model::new(&chain, &GeometricErrors::default(), cfg.tool_length)?;
-    let symbols = sensitivity::error_symbols(&chain);
+    let symbols = crate::kinematics::errors::error_symbols(&chain);
     let perturbed = symbols
         .iter()
         .map(|s| sensitivity::perturbed(&chain, &GeometricErrors::default(), cfg.tool_length, s))
@@ -357,6 +366,8 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         angle_deg.push(360.0 * j / n as f64);
         time.push(j * dt);
     }
+    let max_deviation = deviation.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let min_deviation = deviation.iter().copied().fold(f64::INFINITY, f64::min);
     Ok(ConeFrustumResult {
         angle_deg,
         time,
@@ -379,6 +390,8 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         bar_length,
         radius,
         duration,
+        max_deviation,
+        min_deviation,
     })
 }
 

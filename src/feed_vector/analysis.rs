@@ -80,14 +80,7 @@ pub struct Summary {
     pub periods: usize,
 }
 
-fn wrap(a: f64) -> f64 {
-    let w = (a + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
-    if w == -std::f64::consts::PI {
-        std::f64::consts::PI
-    } else {
-        w
-    }
-}
+use crate::numeric::wrap_angle as wrap;
 
 /// Central-difference derivative (one-sided at the ends).
 fn derivative(t: &[f64], y: &[f64]) -> Vec<f64> {

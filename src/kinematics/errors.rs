@@ -289,6 +289,52 @@ impl GeometricErrors {
     }
 }
 
+/// The location errors a machine's motions can reveal (and so the errors a
+/// cone-frustum test or a compensation can see): for each rotary axis
+/// its two radial offsets and three angular errors (the own-axis angle is
+/// the zero-position error); for the linear axes the squareness errors
+/// `EC0Y`, `EB0Z`, `EA0Z`.
+///
+/// # Examples
+/// ```
+/// let chain = mtmotion::machine::preset("trunnion-ac").unwrap().kinematics.unwrap();
+/// let s = mtmotion::kinematics::errors::error_symbols(&chain);
+/// assert!(s.contains(&"EX0C".to_string()) && s.contains(&"EY0A".to_string()));
+/// assert!(!s.contains(&"EZ0C".to_string()) && !s.contains(&"EX0A".to_string()));
+/// ```
+pub fn error_symbols(chain: &Chain) -> Vec<String> {
+    let mut out = Vec::new();
+    for (_, j) in chain.joints() {
+        if j.kind != super::JointKind::Rotary {
+            continue;
+        }
+        let Some(axis) = Chain::axis_index(&j.axis) else {
+            continue;
+        };
+        for d in 0..6 {
+            if d == j.dir.index() {
+                continue; // translation along its own axis: no effect
+            }
+            out.push(symbol_name(Symbol {
+                d,
+                axis,
+                location: true,
+            }));
+        }
+    }
+    let present = chain.axes();
+    for (sym, need) in [
+        ("EC0Y", ["x", "y"]),
+        ("EB0Z", ["x", "z"]),
+        ("EA0Z", ["y", "z"]),
+    ] {
+        if need.iter().all(|a| present.contains(a)) {
+            out.push(sym.to_string());
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

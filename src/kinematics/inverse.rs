@@ -14,7 +14,7 @@
 //!
 //! Units: mm, rad (limits in mm and rad here; the JS API converts degrees).
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
@@ -64,14 +64,7 @@ fn sp1(w: &Vector3<f64>, a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     w.dot(&ap.cross(&bp)).atan2(ap.dot(&bp))
 }
 
-fn wrap(a: f64) -> f64 {
-    let r = (a + PI).rem_euclid(TAU) - PI;
-    if r <= -PI {
-        r + TAU
-    } else {
-        r
-    }
-}
+use crate::numeric::wrap_angle as wrap;
 
 /// Every inverse-kinematics branch of the nominal `chain` for `pose`.
 ///
@@ -140,7 +133,6 @@ impl Inverse {
 
     /// Every branch for `pose` (see [`inverse`]).
     pub fn solve(&self, pose: &Pose, limits: &Limits) -> Result<Vec<Solution>, KinematicsError> {
-        let (model, f, rot, lin, t) = (&self.model, &self.f, &self.rot, &self.lin, self.t);
         let k = Vector3::from(pose.orientation);
         let kn = k.norm();
         if !(kn.is_finite() && kn > 1e-12 && pose.position.iter().all(|v| v.is_finite())) {
@@ -149,7 +141,43 @@ impl Inverse {
                 why: "needs a finite position and a non-zero orientation vector".into(),
             });
         }
-        let k = k / kn;
+        let angle_sets = self.rotary_angles(&(k / kn))?;
+        let target = Vector3::from(pose.position);
+        let mut out = Vec::new();
+        for (angles, singular) in angle_sets {
+            let mut q = [0.0; 6];
+            for ((qi, _, sign), th) in self.rot.iter().zip(&angles) {
+                q[*qi] = wrap(th * sign);
+            }
+            let sol = self.linear_axes(&q, &target)?;
+            for (col, qi) in self.lin.iter().enumerate().take(3) {
+                q[*qi] = sol[col];
+            }
+            for c in periodic_copies(q, &self.rot, limits) {
+                let within = c
+                    .iter()
+                    .zip(limits)
+                    .all(|(v, l)| *v >= l[0] - 1e-12 && *v <= l[1] + 1e-12);
+                out.push(Solution {
+                    q: c,
+                    within_limits: within,
+                    singular,
+                });
+            }
+        }
+        // Keep principal copies outside limits only when no copy fits.
+        let any_within = out.iter().any(|s| s.within_limits);
+        if any_within {
+            out.retain(|s| s.within_limits);
+        }
+        out.dedup_by(|a, b| a.q.iter().zip(&b.q).all(|(x, y)| (x - y).abs() < 1e-12));
+        Ok(out)
+    }
+
+    /// The rotary-axis angle sets (before sign and wrap) that point the tool
+    /// along the unit vector `k`, each with its singular flag.
+    fn rotary_angles(&self, k: &Vector3<f64>) -> Result<Vec<(Vec<f64>, bool)>, KinematicsError> {
+        let (f, rot, t, k) = (&self.f, &self.rot, self.t, *k);
         let mut angle_sets: Vec<(Vec<f64>, bool)> = Vec::new();
         let unreachable = || {
             KinematicsError::Unreachable(
@@ -214,78 +242,69 @@ impl Inverse {
                 }
             }
         }
-        let target = Vector3::from(pose.position);
-        let mut out = Vec::new();
-        for (angles, singular) in angle_sets {
-            let mut q = [0.0; 6];
-            for ((qi, _, sign), th) in rot.iter().zip(&angles) {
-                q[*qi] = wrap(th * sign);
-            }
-            // Position: affine in the linear axes.
-            let (p0, _) = model.eval(&q);
-            let mut jac = Matrix3::zeros();
-            for (col, qi) in lin.iter().enumerate().take(3) {
-                let mut qe = q;
-                qe[*qi] = 1.0;
-                let (pe, _) = model.eval(&qe);
-                jac.set_column(col, &(pe - p0));
-            }
-            let rhs = target - p0;
-            let sol = if lin.len() == 3 {
-                jac.lu()
-                    .solve(&rhs)
-                    .ok_or_else(|| KinematicsError::BadChain {
-                        field: "links".into(),
-                        why: "the linear axes are not independent".into(),
-                    })?
-            } else {
-                let svd = jac.svd(true, true);
-                let s = svd
-                    .solve(&rhs, 1e-12)
-                    .map_err(|e| KinematicsError::Unreachable(e.to_string()))?;
-                if (jac * s - rhs).norm() > 1e-9 {
-                    return Err(KinematicsError::Unreachable(
-                        "the position needs a linear axis this machine does not have".into(),
-                    ));
-                }
-                s
-            };
-            for (col, qi) in lin.iter().enumerate().take(3) {
-                q[*qi] = sol[col];
-            }
-            // Periodic copies of the rotary angles.
-            let mut copies = vec![q];
-            for (qi, _, _) in rot {
-                let mut next = Vec::new();
-                for base in &copies {
-                    for turn in -3..=3 {
-                        let mut c = *base;
-                        c[*qi] = base[*qi] + turn as f64 * TAU;
-                        if turn == 0 || (c[*qi] >= limits[*qi][0] && c[*qi] <= limits[*qi][1]) {
-                            next.push(c);
-                        }
-                    }
-                }
-                copies = next;
-            }
-            for c in copies {
-                let within = c
-                    .iter()
-                    .zip(limits)
-                    .all(|(v, l)| *v >= l[0] - 1e-12 && *v <= l[1] + 1e-12);
-                out.push(Solution {
-                    q: c,
-                    within_limits: within,
-                    singular,
-                });
-            }
-        }
-        // Keep principal copies outside limits only when no copy fits.
-        let any_within = out.iter().any(|s| s.within_limits);
-        if any_within {
-            out.retain(|s| s.within_limits);
-        }
-        out.dedup_by(|a, b| a.q.iter().zip(&b.q).all(|(x, y)| (x - y).abs() < 1e-12));
-        Ok(out)
+        Ok(angle_sets)
     }
+
+    /// The linear-axis positions that put the tool tip on `target` with the
+    /// rotary axes of `q` (the position is affine in the linear axes).
+    fn linear_axes(
+        &self,
+        q: &[f64; 6],
+        target: &Vector3<f64>,
+    ) -> Result<Vector3<f64>, KinematicsError> {
+        let (model, lin, q) = (&self.model, &self.lin, *q);
+        let (p0, _) = model.eval(&q);
+        let mut jac = Matrix3::zeros();
+        for (col, qi) in lin.iter().enumerate().take(3) {
+            let mut qe = q;
+            qe[*qi] = 1.0;
+            let (pe, _) = model.eval(&qe);
+            jac.set_column(col, &(pe - p0));
+        }
+        let rhs = target - p0;
+        let sol = if lin.len() == 3 {
+            jac.lu()
+                .solve(&rhs)
+                .ok_or_else(|| KinematicsError::BadChain {
+                    field: "links".into(),
+                    why: "the linear axes are not independent".into(),
+                })?
+        } else {
+            let svd = jac.svd(true, true);
+            let s = svd
+                .solve(&rhs, 1e-12)
+                .map_err(|e| KinematicsError::Unreachable(e.to_string()))?;
+            if (jac * s - rhs).norm() > 1e-9 {
+                return Err(KinematicsError::Unreachable(
+                    "the position needs a linear axis this machine does not have".into(),
+                ));
+            }
+            s
+        };
+        Ok(sol)
+    }
+}
+
+/// `q` and the copies of it whose rotary angles differ by whole turns and
+/// stay inside `limits` (up to ±3 turns; the principal copy is always kept).
+fn periodic_copies(
+    q: [f64; 6],
+    rot: &[(usize, Vector3<f64>, f64)],
+    limits: &Limits,
+) -> Vec<[f64; 6]> {
+    let mut copies = vec![q];
+    for (qi, _, _) in rot {
+        let mut next = Vec::new();
+        for base in &copies {
+            for turn in -3..=3 {
+                let mut c = *base;
+                c[*qi] = base[*qi] + turn as f64 * TAU;
+                if turn == 0 || (c[*qi] >= limits[*qi][0] && c[*qi] <= limits[*qi][1]) {
+                    next.push(c);
+                }
+            }
+        }
+        copies = next;
+    }
+    copies
 }

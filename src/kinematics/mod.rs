@@ -87,32 +87,3 @@ pub fn q_to_degrees(q: &[f64; 6]) -> [f64; 6] {
     }
     r
 }
-
-/// A machine given by preset name or described in full.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(untagged)]
-pub enum MachineRef {
-    /// A preset name, e.g. `trunnion-ac`.
-    Name(String),
-    /// A full description (e.g. an edited preset).
-    Spec(Box<crate::machine::Machine>),
-}
-
-impl MachineRef {
-    /// The machine, and its chain.
-    pub fn resolve(
-        &self,
-    ) -> Result<(crate::machine::Machine, Chain), crate::machine::MachineError> {
-        let m = match self {
-            MachineRef::Name(n) => crate::machine::preset(n)?,
-            MachineRef::Spec(m) => (**m).clone(),
-        };
-        let chain = m
-            .kinematics
-            .clone()
-            .ok_or_else(|| crate::machine::MachineError::NoChain {
-                name: m.name.clone(),
-            })?;
-        Ok((m, chain))
-    }
-}

@@ -14,7 +14,7 @@
 //!   on the tilting axis (full width).
 //!
 //! Every symbol is one the cone-frustum test can see
-//! ([`crate::cone_frustum::sensitivity::error_symbols`]), so the page shows
+//! ([`crate::kinematics::errors::error_symbols`]), so the page shows
 //! each of them in its error table.
 //!
 //! Units: mm, rad.

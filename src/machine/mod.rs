@@ -122,6 +122,30 @@ pub fn preset(name: &str) -> Result<Machine, MachineError> {
         })
 }
 
+/// A machine given by preset name or described in full.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(untagged)]
+pub enum MachineRef {
+    /// A preset name, e.g. `trunnion-ac`.
+    Name(String),
+    /// A full description (e.g. an edited preset).
+    Spec(Box<Machine>),
+}
+
+impl MachineRef {
+    /// The machine, and its chain.
+    pub fn resolve(&self) -> Result<(Machine, Chain), MachineError> {
+        let m = match self {
+            MachineRef::Name(n) => preset(n)?,
+            MachineRef::Spec(m) => (**m).clone(),
+        };
+        let chain = m.kinematics.clone().ok_or_else(|| MachineError::NoChain {
+            name: m.name.clone(),
+        })?;
+        Ok((m, chain))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -39,7 +39,7 @@ pub fn machine() -> Machine {
     Machine {
         name: "table-on-table-bc".into(),
         description: "Table-on-table B–C 5-axis machining centre like the NMV5000: C table on a B cradle".into(),
-        source: "chain: issue 6 (NMV5000 layout); feed drives suzuki-best-kffp Table 1 (Z copies Y, B copies C); limits: NMV5000 catalogue travels".into(),
+        source: "chain: NMV5000 layout (table-on-table B–C, as in takayama-alignment-travel-range); feed drives suzuki-best-kffp Table 1 (Z copies Y, B copies C); limits: NMV5000 catalogue travels".into(),
         axes,
         limits: BTreeMap::from([
             ("x".into(), [-365.0, 365.0]),

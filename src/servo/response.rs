@@ -1,7 +1,7 @@
 //! Exact frequency response of the feed drive (suzuki-best-kffp Fig. 11,
 //! Eqs. 12–19).
 //!
-//! The loop (issue 3, Fig. 11 with Pre-Control of Fig. 10(b)):
+//! The loop (suzuki-best-kffp Fig. 11 with Pre-Control of Fig. 10(b)):
 //!
 //! - `x_s = A_Ts · x` — the interpolator command `x` after the smoothing
 //!   `Ts`, a moving average of length `Ts`: `A_T(s) = (1 − e^{−sT})/(sT)`;

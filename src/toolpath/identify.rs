@@ -15,7 +15,10 @@
 //!
 //! Units: mm, mm/min, s.
 
+use nalgebra::{Matrix2, Vector2};
 use serde::{Deserialize, Serialize};
+
+use crate::numeric::{levenberg_marquardt, LmOptions, Normal};
 
 /// Errors of Eq. 3 and of the identification.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -192,9 +195,8 @@ pub fn identify_acc_dec(data: &[CircleLoss]) -> Result<AccDec, IdentifyError> {
             }
         }
     }
-    // Levenberg–Marquardt with a numerical Jacobian.
-    let (mut p, mut c) = best;
-    let mut lambda = 1e-3;
+    // Levenberg–Marquardt ([`crate::numeric::levenberg_marquardt`]) with a
+    // forward-difference Jacobian, tA and T kept ≥ 0.
     let jac = |p: [f64; 2]| -> Vec<[f64; 2]> {
         let r0 = residuals(data, p);
         let mut j = vec![[0.0; 2]; data.len()];
@@ -209,48 +211,32 @@ pub fn identify_acc_dec(data: &[CircleLoss]) -> Result<AccDec, IdentifyError> {
         }
         j
     };
-    for _ in 0..200 {
+    let normal = |v: &Vector2<f64>| -> Normal<2> {
+        let p = [v[0], v[1]];
         let r = residuals(data, p);
-        let j = jac(p);
-        let (mut a, mut g) = ([[0.0; 2]; 2], [0.0; 2]);
-        for (row, ri) in j.iter().zip(&r) {
-            for x in 0..2 {
-                g[x] += row[x] * ri;
-                for y in 0..2 {
-                    a[x][y] += row[x] * row[y];
-                }
-            }
+        let (mut jtj, mut jtr) = (Matrix2::zeros(), Vector2::zeros());
+        for (row, ri) in jac(p).iter().zip(&r) {
+            let j = Vector2::new(row[0], row[1]);
+            jtj += j * j.transpose();
+            jtr += j * *ri;
         }
-        let mut improved = false;
-        for _ in 0..20 {
-            let m = [
-                [a[0][0] * (1.0 + lambda), a[0][1]],
-                [a[1][0], a[1][1] * (1.0 + lambda)],
-            ];
-            let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
-            if det.abs() < 1e-300 {
-                lambda *= 10.0;
-                continue;
-            }
-            let dx = [
-                -(m[1][1] * g[0] - m[0][1] * g[1]) / det,
-                -(-m[1][0] * g[0] + m[0][0] * g[1]) / det,
-            ];
-            let q = [(p[0] + dx[0]).max(0.0), (p[1] + dx[1]).max(0.0)];
-            let cq = cost(data, q);
-            if cq < c {
-                p = q;
-                c = cq;
-                lambda = (lambda / 10.0).max(1e-12);
-                improved = true;
-                break;
-            }
-            lambda *= 10.0;
+        Normal {
+            jtj,
+            jtr,
+            cost: r.iter().map(|x| x * x).sum(),
         }
-        if !improved || c < 1e-30 {
-            break;
-        }
-    }
+    };
+    let opts = LmOptions {
+        lambda: 1e-3,
+        ..LmOptions::default()
+    };
+    let fit = levenberg_marquardt(
+        Vector2::new(best.0[0], best.0[1]),
+        normal,
+        |v| v.map(|x| x.max(0.0)),
+        &opts,
+    );
+    let (p, c) = ([fit.p[0], fit.p[1]], fit.normal.cost);
     // Conditioning in relative terms: columns scaled by the parameters.
     let j = jac(p);
     let scale = [p[0].max(1e-4), p[1].max(1e-4)];

@@ -11,9 +11,9 @@ use wasm_bindgen::prelude::*;
 use super::convert::{from_js, string_arg, to_js, Obj};
 use crate::compensate::nc5::{self, s_shape};
 use crate::cone_frustum::{self, ConeFrustumConfig};
-use crate::kinematics::{
-    self, inverse::limits_from_degrees, GeometricErrors, MachineRef, Model, Pose, AXES,
-};
+use crate::kinematics::{self, inverse::limits_from_degrees, GeometricErrors, Model, Pose, AXES};
+use crate::machine::MachineRef;
+use crate::servo::AxisKind;
 
 #[wasm_bindgen(typescript_custom_section)]
 const TS: &str = r#"
@@ -200,7 +200,7 @@ pub fn error_symbols(
     #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
 ) -> Result<JsValue, JsError> {
     let (_, chain) = machine_of(machine)?;
-    to_js(&crate::cone_frustum::sensitivity::error_symbols(&chain))
+    to_js(&crate::kinematics::errors::error_symbols(&chain))
 }
 
 /// The simulated ISO 10791-6 cone-frustum ball-bar test (kato).
@@ -225,11 +225,11 @@ pub fn cone_frustum_test(
             &JsValue::from_str("done"),
         );
     }
+    // Rotary positions go to JS in degrees, like every angle of the JS API.
     let axes = r.axes.iter().fold(Obj::new(), |o, s| {
-        let scale = if ["a", "b", "c"].contains(&s.axis.as_str()) {
-            180.0 / std::f64::consts::PI
-        } else {
-            1.0
+        let scale = match s.kind {
+            AxisKind::Rotary => 180.0 / std::f64::consts::PI,
+            AxisKind::Linear => 1.0,
         };
         let c: Vec<f64> = s.command.iter().map(|v| v * scale).collect();
         let a: Vec<f64> = s.actual.iter().map(|v| v * scale).collect();
@@ -256,12 +256,6 @@ pub fn cone_frustum_test(
             ),
         )
         .build();
-    let max = r
-        .deviation
-        .iter()
-        .copied()
-        .fold(f64::NEG_INFINITY, f64::max);
-    let min = r.deviation.iter().copied().fold(f64::INFINITY, f64::min);
     Ok(Obj::new()
         .arr("angle", &r.angle_deg)
         .arr("time", &r.time)
@@ -279,8 +273,8 @@ pub fn cone_frustum_test(
         .num("barLength", r.bar_length)
         .num("radius", r.radius)
         .num("duration", r.duration)
-        .num("maxDeviation", max)
-        .num("minDeviation", min)
+        .num("maxDeviation", r.max_deviation)
+        .num("minDeviation", r.min_deviation)
         .build())
 }
 

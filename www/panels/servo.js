@@ -39,7 +39,12 @@ export async function mount(root, api) {
   };
 
   // ---- condition ----
-  const j1 = selectField({ label: 'J1 (load on C)', id: 'servo-j1', value: '1.7', options: PAPER_J1.map((v) => [String(v), `${v} kg·m² (J+J1 = ${fmt(4.2 + v, 2)})`]) });
+  // The J+J1 labels follow the C axis' J as edited in the table.
+  const j1Label = (v) => `${v} kg·m² (J+J1 = ${fmt(Number(inputs['c.j'].value) + v, 2)})`;
+  const j1 = selectField({ label: 'J1 (load on C)', id: 'servo-j1', value: '1.7', options: PAPER_J1.map((v) => [String(v), j1Label(v)]) });
+  inputs['c.j'].addEventListener('input', () => {
+    for (const [i, o] of [...j1.input.options].entries()) o.textContent = j1Label(PAPER_J1[i]);
+  });
   const mode = selectField({ label: 'speed given as', id: 'servo-mode', value: 'omega', options: [['omega', 'ω [rad/s]'], ['feed', 'F_C [mm/min] with R_C']] });
   const omega = numberField({ label: 'ω', unit: 'rad/s', value: Math.PI.toFixed(6), id: 'servo-omega' });
   const feed = numberField({ label: 'F_C', unit: 'mm/min', value: 200, id: 'servo-feed' });
@@ -147,6 +152,8 @@ export async function mount(root, api) {
     const total = PAPER_J1.length * PAPER_OMEGAS.length;
     let done = 0;
     try {
+      // J + J1 per load as the core sums it (the C axis' J as edited).
+      const sat = await api.call('torqueSaturation', [m, { j1: PAPER_J1, torqueMax: m.axes.c.torqueMax ?? 725, accelTime: 0.064, feedAtCuttingPoint: 200, dt: dt.value }]);
       for (const [ji, jv] of PAPER_J1.entries()) {
         for (const w of PAPER_OMEGAS) {
           progress.set(done / total, `J1 = ${jv} kg·m², ω = ${fmt(w / Math.PI, 1)}π rad/s`);
@@ -154,11 +161,10 @@ export async function mount(root, api) {
           data[ji].before.push(r.before.meanAngleDiff * 1e3);
           data[ji].after.push(r.after.meanAngleDiff * 1e3);
           data[ji].half.push(r.before.halfAmplitude * 1e3);
-          rows.push([fmt(4.2 + jv, 2), `${fmt(w / Math.PI, 1)}π`, fmt(r.before.meanAngleDiff * 1e3, 3), fmt(r.before.halfAmplitude * 1e3, 1), r.before.saturated ? 'yes' : 'no', r.method, fmt(r.kffp.x, 2), fmt(r.kffp.y, 2), fmt(r.after.meanAngleDiff * 1e3, 4), fmt(r.after.halfAmplitude * 1e3, 1)]);
+          rows.push([fmt(sat[ji].jTotal, 2), `${fmt(w / Math.PI, 1)}π`, fmt(r.before.meanAngleDiff * 1e3, 3), fmt(r.before.halfAmplitude * 1e3, 1), r.before.saturated ? 'yes' : 'no', r.method, fmt(r.kffp.x, 2), fmt(r.kffp.y, 2), fmt(r.after.meanAngleDiff * 1e3, 4), fmt(r.after.halfAmplitude * 1e3, 1)]);
           done++;
         }
       }
-      const sat = await api.call('torqueSaturation', [m, { j1: PAPER_J1, torqueMax: m.axes.c.torqueMax ?? 725, accelTime: 0.064, feedAtCuttingPoint: 200, dt: dt.value }]);
       progress.done();
       const els = [h('div'), h('div'), h('div')];
       const t = table(['J+J1 [kg·m²]', 'ω', 'α−β [mrad]', 'half ampl. [µm]', 'saturated', 'method', 'Best K_FFP X [%]', 'Best K_FFP Y [%]', 'α−β after [mrad]', 'half ampl. after [µm]'], rows);
@@ -166,7 +172,7 @@ export async function mount(root, api) {
       const satTable = table(['J+J1 [kg·m²]', 'accelSat [rad/s²]', 'ωsat [rad/s]', 'R_C min at 200 mm/min [mm]'], sat.map((p) => [fmt(p.jTotal, 2), fmt(p.accelSat, 1), fmt(p.omegaSat, 3), fmt(p.rcMin, 3)]));
       satTable.querySelector('table').id = 'servo-saturation-table';
       sweepBox.replaceChildren(...els, t, h('h4', {}, 'Torque-saturation limits (Figs. 17, 21)'), satTable);
-      const series = PAPER_J1.map((jv) => ({ label: `J+J1 = ${fmt(4.2 + jv, 2)}` }));
+      const series = sat.map((p) => ({ label: `J+J1 = ${fmt(p.jTotal, 2)}` }));
       lineChart(els[0], { title: 'Mean α − β with K_FFP set (Figs. 15, 20)', xLabel: 'ω [rad/s]', yLabel: 'mrad', series, data: [PAPER_OMEGAS, ...data.map((d) => d.before)] });
       lineChart(els[1], { title: 'Half amplitude of the shape error (Fig. 14)', xLabel: 'ω [rad/s]', yLabel: 'µm', series, data: [PAPER_OMEGAS, ...data.map((d) => d.half)] });
       const rcs = Float64Array.from({ length: 200 }, (_, i) => 0.1 + (i * 5.9) / 199);

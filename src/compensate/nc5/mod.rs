@@ -41,8 +41,9 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use crate::kinematics::{
-    newton, q_from_degrees, q_to_degrees, GeometricErrors, KinematicsError, MachineRef, Model, AXES,
+    newton, q_from_degrees, q_to_degrees, GeometricErrors, KinematicsError, Model, AXES,
 };
+use crate::machine::MachineRef;
 use crate::nc::program::{parse, Motion, Pose as NcPose, Segment};
 use crate::nc::NcError;
 use cutting_force::Cutting;
@@ -242,7 +243,8 @@ fn points_of(segments: &[Segment]) -> Result<Vec<EvalPoint>, Nc5Error> {
 /// # Examples
 /// ```
 /// use mtmotion::compensate::nc5::{compensate_nc5, Nc5Config};
-/// use mtmotion::kinematics::{GeometricErrors, MachineRef};
+/// use mtmotion::kinematics::GeometricErrors;
+/// use mtmotion::machine::MachineRef;
 /// let mut errors = GeometricErrors::default();
 /// errors.location.insert("EY0A".into(), 0.03);
 /// errors.location.insert("EB0C".into(), 2e-4);

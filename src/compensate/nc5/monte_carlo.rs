@@ -101,7 +101,7 @@ pub fn draw(
             mc.sigma_rad
         }
     };
-    for sym in crate::cone_frustum::sensitivity::error_symbols(chain) {
+    for sym in crate::kinematics::errors::error_symbols(chain) {
         let s = sigma(&sym);
         *e.location.entry(sym).or_insert(0.0) += s * rng.normal();
     }

@@ -20,7 +20,8 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use crate::kinematics::inverse::limits_from_degrees;
-use crate::kinematics::{inverse, q_to_degrees, KinematicsError, MachineRef, Pose};
+use crate::kinematics::{inverse, q_to_degrees, KinematicsError, Pose};
+use crate::machine::MachineRef;
 use crate::nc::writer::fmt_num;
 
 fn scale_default() -> f64 {
@@ -84,7 +85,7 @@ pub struct SShape {
 /// # Examples
 /// ```
 /// use mtmotion::compensate::nc5::s_shape::{s_shape, SShapeOptions};
-/// use mtmotion::kinematics::MachineRef;
+/// use mtmotion::machine::MachineRef;
 /// let s = s_shape(&SShapeOptions::paper(MachineRef::Name("pocketnc-v2-10".into()))).unwrap();
 /// assert_eq!(s.points.len(), 64);
 /// assert_eq!(s.points.iter().filter(|p| p[2].abs() < 1e-12).count(), 32);

@@ -1,0 +1,11 @@
+//! Shared numerical kernels, one definition each: Brent's root finder,
+//! Levenberg–Marquardt least squares, angle wrapping. The models call these
+//! instead of carrying their own copies.
+
+pub mod angle;
+pub mod brent;
+pub mod levenberg_marquardt;
+
+pub use angle::wrap_angle;
+pub use brent::brent;
+pub use levenberg_marquardt::{levenberg_marquardt, LmOptions, LmResult, Normal};
