@@ -130,3 +130,31 @@ export async function angleSweep(pool, config, options = {}) {
 export function monteCarloNc5(pool, text, options, seeds, mapOptions = {}) {
   return pool.map('compensateNc5', seeds.map((seed) => [text, { ...options, monteCarlo: { ...options.monteCarlo, seed } }]), mapOptions);
 }
+
+let shared;
+/**
+ * The page's shared pool, created on first use; null where module workers
+ * cannot start from a file (the single-file page opened from file://).
+ */
+export function sharedPool() {
+  if (typeof Worker === 'undefined' || globalThis.location?.protocol === 'file:') return null;
+  shared ??= createPool();
+  return shared;
+}
+
+/**
+ * `fn(...args)` for every entry of `argsList` on the shared pool, or one by
+ * one through `api` (the page's single worker) where there is no pool.
+ * Results in argsList order; `onProgress(done, total)` after each call.
+ */
+export async function mapCalls(api, fn, argsList, { onProgress, signal } = {}) {
+  const pool = sharedPool();
+  if (pool) return pool.map(fn, argsList, { onProgress, signal });
+  const out = [];
+  for (const args of argsList) {
+    if (signal?.aborted) throw Object.assign(new Error('cancelled'), { name: 'AbortError' });
+    out.push(await api.call(fn, args));
+    onProgress?.(out.length, argsList.length);
+  }
+  return out;
+}
