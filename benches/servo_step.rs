@@ -19,9 +19,9 @@ fn main() {
         .map(|i| angle(i as f64 * dt, 4.0 * std::f64::consts::PI, 0.064))
         .collect();
     assert!(simulate_axis(&axis, dt, &cmd).unwrap().saturated);
-    let mut rounds: Vec<f64> = (0..7)
+    let mut rounds: Vec<f64> = (0..15)
         .map(|_| {
-            (0..12)
+            (0..10)
                 .map(|_| {
                     let t0 = Instant::now();
                     black_box(simulate_axis(black_box(&axis), dt, black_box(&cmd)).unwrap());
