@@ -3,9 +3,8 @@
 //   import { wasm, bench } from './harness.mjs';
 //   bench('simulateAxis 1e5 steps', () => wasm.simulateAxis(axis, cfg), { perItem: 1e5, unit: 'step' });
 import { readFileSync } from 'node:fs';
-import { fileURLToPath } from 'node:url';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 import { performance } from 'node:perf_hooks';
-import { pathToFileURL } from 'node:url';
 import { resolve } from 'node:path';
 
 // MTMOTION_PKG=<dir> benchmarks another build of the package (e.g. a size
