@@ -3,8 +3,10 @@
 //   bundled JS (panels, uPlot, wasm-bindgen glue), the worker's code and the
 //   wasm inlined as base64 — it opens from file:// with no other file;
 // - dist/mtmotion-embed.js: the documentation calculators (custom elements)
-//   in one module that loads pkg/mtmotion_bg.wasm beside it.
+//   in one module that loads the small embed module
+//   pkg/mtmotion_embed_bg.wasm beside it.
 import { readFileSync, writeFileSync } from 'node:fs';
+import { gzipSync } from 'node:zlib';
 import { build } from 'esbuild';
 
 const dist = new URL('../dist/', import.meta.url);
@@ -50,6 +52,7 @@ const embed = await bundle('embed.js');
 writeFileSync(new URL('mtmotion-embed.js', dist), embed);
 
 const kb = (n) => `${(n / 1024).toFixed(0)} KiB`;
+const gz = (s) => kb(gzipSync(s, { level: 9 }).length);
 console.log(
-  `bundle: mtmotion-embed.js ${kb(embed.length)}; mtmotion-standalone.html ${kb(html.length)} (wasm as base64 ${kb(wasmBase64.length)}, page JS ${kb(pageJs.length - wasmBase64.length - workerSource.length)}, worker JS ${kb(workerSource.length)}, CSS ${kb(css.length)})`,
+  `bundle: mtmotion-embed.js ${kb(embed.length)} (gzip ${gz(embed)}); mtmotion-standalone.html ${kb(html.length)} (gzip ${gz(html)}; wasm as base64 ${kb(wasmBase64.length)}, page JS ${kb(pageJs.length - wasmBase64.length - workerSource.length)}, worker JS ${kb(workerSource.length)}, CSS ${kb(css.length)})`,
 );

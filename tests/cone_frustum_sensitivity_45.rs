@@ -7,7 +7,8 @@
 //! θ = 15° (β = 10°), on both tilting-table presets.
 
 use mtmotion::cone_frustum::{cone_frustum_test, ConeFrustumConfig, Method};
-use mtmotion::kinematics::{GeometricErrors, MachineRef};
+use mtmotion::kinematics::GeometricErrors;
+use mtmotion::machine::MachineRef;
 
 fn rms_tilt(machine: &str, tilt: &str, theta: f64, beta: f64, method: Method) -> f64 {
     let cfg = ConeFrustumConfig {

@@ -6,13 +6,15 @@
 //   <mt-radius-loss feed="2000" radius="10" ta="0.064" t="0.03"></mt-radius-loss>
 //
 // The elements only gather inputs and show results: every number comes from
-// the same JS API as the workbench page.
-import init, * as wasm from './pkg/mtmotion.js';
+// the same JS API as the workbench page, built as the small embed module
+// (cargo --no-default-features: only the functions below are exported; see
+// docs/performance.md).
+import init, * as wasm from './pkg/mtmotion_embed.js';
 
 let core;
 /** The one shared instance (loaded on first use). */
 export function loadCore() {
-  core ??= init({ module_or_path: new URL('./pkg/mtmotion_bg.wasm', import.meta.url) }).then(() => wasm);
+  core ??= init({ module_or_path: new URL('./pkg/mtmotion_embed_bg.wasm', import.meta.url) }).then(() => wasm);
   return core;
 }
 

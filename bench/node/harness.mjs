@@ -3,11 +3,15 @@
 //   import { wasm, bench } from './harness.mjs';
 //   bench('simulateAxis 1e5 steps', () => wasm.simulateAxis(axis, cfg), { perItem: 1e5, unit: 'step' });
 import { readFileSync } from 'node:fs';
-import { fileURLToPath } from 'node:url';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 import { performance } from 'node:perf_hooks';
-import * as wasm from '../../pkg/mtmotion.js';
+import { resolve } from 'node:path';
 
-const bytes = readFileSync(fileURLToPath(new URL('../../pkg/mtmotion_bg.wasm', import.meta.url)));
+// MTMOTION_PKG=<dir> benchmarks another build of the package (e.g. a size
+// variant); the default is the repository's pkg/.
+const pkgDir = process.env.MTMOTION_PKG ? pathToFileURL(resolve(process.env.MTMOTION_PKG) + '/') : new URL('../../pkg/', import.meta.url);
+const wasm = await import(new URL('mtmotion.js', pkgDir));
+const bytes = readFileSync(fileURLToPath(new URL('mtmotion_bg.wasm', pkgDir)));
 wasm.initSync({ module: bytes });
 export { wasm };
 

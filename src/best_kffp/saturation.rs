@@ -196,3 +196,14 @@ pub fn torque_saturation(
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_nmv5000_preset_lists_these_readings_default_first() {
+        let m = crate::machine::preset("nmv5000").unwrap();
+        assert_eq!(m.saturation_readings, READINGS.map(String::from).to_vec());
+    }
+}

@@ -73,12 +73,14 @@ export interface PaperExample {
 
 /// Least-squares circle through the points (algebraic start, then
 /// Levenberg–Marquardt); throws for < 3 or collinear points.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = fitCircle, unchecked_return_type = "CircleFit")]
 pub fn fit_circle(x: &[f64], y: &[f64]) -> Result<JsValue, JsError> {
     to_js(&ballbar::fit_circle(x, y)?)
 }
 
 /// Least-squares harmonics of orders 0 … maxOrder (valid on partial ranges).
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = harmonics, unchecked_return_type = "HarmonicComponent[]")]
 pub fn harmonics(
     angle_rad: &[f64],
@@ -102,6 +104,7 @@ pub fn travel_range_sweep(
 }
 
 /// takayama §2.2: angle-error estimate against travel range (Fig. 12).
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = angleSweep, unchecked_return_type = "AngleSweepPoint[]")]
 pub fn angle_sweep(
     #[wasm_bindgen(unchecked_param_type = "AngleSweepConfig")] config: JsValue,
@@ -132,6 +135,7 @@ fn floats(obj: &JsValue, key: &str, what: &str) -> Result<Vec<f64>, JsError> {
 }
 
 /// takayama §2.2: offset per section and ΔBz, ΔBx from two sections.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = estimateAlignment, unchecked_return_type = "AlignmentEstimate")]
 pub fn estimate_alignment(
     #[wasm_bindgen(unchecked_param_type = "AlignmentInput")] input: JsValue,
@@ -232,6 +236,7 @@ pub fn circular_test(
 }
 
 /// A synthetic ball-bar trace with known machine errors.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = syntheticBallbarTrace, unchecked_return_type = "BallbarTrace")]
 pub fn synthetic_ballbar_trace(
     #[wasm_bindgen(unchecked_param_type = "SyntheticTraceConfig")] config: JsValue,
@@ -246,6 +251,7 @@ pub fn synthetic_ballbar_trace(
 
 /// The paper's Figs. 6, 7, 8, 12 ("fig6" …) with its quoted numbers;
 /// `radius` 100 mm (default, ball bar) or 0 (DBB5 centre ball).
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = ballbarExample, unchecked_return_type = "PaperExample")]
 pub fn ballbar_example(
     #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,

@@ -10,11 +10,22 @@
 //!   out), never through serde;
 //! - the panic hook is installed at start.
 
+//!
+//! Without the default feature `full` (`--no-default-features`) only the
+//! bindings the documentation calculators (`www/embed.js`) call are
+//! exported: the small embed module (docs/performance.md).
+
+// Helpers that only `full` bindings use are unused without it.
+#[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod ballbar;
 pub mod convert;
+#[cfg(feature = "full")]
 pub mod kinematics;
+#[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod machine;
+#[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod servo;
+#[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod toolpath;
 
 use wasm_bindgen::prelude::*;

@@ -69,6 +69,7 @@ fn machine_arg(value: JsValue) -> Result<Machine, JsError> {
 }
 
 /// `G(jω)` of `axis` at each ω (rad/s): magnitude and phase (rad).
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = frequencyResponse, unchecked_return_type = "FrequencyResponse")]
 pub fn frequency_response(
     #[wasm_bindgen(unchecked_param_type = "AxisParams")] axis: JsValue,
@@ -83,6 +84,7 @@ pub fn frequency_response(
 }
 
 /// Fixed-step simulation of one axis following `input.position`.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = simulateAxis, unchecked_return_type = "AxisResponse")]
 pub fn simulate_axis(
     #[wasm_bindgen(unchecked_param_type = "AxisParams")] axis: JsValue,
@@ -139,6 +141,7 @@ fn result_js(r: &FeedVectorResult) -> Result<JsValue, JsError> {
 }
 
 /// Simulates the constant-feed-speed-vector test (suzuki §2.3, §3).
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = feedVectorTest, unchecked_return_type = "FeedVectorResult")]
 pub fn feed_vector_test(
     #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
@@ -150,6 +153,7 @@ pub fn feed_vector_test(
 }
 
 /// Analyses a measured CSV/TSV trace of the test.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = analyzeFeedVectorTrace, unchecked_return_type = "FeedVectorResult")]
 pub fn analyze_feed_vector_trace(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
@@ -167,6 +171,7 @@ pub fn analyze_feed_vector_trace(
 }
 
 /// The Best K_FFP per axis (Eq. 20), checked by simulation.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = bestKffp, unchecked_return_type = "BestKffpResult")]
 pub fn best_kffp(
     #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
@@ -194,6 +199,7 @@ pub fn torque_saturation(
     to_js(&saturation::torque_saturation(&m, &q)?)
 }
 
+#[cfg(feature = "full")]
 /// kato Fig. 3: the pitch-error harmonics of a rotary axis from its error
 /// trace (commanded table angle and error, rad), by Fourier analysis.
 #[wasm_bindgen(js_name = identifyPitchError, unchecked_return_type = "PitchIdentification")]
@@ -213,6 +219,7 @@ pub fn identify_pitch_error(
     )?)
 }
 
+#[cfg(feature = "full")]
 /// suzuki Table 1: J, C, Kvp and Kpp of `initial` fitted to a measured
 /// trace by least squares against the simulation.
 #[wasm_bindgen(js_name = identifyAxis, unchecked_return_type = "IdentifiedAxis")]

@@ -64,6 +64,7 @@ struct Parsed<'a> {
 
 /// Parses an NC program into motion segments and warnings; throws an
 /// `Error` naming line and column.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = parseNc, unchecked_return_type = "ParsedNc")]
 pub fn parse_nc(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
@@ -107,6 +108,7 @@ fn sim_obj(s: &Simulation, warnings: &[Warning]) -> Result<JsValue, JsError> {
 }
 
 /// Simulates the program (Eqs. 1–2) and its contour error (§4-2).
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = simulateToolPath, unchecked_return_type = "ToolPathSimulation")]
 pub fn simulate_tool_path(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
@@ -143,6 +145,7 @@ pub fn radius_reduction(
 }
 
 /// Least-squares tA and T from measured circle radius losses (§4-1).
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = identifyAccDec, unchecked_return_type = "AccDec")]
 pub fn identify_acc_dec(
     #[wasm_bindgen(unchecked_param_type = "CircleLoss[]")] data: JsValue,
@@ -152,6 +155,7 @@ pub fn identify_acc_dec(
 }
 
 /// Reverse compensation of the program (§4-3(2)).
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = reverseCompensate, unchecked_return_type = "ReverseCompensation")]
 pub fn reverse_compensate_js(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
@@ -178,6 +182,7 @@ pub fn reverse_compensate_js(
 
 /// The built-in test path resembling qiu Fig. 2: `"arcs"` (43 arcs) or
 /// `"lines"` (83 lines).
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = toolpathExample)]
 pub fn toolpath_example(
     #[wasm_bindgen(unchecked_param_type = "string")] kind: JsValue,

@@ -23,8 +23,9 @@ use mtmotion::compensate::nc5::s_shape::{s_shape, SShapeOptions};
 use mtmotion::compensate::nc5::{compensate_nc5, Nc5Config};
 use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
 use mtmotion::feed_vector::{feed_vector_test, Condition};
-use mtmotion::kinematics::{GeometricErrors, MachineRef};
+use mtmotion::kinematics::GeometricErrors;
 use mtmotion::machine;
+use mtmotion::machine::MachineRef;
 use mtmotion::toolpath::example as toolpath_example;
 use mtmotion::toolpath::identify::radius_reduction;
 

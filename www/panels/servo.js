@@ -4,6 +4,7 @@
 // analyzeFeedVectorTrace).
 import { h, table, fmt, numberField, selectField, downloadText, toCsv, dropZone, progressBar, showError } from '../lib/ui.js';
 import { lineChart } from '../lib/plot.js';
+import { mapCalls } from '../lib/pool.js';
 
 const FIELDS = [
   ['j', 'J', 'kg·m²'], ['c', 'C', 'N·m·s/rad'], ['kpp', 'Kpp', '1/s'], ['kvp', 'Kvp', 'N·m·s/rad'], ['kvi', 'Kvi', 'N·m/rad'],
@@ -149,15 +150,16 @@ export async function mount(root, api) {
     const m = currentMachine();
     const rows = [];
     const data = PAPER_J1.map(() => ({ before: [], after: [], half: [], kx: [], ky: [] }));
-    const total = PAPER_J1.length * PAPER_OMEGAS.length;
     let done = 0;
     try {
       // J + J1 per load as the core sums it (the C axis' J as edited).
       const sat = await api.call('torqueSaturation', [m, { j1: PAPER_J1, torqueMax: m.axes.c.torqueMax ?? 725, accelTime: 0.064, feedAtCuttingPoint: 200, dt: dt.value }]);
+      // One bestKffp per (J1, ω) on all cores (lib/pool.js), in order.
+      const args = PAPER_J1.flatMap((jv) => PAPER_OMEGAS.map((w) => [m, { rc: 5, rw: 8, omega: w, accelTime: 0.064, j1: jv, dt: dt.value }]));
+      const results = await mapCalls(api, 'bestKffp', args, { onProgress: (d, n) => progress.set(d / n, `${d} of ${n} points`) });
       for (const [ji, jv] of PAPER_J1.entries()) {
         for (const w of PAPER_OMEGAS) {
-          progress.set(done / total, `J1 = ${jv} kg·m², ω = ${fmt(w / Math.PI, 1)}π rad/s`);
-          const r = await api.call('bestKffp', [m, { rc: 5, rw: 8, omega: w, accelTime: 0.064, j1: jv, dt: dt.value }]);
+          const r = results[done];
           data[ji].before.push(r.before.meanAngleDiff * 1e3);
           data[ji].after.push(r.after.meanAngleDiff * 1e3);
           data[ji].half.push(r.before.halfAmplitude * 1e3);
