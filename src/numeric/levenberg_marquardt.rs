@@ -47,11 +47,20 @@ pub struct LmOptions {
     pub step_tol: f64,
     /// Stop when an accepted step lowers the cost by at most this.
     pub cost_drop_tol: f64,
+    /// … or by at most this fraction of the cost.
+    pub cost_drop_rel: f64,
+    /// Largest change of any one parameter in a step (a trust region for
+    /// models that are far from linear, e.g. parameters on a log scale).
+    pub max_step: f64,
+    /// Damping floor: the diagonal is damped by `λ·max(JᵀJ_kk, floor)`, so
+    /// a parameter the data does not see still gets a finite step.
+    pub diag_floor: f64,
 }
 
 impl Default for LmOptions {
     /// λ from 1e-6 in [1e-12, 1e12], 200 trials, gradient and cost-drop
-    /// tolerances 0 (off) and a step tolerance of 1e-15 (rounding).
+    /// tolerances 0 (off), a step tolerance of 1e-15 (rounding), no step
+    /// limit and no damping floor.
     fn default() -> Self {
         LmOptions {
             lambda: 1e-6,
@@ -61,6 +70,9 @@ impl Default for LmOptions {
             gradient_tol: 0.0,
             step_tol: 1e-15,
             cost_drop_tol: 0.0,
+            cost_drop_rel: 0.0,
+            max_step: f64::INFINITY,
+            diag_floor: 0.0,
         }
     }
 }
@@ -72,6 +84,8 @@ pub struct LmResult<const N: usize> {
     pub p: SVector<f64, N>,
     /// Normal equations at `p`.
     pub normal: Normal<N>,
+    /// Accepted steps.
+    pub steps: usize,
 }
 
 /// Minimises the cost of `normal` from `start`. `project` maps a trial
@@ -106,16 +120,67 @@ pub fn levenberg_marquardt<const N: usize>(
     project: impl Fn(SVector<f64, N>) -> SVector<f64, N>,
     opts: &LmOptions,
 ) -> LmResult<N> {
+    let eval = |p: &SVector<f64, N>, _: bool| Ok::<_, std::convert::Infallible>((normal(p), true));
+    match drive(start, eval, project, opts) {
+        Ok(r) => r,
+        Err(never) => match never {},
+    }
+}
+
+/// As [`levenberg_marquardt`] for a model whose evaluation can fail and
+/// whose normal equations cost much more than its cost (e.g. a Jacobian by
+/// finite differences of a simulation): a trial point gets only `cost`;
+/// `normal` is evaluated where a trial is accepted. A trial whose cost
+/// fails is rejected like a worse one; a failure at `start` is returned.
+pub fn levenberg_marquardt_lazy<const N: usize, E>(
+    start: SVector<f64, N>,
+    mut cost: impl FnMut(&SVector<f64, N>) -> Result<f64, E>,
+    mut normal: impl FnMut(&SVector<f64, N>) -> Result<Normal<N>, E>,
+    project: impl Fn(SVector<f64, N>) -> SVector<f64, N>,
+    opts: &LmOptions,
+) -> Result<LmResult<N>, E> {
+    let eval = |p: &SVector<f64, N>, full: bool| {
+        if full {
+            normal(p).map(|n| (n, true))
+        } else {
+            cost(p).map(|c| {
+                let n = Normal {
+                    jtj: SMatrix::zeros(),
+                    jtr: SVector::zeros(),
+                    cost: c,
+                };
+                (n, false)
+            })
+        }
+    };
+    drive(start, eval, project, opts)
+}
+
+/// The one iteration, for both entry points. `eval(p, full)` returns the
+/// normal equations at `p` (or only the cost when `full` is false) and
+/// whether they are complete.
+fn drive<const N: usize, E>(
+    start: SVector<f64, N>,
+    mut eval: impl FnMut(&SVector<f64, N>, bool) -> Result<(Normal<N>, bool), E>,
+    project: impl Fn(SVector<f64, N>) -> SVector<f64, N>,
+    opts: &LmOptions,
+) -> Result<LmResult<N>, E> {
     let mut p = start;
-    let mut at = normal(&p);
+    let mut at = eval(&p, true)?.0;
     let mut lambda = opts.lambda;
+    let mut steps = 0;
     for _ in 0..opts.max_iterations {
         if at.jtr.norm() <= opts.gradient_tol {
             break;
         }
         let mut damped = at.jtj;
         for k in 0..N {
-            damped[(k, k)] *= 1.0 + lambda;
+            let d = at.jtj[(k, k)];
+            damped[(k, k)] = if d >= opts.diag_floor {
+                d * (1.0 + lambda)
+            } else {
+                d + lambda * opts.diag_floor
+            };
         }
         let Some(step) = damped.cholesky().map(|c| c.solve(&(-at.jtr))) else {
             lambda *= 10.0;
@@ -124,26 +189,37 @@ pub fn levenberg_marquardt<const N: usize>(
             }
             continue;
         };
+        let step = step.map(|v| v.clamp(-opts.max_step, opts.max_step));
         if !step.iter().all(|v| v.is_finite()) || step.norm() < opts.step_tol * (1.0 + p.norm()) {
             break;
         }
         let q = project(p + step);
-        let trial = normal(&q);
-        if trial.cost <= at.cost {
-            let drop = at.cost - trial.cost;
-            (p, at) = (q, trial);
-            lambda = (lambda * 0.1).max(opts.lambda_min);
-            if drop <= opts.cost_drop_tol {
-                break;
-            }
-        } else {
+        let trial = match eval(&q, false) {
+            Ok((n, complete)) if n.cost <= at.cost => Some((n, complete)),
+            _ => None,
+        };
+        let Some((trial, complete)) = trial else {
             lambda *= 10.0;
             if lambda > opts.lambda_max {
                 break;
             }
+            continue;
+        };
+        let (before, drop) = (at.cost, at.cost - trial.cost);
+        p = q;
+        // A cost-only trial gets its normal equations once it is accepted.
+        at = if complete { trial } else { eval(&p, true)?.0 };
+        steps += 1;
+        lambda = (lambda * 0.1).max(opts.lambda_min);
+        if drop <= opts.cost_drop_tol || drop <= opts.cost_drop_rel * before {
+            break;
         }
     }
-    LmResult { p, normal: at }
+    Ok(LmResult {
+        p,
+        normal: at,
+        steps,
+    })
 }
 
 #[cfg(test)]

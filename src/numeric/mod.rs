@@ -8,4 +8,6 @@ pub mod levenberg_marquardt;
 
 pub use angle::wrap_angle;
 pub use brent::brent;
-pub use levenberg_marquardt::{levenberg_marquardt, LmOptions, LmResult, Normal};
+pub use levenberg_marquardt::{
+    levenberg_marquardt, levenberg_marquardt_lazy, LmOptions, LmResult, Normal,
+};

@@ -25,10 +25,12 @@
 //! As [`super::AxisParams`]; `dt` in s; command and position in mm
 //! (linear) or rad (rotary); torque in N·m at the motor.
 
+use nalgebra::{Matrix4, Vector4};
 use serde::{Deserialize, Serialize};
 
 use super::simulate::simulate_axis;
 use super::{AxisParams, ServoError};
+use crate::numeric::{levenberg_marquardt_lazy, LmOptions, Normal};
 
 /// Errors of the identification.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -195,71 +197,61 @@ pub fn identify_axis(
         }
         Ok(out)
     };
-    let cost = |r: &[f64]| r.iter().map(|x| x * x).sum::<f64>();
-    let mut p = [
-        initial.j.ln(),
-        initial.c.ln(),
-        initial.kvp.ln(),
-        initial.kpp.ln(),
-    ];
-    let mut r = residuals(&p)?;
-    let mut f = cost(&r);
-    let mut lambda = 1e-3;
-    let mut iterations = 0;
-    let k = free.len();
-    while iterations < 200 {
-        iterations += 1;
-        // Jacobian by forward differences
+    let sq = |r: &[f64]| r.iter().map(|x| x * x).sum::<f64>();
+    // Levenberg–Marquardt ([`crate::numeric::levenberg_marquardt_lazy`]):
+    // a trial costs one simulation, the Jacobian (forward differences, one
+    // simulation per free parameter) only where a trial is accepted. J is
+    // held (its row of the normal equations is the identity) when no
+    // torque is given; steps are limited to ±1 in the logarithm.
+    let normal = |v: &Vector4<f64>| -> Result<Normal<4>, IdentifyError> {
+        let p: [f64; 4] = (*v).into();
+        let r = residuals(&p)?;
         let h = 1e-6;
-        let mut jac: Vec<Vec<f64>> = Vec::with_capacity(k);
+        let mut cols: Vec<(usize, Vec<f64>)> = Vec::with_capacity(free.len());
         for &i in &free {
             let mut q = p;
             q[i] += h;
             let rq = residuals(&q)?;
-            jac.push(rq.iter().zip(&r).map(|(a, b)| (a - b) / h).collect());
+            cols.push((i, rq.iter().zip(&r).map(|(a, b)| (a - b) / h).collect()));
         }
-        let mut jtj = vec![vec![0.0; k]; k];
-        let mut jtr = vec![0.0; k];
-        for a in 0..k {
-            for b in 0..k {
-                jtj[a][b] = jac[a].iter().zip(&jac[b]).map(|(x, y)| x * y).sum();
-            }
-            jtr[a] = jac[a].iter().zip(&r).map(|(x, y)| x * y).sum();
-        }
-        let mut improved = false;
-        for _ in 0..30 {
-            let mut m = nalgebra::DMatrix::from_fn(k, k, |a, b| jtj[a][b]);
-            for a in 0..k {
-                m[(a, a)] += lambda * jtj[a][a].max(1e-12);
-            }
-            let rhs = nalgebra::DVector::from_iterator(k, jtr.iter().map(|x| -x));
-            let Some(step) = m.lu().solve(&rhs) else {
-                lambda *= 10.0;
-                continue;
-            };
-            let mut q = p;
-            for (a, &i) in free.iter().enumerate() {
-                q[i] += step[a].clamp(-1.0, 1.0);
-            }
-            match residuals(&q) {
-                Ok(rq) if cost(&rq) < f => {
-                    let fq = cost(&rq);
-                    let small =
-                        (f - fq) <= 1e-15 * f.max(1e-300) || step.iter().all(|s| s.abs() < 1e-12);
-                    p = q;
-                    r = rq;
-                    f = fq;
-                    lambda = (lambda * 0.3).max(1e-12);
-                    improved = !small;
-                    break;
-                }
-                _ => lambda *= 10.0,
+        let (mut jtj, mut jtr) = (Matrix4::zeros(), Vector4::zeros());
+        for i in 0..4 {
+            if !free.contains(&i) {
+                jtj[(i, i)] = 1.0;
             }
         }
-        if !improved {
-            break;
+        for (i, ci) in &cols {
+            for (k, ck) in &cols {
+                jtj[(*i, *k)] = ci.iter().zip(ck).map(|(x, y)| x * y).sum();
+            }
+            jtr[*i] = ci.iter().zip(&r).map(|(x, y)| x * y).sum();
         }
-    }
+        Ok(Normal {
+            jtj,
+            jtr,
+            cost: sq(&r),
+        })
+    };
+    let cost = |v: &Vector4<f64>| residuals(&(*v).into()).map(|r| sq(&r));
+    let opts = LmOptions {
+        lambda: 1e-3,
+        max_iterations: 600,
+        step_tol: 1e-12,
+        cost_drop_rel: 1e-15,
+        max_step: 1.0,
+        diag_floor: 1e-12,
+        ..LmOptions::default()
+    };
+    let start = Vector4::new(
+        initial.j.ln(),
+        initial.c.ln(),
+        initial.kvp.ln(),
+        initial.kpp.ln(),
+    );
+    let fit = levenberg_marquardt_lazy(start, cost, normal, |v| v, &opts)?;
+    let p: [f64; 4] = fit.p.into();
+    let iterations = fit.steps;
+    let r = residuals(&p)?;
     let axis = with(initial, &p);
     let n = trace.command.len();
     let rms_position = rms(r[..n].iter().map(|x| x * lag));
