@@ -28,11 +28,50 @@ function writeHash() {
   history.replaceState(null, '', `#${q}`);
 }
 
+/** The field's label as the user sees it (for messages), else its id. */
+function labelOf(e) {
+  return e.closest('label')?.querySelector('span')?.textContent?.trim() || e.id;
+}
+
+/**
+ * Why a link's value cannot go into input `e`, or null when it can: the
+ * same rules the input itself enforces (a finite number inside min/max, one
+ * of a select's options, true/false for a checkbox, at most 200 characters).
+ */
+export function linkValueProblem(e, raw) {
+  if (raw.length > 200) return `${labelOf(e)}: the value is ${raw.length} characters long`;
+  if (e.tagName === 'SELECT') {
+    const options = [...e.options].map((o) => o.value);
+    return options.includes(raw) ? null : `${labelOf(e)}: '${raw}' is not one of ${options.join(', ')}`;
+  }
+  if (e.type === 'checkbox') return raw === 'true' || raw === 'false' ? null : `${labelOf(e)}: expected true or false`;
+  if (e.type === 'number') {
+    const v = Number(raw);
+    if (raw.trim() === '' || !Number.isFinite(v)) return `${labelOf(e)}: '${raw}' is not a number`;
+    const lo = e.min === '' ? -Infinity : Number(e.min);
+    const hi = e.max === '' ? Infinity : Number(e.max);
+    if (v < lo || v > hi) return `${labelOf(e)}: ${raw} is outside ${e.min || '−∞'} … ${e.max || '∞'}`;
+  }
+  return null;
+}
+
 function restoreHash() {
   const q = new URLSearchParams(location.hash.slice(1));
   const tab = q.get('tab');
   if (!tab || !PANELS.includes(tab)) return;
   selectTab(tab);
+  // Values are checked against the inputs' own ranges before anything is
+  // set; a link with a bad value sets nothing and runs nothing.
+  const problems = inputsOf(tab)
+    .filter((e) => q.has(e.id))
+    .map((e) => linkValueProblem(e, q.get(e.id)))
+    .filter(Boolean);
+  if (problems.length) {
+    const status = document.getElementById('status');
+    status.textContent = `This link was not applied: ${problems.join('; ')}. The panel keeps its defaults and nothing was run.`;
+    status.classList.add('error');
+    return;
+  }
   for (const e of inputsOf(tab)) {
     if (!q.has(e.id)) continue;
     if (e.type === 'checkbox') e.checked = q.get(e.id) === 'true';
@@ -59,6 +98,8 @@ export async function boot({ makeApi, loadPanel }) {
     // Proves the round trip with a real core call.
     const preset = await api.call('machinePreset', ['nmv5000']);
     status.textContent = `Core v${api.version} ready (${api.mode}) · default machine: ${preset.name}`;
+    // For the browser console and the browser test.
+    globalThis.mtmotion = { api };
   } catch (e) {
     status.textContent = `The calculation core could not start: ${e.message}`;
     status.classList.add('error');
