@@ -148,10 +148,20 @@ pub fn summarize(s: &Series, omega: f64, steady_from: f64, saturated: bool) -> S
     let period = std::f64::consts::TAU / omega.abs();
     let mut halves = Vec::new();
     let mut a = start;
-    while a < s.t.len() {
+    // A period shorter than two samples (at the extreme ω so large that
+    // t + period == t) or not finite has no whole periods to average: the
+    // whole window is used instead (and the search cannot stay in place).
+    let n_win = s.t.len().saturating_sub(start);
+    let sample = if n_win > 1 {
+        (s.t[s.t.len() - 1] - s.t[start]) / (n_win - 1) as f64
+    } else {
+        f64::INFINITY
+    };
+    let resolvable = period.is_finite() && period >= 2.0 * sample;
+    while resolvable && a < s.t.len() {
         let end_t = s.t[a] + period;
         let b = s.t.partition_point(|&t| t < end_t);
-        if b >= s.t.len() {
+        if b >= s.t.len() || b <= a {
             break;
         }
         halves.push(span(a..b + 1));
@@ -187,6 +197,25 @@ pub fn summarize(s: &Series, omega: f64, steady_from: f64, saturated: bool) -> S
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// ω = 1e18 makes the period 6e-18 s, so `t + period == t`: the period
+    /// search once stayed in place and grew a Vec until wasm ran out of
+    /// memory. It must end, with no whole periods counted.
+    #[test]
+    fn a_period_below_one_sample_ends() {
+        let mut s = Series::default();
+        for i in 0..1000 {
+            s.t.push(i as f64 * 1e-3);
+            s.shape_error.push((i as f64).sin());
+            s.angle_diff.push(0.0);
+            s.radius_error.push(0.0);
+        }
+        for omega in [1e18, f64::INFINITY, f64::NAN, 0.0] {
+            let sum = summarize(&s, omega, 0.0, false);
+            assert_eq!(sum.periods, 0, "ω = {omega}");
+            assert!(sum.half_amplitude.is_finite(), "ω = {omega}");
+        }
+    }
 
     /// Eq. 7: with X/Y lagging by β and shrunk by ΔR, C lagging by α,
     /// ΔR_C ≈ −(α − β) R_W sin ωt − ΔR cos ωt.
