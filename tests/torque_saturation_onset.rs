@@ -154,7 +154,16 @@ fn inertia_only_reading_is_tau_over_j() {
         accel_time: 0.0,
         ..query(SaturationReading::InertiaOnly)
     };
-    let e = torque_saturation(&m, &q).unwrap_err().to_string();
+    // accelTime 0: acc/dec once, the C axis' Ts (0.064 s) is then the
+    // acceleration time — the same points as a 0.064 s ramp.
+    let once = torque_saturation(&m, &q).unwrap();
+    for (a, b) in once.iter().zip(&pts) {
+        assert!((a.omega_sat - b.omega_sat).abs() < 1e-12);
+    }
+    // With no Ts either, a velocity step has no finite acceleration.
+    let mut step = m.clone();
+    step.axes.get_mut("c").unwrap().ts = 0.0;
+    let e = torque_saturation(&step, &q).unwrap_err().to_string();
     assert!(e.contains("accelTime"), "{e}");
     // the preset reading saturates earliest: the loop's overshoot
     let pre = torque_saturation(&m, &query(SaturationReading::PresetKffp)).unwrap();

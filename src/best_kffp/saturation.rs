@@ -130,6 +130,16 @@ pub fn torque_saturation(
             expected: "give at least one load inertia in kg·m²",
         });
     }
+    if !(q.accel_time.is_finite()
+        && (0.0..=100.0).contains(&q.accel_time)
+        && (q.accel_time == 0.0 || q.accel_time.is_normal()))
+    {
+        return Err(BestKffpError::BadQuery {
+            field: "accelTime",
+            value: q.accel_time,
+            expected: "the acc/dec time must be between 0 and 100 s",
+        });
+    }
     let mut out = Vec::with_capacity(q.j1.len());
     for &j1 in &q.j1 {
         let omega_ref = 1.0;
@@ -147,17 +157,25 @@ pub fn torque_saturation(
         cond.validate()?;
         let mut axes = feed_vector::axes_for(machine, &cond)?;
         axes[2].torque_max = None;
+        // The saturating acceleration is ω_sat over the command's
+        // acceleration time: the acc/dec ramp, or with accelTime 0 (acc/dec
+        // once) the Ts smoothing that then shapes the velocity step alone.
+        let t_acc = if q.accel_time > 0.0 {
+            q.accel_time
+        } else {
+            axes[2].ts
+        };
+        if t_acc <= 0.0 {
+            return Err(BestKffpError::BadQuery {
+                field: "accelTime",
+                value: q.accel_time,
+                expected: "with accelTime 0 and no Ts on the C axis the command is a velocity step with no finite acceleration; give accelTime > 0 s",
+            });
+        }
         if q.reading == SaturationReading::InertiaOnly {
-            if q.accel_time.is_nan() || q.accel_time <= 0.0 {
-                return Err(BestKffpError::BadQuery {
-                    field: "accelTime",
-                    value: q.accel_time,
-                    expected: "the inertiaOnly reading needs an acc/dec time > 0 s",
-                });
-            }
             let j = axes[2].inertia();
             let accel_sat = q.torque_max / j;
-            let omega_sat = accel_sat * q.accel_time;
+            let omega_sat = accel_sat * t_acc;
             out.push(SaturationPoint {
                 j_total: j,
                 accel_sat,
@@ -172,7 +190,15 @@ pub fn torque_saturation(
         }
         let dt = cond.step();
         // through the acc/dec, the smoothing and the settling of the loop
-        let n = (feed_vector::steady_from(&axes, &cond) / dt).ceil() as usize + 1;
+        let n_f = (feed_vector::steady_from(&axes, &cond) / dt).ceil() + 1.0;
+        if n_f > feed_vector::MAX_SAMPLES as f64 {
+            return Err(BestKffpError::BadQuery {
+                field: "dt",
+                value: dt,
+                expected: "too fine for this acc/dec time: the run would exceed the 4,000,000-sample budget; raise dt or shorten accelTime",
+            });
+        }
+        let n = n_f as usize;
         let pad = feed_vector::read_ahead_pad(&axes, dt);
         let cmd: Vec<f64> = (0..n + pad)
             .map(|i| feed_vector::command::angle(i as f64 * dt, omega_ref, q.accel_time))
@@ -181,11 +207,7 @@ pub fn torque_saturation(
         let peak = r.torque.iter().fold(0.0_f64, |m, t| m.max(t.abs()));
         let per_omega = peak / omega_ref;
         let omega_sat = q.torque_max / per_omega;
-        let accel_sat = if q.accel_time > 0.0 {
-            omega_sat / q.accel_time
-        } else {
-            f64::INFINITY
-        };
+        let accel_sat = omega_sat / t_acc;
         out.push(SaturationPoint {
             j_total: axes[2].inertia(),
             accel_sat,

@@ -142,37 +142,57 @@ impl Condition {
 
     /// Checks the geometric and timing fields.
     pub fn validate(&self) -> Result<(), FeedVectorError> {
-        let pos = |f: &'static str, v: f64| {
-            if v.is_finite() && v > 0.0 {
+        // Positive, not subnormal, and at most `hi`.
+        let within = |f: &'static str, v: f64, hi: f64, expected: &'static str| {
+            if v.is_normal() && v > 0.0 && v <= hi {
                 Ok(())
             } else {
-                Err(bad(f, v, "must be a finite number > 0"))
+                Err(bad(f, v, expected))
             }
         };
-        pos("rc", self.rc)?;
-        pos("rw", self.rw)?;
-        pos("omega", self.omega)?;
-        if !(self.accel_time.is_finite() && self.accel_time >= 0.0) {
-            return Err(bad("accelTime", self.accel_time, "must be ≥ 0 s"));
+        let pos = |f: &'static str, v: f64| within(f, v, 1e12, "must be a finite number > 0");
+        within("rc", self.rc, 1e4, "must be between 0 and 10,000 mm")?;
+        within("rw", self.rw, 1e4, "must be between 0 and 10,000 mm")?;
+        // 1000 rad/s is 9,549 rpm, faster than any rotary table; and the
+        // test needs at least 8 samples per revolution.
+        within(
+            "omega",
+            self.omega,
+            1000.0,
+            "must be between 0 and 1000 rad/s (9,549 rpm)",
+        )?;
+        if !(self.accel_time.is_finite() && (0.0..=100.0).contains(&self.accel_time)) {
+            return Err(bad(
+                "accelTime",
+                self.accel_time,
+                "must be between 0 and 100 s",
+            ));
         }
-        if !(self.j1.is_finite() && self.j1 >= 0.0) {
-            return Err(bad("j1", self.j1, "must be ≥ 0 kg·m²"));
+        if !(self.j1.is_finite() && (0.0..=1e4).contains(&self.j1)) {
+            return Err(bad("j1", self.j1, "must be between 0 and 1e4 kg·m²"));
         }
         if let Some(t) = self.torque_max {
             pos("torqueMax", t)?;
         }
         if let Some(dt) = self.dt {
-            if !(dt.is_finite() && dt > 0.0 && dt <= 0.01) {
-                return Err(bad("dt", dt, "must be in (0, 0.01] s"));
+            if !(dt.is_finite() && (1e-7..=0.01).contains(&dt)) {
+                return Err(bad("dt", dt, "must be between 1e-7 and 0.01 s"));
             }
+        }
+        if self.omega * self.step() > std::f64::consts::FRAC_PI_4 {
+            return Err(bad(
+                "omega",
+                self.omega,
+                "turns more than π/4 per time step: lower ω or dt (at least 8 samples per revolution)",
+            ));
         }
         if let Some(d) = self.duration {
             pos("duration", d)?;
         }
         if let Some(k) = self.kffp {
             for (f, v) in [("kffp.x", k.x), ("kffp.y", k.y), ("kffp.c", k.c)] {
-                if !v.is_finite() {
-                    return Err(bad(f, v, "must be a finite percentage"));
+                if !(v.is_finite() && (-1000.0..=1000.0).contains(&v)) {
+                    return Err(bad(f, v, "must be between −1000 and 1000 %"));
                 }
             }
         }

@@ -126,40 +126,55 @@ impl AxisParams {
     /// assert!(c.validate().unwrap_err().to_string().contains("kpp"));
     /// ```
     pub fn validate(&self) -> Result<(), ServoError> {
-        let positive: [(&'static str, f64); 2] = [("j", self.j), ("kpp", self.kpp)];
-        for (field, value) in positive {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(ServoError::BadParameter {
-                    field,
-                    value,
-                    expected: "must be a finite number > 0",
-                });
-            }
-        }
-        let non_negative: [(&'static str, f64); 7] = [
-            ("j1", self.j1),
-            ("c", self.c),
-            ("kvp", self.kvp),
-            ("kvi", self.kvi),
-            ("ts", self.ts),
-            ("ta", self.ta),
-            ("tp", self.tp),
+        // Physical ranges: wide enough for any machine tool, narrow enough
+        // that no later step overflows, divides by a subnormal or allocates
+        // for a window longer than any servo setting (a delay or average
+        // above 10 s is not a servo parameter).
+        let ranges: [(&'static str, f64, f64, f64, &'static str); 11] = [
+            ("j", self.j, 1e-9, 1e4, "must be between 1e-9 and 1e4 kg·m²"),
+            (
+                "kpp",
+                self.kpp,
+                1e-3,
+                1e4,
+                "must be between 1e-3 and 1e4 1/s",
+            ),
+            ("j1", self.j1, 0.0, 1e4, "must be between 0 and 1e4 kg·m²"),
+            ("c", self.c, 0.0, 1e6, "must be between 0 and 1e6 N·m·s/rad"),
+            ("kvp", self.kvp, 0.0, 1e9, "must be between 0 and 1e9"),
+            ("kvi", self.kvi, 0.0, 1e12, "must be between 0 and 1e12"),
+            ("ts", self.ts, 0.0, 10.0, "must be between 0 and 10 s"),
+            ("ta", self.ta, 0.0, 10.0, "must be between 0 and 10 s"),
+            ("tp", self.tp, 0.0, 10.0, "must be between 0 and 10 s"),
+            (
+                "kffp",
+                self.kffp,
+                -1000.0,
+                1000.0,
+                "must be between −1000 and 1000 %",
+            ),
+            (
+                "friction",
+                self.friction,
+                0.0,
+                1e6,
+                "the Coulomb friction torque must be between 0 and 1e6 N·m",
+            ),
         ];
-        for (field, value) in non_negative {
-            if !(value.is_finite() && value >= 0.0) {
+        for (field, value, lo, hi, expected) in ranges {
+            // Subnormal numbers (|v| < 2.2e-308, not 0) are refused: they
+            // are never a setting and turn into infinities when divided by.
+            let ok = value.is_finite()
+                && value >= lo
+                && value <= hi
+                && (value == 0.0 || value.is_normal());
+            if !ok {
                 return Err(ServoError::BadParameter {
                     field,
                     value,
-                    expected: "must be a finite number ≥ 0",
+                    expected,
                 });
             }
-        }
-        if !self.kffp.is_finite() {
-            return Err(ServoError::BadParameter {
-                field: "kffp",
-                value: self.kffp,
-                expected: "must be a finite percentage",
-            });
         }
         if self.kvp == 0.0 && self.kvi == 0.0 {
             return Err(ServoError::BadParameter {
@@ -169,26 +184,19 @@ impl AxisParams {
             });
         }
         if let Some(t) = self.torque_max {
-            if !(t.is_finite() && t > 0.0) {
+            if !(t.is_finite() && (1e-6..=1e7).contains(&t)) {
                 return Err(ServoError::BadParameter {
                     field: "torqueMax",
                     value: t,
-                    expected: "must be > 0 (omit it for no limit)",
+                    expected: "must be between 1e-6 and 1e7 N·m (omit it for no limit)",
                 });
             }
         }
-        if !(self.friction.is_finite() && self.friction >= 0.0) {
-            return Err(ServoError::BadParameter {
-                field: "friction",
-                value: self.friction,
-                expected: "the Coulomb friction torque must be a finite number ≥ 0 N·m",
-            });
-        }
-        if !self.gravity.is_finite() {
+        if !(self.gravity.is_finite() && self.gravity.abs() <= 1e6) {
             return Err(ServoError::BadParameter {
                 field: "gravity",
                 value: self.gravity,
-                expected: "the load torque must be a finite number of N·m",
+                expected: "the load torque must be between −1e6 and 1e6 N·m",
             });
         }
         self.validate_mechanism()?;
@@ -197,11 +205,13 @@ impl AxisParams {
                 field: "lead",
                 why: "a linear axis needs its ball-screw lead in m",
             }),
-            (_, Some(l)) if !(l.is_finite() && l > 0.0) => Err(ServoError::BadParameter {
-                field: "lead",
-                value: l,
-                expected: "must be > 0 m",
-            }),
+            (_, Some(l)) if !(l.is_finite() && (1e-6..=100.0).contains(&l)) => {
+                Err(ServoError::BadParameter {
+                    field: "lead",
+                    value: l,
+                    expected: "must be between 1e-6 and 100 m",
+                })
+            }
             _ => Ok(()),
         }
     }

@@ -56,7 +56,8 @@ impl<'a> Interpolant<'a> {
     /// `c(u)`.
     pub(crate) fn value(&self, u: f64) -> f64 {
         let last = self.last();
-        if u <= 0.0 {
+        // A NaN takes this branch too: it must not reach the indexing.
+        if u <= 0.0 || u.is_nan() {
             self.c[0]
         } else if u >= last as f64 {
             self.c[last]
@@ -70,7 +71,7 @@ impl<'a> Interpolant<'a> {
     /// `Q(u) = ∫_0^u c` (negative for u < 0).
     pub(crate) fn integral(&self, u: f64) -> f64 {
         let last = self.last();
-        if u <= 0.0 {
+        if u <= 0.0 || u.is_nan() {
             self.c[0] * u
         } else if u >= last as f64 {
             self.q[last] + self.c[last] * (u - last as f64)

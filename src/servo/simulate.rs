@@ -48,13 +48,17 @@ pub struct AxisResponse {
     pub saturated: bool,
 }
 
+/// Shortest time step, s: a servo sampled faster than 10 MHz is not a
+/// setting, and smaller steps only turn the window lengths into overflow.
+pub const MIN_DT: f64 = 1e-7;
+
 /// Checks `dt` and the command samples.
 fn check_input(dt: f64, command: &[f64]) -> Result<(), ServoError> {
-    if !(dt.is_finite() && dt > 0.0) {
+    if !(dt.is_finite() && (MIN_DT..=1.0).contains(&dt)) {
         return Err(ServoError::BadParameter {
             field: "dt",
             value: dt,
-            expected: "the time step must be a finite number > 0 s",
+            expected: "the time step must be between 1e-7 and 1 s",
         });
     }
     if command.is_empty() {
