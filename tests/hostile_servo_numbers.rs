@@ -144,3 +144,20 @@ fn torque_saturation_needs_an_acc_dec_time_and_a_sane_step() {
         .iter()
         .all(|p| p.accel_sat.is_finite() && p.omega_sat.is_finite()));
 }
+
+#[test]
+fn cone_frustum_feed_outside_its_range() {
+    use mtmotion::cone_frustum::{cone_frustum_test, ConeFrustumConfig};
+    for feed in [1e308, 5e-324, 0.3, f64::NAN] {
+        let cfg: ConeFrustumConfig = serde_json::from_value(serde_json::json!({
+            "machine": "trunnion-ac", "halfApexDeg": 15.0, "inclinationDeg": 10.0, "feed": 1000.0, "idealServo": true
+        }))
+        .unwrap();
+        let cfg = ConeFrustumConfig { feed, ..cfg };
+        let e = err(cone_frustum_test(&cfg));
+        assert!(
+            e.contains("feed") && e.contains("between 1 and 100,000 mm/min"),
+            "feed = {feed}: {e}"
+        );
+    }
+}

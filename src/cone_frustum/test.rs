@@ -203,8 +203,15 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
             "must be between −90 and 90 degrees",
         ));
     }
-    if !(cfg.feed.is_finite() && cfg.feed > 0.0) {
-        return Err(bad("feed", cfg.feed, "must be > 0 mm/min"));
+    // ISO 10791-6 runs at a few hundred to a few thousand mm/min; outside
+    // 1…100,000 mm/min one revolution takes hours (time steps of seconds)
+    // or microseconds.
+    if !(cfg.feed.is_finite() && (1.0..=1e5).contains(&cfg.feed)) {
+        return Err(bad(
+            "feed",
+            cfg.feed,
+            "must be between 1 and 100,000 mm/min",
+        ));
     }
     if !(cfg.points >= 8 && cfg.points <= 1_000_000) {
         return Err(bad(
