@@ -81,14 +81,20 @@ export function toCsv(columns) {
   return lines.join('\n') + '\n';
 }
 
-/** Drag-and-drop area with a file picker; calls onText(text, fileName). */
-export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText }) {
-  const input = h('input', { type: 'file', accept, hidden: true });
+/** Drag-and-drop area with a file picker; calls onText(text, fileName), or
+ * with `multiple`, onFiles([{ text, name }, …]) once for all dropped files. */
+export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, multiple = false, onFiles, id }) {
+  const input = h('input', { type: 'file', accept, hidden: true, multiple, id });
   const el = h('div', { class: 'drop', tabindex: 0, role: 'button' }, label, input);
-  const read = async (file) => file && onText(await file.text(), file.name);
+  const read = async (files) => {
+    const list = Array.from(files || []);
+    if (!list.length) return;
+    if (multiple) return onFiles(await Promise.all(list.map(async (f) => ({ text: await f.text(), name: f.name }))));
+    return onText(await list[0].text(), list[0].name);
+  };
   el.addEventListener('click', () => input.click());
   el.addEventListener('keydown', (e) => (e.key === 'Enter' || e.key === ' ') && input.click());
-  input.addEventListener('change', () => read(input.files[0]));
+  input.addEventListener('change', () => read(input.files));
   el.addEventListener('dragover', (e) => {
     e.preventDefault();
     el.classList.add('over');
@@ -97,7 +103,7 @@ export function dropZone({ label = 'Drop a file here, or click to choose one', a
   el.addEventListener('drop', (e) => {
     e.preventDefault();
     el.classList.remove('over');
-    read(e.dataTransfer.files[0]);
+    read(e.dataTransfer.files);
   });
   return el;
 }

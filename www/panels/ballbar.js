@@ -60,6 +60,122 @@ export async function mount(root, api) {
   const run = h('button', { id: 'ballbar-run', class: 'primary', dataset: { run: '' }, onclick: () => analyse() }, 'Analyse');
   const out = h('div', { id: 'ballbar-results' });
 
+  // ---- alignment from the user's own sections -----------------------------
+  // One trace per section (or one file whose runs are the sections); the
+  // core fits each section's centre, the angle errors from two or more, and
+  // the travel-range bias band around them (Takayama §2.1–2.2).
+  const AXES = {
+    b: { plane: ['Z', 'X'], along: 'Y', name: 'B' },
+    a: { plane: ['Y', 'Z'], along: 'X', name: 'A' },
+    c: { plane: ['X', 'Y'], along: 'Z', name: 'C' },
+  };
+  const al = {
+    axis: selectField({ label: 'Rotary axis', id: 'align-axis', value: 'b', options: [['b', 'B (turns in Z–X, sections along Y)'], ['a', 'A (turns in Y–Z, sections along X)'], ['c', 'C (turns in X–Y, sections along Z)']], onChange: () => renderSections() }),
+    range: numberField({ label: 'Travel range', unit: '°', value: 180, id: 'align-range', min: 1, max: 360 }),
+    radius: numberField({ label: 'Bar length', unit: 'mm', value: 100, id: 'align-radius', min: 1 }),
+    maxOrder: numberField({ label: 'Harmonics for the bias up to order', value: 10, id: 'align-max-order', min: 2, max: 30, step: 1 }),
+  };
+  let sections = []; // { name, angleDeg, deviation, height: numberField }
+  const secBox = h('div', { id: 'align-sections' });
+  const alOut = h('div', { id: 'align-results' });
+  const alInfo = h('p', { id: 'align-file-info', class: 'unit' }, 'No section loaded. Expected per file: a ball-bar trace (angle + deviation, or X/Y), the angle measured from the first plane axis.');
+  const alDrop = dropZone({
+    id: 'align-files',
+    label: 'Drop one trace per section (two or more for the angle errors), or one file whose runs are the sections',
+    accept: '.csv,.tsv,.txt',
+    multiple: true,
+    onFiles: async (files) => {
+      alOut.replaceChildren();
+      sections = [];
+      renderSections();
+      try {
+        const parsed = [];
+        for (const { text, name } of files) {
+          const t = await api.call('parseBallbarTrace', [text, { nominalRadius: al.radius.value }]).catch((e) => {
+            throw new Error(`${name}: ${(e && e.message) || e}`);
+          });
+          parsed.push({ name, t });
+        }
+        // One file with several runs: each run is a section; else the first run of each file.
+        const runs = parsed.length === 1 && parsed[0].t.runs.length > 1
+          ? parsed[0].t.runs.map((r, k) => ({ name: `${parsed[0].name} run ${k + 1} (${r.direction.toUpperCase()})`, r }))
+          : parsed.map(({ name, t }) => ({ name, r: t.runs[0] }));
+        sections = runs.map(({ name, r }, k) => ({
+          name,
+          angleDeg: Float64Array.from(r.angleRad, (a) => a / RAD),
+          deviation: r.deviation,
+          height: numberField({ label: `Height of ${name}`, unit: 'mm', value: k === 0 ? 0 : 100 * k, id: `align-height-${k}` }),
+        }));
+        alInfo.textContent = `${sections.length} section(s): ${sections.map((x) => `${x.name} (${x.angleDeg.length} points)`).join(', ')}`;
+      } catch (e) {
+        alInfo.textContent = 'No section loaded.';
+        showError(alOut, e);
+      }
+      renderSections();
+    },
+  });
+  const alRun = h('button', { id: 'align-run', class: 'primary', onclick: () => estimate() }, 'Estimate alignment');
+  function renderSections() {
+    const ax = AXES[al.axis.value];
+    secBox.replaceChildren(...sections.map((x) => {
+      x.height.el.querySelector('span').firstChild.textContent = `${ax.along} of ${x.name}`;
+      return x.height.el;
+    }));
+  }
+
+  async function estimate() {
+    alOut.replaceChildren(h('p', {}, 'Computing…'));
+    try {
+      if (!sections.length) throw new Error('no section loaded: drop one ball-bar trace per section first');
+      const ax = AXES[al.axis.value];
+      const input = {
+        sections: sections.map((x) => ({ y: x.height.value, angleDeg: x.angleDeg, deviation: x.deviation })),
+        radius: al.radius.value,
+        travelRangeDeg: al.range.value,
+        maxOrder: al.maxOrder.value,
+      };
+      for (const x of sections) if (!Number.isFinite(x.height.value)) throw new Error(`${ax.along} of ${x.name} [mm]: enter the section's position`);
+      const r = await api.call('estimateAlignmentBand', [input]);
+      renderAlignment(r, ax);
+    } catch (e) {
+      showError(alOut, e);
+    }
+  }
+
+  function renderAlignment(r, ax) {
+    const [p, q] = ax.plane;
+    const pm = (v, b, scale, d) => `${fmt(v * scale, d)} ± ${fmt(b * scale, d)}`;
+    const rows = r.estimate.sections.map((e, k) => [sections[k].name, fmt(e.y, 1), pm(e.z, r.sections[k].bandZ, 1 / UM, 2), pm(e.x, r.sections[k].bandX, 1 / UM, 2), fmt(e.rmsResidual / UM, 2), fmt(r.sections[k].rangeDeg, 1)]);
+    const secTable = table(['section', `${ax.along} [mm]`, `offset ${p} [µm]`, `offset ${q} [µm]`, 'fit RMS [µm]', 'travel range [°]'], rows);
+    secTable.querySelector('table').id = 'align-offsets';
+    const angle = r.estimate.deltaBz === null
+      ? h('p', { id: 'align-angle' }, 'Angle errors: need two sections at different heights.')
+      : h('p', { id: 'align-angle' },
+        `Δ${ax.name}${p.toLowerCase()} = `, h('strong', { id: 'align-angle-1' }, pm(r.estimate.deltaBz, r.bandBz, 1e6, 2)), ' µrad; ',
+        `Δ${ax.name}${q.toLowerCase()} = `, h('strong', { id: 'align-angle-2' }, pm(r.estimate.deltaBx, r.bandBx, 1e6, 2)), ' µrad (µm per m).');
+    const csv = () => toCsv({
+      section: sections.map((x) => JSON.stringify(x.name)),
+      [`${ax.along.toLowerCase()}_mm`]: r.estimate.sections.map((e) => e.y),
+      [`offset_${p.toLowerCase()}_um`]: r.estimate.sections.map((e) => e.z / UM),
+      [`band_${p.toLowerCase()}_um`]: r.sections.map((b) => b.bandZ / UM),
+      [`offset_${q.toLowerCase()}_um`]: r.estimate.sections.map((e) => e.x / UM),
+      [`band_${q.toLowerCase()}_um`]: r.sections.map((b) => b.bandX / UM),
+      [`angle_${p.toLowerCase()}_urad`]: [r.estimate.deltaBz === null ? '' : r.estimate.deltaBz * 1e6],
+      [`angle_band_${p.toLowerCase()}_urad`]: [r.bandBz === null ? '' : r.bandBz * 1e6],
+      [`angle_${q.toLowerCase()}_urad`]: [r.estimate.deltaBx === null ? '' : r.estimate.deltaBx * 1e6],
+      [`angle_band_${q.toLowerCase()}_urad`]: [r.bandBx === null ? '' : r.bandBx * 1e6],
+    });
+    const json = () => JSON.stringify({ axis: ax.name, plane: ax.plane, sectionsAlong: ax.along, units: { offsets: 'mm', heights: 'mm', angles: 'rad', travelRange: 'deg' }, inputs: { radius: al.radius.value, travelRangeDeg: al.range.value, maxOrder: al.maxOrder.value, sections: sections.map((x, k) => ({ name: x.name, position: r.estimate.sections[k].y, points: x.angleDeg.length })) }, result: r }, null, 2);
+    alOut.replaceChildren(
+      secTable,
+      angle,
+      h('p', { class: 'unit' }, `The band is the bias the travel range causes (Takayama §2.1, with each section's own harmonics of order ≥ 2) plus the bar's second-order term; a full revolution has none.`),
+      h('div', { class: 'buttons' },
+        h('button', { id: 'align-download-json', onclick: () => downloadText('alignment.json', json(), 'application/json') }, 'Download result (JSON)'),
+        h('button', { id: 'align-download-csv', onclick: () => downloadText('alignment.csv', csv(), 'text/csv') }, 'Download result (CSV)')),
+    );
+  }
+
   // ---- paper examples -----------------------------------------------------
   const exName = selectField({ label: 'Paper figure', id: 'ballbar-example', value: 'fig7', options: [['fig6', 'Fig. 6: single harmonics, 180°'], ['fig7', 'Fig. 7: travel range 90…360°'], ['fig8', 'Fig. 8: four offset positions'], ['fig12', 'Fig. 12: angle error 10 µm/350 mm']] });
   const exReading = selectField({ label: 'Reading', id: 'ballbar-example-reading', value: '100', options: [['100', 'Ball bar, 100 mm (default)'], ['0', 'DBB5 centre ball (radius 0)']] });
@@ -69,6 +185,7 @@ export async function mount(root, api) {
   root.replaceChildren(
     h('div', { class: 'card' }, h('h3', {}, 'Trace'), h('div', { class: 'fields' }, source.el, ...Object.values(f).map((x) => x.el), harmField), drop, fileInfo, run),
     out,
+    h('div', { class: 'card', id: 'align-card' }, h('h3', {}, 'Rotary-axis alignment from your sections (Takayama §2.2)'), h('div', { class: 'fields' }, ...Object.values(al).map((x) => x.el)), alDrop, alInfo, secBox, alRun, alOut),
     h('div', { class: 'card' }, h('h3', {}, 'The paper’s simulations (Takayama et al., Figs. 6, 7, 8, 12)'), h('div', { class: 'fields' }, exName.el, exReading.el), exRun, exOut),
   );
 
