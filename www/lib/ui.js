@@ -140,3 +140,40 @@ export function fmt(x, digits = 3) {
   if (a !== 0 && (a < 1e-3 || a >= 1e6)) return x.toExponential(digits);
   return x.toFixed(digits);
 }
+
+/** One run state for a panel's result areas. start() greys the previous
+ * results and disables the buttons in them (no download of stale results);
+ * ok() shows the new ones; fail(err) empties every area and puts the error
+ * in place of the results in the first one. start() returns a token;
+ * current(token) says whether a later run has started since. */
+export function runState(main, ...extra) {
+  const areas = [main, ...extra];
+  let token = 0;
+  const settle = () => {
+    for (const a of areas) {
+      a.classList.remove('stale');
+      a.removeAttribute('aria-busy');
+    }
+  };
+  return {
+    start() {
+      for (const a of areas) {
+        a.classList.add('stale');
+        a.setAttribute('aria-busy', 'true');
+        for (const b of a.querySelectorAll('button')) b.disabled = true;
+      }
+      return ++token;
+    },
+    current: (t) => t === token,
+    ok: settle,
+    clear() {
+      for (const a of areas) a.replaceChildren();
+      settle();
+    },
+    fail(err) {
+      for (const a of areas) a.replaceChildren();
+      settle();
+      return showError(main, err);
+    },
+  };
+}

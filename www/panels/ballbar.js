@@ -2,7 +2,7 @@
 // one), fit its centre, its harmonics, the ISO 230-4 table and diagnostics,
 // and the travel-range bias of the centre estimate (Takayama et al.).
 // JS only gathers inputs, calls the core, draws and offers downloads.
-import { h, numberField, selectField, table, downloadText, toCsv, dropZone, showError, fmt } from '../lib/ui.js';
+import { h, numberField, selectField, table, downloadText, toCsv, dropZone, showError, fmt, runState } from '../lib/ui.js';
 import { polarChart, barChart, lineChart } from '../lib/plot.js';
 
 const UM = 1e-3; // mm per µm
@@ -47,18 +47,23 @@ export async function mount(root, api) {
     label: 'Drop a ball-bar trace (CSV/TSV) here, or click to choose one',
     accept: '.csv,.tsv,.txt',
     onText: async (text, name) => {
+      loaded = null;
+      fileInfo.textContent = `${name}: reading…`;
       try {
         loaded = await api.call('parseBallbarTrace', [text, { nominalRadius: f.radius.value }]);
         fileInfo.textContent = `${name}: ${loaded.runs.length} run(s), ${loaded.runs.map((r) => `${r.direction} ${r.angleRad.length} points`).join(', ')}`;
         source.value = 'file';
         await analyse();
       } catch (e) {
-        showError(out, e);
+        fileInfo.textContent = `${name}: not loaded (see the error below). No file loaded.`;
+        source.value = 'synthetic';
+        outUi.fail(e);
       }
     },
   });
   const run = h('button', { id: 'ballbar-run', class: 'primary', dataset: { run: '' }, onclick: () => analyse() }, 'Analyse');
   const out = h('div', { id: 'ballbar-results' });
+  const outUi = runState(out);
 
   // ---- alignment from the user's own sections -----------------------------
   // One trace per section (or one file whose runs are the sections); the
@@ -78,6 +83,7 @@ export async function mount(root, api) {
   let sections = []; // { name, angleDeg, deviation, height: numberField }
   const secBox = h('div', { id: 'align-sections' });
   const alOut = h('div', { id: 'align-results' });
+  const alUi = runState(alOut);
   const alInfo = h('p', { id: 'align-file-info', class: 'unit' }, 'No section loaded. Expected per file: a ball-bar trace (angle + deviation, or X/Y), the angle measured from the first plane axis.');
   const alDrop = dropZone({
     id: 'align-files',
@@ -85,7 +91,7 @@ export async function mount(root, api) {
     accept: '.csv,.tsv,.txt',
     multiple: true,
     onFiles: async (files) => {
-      alOut.replaceChildren();
+      alUi.clear();
       sections = [];
       renderSections();
       try {
@@ -108,8 +114,9 @@ export async function mount(root, api) {
         }));
         alInfo.textContent = `${sections.length} section(s): ${sections.map((x) => `${x.name} (${x.angleDeg.length} points)`).join(', ')}`;
       } catch (e) {
-        alInfo.textContent = 'No section loaded.';
-        showError(alOut, e);
+        alInfo.textContent = `${files.map((x) => x.name).join(', ')}: not loaded (see the error below). No section loaded.`;
+        sections = [];
+        alUi.fail(e);
       }
       renderSections();
     },
@@ -124,7 +131,7 @@ export async function mount(root, api) {
   }
 
   async function estimate() {
-    alOut.replaceChildren(h('p', {}, 'Computing…'));
+    alUi.start();
     try {
       if (!sections.length) throw new Error('no section loaded: drop one ball-bar trace per section first');
       const ax = AXES[al.axis.value];
@@ -137,8 +144,9 @@ export async function mount(root, api) {
       for (const x of sections) if (!Number.isFinite(x.height.value)) throw new Error(`${ax.along} of ${x.name} [mm]: enter the section's position`);
       const r = await api.call('estimateAlignmentBand', [input]);
       renderAlignment(r, ax);
+      alUi.ok();
     } catch (e) {
-      showError(alOut, e);
+      alUi.fail(e);
     }
   }
 
@@ -180,6 +188,7 @@ export async function mount(root, api) {
   const exName = selectField({ label: 'Paper figure', id: 'ballbar-example', value: 'fig7', options: [['fig6', 'Fig. 6: single harmonics, 180°'], ['fig7', 'Fig. 7: travel range 90…360°'], ['fig8', 'Fig. 8: four offset positions'], ['fig12', 'Fig. 12: angle error 10 µm/350 mm']] });
   const exReading = selectField({ label: 'Reading', id: 'ballbar-example-reading', value: '100', options: [['100', 'Ball bar, 100 mm (default)'], ['0', 'DBB5 centre ball (radius 0)']] });
   const exOut = h('div', { id: 'ballbar-example-results' });
+  const exUi = runState(exOut);
   const exRun = h('button', { id: 'ballbar-example-run', onclick: () => example() }, 'Run example');
 
   root.replaceChildren(
@@ -209,7 +218,7 @@ export async function mount(root, api) {
   }
 
   async function analyse() {
-    out.replaceChildren(h('p', {}, 'Computing…'));
+    const run = outUi.start();
     try {
       const trace = await getTrace();
       const r0 = trace.nominalRadius;
@@ -232,9 +241,11 @@ export async function mount(root, api) {
       const motion = Array.isArray(harmonics) ? harmonics.filter((c) => c.order >= 2) : [];
       const ranges = Array.from({ length: 34 }, (_, k) => 30 + 10 * k);
       const sweep = await api.call('travelRangeSweep', [{ offset: { z: fit.cx, x: fit.cy }, harmonics: motion, ranges, radius: r0, samples: 1000 }]);
+      if (!outUi.current(run)) return;
       render(trace, fit, harmonics, iso, sweep);
+      outUi.ok();
     } catch (e) {
-      showError(out, e);
+      if (outUi.current(run)) outUi.fail(e);
     }
   }
 
@@ -305,13 +316,14 @@ export async function mount(root, api) {
   }
 
   async function example() {
-    exOut.replaceChildren(h('p', {}, 'Computing…'));
+    exUi.start();
     try {
       const ex = await api.call('ballbarExample', [exName.value, Number(exReading.value)]);
       const paper = table(['quantity', 'range [°]', 'paper', 'ours'], ex.paper.map((p) => [p.label, p.rangeDeg || '—', p.paper, fmt(p.ours, 2)]));
       paper.querySelector('table').id = 'ballbar-paper-table';
       const chartEl = h('div', { id: 'ballbar-example-chart' });
       exOut.replaceChildren(h('p', {}, ex.description), paper, chartEl);
+      exUi.ok();
       if (ex.angle.length) {
         lineChart(chartEl, { title: 'Angle-error estimate error', xLabel: 'travel range [°]', yLabel: 'µm / 700 mm', series: [{ label: 'ΔBz' }, { label: 'ΔBx' }], data: [ex.angle.map((p) => p.rangeDeg), ex.angle.map((p) => (p.errorBz * 700) / UM), ex.angle.map((p) => (p.errorBx * 700) / UM)] });
       } else if (ex.name === 'fig6') {
@@ -328,7 +340,7 @@ export async function mount(root, api) {
         });
       }
     } catch (e) {
-      showError(exOut, e);
+      exUi.fail(e);
     }
   }
 

@@ -1,7 +1,7 @@
 // 5-axis kinematics & cone-frustum panel: pick a machine, edit its ISO 230
 // errors, run the ISO 10791-6 cone-frustum test (kato) and compensate a
 // 5-axis NC program (thasana). All numbers come from the core.
-import { h, numberField, selectField, table, downloadText, toCsv, progressBar, showError, fmt } from '../lib/ui.js';
+import { h, numberField, selectField, table, downloadText, toCsv, progressBar, showError, fmt, runState } from '../lib/ui.js';
 import { lineChart, xyChart, xyzChart, polarChart, barChart } from '../lib/plot.js';
 
 const MACHINES = [
@@ -17,6 +17,8 @@ export async function mount(root, api) {
   let preset = null;
 
   async function loadMachine() {
+    coneUi.clear();
+    ncUi.clear();
     try {
       preset = await api.call('machinePreset', [machineSel.value]);
       const axes = Object.keys(preset.limits || {});
@@ -77,9 +79,10 @@ export async function mount(root, api) {
   const cz = numberField({ label: 'Centre z', value: 20, unit: 'mm', id: 'kinematics-cz' });
   const ideal = h('input', { type: 'checkbox', id: 'kinematics-ideal' });
   const progress = progressBar();
-  const coneOut = h('div', {});
+  const coneOut = h('div', { id: 'kinematics-cone-out' });
+  const coneUi = runState(coneOut);
   async function runCone() {
-    coneOut.replaceChildren();
+    coneUi.start();
     const combos = [[15, 'perpendicular'], [15, 'parallel'], [45, 'perpendicular'], [45, 'parallel']];
     const results = [];
     try {
@@ -94,9 +97,10 @@ export async function mount(root, api) {
       progress.done();
     } catch (e) {
       progress.done();
-      showError(coneOut, e);
+      coneUi.fail(e);
       return;
     }
+    coneUi.ok();
     const colors = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd'];
     const base = 20; // µm offset so that negative deviations stay visible
     const polar = h('div', {});
@@ -136,7 +140,8 @@ export async function mount(root, api) {
   const sigMm = numberField({ label: 'σ translations', value: 0.02, unit: 'mm', id: 'kinematics-mc-mm' });
   const sigRad = numberField({ label: 'σ angles', value: 0.001, unit: 'rad', id: 'kinematics-mc-rad' });
   const cutting = h('input', { type: 'checkbox', id: 'kinematics-cutting', checked: true });
-  const ncOut = h('div', {});
+  const ncOut = h('div', { id: 'kinematics-nc-out' });
+  const ncUi = runState(ncOut);
   async function loadSShape() {
     try {
       const s = await api.call('sShapeTestPiece', [{ machine: 'pocketnc-v2-10' }]);
@@ -146,7 +151,7 @@ export async function mount(root, api) {
     }
   }
   async function runNc() {
-    ncOut.replaceChildren();
+    ncUi.start();
     try {
       const r = await api.call('compensateNc5', [ncText.value, {
         machine: machineSel.value, errors: errors(),
@@ -172,10 +177,12 @@ export async function mount(root, api) {
       );
       lineChart(chartX, { title: 'Form errors at the evaluation points (Figs. 10–11)', xLabel: 'point', yLabel: 'mm', series: [{ label: 'X before' }, { label: 'X after' }, { label: 'Y before', dash: [4, 3] }, { label: 'Y after', dash: [4, 3] }], data: [idx, r.beforePoints.x, r.afterPoints.x, r.beforePoints.y, r.afterPoints.y] });
       lineChart(chartB, { title: 'Angular errors at the evaluation points (Figs. 12–13)', xLabel: 'point', yLabel: 'rad', series: [{ label: 'A before' }, { label: 'A after' }, { label: 'B before', dash: [4, 3] }, { label: 'B after', dash: [4, 3] }], data: [idx, r.beforePoints.a, r.afterPoints.a, r.beforePoints.b, r.afterPoints.b] });
+      ncUi.ok();
     } catch (e) {
-      showError(ncOut, e);
+      ncUi.fail(e);
     }
   }
+  ncText.addEventListener('input', () => ncUi.clear());
 
   root.replaceChildren(
     h('div', { class: 'card' }, h('h3', {}, 'Machine and geometric errors'), machineSel.el,

@@ -2,7 +2,7 @@
 // core in the worker, draws and offers downloads; every number is computed
 // in Rust (feedVectorTest, bestKffp, torqueSaturation, frequencyResponse,
 // analyzeFeedVectorTrace).
-import { h, table, fmt, numberField, selectField, downloadText, toCsv, dropZone, progressBar, showError } from '../lib/ui.js';
+import { h, table, fmt, numberField, selectField, downloadText, toCsv, dropZone, progressBar, runState } from '../lib/ui.js';
 import { lineChart } from '../lib/plot.js';
 
 const FIELDS = [
@@ -56,9 +56,18 @@ export async function mount(root, api) {
   const status = h('div', { id: 'servo-status', class: 'lead' });
   const out = h('div', { id: 'servo-results' });
   const progress = progressBar();
-  const charts = h('div');
+  const charts = h('div', { id: 'servo-charts' });
+  const runUi = runState(out, charts);
+  const setDownloads = (on) => {
+    for (const id of ['servo-csv', 'servo-json']) {
+      const b = root.querySelector(`#${id}`);
+      if (b) b.disabled = !on;
+    }
+  };
   const sweepBox = h('div', { id: 'servo-sweep-results' });
   const traceBox = h('div', { id: 'servo-trace-results' });
+  const sweepUi = runState(sweepBox);
+  const traceUi = runState(traceBox);
   let last = null; // { cond, before, best, after, trace }
 
   const summaryRows = (label, s) => [label, fmt(s.meanAngleDiff * 1e3, 4), fmt(s.halfAmplitude * 1e3, 2), fmt(s.radiusDecrease * 1e3, 2), fmt(s.peakTorque, 0), s.saturated ? 'yes' : 'no'];
@@ -119,6 +128,9 @@ export async function mount(root, api) {
 
   const run = async (withBest) => {
     status.textContent = 'running in the worker…';
+    runUi.start();
+    setDownloads(false);
+    if (last) last.before = null;
     try {
       const m = currentMachine();
       const cond = condition();
@@ -132,10 +144,12 @@ export async function mount(root, api) {
       last = { m, cond, before, best, after, trace: last?.trace && last.traceText ? await api.call('analyzeFeedVectorTrace', [last.traceText, cond, last.mapping]) : null, traceText: last?.traceText, mapping: last?.mapping };
       showResults();
       await draw();
+      runUi.ok();
+      setDownloads(true);
       status.textContent = 'done';
     } catch (e) {
       status.textContent = '';
-      showError(out, e);
+      runUi.fail(e);
     }
   };
 
@@ -146,6 +160,7 @@ export async function mount(root, api) {
     const data = PAPER_J1.map(() => ({ before: [], after: [], half: [], kx: [], ky: [] }));
     const total = PAPER_J1.length * PAPER_OMEGAS.length;
     let done = 0;
+    sweepUi.start();
     try {
       for (const [ji, jv] of PAPER_J1.entries()) {
         for (const w of PAPER_OMEGAS) {
@@ -166,6 +181,7 @@ export async function mount(root, api) {
       const satTable = table(['J+J1 [kg·m²]', 'accelSat [rad/s²]', 'ωsat [rad/s]', 'R_C min at 200 mm/min [mm]'], sat.map((p) => [fmt(p.jTotal, 2), fmt(p.accelSat, 1), fmt(p.omegaSat, 3), fmt(p.rcMin, 3)]));
       satTable.querySelector('table').id = 'servo-saturation-table';
       sweepBox.replaceChildren(...els, t, h('h4', {}, 'Torque-saturation limits (Figs. 17, 21)'), satTable);
+      sweepUi.ok();
       const series = PAPER_J1.map((jv) => ({ label: `J+J1 = ${fmt(4.2 + jv, 2)}` }));
       lineChart(els[0], { title: 'Mean α − β with K_FFP set (Figs. 15, 20)', xLabel: 'ω [rad/s]', yLabel: 'mrad', series, data: [PAPER_OMEGAS, ...data.map((d) => d.before)] });
       lineChart(els[1], { title: 'Half amplitude of the shape error (Fig. 14)', xLabel: 'ω [rad/s]', yLabel: 'µm', series, data: [PAPER_OMEGAS, ...data.map((d) => d.half)] });
@@ -179,7 +195,7 @@ export async function mount(root, api) {
       });
     } catch (e) {
       progress.done();
-      showError(sweepBox, e);
+      sweepUi.fail(e);
     }
   };
 
@@ -197,6 +213,7 @@ export async function mount(root, api) {
     const go = h('button', { id: 'servo-trace-run', onclick: async () => {
       const mapping = { timeScale: Number(tUnit.value), linearScale: Number(lUnit.value), angleScale: Number(aUnit.value), relative: rel.checked };
       for (const [k, s] of Object.entries(cols)) if (s.value) mapping[k] = s.value;
+      traceUi.start();
       try {
         const trace = await api.call('analyzeFeedVectorTrace', [text, condition(), mapping]);
         last = { ...(last || {}), trace, traceText: text, mapping };
@@ -204,12 +221,14 @@ export async function mount(root, api) {
           h('p', {}, `${name}: ${trace.series.t.length} samples; mean α − β `, h('b', { id: 'servo-trace-angle-diff' }, fmt(trace.summary.meanAngleDiff * 1e3, 4)), ' mrad.'),
           summaryTable([summaryRows('measured trace', trace.summary)]),
         );
+        traceUi.ok();
         if (last.before) {
           showResults();
           await draw();
         }
       } catch (e) {
-        showError(traceBox, e);
+        if (last) last.trace = null;
+        traceUi.fail(e);
       }
     } }, 'Analyse the trace');
     mapBox.replaceChildren(h('div', { class: 'row' }, ...Object.values(cols).map((c) => c.el), tUnit.el, lUnit.el, aUnit.el, h('label', { class: 'field' }, h('span', {}, 'displacements from the start'), rel)), go);
