@@ -183,3 +183,33 @@ pub fn torque_saturation(
     let q: saturation::SaturationQuery = from_js(query, "query")?;
     to_js(&saturation::torque_saturation(&m, &q)?)
 }
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_COLUMNS: &str = r#"
+/** A trace's columns: the name as written, the name without its unit, and the unit it states (s, ms, us, mm, um, m, deg, rad, n·m) or null. */
+export interface TraceColumn { name: string; bare: string; unit: string | null }
+"#;
+
+/// The columns of a CSV/TSV trace and the unit each header states; throws
+/// for a file that is not a text trace ("this is not a text trace (it
+/// looks like a PNG image)") or a malformed table (line and column).
+#[wasm_bindgen(js_name = traceColumns, unchecked_return_type = "TraceColumn[]")]
+pub fn trace_columns(
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+) -> Result<JsValue, JsError> {
+    let text: &str = &string_arg(&text, "text")?;
+    let table = crate::trace::Table::parse(text)?;
+    let out = js_sys::Array::new();
+    for n in &table.names {
+        let (bare, unit) = crate::trace::name_unit(n);
+        let unit = unit.map_or(JsValue::NULL, JsValue::from_str);
+        out.push(
+            &Obj::new()
+                .val("name", JsValue::from_str(n))
+                .val("bare", JsValue::from_str(&bare))
+                .val("unit", unit)
+                .build(),
+        );
+    }
+    Ok(out.into())
+}

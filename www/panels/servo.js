@@ -201,14 +201,36 @@ export async function mount(root, api) {
 
   // ---- trace import ----
   const mapBox = h('div', { id: 'servo-trace-mapper' });
-  const onTrace = (text, name) => {
-    const header = text.split(/\r?\n/).find((l) => l.trim() && !l.startsWith('#') && /[,;\t]/.test(l)) || '';
-    const names = header.split(/[,;\t]/).map((s) => s.trim());
-    const pick = (id, label, guess) => selectField({ label, id, value: names.find((n) => guess.test(n)) || '', options: [['', '—'], ...names.map((n) => [n, n])] });
-    const cols = { time: pick('servo-map-time', 'time', /^t(ime)?/i), x: pick('servo-map-x', 'X', /^(pos_)?x/i), y: pick('servo-map-y', 'Y', /^(pos_)?y/i), c: pick('servo-map-c', 'C', /^(pos_)?c/i), torque: pick('servo-map-torque', 'torque', /torque|tcmd/i) };
-    const tUnit = selectField({ label: 'time unit', id: 'servo-map-tunit', value: '1', options: [['1', 's'], ['0.001', 'ms']] });
-    const lUnit = selectField({ label: 'X, Y unit', id: 'servo-map-lunit', value: '1', options: [['1', 'mm'], ['0.001', 'µm']] });
-    const aUnit = selectField({ label: 'C unit', id: 'servo-map-aunit', value: String(Math.PI / 180), options: [[String(Math.PI / 180), 'deg'], ['1', 'rad']] });
+  const traceInfo = h('p', { id: 'servo-trace-file', class: 'unit' }, 'No trace loaded. Expected columns: time, X, Y, C (and optionally torque), units in the header such as Time [ms] or X_mm.');
+  const onTrace = async (text, name) => {
+    // The core reads the header (and refuses non-text files); the unit each
+    // column name states sets its unit menu.
+    mapBox.replaceChildren();
+    traceUi.clear();
+    if (last) last.trace = null;
+    let columns;
+    try {
+      columns = await api.call('traceColumns', [text]);
+    } catch (e) {
+      traceInfo.textContent = `${name}: not loaded (see the error below).`;
+      traceUi.fail(e);
+      return;
+    }
+    traceInfo.textContent = `${name}: columns ${columns.map((c) => c.name).join(', ')}`;
+    const find = (guess) => columns.find((c) => guess.test(c.bare));
+    const pick = (id, label, guess) => selectField({ label, id, value: find(guess)?.name || '', options: [['', '—'], ...columns.map((c) => [c.name, c.name])] });
+    const cols = { time: pick('servo-map-time', 'time', /^t(ime)?$|^time_?s?$|^zeit$/i), x: pick('servo-map-x', 'X', /^(pos_?)?x(_pos)?$/i), y: pick('servo-map-y', 'Y', /^(pos_?)?y(_pos)?$/i), c: pick('servo-map-c', 'C', /^(pos_?)?c(_pos)?$/i), torque: pick('servo-map-torque', 'torque', /torque|tcmd|^tq/i) };
+    const unitOf = (sel) => columns.find((c) => c.name === sel.value)?.unit;
+    const TIME = { s: '1', ms: '0.001', us: '0.000001' };
+    const LEN = { mm: '1', um: '0.001', m: '1000' };
+    const ANG = { deg: String(Math.PI / 180), rad: '1' };
+    const tUnit = selectField({ label: 'time unit', id: 'servo-map-tunit', value: TIME[unitOf(cols.time)] || '1', options: [['1', 's'], ['0.001', 'ms'], ['0.000001', 'µs']] });
+    const lUnit = selectField({ label: 'X, Y unit', id: 'servo-map-lunit', value: LEN[unitOf(cols.x)] || '1', options: [['1', 'mm'], ['0.001', 'µm'], ['1000', 'm']] });
+    const aUnit = selectField({ label: 'C unit', id: 'servo-map-aunit', value: ANG[unitOf(cols.c)] || String(Math.PI / 180), options: [[String(Math.PI / 180), 'deg'], ['1', 'rad']] });
+    // Choosing another column takes its stated unit.
+    cols.time.input.addEventListener('change', () => unitOf(cols.time) in TIME && (tUnit.value = TIME[unitOf(cols.time)]));
+    cols.x.input.addEventListener('change', () => unitOf(cols.x) in LEN && (lUnit.value = LEN[unitOf(cols.x)]));
+    cols.c.input.addEventListener('change', () => unitOf(cols.c) in ANG && (aUnit.value = ANG[unitOf(cols.c)]));
     const rel = h('input', { type: 'checkbox', id: 'servo-map-relative' });
     const go = h('button', { id: 'servo-trace-run', onclick: async () => {
       const mapping = { timeScale: Number(tUnit.value), linearScale: Number(lUnit.value), angleScale: Number(aUnit.value), relative: rel.checked };
@@ -256,7 +278,7 @@ export async function mount(root, api) {
         h('button', { id: 'servo-csv', onclick: csv }, 'Download CSV'),
         h('button', { id: 'servo-json', onclick: json }, 'Download JSON')),
       status, out, charts),
-    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace }), mapBox, traceBox),
+    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace }), traceInfo, mapBox, traceBox),
     h('div', { class: 'card' }, h('h3', {}, "The paper's sweep: R_C = 5 mm, R_W = 8 mm, ω = 0.5π … 4π rad/s, J1 = 1.70, 3.24, 4.77 kg·m² (Figs. 14, 15, 20, 21, 22)"),
       h('button', { id: 'servo-sweep', onclick: sweep }, 'Run the sweep'), progress.el, sweepBox),
   );
