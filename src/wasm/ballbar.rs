@@ -50,7 +50,9 @@ export interface CircularTestRun {
 }
 export interface BallbarDiagnostics {
   centreOffsetXUm: number; centreOffsetYUm: number; backlashXUm: number; backlashYUm: number;
-  reversalSpikes: { direction: 'ccw' | 'cw'; axis: 'x' | 'y'; angleDeg: number; heightUm: number }[];
+  /** Smallest backlash reported (3 standard errors); below it the backlash reads 0. */ backlashXResolutionUm: number; backlashYResolutionUm: number;
+  /** Only spikes above spikeThresholdUm (1.5 × the largest residual away from the quadrant points). */
+  reversalSpikes: { direction: 'ccw' | 'cw'; axis: 'x' | 'y'; angleDeg: number; heightUm: number }[]; spikeThresholdUm: number;
   servoMismatchMs: number | null; scaleMismatchPpm: number; squarenessUrad: number;
   cyclic: { pitchMm: number; amplitudeXUm: number; amplitudeYUm: number } | null; runsUsed: number;
 }

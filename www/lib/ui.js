@@ -177,3 +177,13 @@ export function runState(main, ...extra) {
     },
   };
 }
+
+/** A value at a stated display resolution: rounded to `res` (0.01 → two
+ * decimals) and printed as 0 when its magnitude is below the resolution, so
+ * numerical noise (3.9e-13 µm) never shows as a value. '—' for non-finite. */
+export function fmtRes(x, res = 0.01) {
+  if (typeof x !== 'number' || !Number.isFinite(x)) return '—';
+  const decimals = Math.max(0, Math.ceil(-Math.log10(res) - 1e-9));
+  if (Math.abs(x) < res) return (0).toFixed(decimals);
+  return (Math.round(x / res) * res).toFixed(decimals);
+}

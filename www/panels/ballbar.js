@@ -2,7 +2,7 @@
 // one), fit its centre, its harmonics, the ISO 230-4 table and diagnostics,
 // and the travel-range bias of the centre estimate (Takayama et al.).
 // JS only gathers inputs, calls the core, draws and offers downloads.
-import { h, numberField, selectField, table, downloadText, toCsv, dropZone, showError, fmt, runState } from '../lib/ui.js';
+import { h, numberField, selectField, table, downloadText, toCsv, dropZone, showError, fmt, fmtRes, runState } from '../lib/ui.js';
 import { polarChart, barChart, lineChart } from '../lib/plot.js';
 
 const UM = 1e-3; // mm per µm
@@ -260,18 +260,19 @@ export async function mount(root, api) {
     const polarEl = h('div', { id: 'ballbar-polar' });
     const barEl = h('div', { id: 'ballbar-harmonics' });
     const sweepEl = h('div', { id: 'ballbar-sweep' });
-    const isoRows = iso.runs.map((r) => [r.direction.toUpperCase(), fmt(r.gUm, 2), fmt(r.fMaxUm, 2), fmt(r.fMinUm, 2), fmt(r.centreXMm / UM, 2), fmt(r.centreYMm / UM, 2), fmt(r.spanDeg, 1)]);
+    const isoRows = iso.runs.map((r) => [r.direction.toUpperCase(), fmtRes(r.gUm), fmtRes(r.fMaxUm), fmtRes(r.fMinUm), fmtRes(r.centreXMm / UM), fmtRes(r.centreYMm / UM), fmt(r.spanDeg, 1)]);
     const d = iso.diagnostics;
     const diagRows = d
       ? [
-          ['Centre offset X / Y', `${fmt(d.centreOffsetXUm, 2)} / ${fmt(d.centreOffsetYUm, 2)} µm`],
-          ['Backlash X', `${fmt(d.backlashXUm, 2)} µm`],
-          ['Backlash Y', `${fmt(d.backlashYUm, 2)} µm`],
-          ['Servo mismatch (X lags Y)', d.servoMismatchMs === null ? '— (needs CCW + CW and the feed)' : `${fmt(d.servoMismatchMs, 3)} ms`],
-          ['Scale mismatch (X − Y)', `${fmt(d.scaleMismatchPpm, 2)} ppm`],
-          ['Squareness (axes < 90° positive)', `${fmt(d.squarenessUrad, 2)} µrad`],
-          ['Cyclic error', d.cyclic ? `X ${fmt(d.cyclic.amplitudeXUm, 2)} µm, Y ${fmt(d.cyclic.amplitudeYUm, 2)} µm at ${fmt(d.cyclic.pitchMm, 2)} mm pitch` : '—'],
-          ...d.reversalSpikes.map((s) => [`Reversal spike ${s.direction.toUpperCase()} ${s.axis.toUpperCase()} at ${s.angleDeg}°`, `${fmt(s.heightUm, 2)} µm`]),
+          ['Centre offset X / Y (display resolution 0.01 µm)', `${fmtRes(d.centreOffsetXUm)} / ${fmtRes(d.centreOffsetYUm)} µm`],
+          ['Backlash X', d.backlashXUm === 0 ? `0 (below ${fmt(d.backlashXResolutionUm, 2)} µm, 3 standard errors)` : `${fmtRes(d.backlashXUm)} µm`],
+          ['Backlash Y', d.backlashYUm === 0 ? `0 (below ${fmt(d.backlashYResolutionUm, 2)} µm, 3 standard errors)` : `${fmtRes(d.backlashYUm)} µm`],
+          ['Servo mismatch (X lags Y, resolution 0.001 ms)', d.servoMismatchMs === null ? '— (needs CCW + CW and the feed)' : `${fmtRes(d.servoMismatchMs, 0.001)} ms`],
+          ['Scale mismatch (X − Y, resolution 0.01 ppm)', `${fmtRes(d.scaleMismatchPpm)} ppm`],
+          ['Squareness (axes < 90° positive, resolution 0.01 µrad)', `${fmtRes(d.squarenessUrad)} µrad`],
+          ['Cyclic error', d.cyclic ? `X ${fmtRes(d.cyclic.amplitudeXUm)} µm, Y ${fmtRes(d.cyclic.amplitudeYUm)} µm at ${fmt(d.cyclic.pitchMm, 2)} mm pitch` : '—'],
+          ...d.reversalSpikes.map((s) => [`Reversal spike ${s.direction.toUpperCase()} ${s.axis.toUpperCase()} at ${s.angleDeg}°`, `${fmtRes(s.heightUm)} µm`]),
+          ['Reversal spikes', d.reversalSpikes.length ? `reported above ${fmt(d.spikeThresholdUm, 2)} µm (1.5 × the largest residual away from the quadrant points)` : `none above the trace's noise threshold of ${fmt(d.spikeThresholdUm, 2)} µm`],
         ]
       : [['Diagnostics', 'need a run over a full revolution']];
     const isoTable = table(['run', 'G [µm]', 'F max [µm]', 'F min [µm]', 'LSC centre X [µm]', 'LSC centre Y [µm]', 'span [°]'], isoRows);
@@ -292,7 +293,7 @@ export async function mount(root, api) {
         polarEl),
       h('div', { class: 'card' }, h('h3', {}, 'Harmonics of the deviation (least squares, valid on partial ranges)'), barEl),
       h('div', { class: 'card' }, h('h3', {}, 'Travel-range bias of the centre estimate (Takayama §2.1 with these harmonics)'), sweepEl),
-      h('div', { class: 'card' }, h('h3', {}, 'ISO 230-4 circular test'), isoTable, h('p', {}, 'Circular hysteresis H: ', h('strong', { id: 'ballbar-h' }, iso.hUm === null ? '— (needs CCW and CW)' : `${fmt(iso.hUm, 2)} µm`)), diagTable, downloads),
+      h('div', { class: 'card' }, h('h3', {}, 'ISO 230-4 circular test'), isoTable, h('p', {}, 'Circular hysteresis H: ', h('strong', { id: 'ballbar-h' }, iso.hUm === null ? '— (needs CCW and CW)' : `${fmtRes(iso.hUm)} µm`), ' (µm values shown to 0.01 µm; smaller magnitudes read 0)'), diagTable, downloads),
     );
     polarChart(polarEl, { title: `Deviation, magnified (base circle = ${fmt(base, 1)} µm)`, traces, circles: [{ r: base, label: 'nominal' }], markers: [{ x: fit.cx / UM, y: fit.cy / UM, label: 'fitted centre' }] });
     if (Array.isArray(harmonics)) {
