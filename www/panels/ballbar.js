@@ -295,7 +295,7 @@ export async function mount(root, api) {
       h('div', { class: 'card' }, h('h3', {}, 'Travel-range bias of the centre estimate (Takayama §2.1 with these harmonics)'), sweepEl),
       h('div', { class: 'card' }, h('h3', {}, 'ISO 230-4 circular test'), isoTable, h('p', {}, 'Circular hysteresis H: ', h('strong', { id: 'ballbar-h' }, iso.hUm === null ? '— (needs CCW and CW)' : `${fmtRes(iso.hUm)} µm`), ' (µm values shown to 0.01 µm; smaller magnitudes read 0)'), diagTable, downloads),
     );
-    polarChart(polarEl, { title: `Deviation, magnified (base circle = ${fmt(base, 1)} µm)`, traces, circles: [{ r: base, label: 'nominal' }], markers: [{ x: fit.cx / UM, y: fit.cy / UM, label: 'fitted centre' }] });
+    polarChart(polarEl, { title: `Deviation [µm], magnified (rings labelled with the deviation; 0 = nominal circle)`, rOffset: base, traces, circles: [{ r: base, label: 'nominal' }], markers: [{ x: fit.cx / UM, y: fit.cy / UM, label: 'fitted centre' }] });
     if (Array.isArray(harmonics)) {
       const hs = harmonics.filter((c) => c.order >= 1);
       barChart(barEl, { title: 'Amplitude by order (order 1 = centre offset)', labels: hs.map((c) => c.order), values: hs.map((c) => c.amplitude / UM), yLabel: 'µm' });

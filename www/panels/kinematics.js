@@ -132,7 +132,8 @@ export async function mount(root, api) {
       h('button', { id: 'kinematics-cone-csv', onclick: () => downloadText('cone-frustum.csv', toCsv({ angle_deg: results[0].angle, ...Object.fromEntries(results.map((r, i) => [`dev_mm_${combos[i][0]}_${combos[i][1]}`, r.deviation])) }), 'text/csv') }, 'Download deviations (CSV)'),
     );
     polarChart(polar, {
-      title: `Bar deviation (µm, offset by ${base} µm) — perpendicular vs parallel, 15° vs 45°`,
+      title: 'Bar deviation [µm] (rings labelled with the deviation) — perpendicular vs parallel, 15° vs 45°',
+      rOffset: base,
       traces: results.map((r, i) => ({ angle: Float64Array.from(r.angle, (a) => (a * Math.PI) / 180), r: Float64Array.from(r.deviation, (d) => base + d * 1e3), label: `${combos[i][0]}° ${combos[i][1]}`, color: colors[i] })),
       circles: [{ r: base, label: '0 µm' }],
     });

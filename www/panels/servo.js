@@ -45,6 +45,7 @@ export async function mount(root, api) {
   const feed = numberField({ label: 'F_C', unit: 'mm/min', value: 200, id: 'servo-feed' });
   const rc = numberField({ label: 'R_C', unit: 'mm', value: 5, id: 'servo-rc' });
   const rw = numberField({ label: 'R_W', unit: 'mm', value: 8, id: 'servo-rw' });
+  const freqUnit = selectField({ label: 'Bode frequency axis', id: 'servo-bode-unit', value: 'rad', options: [['rad', 'ω [rad/s]'], ['hz', 'f [Hz]']], onChange: () => last?.before && draw() });
   const accel = numberField({ label: 'accel time', unit: 's', value: 0.064, id: 'servo-accel' });
   const dt = numberField({ label: 'time step', unit: 's', value: 0.001, id: 'servo-dt' });
   const condition = (over = {}) => {
@@ -105,8 +106,14 @@ export async function mount(root, api) {
     const bode = await Promise.all(axes.map((a) => api.call('frequencyResponse', [{ ...m.axes[a], j1: a === 'c' ? cond.j1 : m.axes[a].j1, kffp: after ? last.best.kffp[a] : m.axes[a].kffp }, ws])));
     const bodeEl = [h('div'), h('div')];
     els[4].replaceChildren(...bodeEl);
-    lineChart(bodeEl[0], { title: `Bode magnitude per axis${after ? ' (Best K_FFP)' : ''}`, xLabel: 'ω [rad/s]', yLabel: 'dB', scales: { x: { time: false, distr: 3 } }, series: axes.map((a) => ({ label: a.toUpperCase() })), data: [ws, ...bode.map((b) => b.magnitude.map((v) => 20 * Math.log10(v)))] });
-    lineChart(bodeEl[1], { title: 'Bode phase per axis', xLabel: 'ω [rad/s]', yLabel: 'deg', scales: { x: { time: false, distr: 3 } }, series: axes.map((a) => ({ label: a.toUpperCase() })), data: [ws, ...bode.map((b) => b.phase.map((v) => (v * 180) / Math.PI))] });
+    // Frequency axis in rad/s or Hz (f = ω/2π); curves dashed by axis so
+    // that equal responses (X and Y share their tuning) stay visible.
+    const hz = freqUnit.value === 'hz';
+    const fs = hz ? ws.map((w) => w / (2 * Math.PI)) : ws;
+    const fLabel = hz ? 'f [Hz]' : 'ω [rad/s]';
+    const bodeSeries = axes.map((a, i) => ({ label: a.toUpperCase(), dash: [[], [8, 4], [2, 3]][i % 3], width: 2 - (i % 3) * 0.3 }));
+    lineChart(bodeEl[0], { title: `Bode magnitude per axis${after ? ' (Best K_FFP)' : ''}`, xLabel: fLabel, yLabel: 'dB', scales: { x: { time: false, distr: 3 } }, series: bodeSeries, data: [fs, ...bode.map((b) => b.magnitude.map((v) => 20 * Math.log10(v)))] });
+    lineChart(bodeEl[1], { title: 'Bode phase per axis', xLabel: fLabel, yLabel: 'deg', scales: { x: { time: false, distr: 3 } }, series: bodeSeries, data: [fs, ...bode.map((b) => b.phase.map((v) => (v * 180) / Math.PI))] });
   };
 
   const showResults = () => {
@@ -271,7 +278,7 @@ export async function mount(root, api) {
 
   root.replaceChildren(
     h('div', { class: 'card' }, h('h3', {}, `Preset ${machine.name}`), h('p', {}, machine.description), h('p', { class: 'lead' }, `Source: ${machine.source}. Edit any value; the C torque limit is ${machine.axes.c.torqueMax} N·m.`), paramTable),
-    h('div', { class: 'card' }, h('h3', {}, 'Constant-feed-speed-vector test (§2.3, §3)'), h('div', { class: 'row' }, j1.el, mode.el, omega.el, feed.el, rc.el, rw.el, accel.el, dt.el),
+    h('div', { class: 'card' }, h('h3', {}, 'Constant-feed-speed-vector test (§2.3, §3)'), h('div', { class: 'row' }, j1.el, mode.el, omega.el, feed.el, rc.el, rw.el, accel.el, dt.el, freqUnit.el),
       h('div', { class: 'row' },
         h('button', { id: 'servo-run', dataset: { run: '' }, onclick: () => run(false) }, 'Simulate'),
         h('button', { id: 'servo-best', onclick: () => run(true) }, 'Best K_FFP'),

@@ -140,8 +140,10 @@ export async function mount(root, api) {
       );
       compCharts.length = 0;
       const k = Number(mag.value);
-      compCharts.push(xyChart(left, { title: 'Before', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.beforeSim, k, 'before'), colorLabel: 'µm', height: 360 }));
-      compCharts.push(xyChart(right, { title: 'After (against the original path)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.afterSim, k, 'after'), colorLabel: 'µm', height: 360 }));
+      // One colour scale for before and after (0 … the larger maximum).
+      const valueRange = [0, Math.max(c.before.maxErrorUm, c.after.maxErrorUm) || 1];
+      compCharts.push(xyChart(left, { title: 'Before', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.beforeSim, k, 'before'), colorLabel: 'µm', height: 360, valueRange }));
+      compCharts.push(xyChart(right, { title: 'After (against the original path)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.afterSim, k, 'after'), colorLabel: 'µm', height: 360, valueRange }));
       compUi.ok();
     } catch (e) {
       lastComp = null;
