@@ -1,7 +1,7 @@
 // Page start-up shared by the served page (main.js) and the single-file page
 // (standalone.js): start the core, mount the panels, restore the deep link,
 // then mark the page ready for the tests.
-import { showError } from './ui.js';
+import { showError, ariaTabs } from './ui.js';
 
 export const PANELS = ['servo', 'toolpath', 'ballbar', 'kinematics'];
 
@@ -47,12 +47,15 @@ function restoreHash() {
 /** makeApi() → Promise<api>; loadPanel(name) → Promise<{ mount(root, api) }>. */
 export async function boot({ makeApi, loadPanel }) {
   const status = document.getElementById('status');
-  for (const b of document.querySelectorAll('[data-tab]')) {
-    b.addEventListener('click', () => {
-      selectTab(b.dataset.tab);
-      writeHash();
-    });
-  }
+  // Each tab change is a history entry (Back returns to the previous tab).
+  const openTab = (name) => {
+    if (name === activeTab()) return;
+    selectTab(name);
+    history.pushState(null, '', `#${new URLSearchParams({ tab: name })}`);
+    writeHash();
+  };
+  for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', () => openTab(b.dataset.tab));
+  ariaTabs(document.querySelector('[role="tablist"]'), openTab);
   let api;
   try {
     api = await makeApi();

@@ -187,3 +187,26 @@ export function fmtRes(x, res = 0.01) {
   if (Math.abs(x) < res) return (0).toFixed(decimals);
   return (Math.round(x / res) * res).toFixed(decimals);
 }
+
+/** WAI-ARIA tabs keyboard pattern on a tablist: Left/Right move to the
+ * previous/next tab (wrapping), Home/End to the first/last; the focused tab
+ * is activated (`select(name)`); only the selected tab is in the Tab order. */
+export function ariaTabs(list, select) {
+  const tabs = () => [...list.querySelectorAll('[role="tab"]')];
+  const sync = () => {
+    for (const t of tabs()) t.tabIndex = t.getAttribute('aria-selected') === 'true' ? 0 : -1;
+  };
+  list.addEventListener('keydown', (e) => {
+    const all = tabs();
+    const i = all.indexOf(document.activeElement);
+    if (i < 0) return;
+    const j = { ArrowRight: (i + 1) % all.length, ArrowLeft: (i - 1 + all.length) % all.length, Home: 0, End: all.length - 1 }[e.key];
+    if (j === undefined) return;
+    e.preventDefault();
+    all[j].focus();
+    select(all[j].dataset.tab);
+    sync();
+  });
+  document.addEventListener('mtmotion:tab', sync);
+  sync();
+}
