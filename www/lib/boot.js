@@ -1,7 +1,8 @@
 // Page start-up shared by the served page (main.js) and the single-file page
 // (standalone.js): start the core, mount the panels, restore the deep link,
 // then mark the page ready for the tests.
-import { showError, ariaTabs } from './ui.js';
+import { showError, ariaTabs, downloadText } from './ui.js';
+import { reportHtml } from './report.js';
 
 export const PANELS = ['servo', 'toolpath', 'ballbar', 'kinematics'];
 
@@ -80,6 +81,10 @@ export async function boot({ makeApi, loadPanel }) {
       }
     }),
   );
+  // One self-contained HTML report of this tab or of all tabs.
+  const report = (names) => downloadText(`mtmotion-report-${names.length > 1 ? 'all' : names[0]}-${new Date().toISOString().slice(0, 10)}.html`, reportHtml(names), 'text/html');
+  document.getElementById('report-tab')?.addEventListener('click', () => report([activeTab()]));
+  document.getElementById('report-all')?.addEventListener('click', () => report(PANELS));
   restoreHash();
   document.querySelector('main').addEventListener('change', writeHash);
   window.addEventListener('hashchange', restoreHash);
