@@ -136,7 +136,9 @@ pub fn feed_vector_test(
 ) -> Result<JsValue, JsError> {
     let m = machine_arg(machine)?;
     let cond: Condition = from_js(condition, "condition")?;
-    result_js(&feed_vector::feed_vector_test(&m, &cond)?)
+    result_js(
+        &feed_vector::feed_vector_test(&m, &cond).map_err(|e| JsError::new(&e.user_message()))?,
+    )
 }
 
 /// Analyses a measured CSV/TSV trace of the test.
@@ -153,7 +155,10 @@ pub fn analyze_feed_vector_trace(
     } else {
         from_js(mapping, "mapping")?
     };
-    result_js(&trace_analysis::analyze_trace(text, &cond, &map)?)
+    result_js(
+        &trace_analysis::analyze_trace(text, &cond, &map)
+            .map_err(|e| JsError::new(&e.user_message()))?,
+    )
 }
 
 /// The Best K_FFP per axis (Eq. 20), checked by simulation.
@@ -170,7 +175,12 @@ pub fn best_kffp(
     } else {
         from_js(options, "options")?
     };
-    to_js(&best_kffp::best_kffp(&m, &cond, &opts)?)
+    to_js(
+        &best_kffp::best_kffp(&m, &cond, &opts).map_err(|e| match e {
+            best_kffp::BestKffpError::FeedVector(f) => JsError::new(&f.user_message()),
+            other => JsError::from(other),
+        })?,
+    )
 }
 
 /// Torque-saturation limits of the C axis per load (Figs. 17, 21).

@@ -289,7 +289,7 @@ export async function mount(root, api) {
     );
     out.replaceChildren(
       h('div', { class: 'card' }, h('h3', {}, 'Fitted centre (least-squares circle of the first run)'),
-        h('p', {}, 'Centre X ', h('strong', { id: 'ballbar-centre-x' }, fmt(fit.cx / UM, 3)), ' µm, Y ', h('strong', { id: 'ballbar-centre-y' }, fmt(fit.cy / UM, 3)), ' µm; radius ', fmt(fit.r, 6), ' mm; RMS residual ', fmt(fit.rmsResidual / UM, 3), ' µm'),
+        h('p', {}, 'Centre X ', h('strong', { id: 'ballbar-centre-x' }, fmtRes(fit.cx / UM, 0.001)), ' µm, Y ', h('strong', { id: 'ballbar-centre-y' }, fmtRes(fit.cy / UM, 0.001)), ' µm; radius ', fmtRes(fit.r, 0.000001), ' mm; RMS residual ', fmtRes(fit.rmsResidual / UM, 0.001), ' µm (display resolution 0.001 µm)'),
         polarEl),
       h('div', { class: 'card' }, h('h3', {}, 'Harmonics of the deviation (least squares, valid on partial ranges)'), barEl),
       h('div', { class: 'card' }, h('h3', {}, 'Travel-range bias of the centre estimate (Takayama §2.1 with these harmonics)'), sweepEl),

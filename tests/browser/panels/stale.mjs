@@ -1,7 +1,8 @@
 // One run state per panel: after a successful run, a failing run must show
 // its error in place of the results — no chart, table or enabled download
 // of the previous run stays on screen — and the "loaded file" line must
-// name the file that failed, not the previous one.
+// name the file that failed, not the previous one. Errors name fields by
+// their page label and unit.
 
 export default async function (page, check) {
   // ---- servo: a good simulation, then a bad R_C.
@@ -15,6 +16,9 @@ export default async function (page, check) {
   check(!(await page.$('#servo-mean-angle-diff')), 'servo: the previous mean α − β must be gone after a failed run');
   check((await page.$$('#servo-charts .uplot, #servo-charts canvas')).length === 0, 'servo: the previous charts must be gone after a failed run');
   check(await page.isDisabled('#servo-csv'), 'servo: the CSV download must not offer the previous run');
+  // The error names the field as the page labels it, not by its code name.
+  const msg = await page.textContent('#servo-results .error-box');
+  check(msg.includes('R_C [mm] = -5') && !/condition `rc`/.test(msg), `servo: the error should name R_C [mm], says "${msg}"`);
 
   // ---- tool path: a good simulation, then a program with an error.
   await page.click('[data-tab="toolpath"]');
