@@ -210,3 +210,25 @@ export function ariaTabs(list, select) {
   document.addEventListener('mtmotion:tab', sync);
   sync();
 }
+
+/** Text → deflate-raw → base64url (for a link's hash); null without
+ * CompressionStream. */
+export async function packText(text) {
+  if (typeof CompressionStream === 'undefined') return null;
+  const stream = new Blob([text]).stream().pipeThrough(new CompressionStream('deflate-raw'));
+  const bytes = new Uint8Array(await new Response(stream).arrayBuffer());
+  let bin = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) bin += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(bin).replace(/\+/g, '-').replace(/\//g, '_').replace(/=+$/, '');
+}
+
+/** Inverse of packText. */
+export async function unpackText(packed) {
+  const bin = atob(packed.replace(/-/g, '+').replace(/_/g, '/'));
+  const bytes = Uint8Array.from(bin, (c) => c.charCodeAt(0));
+  const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate-raw'));
+  return new Response(stream).text();
+}
+
+/** Longest packed text a shared link carries (characters of base64url). */
+export const LINK_TEXT_LIMIT = 16000;
