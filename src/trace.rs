@@ -55,6 +55,14 @@ pub enum TraceError {
         /// The header names.
         available: String,
     },
+    /// The file is not text (an image, a PDF, a spreadsheet, …).
+    #[error(
+        "this is not a text trace (it looks like {kind}): export the trace as CSV or TSV text"
+    )]
+    NotText {
+        /// What it looks like, e.g. "a PNG image".
+        kind: &'static str,
+    },
     /// A column index is out of range.
     #[error("column {index} does not exist; the header has {count} columns")]
     BadColumnIndex {
@@ -109,6 +117,9 @@ impl Table {
     /// assert_eq!(e.to_string(), "line 3, column 2 ('x'): 'abc' is not a number");
     /// ```
     pub fn parse(text: &str) -> Result<Self, TraceError> {
+        if let Some(kind) = binary_kind(text) {
+            return Err(TraceError::NotText { kind });
+        }
         let lines: Vec<(usize, &str)> = text
             .lines()
             .enumerate()
@@ -198,8 +209,11 @@ impl Table {
                 .to_ascii_lowercase()
         };
         aliases.iter().find_map(|a| {
-            let a = a.to_ascii_lowercase();
-            self.names.iter().position(|n| bare(n) == a)
+            let full = a.trim().to_ascii_lowercase();
+            self.names
+                .iter()
+                .position(|n| n.trim().to_ascii_lowercase() == full)
+                .or_else(|| self.names.iter().position(|n| bare(n) == bare(a)))
         })
     }
 
@@ -233,9 +247,154 @@ impl Table {
     }
 }
 
+/// What a non-text file looks like, from its first characters as the page
+/// reads them (a browser decodes bytes as UTF-8, so a byte ≥ 0x80 that is
+/// not valid UTF-8 becomes U+FFFD): `None` for text.
+///
+/// Signatures: PNG `\x89PNG`, JPEG `FF D8 FF`, GIF `GIF8`, PDF `%PDF`,
+/// ZIP (xlsx, docx) `PK\x03\x04`, gzip `1F 8B`; otherwise a NUL character
+/// or more than 10 % replacement/control characters in the first 512
+/// characters means binary.
+///
+/// # Examples
+/// ```
+/// use mtmotion::trace::binary_kind;
+/// assert_eq!(binary_kind("\u{fffd}PNG\r\n\u{1a}\n\0\0"), Some("a PNG image"));
+/// assert_eq!(binary_kind("time,x\n0,1\n"), None);
+/// ```
+pub fn binary_kind(text: &str) -> Option<&'static str> {
+    let t = text.trim_start_matches('\u{feff}');
+    let head: String = t.chars().take(8).collect();
+    let after_junk = head.trim_start_matches(['\u{fffd}', '\u{89}']);
+    let kind = if after_junk.starts_with("PNG") && head.len() > after_junk.len() {
+        Some("a PNG image")
+    } else if head.starts_with("%PDF") {
+        Some("a PDF document")
+    } else if head.starts_with("GIF8") {
+        Some("a GIF image")
+    } else if head.starts_with("PK\u{3}\u{4}") {
+        Some("a ZIP archive or an Excel/Office file")
+    } else if (head.starts_with("\u{fffd}\u{fffd}\u{fffd}") && t.contains("JFIF"))
+        || t.starts_with("\u{ff}\u{d8}\u{ff}")
+    {
+        Some("a JPEG image")
+    } else if head.starts_with('\u{1f}') {
+        Some("a gzip archive")
+    } else {
+        None
+    };
+    if kind.is_some() {
+        return kind;
+    }
+    let sample: Vec<char> = t.chars().take(512).collect();
+    let bad = sample
+        .iter()
+        .filter(|&&c| {
+            c == '\u{fffd}' || (c.is_control() && !matches!(c, '\n' | '\r' | '\t' | '\u{c}'))
+        })
+        .count();
+    (sample.contains(&'\0') || bad * 10 > sample.len()).then_some("a binary file")
+}
+
+/// A column name split into its bare name and the unit it states, as
+/// instruments write it: `Time(ms)`, `Time [ms]`, `t(s)`, `X_mm`, `x_um`,
+/// `C deg`, `C[deg]`. Units recognised (lower-case on return): `s`, `ms`,
+/// `us`, `mm`, `um` (also `µm`, `μm`), `m`, `deg`, `rad`, `nm`, `n·m`
+/// (`Nm`, `N.m`, `N·m`); anything else is `None`.
+///
+/// # Examples
+/// ```
+/// use mtmotion::trace::name_unit;
+/// assert_eq!(name_unit("Time [ms]"), ("Time".to_string(), Some("ms")));
+/// assert_eq!(name_unit("t(s)"), ("t".to_string(), Some("s")));
+/// assert_eq!(name_unit("pos_x_mm"), ("pos_x".to_string(), Some("mm")));
+/// assert_eq!(name_unit("C deg"), ("C".to_string(), Some("deg")));
+/// assert_eq!(name_unit("X"), ("X".to_string(), None));
+/// ```
+pub fn name_unit(name: &str) -> (String, Option<&'static str>) {
+    let unit = |u: &str| -> Option<&'static str> {
+        match u.trim().to_lowercase().replace('μ', "µ").as_str() {
+            "s" | "sec" => Some("s"),
+            "ms" | "msec" => Some("ms"),
+            "us" | "µs" => Some("us"),
+            "mm" => Some("mm"),
+            "um" | "µm" => Some("um"),
+            "m" => Some("m"),
+            "deg" | "°" | "degree" | "degrees" => Some("deg"),
+            "rad" => Some("rad"),
+            "nm" | "n·m" | "n.m" | "n*m" => Some("n·m"),
+            _ => None,
+        }
+    };
+    let n = name.trim();
+    // Bracketed suffix: "Time [ms]", "Time(ms)".
+    if let Some(open) = n.rfind(['[', '(']) {
+        let close = if n[open..].starts_with('[') { ']' } else { ')' };
+        if n.ends_with(close) && open > 0 {
+            if let Some(u) = unit(&n[open + 1..n.len() - 1]) {
+                return (n[..open].trim().to_string(), Some(u));
+            }
+        }
+    }
+    // Separated suffix: "x_mm", "C deg", "t-s".
+    if let Some(sep) = n.rfind(['_', ' ', '-']) {
+        if sep > 0 {
+            if let Some(u) = unit(&n[sep + 1..]) {
+                return (n[..sep].trim().to_string(), Some(u));
+            }
+        }
+    }
+    (n.to_string(), None)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn binary_files_are_refused_with_what_they_look_like() {
+        // A PNG as a browser's File.text() returns it: 0x89 → U+FFFD.
+        let png = "\u{fffd}PNG\r\n\u{1a}\n\0\0\0\rIHDR\0\0\u{1}\0";
+        let e = Table::parse(png).unwrap_err().to_string();
+        assert!(
+            e.starts_with("this is not a text trace (it looks like a PNG image)"),
+            "{e}"
+        );
+        assert!(Table::parse("%PDF-1.7\n%\u{fffd}\u{fffd}\n")
+            .unwrap_err()
+            .to_string()
+            .contains("a PDF document"));
+        let junk: String = (0..200)
+            .map(|i| if i % 3 == 0 { '\u{fffd}' } else { 'a' })
+            .collect();
+        assert!(Table::parse(&junk)
+            .unwrap_err()
+            .to_string()
+            .contains("a binary file"));
+        // Text with a few non-ASCII characters (µ, °) stays text.
+        assert_eq!(binary_kind("Zeit [s];X [µm];C [°]\n0;1;2\n"), None);
+    }
+
+    #[test]
+    fn unit_suffixes_name_the_column_and_its_unit() {
+        for (n, bare, u) in [
+            ("Time(ms)", "Time", Some("ms")),
+            ("Time [ms]", "Time", Some("ms")),
+            ("t(s)", "t", Some("s")),
+            ("X_mm", "X", Some("mm")),
+            ("Y [µm]", "Y", Some("um")),
+            ("C deg", "C", Some("deg")),
+            ("Torque (Nm)", "Torque", Some("n·m")),
+            ("pos_x", "pos_x", None),
+            ("(ms)", "(ms)", None),
+        ] {
+            assert_eq!(name_unit(n), (bare.to_string(), u), "{n}");
+        }
+        // A column chosen by its full name with the unit is found.
+        let t = Table::parse("Time(ms),X [mm]\n0,1\n1,2\n").unwrap();
+        assert_eq!(t.column(&["Time(ms)"], 1e-3).unwrap(), vec![0.0, 1e-3]);
+        assert_eq!(t.column(&["x"], 1.0).unwrap(), vec![1.0, 2.0]);
+    }
 
     #[test]
     fn detects_delimiters_and_skips_metadata() {

@@ -104,7 +104,8 @@ fn feed_vector_best_kffp_and_saturation() {
     let e = message(feed_vector_test("nope".into(), condition(1.0)).unwrap_err());
     assert!(e.contains("unknown machine preset"), "{e}");
     let e = message(feed_vector_test("nmv5000".into(), condition(-1.0)).unwrap_err());
-    assert!(e.contains("`omega`"), "{e}");
+    // In the user's words: the page's label and unit, not the code name.
+    assert!(e.starts_with("ω [rad/s] = -1: "), "{e}");
 }
 
 #[wasm_bindgen_test]

@@ -5,9 +5,11 @@
 //! |---|---|
 //! | [`travel_range`] | §2.1: centre-estimate error against travel range (Figs. 6–8) |
 //! | [`angle`] | §2.2: offset per section, ΔBz/ΔBx from two sections, angle sweep (Fig. 12) |
+//! | [`band`] | an estimate from measured sections with its travel-range bias band |
 //! | [`examples`] | the paper's Figs. 6, 7, 8, 12 as built-in examples, with its numbers |
 
 pub mod angle;
+pub mod band;
 pub mod examples;
 pub mod travel_range;
 
@@ -15,6 +17,7 @@ pub use angle::{
     angle_sweep, estimate_alignment, AlignmentEstimate, AngleSweepConfig, AngleSweepPoint, Section,
     SectionEstimate, SectionOffset,
 };
+pub use band::{estimate_alignment_band, AlignmentBand, BandConfig, SectionBand};
 pub use travel_range::{
     travel_range_sweep, AlignmentError, Locus, Offset, SweepConfig, SweepPoint,
 };

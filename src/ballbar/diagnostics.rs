@@ -27,7 +27,17 @@
 //! - the fit leaves out the 10° after each quadrant point in the direction
 //!   of travel, where the reversal spikes are;
 //! - reversal spikes: the residual of largest magnitude within 15° after
-//!   each quadrant point in the direction of travel;
+//!   each quadrant point in the direction of travel (one pass over the
+//!   points, so multi-revolution files cost O(points)), reported only
+//!   above the run's noise threshold: 1.5 × the largest |residual| away
+//!   from the quadrant points (the trace's own noise and unmodelled error;
+//!   at least 1 nm, the model's resolution). On noise alone the peak in a
+//!   15° window cannot exceed the peak over the other 300°, so none is
+//!   reported; a spike must stand 50 % above it;
+//! - a backlash is reported only above 3 standard errors of its
+//!   least-squares coefficient (σ of the kept residuals, diagonal of
+//!   (AᵀA)⁻¹, averaged over runs); below it reads 0 and the report gives
+//!   the resolution;
 //! - cyclic error: on the residuals of all runs, the pitch p (1 mm … R₀/4,
 //!   log grid then refined) whose model
 //!   cos θ·(a sin 2πx/p + b cos 2πx/p) + sin θ·(c sin 2πy/p + d cos 2πy/p)
@@ -83,8 +93,16 @@ pub struct Diagnostics {
     pub backlash_x_um: f64,
     /// Backlash Y, µm.
     pub backlash_y_um: f64,
-    /// Reversal spikes per run and quadrant point.
+    /// Smallest backlash X reported (3 standard errors), µm; below it
+    /// `backlash_x_um` is 0.
+    pub backlash_x_resolution_um: f64,
+    /// Smallest backlash Y reported (3 standard errors), µm.
+    pub backlash_y_resolution_um: f64,
+    /// Reversal spikes per run and quadrant point, those above the noise
+    /// threshold only.
     pub reversal_spikes: Vec<Spike>,
+    /// Noise threshold of the reversal spikes (largest over the runs), µm.
+    pub spike_threshold_um: f64,
     /// Servo mismatch, ms (None without both directions or feed).
     pub servo_mismatch_ms: Option<f64>,
     /// Scale mismatch sx − sy, ppm.
@@ -114,6 +132,15 @@ fn lsq<const N: usize>(
     rows: impl Iterator<Item = ([f64; N], f64)>,
     cols: usize,
 ) -> Option<DVector<f64>> {
+    lsq_full(rows, cols).map(|(x, _)| x)
+}
+
+/// As [`lsq`], also returning the diagonal of (AᵀA)⁻¹ (the coefficient
+/// variances per unit residual variance).
+fn lsq_full<const N: usize>(
+    rows: impl Iterator<Item = ([f64; N], f64)>,
+    cols: usize,
+) -> Option<(DVector<f64>, DVector<f64>)> {
     let mut m = DMatrix::<f64>::zeros(cols, cols);
     let mut g = DVector::<f64>::zeros(cols);
     for (b, y) in rows {
@@ -137,7 +164,8 @@ fn lsq<const N: usize>(
         return None;
     }
     let x = chol.solve(&g);
-    Some(x)
+    let inv = chol.inverse().diagonal();
+    Some((x, inv))
 }
 
 /// As [`lsq`], also returning the explained sum of squares xᵀg.
@@ -215,6 +243,8 @@ pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
     let mut fits = Vec::new();
     let mut resid: Vec<(f64, f64)> = Vec::new();
     let mut spikes = Vec::new();
+    let mut spike_threshold = 0.0f64;
+    let mut se2 = [0.0f64; 2];
     for run in &full {
         let s = run.direction.sign();
         // Fit without the 10° after each quadrant point in the direction
@@ -224,8 +254,8 @@ pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
             .collect();
         // The model with orders 3–8, so that smooth motion errors are read
         // neither as spikes nor as cyclic error.
-        let fit = |cols: usize| -> Option<(DVector<f64>, Vec<f64>)> {
-            let coef = lsq(
+        let fit = |cols: usize| -> Option<(DVector<f64>, DVector<f64>, Vec<f64>)> {
+            let (coef, inv) = lsq_full(
                 keep.iter()
                     .map(|&i| (basis(run.angle[i], s), run.deviation[i])),
                 cols,
@@ -242,10 +272,17 @@ pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
                         .sum::<f64>()
                 })
                 .collect();
-            Some((coef, res))
+            Some((coef, inv, res))
         };
-        let (coef, res) = fit(COLS)?;
-        spikes.extend(find_spikes(run, &res));
+        let (coef, inv, res) = fit(COLS)?;
+        // Residual variance of the fitted points → backlash standard errors.
+        let dof = keep.len().saturating_sub(COLS).max(1) as f64;
+        let var = keep.iter().map(|&i| res[i] * res[i]).sum::<f64>() / dof;
+        se2[0] += var * inv[5];
+        se2[1] += var * inv[6];
+        let (found, threshold) = find_spikes(run, &res);
+        spikes.extend(found);
+        spike_threshold = spike_threshold.max(threshold);
         resid.extend(run.angle.iter().copied().zip(res.iter().copied()));
         fits.push((run.direction, coef));
     }
@@ -271,12 +308,18 @@ pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
         (Some(a), Some(b), Some(f)) if f > 0.0 => Some((a - b) / (f / 60.0) * 1e3),
         _ => None,
     };
+    // Standard error of the mean over runs; 3 of them is the resolution.
+    let resolution = se2.map(|v| 3.0 * v.sqrt() / n * 1e3);
+    let significant = |v: f64, r: f64| if v.abs() > r { v } else { 0.0 };
     Some(Diagnostics {
         centre_offset_x_um: mean(1) * 1e3,
         centre_offset_y_um: mean(2) * 1e3,
-        backlash_x_um: mean(5) * 1e3,
-        backlash_y_um: mean(6) * 1e3,
+        backlash_x_um: significant(mean(5) * 1e3, resolution[0]),
+        backlash_y_um: significant(mean(6) * 1e3, resolution[1]),
+        backlash_x_resolution_um: resolution[0],
+        backlash_y_resolution_um: resolution[1],
         reversal_spikes: spikes,
+        spike_threshold_um: spike_threshold * 1e3,
         servo_mismatch_ms: servo,
         scale_mismatch_ppm: 2.0 * mean(3) / r0 * 1e6,
         squareness_urad: squareness * 1e6,
@@ -290,7 +333,11 @@ fn after_quadrant(t: f64, s: f64, w: f64) -> bool {
     (s * t).rem_euclid(std::f64::consts::FRAC_PI_2) < w
 }
 
-fn find_spikes(run: &Run, res: &[f64]) -> Vec<Spike> {
+/// The reversal spikes of one run above its noise threshold, and that
+/// threshold (mm). One pass over the points: each point belongs to at most
+/// one window, the 15° after quadrant point k·90° in the direction of
+/// travel.
+fn find_spikes(run: &Run, res: &[f64]) -> (Vec<Spike>, f64) {
     let s = run.direction.sign();
     let w = 15f64.to_radians();
     let (lo, hi) = run
@@ -300,23 +347,41 @@ fn find_spikes(run: &Run, res: &[f64]) -> Vec<Spike> {
             (a.min(t), b.max(t))
         });
     let q = std::f64::consts::FRAC_PI_2;
-    let mut out = Vec::new();
-    let mut k = (lo / q).ceil() as i64;
-    while (k as f64) * q <= hi {
+    if !(lo.is_finite() && hi.is_finite()) {
+        return (Vec::new(), 0.0);
+    }
+    let k0 = (lo / q).ceil() as i64;
+    let k1 = (hi / q).floor() as i64;
+    let count = (k1 - k0 + 1).max(0) as usize;
+    let mut peak = vec![0.0f64; count];
+    let mut outside = 0.0f64;
+    for (&t, &r) in run.angle.iter().zip(res) {
+        // The quadrant point whose window may hold t.
+        let k = if s > 0.0 {
+            (t / q).floor()
+        } else {
+            (t / q).ceil()
+        } as i64;
         let qa = k as f64 * q;
-        k += 1;
+        let inside = if s > 0.0 { t - qa <= w } else { qa - t <= w };
+        match (inside, usize::try_from(k - k0)) {
+            (true, Ok(j)) if j < count => {
+                if r.abs() > peak[j].abs() {
+                    peak[j] = r;
+                }
+            }
+            _ => outside = outside.max(r.abs()),
+        }
+    }
+    let threshold = (1.5 * outside).max(1e-6);
+    let mut out = Vec::new();
+    for (j, &p) in peak.iter().enumerate() {
+        let qa = (k0 + j as i64) as f64 * q;
         // A reversal inside the run, with its window inside the run.
         let (w0, w1) = if s > 0.0 { (qa, qa + w) } else { (qa - w, qa) };
-        if qa <= lo + 1e-9 || qa >= hi - 1e-9 || w0 < lo || w1 > hi {
+        if qa <= lo + 1e-9 || qa >= hi - 1e-9 || w0 < lo || w1 > hi || p.abs() <= threshold {
             continue;
         }
-        let peak = run
-            .angle
-            .iter()
-            .zip(res)
-            .filter(|(t, _)| **t >= w0 && **t <= w1)
-            .map(|(_, r)| *r)
-            .fold(0.0f64, |m, r| if r.abs() > m.abs() { r } else { m });
         let deg = qa.to_degrees().rem_euclid(360.0);
         let axis = if ((deg / 90.0).round() as i64) % 2 == 0 {
             'x'
@@ -327,10 +392,39 @@ fn find_spikes(run: &Run, res: &[f64]) -> Vec<Spike> {
             direction: run.direction,
             axis,
             angle_deg: deg.round(),
-            height_um: peak * 1e3,
+            height_um: p * 1e3,
         });
     }
-    out
+    (out, threshold)
+}
+
+/// Bins per revolution for long traces, see [`binned`].
+const BINS: usize = 18_000;
+
+/// Points (θ, value) as (θ, value, weight). A trace of more than 2·[`BINS`]
+/// points (several revolutions) is averaged into bins of θ mod 2π
+/// (0.02° wide) weighted by their counts: the run model and the cyclic
+/// signature are functions of θ alone, so the weighted fits on the bin
+/// means equal the fits on the points up to the bin width, which is 1/28
+/// of the shortest cyclic period searched (1 mm at R₀ = 100 mm: 0.57°).
+/// This keeps the cyclic search O(points) for files of any length.
+fn binned(points: impl Iterator<Item = (f64, f64)>, n: usize) -> Vec<(f64, f64, f64)> {
+    if n <= 2 * BINS {
+        return points.map(|(t, v)| (t, v, 1.0)).collect();
+    }
+    let tau = std::f64::consts::TAU;
+    let mut acc = vec![(0.0f64, 0.0f64, 0.0f64); BINS];
+    for (t, v) in points {
+        let a = t.rem_euclid(tau);
+        let k = ((a / tau * BINS as f64) as usize).min(BINS - 1);
+        acc[k].0 += a;
+        acc[k].1 += v;
+        acc[k].2 += 1.0;
+    }
+    acc.into_iter()
+        .filter(|b| b.2 > 0.0)
+        .map(|(t, v, w)| (t / w, v / w, w))
+        .collect()
 }
 
 fn cyclic_pitch(resid: &[(f64, f64)], r0: f64) -> Option<f64> {
@@ -339,19 +433,21 @@ fn cyclic_pitch(resid: &[(f64, f64)], r0: f64) -> Option<f64> {
         return None;
     }
     // Precomputed per point: cos θ, sin θ, and the axis positions.
-    let pts: Vec<[f64; 5]> = resid
-        .iter()
-        .map(|&(t, r)| {
+    // Weighted rows: each scaled by √weight (1 unless binned).
+    let pts: Vec<[f64; 6]> = binned(resid.iter().copied(), resid.len())
+        .into_iter()
+        .map(|(t, r, w)| {
             let (c, s) = (t.cos(), t.sin());
-            [c, s, r0 * c, r0 * s, r]
+            let sw = w.sqrt();
+            [c, s, r0 * c, r0 * s, r * sw, sw]
         })
         .collect();
     let fit = |p: f64| -> Option<(f64, [f64; 4])> {
         let k = std::f64::consts::TAU / p;
         let (mut m, mut g) = ([[0.0f64; 4]; 4], [0.0f64; 4]);
-        for &[c, s, x, y, r] in &pts {
+        for &[c, s, x, y, r, sw] in &pts {
             let ((sx, cx), (sy, cy)) = ((k * x).sin_cos(), (k * y).sin_cos());
-            let b = [c * sx, c * cx, s * sy, s * cy];
+            let b = [c * sx * sw, c * cx * sw, s * sy * sw, s * cy * sw];
             for i in 0..4 {
                 g[i] += b[i] * r;
                 for j in i..4 {
@@ -402,19 +498,23 @@ fn cyclic_amplitudes(runs: &[&Run], p0: f64, r0: f64) -> Option<Cyclic> {
         for run in runs {
             let s = run.direction.sign();
             let w = 10f64.to_radians();
-            let rows = run
+            let kept = run
                 .angle
                 .iter()
                 .zip(&run.deviation)
                 .filter(|(t, _)| !after_quadrant(**t, s, w))
-                .map(|(&t, &d)| {
-                    let mut b = [0.0f64; COLS + 4];
-                    b[..COLS].copy_from_slice(&basis(t, s));
-                    let (c, sn) = (t.cos(), t.sin());
-                    let ((sx, cx), (sy, cy)) = ((k * r0 * c).sin_cos(), (k * r0 * sn).sin_cos());
-                    b[COLS..].copy_from_slice(&[c * sx, c * cx, sn * sy, sn * cy]);
-                    (b, d)
-                });
+                .map(|(&t, &d)| (t, d));
+            let rows = binned(kept, run.angle.len()).into_iter().map(|(t, d, wt)| {
+                let sw = wt.sqrt();
+                let mut b = [0.0f64; COLS + 4];
+                b[..COLS].copy_from_slice(&basis(t, s));
+                let (c, sn) = (t.cos(), t.sin());
+                let ((sx, cx), (sy, cy)) = ((k * r0 * c).sin_cos(), (k * r0 * sn).sin_cos());
+                b[COLS..].copy_from_slice(&[c * sx, c * cx, sn * sy, sn * cy]);
+                b.iter_mut().for_each(|v| *v *= sw);
+                let d = d * sw;
+                (b, d)
+            });
             let (coef, e) = lsq_explained(rows, COLS + 4)?;
             explained += e;
             for (j, v) in sum.iter_mut().enumerate() {
@@ -441,4 +541,95 @@ fn cyclic_amplitudes(runs: &[&Run], p0: f64, r0: f64) -> Option<Cyclic> {
         amplitude_x_um: sum[0].hypot(sum[1]) * 1e3,
         amplitude_y_um: sum[2].hypot(sum[3]) * 1e3,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ballbar::{synthetic_trace, SyntheticConfig};
+
+    #[test]
+    fn pure_noise_reports_no_spike_and_no_backlash() {
+        // Uniform noise ±2 µm, nothing else: no feature may be reported,
+        // and the stated resolutions are of the noise's order.
+        let t = synthetic_trace(&SyntheticConfig {
+            noise: 0.002,
+            ..Default::default()
+        })
+        .unwrap();
+        let d = diagnose(&t).unwrap();
+        assert!(d.reversal_spikes.is_empty(), "{:?}", d.reversal_spikes);
+        assert_eq!((d.backlash_x_um, d.backlash_y_um), (0.0, 0.0), "{d:?}");
+        // σ of uniform ±2 µm is 1.15 µm; the backlash column's standard
+        // error over ~3000 points is a few hundredths of that.
+        assert!(
+            d.backlash_x_resolution_um > 0.01 && d.backlash_x_resolution_um < 1.0,
+            "{d:?}"
+        );
+        // Threshold 1.5 × the largest residual: about 3 µm.
+        assert!(
+            d.spike_threshold_um > 2.5 && d.spike_threshold_um < 3.5,
+            "{d:?}"
+        );
+    }
+
+    #[test]
+    fn features_above_the_noise_are_still_reported() {
+        let t = synthetic_trace(&SyntheticConfig {
+            noise: 0.0005,
+            backlash_x: 0.004,
+            spike: 0.006,
+            spike_decay_deg: 2.0,
+            ..Default::default()
+        })
+        .unwrap();
+        let d = diagnose(&t).unwrap();
+        assert!((d.backlash_x_um - 4.0).abs() < 0.2, "{d:?}");
+        assert_eq!(d.backlash_y_um, 0.0, "{d:?}");
+        // CCW −180…180 and CW 180…−180: three inner quadrant points each.
+        assert_eq!(d.reversal_spikes.len(), 6, "{:?}", d.reversal_spikes);
+        for s in &d.reversal_spikes {
+            assert!((s.height_um - 6.0).abs() < 0.8, "{s:?}");
+        }
+    }
+
+    #[test]
+    fn a_multi_revolution_file_reads_as_its_single_revolution() {
+        // Eleven revolutions of the same CCW signature (39,600 points, over
+        // the binning limit) against the single revolution (a second
+        // computation, unbinned).
+        let one = synthetic_trace(&SyntheticConfig {
+            both_directions: false,
+            cyclic_amplitude: 0.002,
+            cyclic_pitch: 5.0,
+            backlash_x: 0.003,
+            ..Default::default()
+        })
+        .unwrap();
+        let r = &one.runs[0];
+        let mut many = one.clone();
+        let m = &mut many.runs[0];
+        m.angle.clear();
+        m.deviation.clear();
+        for k in 0..11 {
+            let shift = std::f64::consts::TAU * k as f64;
+            m.angle.extend(r.angle.iter().map(|a| a + shift));
+            m.deviation.extend(&r.deviation);
+        }
+        let (a, b) = (diagnose(&one).unwrap(), diagnose(&many).unwrap());
+        let (ca, cb) = (a.cyclic.unwrap(), b.cyclic.unwrap());
+        assert!(
+            (ca.pitch_mm - cb.pitch_mm).abs() < 0.01 * ca.pitch_mm,
+            "{ca:?} {cb:?}"
+        );
+        assert!(
+            (ca.amplitude_x_um - cb.amplitude_x_um).abs() < 0.05,
+            "{ca:?} {cb:?}"
+        );
+        assert!((cb.amplitude_x_um - 2.0).abs() < 0.2, "{cb:?}");
+        assert!(
+            (a.backlash_x_um - b.backlash_x_um).abs() < 0.05,
+            "{a:?} {b:?}"
+        );
+    }
 }

@@ -39,6 +39,15 @@ pub enum BallbarTraceError {
     /// The table itself is malformed (names line and column).
     #[error(transparent)]
     Table(#[from] TraceError),
+    /// The text is empty.
+    #[error("the trace is empty: expected a header line such as 'angle_deg,deviation_um' (or 'x,y') and data rows")]
+    Empty,
+    /// The first line is already data.
+    #[error("line {line}: expected a header line naming the columns (e.g. 'angle_deg,deviation_um' or 'x,y') before the data")]
+    NoHeader {
+        /// Line of the first data row.
+        line: usize,
+    },
     /// Neither angle+deviation nor X/Y columns.
     #[error("no ball-bar columns found: expected 'angle' and 'deviation' (or 'x' and 'y') in the header, found: {0}")]
     NoColumns(String),
@@ -176,7 +185,12 @@ pub fn parse_ballbar_trace(
             });
         }
     }
-    let t = Table::parse(text)?;
+    // The table's own hints name the servo columns; a ball-bar trace names its own.
+    let t = Table::parse(text).map_err(|e| match e {
+        TraceError::Empty => BallbarTraceError::Empty,
+        TraceError::NoHeader { line } => BallbarTraceError::NoHeader { line },
+        e => e.into(),
+    })?;
     let ang = t.find(&[
         "angle",
         "theta",
@@ -439,5 +453,23 @@ mod tests {
             .unwrap_err()
             .to_string()
             .starts_with("nominalRadius"));
+    }
+
+    #[test]
+    fn empty_and_headerless_files_name_the_ball_bar_columns() {
+        let e = parse_ballbar_trace("", ParseOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("angle_deg,deviation_um") && !e.contains("time,x,y,c"),
+            "{e}"
+        );
+        let e = parse_ballbar_trace("0,1\n1,2\n", ParseOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("line 1:") && e.contains("angle_deg,deviation_um"),
+            "{e}"
+        );
     }
 }

@@ -53,7 +53,7 @@ pub enum BestKffpError {
         target: f64,
     },
     /// A query or option is out of range.
-    #[error("`{field}` = {value}: {expected}")]
+    #[error("`{field}` = {}: {expected}", crate::numeric::compact(*.value))]
     BadQuery {
         /// camelCase field name.
         field: &'static str,

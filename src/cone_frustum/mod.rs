@@ -26,7 +26,7 @@ pub use test::{cone_frustum_test, ConeFrustumConfig, ConeFrustumResult};
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ConeFrustumError {
     /// A configuration value is out of range.
-    #[error("cone-frustum test: `{field}` = {value}: {why}")]
+    #[error("cone-frustum test: `{field}` = {}: {why}", crate::numeric::compact(*.value))]
     BadConfig {
         /// The camelCase field.
         field: &'static str,

@@ -47,7 +47,7 @@ pub enum FeedVectorError {
     #[error("the machine has no '{0}' axis; the feed-vector test needs x, y and c")]
     MissingAxis(&'static str),
     /// A condition field is out of range.
-    #[error("condition `{field}` = {value}: {expected}")]
+    #[error("condition `{field}` = {}: {expected}", crate::numeric::compact(*.value))]
     BadCondition {
         /// camelCase field name.
         field: &'static str,
@@ -123,7 +123,55 @@ fn bad(field: &'static str, value: f64, expected: &str) -> FeedVectorError {
     }
 }
 
+impl FeedVectorError {
+    /// The message in the user's words: a condition field is named by the
+    /// label and unit the page shows ("R_C [mm] = -5: …"), not by its code
+    /// name ("condition `rc`"); other errors as [`std::fmt::Display`].
+    ///
+    /// # Examples
+    /// ```
+    /// use mtmotion::feed_vector::Condition;
+    /// let mut c = Condition::paper(1.0);
+    /// c.rc = -5.0;
+    /// let e = c.validate().unwrap_err();
+    /// assert_eq!(e.user_message(), "R_C [mm] = -5: must be between 0 and 10,000 mm");
+    /// ```
+    pub fn user_message(&self) -> String {
+        match self {
+            Self::BadCondition {
+                field,
+                value,
+                expected,
+            } => match Condition::field_label(field) {
+                Some((label, unit)) => format!(
+                    "{label} [{unit}] = {}: {expected}",
+                    crate::numeric::compact(*value)
+                ),
+                None => self.to_string(),
+            },
+            _ => self.to_string(),
+        }
+    }
+}
+
 impl Condition {
+    /// Label and unit of a condition field (camelCase) as the suzuki paper
+    /// and the page name it.
+    pub fn field_label(field: &str) -> Option<(&'static str, &'static str)> {
+        Some(match field {
+            "rc" => ("R_C", "mm"),
+            "rw" => ("R_W", "mm"),
+            "omega" => ("ω", "rad/s"),
+            "accelTime" => ("accel time", "s"),
+            "j1" => ("J1 (load on C)", "kg·m²"),
+            "torqueMax" => ("torque max", "N·m"),
+            "duration" => ("duration", "s"),
+            "dt" => ("time step", "s"),
+            "kffp" => ("K_FFP", "%"),
+            _ => return None,
+        })
+    }
+
     /// The paper's test (§3): R_C = 5 mm, R_W = 8 mm, T_acc = 0.064 s,
     /// J1 = 1.70 kg·m², at angular velocity `omega`.
     pub fn paper(omega: f64) -> Self {

@@ -28,7 +28,7 @@ pub use axis::{AxisKind, AxisParams, PitchReading, WormHarmonic};
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ServoError {
     /// A parameter is outside its physical range.
-    #[error("axis parameter `{field}` = {value}: {expected}")]
+    #[error("axis parameter `{field}` = {}: {expected}", crate::numeric::compact(*.value))]
     BadParameter {
         /// The camelCase field name, as in the JS API.
         field: &'static str,

@@ -50,7 +50,9 @@ export interface CircularTestRun {
 }
 export interface BallbarDiagnostics {
   centreOffsetXUm: number; centreOffsetYUm: number; backlashXUm: number; backlashYUm: number;
-  reversalSpikes: { direction: 'ccw' | 'cw'; axis: 'x' | 'y'; angleDeg: number; heightUm: number }[];
+  /** Smallest backlash reported (3 standard errors); below it the backlash reads 0. */ backlashXResolutionUm: number; backlashYResolutionUm: number;
+  /** Only spikes above spikeThresholdUm (1.5 × the largest residual away from the quadrant points). */
+  reversalSpikes: { direction: 'ccw' | 'cw'; axis: 'x' | 'y'; angleDeg: number; heightUm: number }[]; spikeThresholdUm: number;
   servoMismatchMs: number | null; scaleMismatchPpm: number; squarenessUrad: number;
   cyclic: { pitchMm: number; amplitudeXUm: number; amplitudeYUm: number } | null; runsUsed: number;
 }
@@ -259,4 +261,48 @@ pub fn ballbar_example(
 ) -> Result<JsValue, JsError> {
     let name: &str = &string_arg(&name, "name")?;
     to_js(&examples::example(name, radius.unwrap_or(100.0))?)
+}
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_BAND: &str = r#"
+export interface AlignmentBandInput extends AlignmentInput {
+  /** Travel range W, degrees (default: each section's own span). */ travelRangeDeg?: number;
+  /** Highest harmonic order fitted for the bias (default 10). */ maxOrder?: number;
+}
+export interface AlignmentBand {
+  /** bandZ, bandX: half-widths of each offset band, mm (bias + second-order term). */
+  estimate: AlignmentEstimate;
+  /** Predicted bias of each section's centre, mm; its offset band is ±|bias|. */
+  sections: { y: number; rangeDeg: number; centreDeg: number; biasZ: number; biasX: number; bandZ: number; bandX: number; harmonics: HarmonicComponent[] }[];
+  /** Half-widths of the angle-error bands, rad; null with one section. */ bandBz: number | null; bandBx: number | null;
+}
+"#;
+
+/// takayama §2.1–2.2 on measured sections: offsets, angle errors and the
+/// travel-range bias band around them.
+#[wasm_bindgen(js_name = estimateAlignmentBand, unchecked_return_type = "AlignmentBand")]
+pub fn estimate_alignment_band(
+    #[wasm_bindgen(unchecked_param_type = "AlignmentBandInput")] input: JsValue,
+) -> Result<JsValue, JsError> {
+    let list = get(&input, "sections");
+    if !Array::is_array(&list) {
+        return Err(JsError::new(
+            "sections: expected an array of { y, angleDeg, deviation }",
+        ));
+    }
+    let mut sections = Vec::new();
+    for (k, s) in Array::from(&list).iter().enumerate() {
+        let what = format!("sections[{k}]");
+        sections.push(Section {
+            y: number(&s, "y", &what)?,
+            angle_deg: floats(&s, "angleDeg", &what)?,
+            deviation: floats(&s, "deviation", &what)?,
+        });
+    }
+    let cfg = alignment::BandConfig {
+        radius: get(&input, "radius").as_f64().unwrap_or(100.0),
+        travel_range_deg: get(&input, "travelRangeDeg").as_f64(),
+        max_order: get(&input, "maxOrder").as_f64().map_or(10, |v| v as usize),
+    };
+    to_js(&alignment::estimate_alignment_band(&sections, &cfg)?)
 }

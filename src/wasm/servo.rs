@@ -149,7 +149,9 @@ pub fn feed_vector_test(
 ) -> Result<JsValue, JsError> {
     let m = machine_arg(machine)?;
     let cond: Condition = from_js(condition, "condition")?;
-    result_js(&feed_vector::feed_vector_test(&m, &cond)?)
+    result_js(
+        &feed_vector::feed_vector_test(&m, &cond).map_err(|e| JsError::new(&e.user_message()))?,
+    )
 }
 
 /// Analyses a measured CSV/TSV trace of the test.
@@ -167,7 +169,10 @@ pub fn analyze_feed_vector_trace(
     } else {
         from_js(mapping, "mapping")?
     };
-    result_js(&trace_analysis::analyze_trace(text, &cond, &map)?)
+    result_js(
+        &trace_analysis::analyze_trace(text, &cond, &map)
+            .map_err(|e| JsError::new(&e.user_message()))?,
+    )
 }
 
 /// The Best K_FFP per axis (Eq. 20), checked by simulation.
@@ -185,7 +190,12 @@ pub fn best_kffp(
     } else {
         from_js(options, "options")?
     };
-    to_js(&best_kffp::best_kffp(&m, &cond, &opts)?)
+    to_js(
+        &best_kffp::best_kffp(&m, &cond, &opts).map_err(|e| match e {
+            best_kffp::BestKffpError::FeedVector(f) => JsError::new(&f.user_message()),
+            other => JsError::from(other),
+        })?,
+    )
 }
 
 /// Torque-saturation limits of the C axis per load (Figs. 17, 21).
@@ -230,4 +240,35 @@ pub fn identify_axis(
     let a: AxisParams = from_js(initial, "initial")?;
     let t: crate::servo::identify::MeasuredTrace = from_js(trace, "trace")?;
     to_js(&crate::servo::identify::identify_axis(&a, &t)?)
+}
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_COLUMNS: &str = r#"
+/** A trace's columns: the name as written, the name without its unit, and the unit it states (s, ms, us, mm, um, m, deg, rad, n·m) or null. */
+export interface TraceColumn { name: string; bare: string; unit: string | null }
+"#;
+
+#[cfg(feature = "full")]
+/// The columns of a CSV/TSV trace and the unit each header states; throws
+/// for a file that is not a text trace ("this is not a text trace (it
+/// looks like a PNG image)") or a malformed table (line and column).
+#[wasm_bindgen(js_name = traceColumns, unchecked_return_type = "TraceColumn[]")]
+pub fn trace_columns(
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+) -> Result<JsValue, JsError> {
+    let text: &str = &string_arg(&text, "text")?;
+    let table = crate::trace::Table::parse(text)?;
+    let out = js_sys::Array::new();
+    for n in &table.names {
+        let (bare, unit) = crate::trace::name_unit(n);
+        let unit = unit.map_or(JsValue::NULL, JsValue::from_str);
+        out.push(
+            &Obj::new()
+                .val("name", JsValue::from_str(n))
+                .val("bare", JsValue::from_str(&bare))
+                .val("unit", unit)
+                .build(),
+        );
+    }
+    Ok(out.into())
 }

@@ -43,7 +43,11 @@ async function openPage(url, viewport = { width: 1366, height: 900 }) {
   return { page, problems, context };
 }
 
+// ONLY=alignment,servo runs just the tests whose name contains one of these.
+const only = process.env.ONLY ? process.env.ONLY.split(',') : null;
+
 async function run(name, fn, { url = base + 'index.html', viewport } = {}) {
+  if (only && !only.some((o) => name.includes(o))) return;
   const t0 = Date.now();
   let ctx;
   try {

@@ -1,7 +1,8 @@
 // Page start-up shared by the served page (main.js) and the single-file page
 // (standalone.js): start the core, mount the panels, restore the deep link,
 // then mark the page ready for the tests.
-import { showError } from './ui.js';
+import { showError, ariaTabs, downloadText, packText, unpackText, LINK_TEXT_LIMIT, h } from './ui.js';
+import { reportHtml } from './report.js';
 
 export const PANELS = ['servo', 'toolpath', 'ballbar', 'kinematics'];
 
@@ -26,6 +27,7 @@ function writeHash() {
   const q = new URLSearchParams({ tab });
   for (const e of inputsOf(tab)) q.set(e.id, e.type === 'checkbox' ? String(e.checked) : e.value);
   history.replaceState(null, '', `#${q}`);
+  addTexts(tab, q);
 }
 
 /** The field's label as the user sees it (for messages), else its id. */
@@ -55,7 +57,38 @@ export function linkValueProblem(e, raw) {
   return null;
 }
 
-function restoreHash() {
+// A pasted program (a panel's id'd textarea) travels in the link, deflated
+// and base64url-coded, when it fits (LINK_TEXT_LIMIT); otherwise the link
+// says so and the page asks for the program to be loaded again.
+async function addTexts(tab, q) {
+  for (const t of document.querySelectorAll(`#panel-${tab} textarea[id]`)) {
+    const packed = t.value ? await packText(t.value) : null;
+    if (packed && packed.length <= LINK_TEXT_LIMIT) q.set(`${t.id}.z`, packed);
+    else if (t.value) q.set(`${t.id}.z`, 'too-large');
+  }
+  if (activeTab() === tab) history.replaceState(null, '', `#${q}`);
+}
+
+async function restoreTexts(tab, q) {
+  for (const t of document.querySelectorAll(`#panel-${tab} textarea[id]`)) {
+    const packed = q.get(`${t.id}.z`);
+    if (!packed) continue;
+    let note = null;
+    if (packed === 'too-large') note = 'The shared link could not carry this program (too large for a link): load the file again.';
+    else {
+      try {
+        t.value = await unpackText(packed);
+        t.dispatchEvent(new Event('input', { bubbles: true }));
+      } catch {
+        note = 'The program in the shared link is damaged: load the file again.';
+      }
+    }
+    t.parentElement.querySelector('.link-note')?.remove();
+    if (note) t.before(h('p', { class: 'error-box link-note', role: 'alert' }, note));
+  }
+}
+
+async function restoreHash() {
   const q = new URLSearchParams(location.hash.slice(1));
   const tab = q.get('tab');
   if (!tab || !PANELS.includes(tab)) return;
@@ -79,6 +112,8 @@ function restoreHash() {
     e.dispatchEvent(new Event('input', { bubbles: true }));
     e.dispatchEvent(new Event('change', { bubbles: true }));
   }
+  // Texts after the inputs (an example menu's change would overwrite them).
+  await restoreTexts(tab, q);
   // A panel marks its main action with data-run; a shared link re-runs it.
   document.querySelector(`#panel-${tab} [data-run]`)?.click();
 }
@@ -86,12 +121,15 @@ function restoreHash() {
 /** makeApi() → Promise<api>; loadPanel(name) → Promise<{ mount(root, api) }>. */
 export async function boot({ makeApi, loadPanel }) {
   const status = document.getElementById('status');
-  for (const b of document.querySelectorAll('[data-tab]')) {
-    b.addEventListener('click', () => {
-      selectTab(b.dataset.tab);
-      writeHash();
-    });
-  }
+  // Each tab change is a history entry (Back returns to the previous tab).
+  const openTab = (name) => {
+    if (name === activeTab()) return;
+    selectTab(name);
+    history.pushState(null, '', `#${new URLSearchParams({ tab: name })}`);
+    writeHash();
+  };
+  for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', () => openTab(b.dataset.tab));
+  ariaTabs(document.querySelector('[role="tablist"]'), openTab);
   let api;
   try {
     api = await makeApi();
@@ -118,7 +156,11 @@ export async function boot({ makeApi, loadPanel }) {
       }
     }),
   );
-  restoreHash();
+  // One self-contained HTML report of this tab or of all tabs.
+  const report = (names) => downloadText(`mtmotion-report-${names.length > 1 ? 'all' : names[0]}-${new Date().toISOString().slice(0, 10)}.html`, reportHtml(names), 'text/html');
+  document.getElementById('report-tab')?.addEventListener('click', () => report([activeTab()]));
+  document.getElementById('report-all')?.addEventListener('click', () => report(PANELS));
+  await restoreHash();
   document.querySelector('main').addEventListener('change', writeHash);
   window.addEventListener('hashchange', restoreHash);
   document.body.dataset.ready = 'true';

@@ -50,6 +50,7 @@ export function lineChart(el, opts) {
       }
       ctx.restore();
     };
+    el.append(hint('drag to zoom, double-click to reset'));
     plot = new uPlot(
       {
         width,
@@ -64,8 +65,7 @@ export function lineChart(el, opts) {
     );
   };
   build(opts);
-  const ro = new ResizeObserver(() => plot && el.clientWidth && plot.setSize({ width: el.clientWidth, height: opts.height || 260 }));
-  ro.observe(el);
+  observe(el, () => plot && el.clientWidth && plot.setSize({ width: el.clientWidth, height: opts.height || 260 }), () => plot?.destroy());
   return {
     el,
     plot: () => plot,
@@ -74,6 +74,27 @@ export function lineChart(el, opts) {
       build(opts);
     },
   };
+}
+
+/** One ResizeObserver per chart element: a redraw into the same element
+ * disconnects the previous one, and an element taken out of the page
+ * disconnects its own (no observer or plot outlives its chart). */
+function observe(el, onResize, onGone) {
+  el._mtObserver?.disconnect();
+  const ro = new ResizeObserver(() => {
+    if (!el.isConnected) {
+      ro.disconnect();
+      onGone?.();
+      return;
+    }
+    onResize();
+  });
+  ro.observe(el);
+  el._mtObserver = ro;
+}
+
+function hint(text) {
+  return Object.assign(document.createElement('div'), { className: 'chart-hint', textContent: text });
 }
 
 function niceTicks(lo, hi, n = 5) {
@@ -89,9 +110,13 @@ function niceTicks(lo, hi, n = 5) {
 const tick = (v) => (Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(1) : String(+v.toPrecision(6)));
 
 function canvasChart(el, opts, draw) {
+  // Zoom and pan: the draw function reads state.view (null = fit) and
+  // leaves in state.map how to turn canvas pixels into its view.
+  const state = { view: null, map: null };
+  let canvas;
   const paint = () => {
     frame(el, opts.title);
-    const canvas = document.createElement('canvas');
+    canvas = document.createElement('canvas');
     el.append(canvas);
     const w = Math.max(200, el.clientWidth || 600);
     const hgt = opts.height || Math.min(420, Math.max(240, w * 0.75));
@@ -102,7 +127,8 @@ function canvasChart(el, opts, draw) {
     const ctx = canvas.getContext('2d');
     ctx.scale(dpr, dpr);
     ctx.font = '11px system-ui';
-    const legend = draw(ctx, w, hgt) || [];
+    const legend = draw(ctx, w, hgt, state) || [];
+    if (state.map) el.append(hint('wheel to zoom, drag to pan, double-click to reset'));
     if (legend.length) {
       const lg = document.createElement('div');
       lg.className = 'legend';
@@ -118,12 +144,49 @@ function canvasChart(el, opts, draw) {
   };
   paint();
   let width = el.clientWidth;
-  new ResizeObserver(() => {
+  observe(el, () => {
     if (el.clientWidth && Math.abs(el.clientWidth - width) > 2) {
       width = el.clientWidth;
       paint();
     }
-  }).observe(el);
+  });
+  // Listeners on the element (it outlives each repaint's canvas), once.
+  el._mtState = state;
+  el._mtPaint = paint;
+  if (!el._mtInteractive) {
+    el._mtInteractive = true;
+    const at = (e) => {
+      const r = el._mtCanvas().getBoundingClientRect();
+      return [e.clientX - r.left, e.clientY - r.top];
+    };
+    el._mtCanvas = () => el.querySelector('canvas');
+    el.addEventListener('wheel', (e) => {
+      const st = el._mtState;
+      if (!st.map || e.target.tagName !== 'CANVAS') return;
+      e.preventDefault();
+      st.view = st.map.zoom(at(e), Math.exp(Math.sign(e.deltaY) * 0.15));
+      el._mtPaint();
+    }, { passive: false });
+    let drag = null;
+    el.addEventListener('pointerdown', (e) => {
+      if (!el._mtState.map || e.target.tagName !== 'CANVAS') return;
+      drag = { p: at(e), map: el._mtState.map };
+      e.target.setPointerCapture?.(e.pointerId);
+    });
+    el.addEventListener('pointermove', (e) => {
+      if (!drag) return;
+      const p = at(e);
+      el._mtState.view = drag.map.pan(p[0] - drag.p[0], p[1] - drag.p[1]);
+      el._mtPaint();
+    });
+    const end = () => (drag = null);
+    el.addEventListener('pointerup', end);
+    el.addEventListener('pointercancel', end);
+    el.addEventListener('dblclick', () => {
+      el._mtState.view = null;
+      el._mtPaint();
+    });
+  }
   return {
     el,
     update(o) {
@@ -187,7 +250,24 @@ function axesBox(ctx, w, hgt, xr, yr, o) {
     ctx.fillText(o.yLabel, 0, 0);
     ctx.restore();
   }
-  return { X, Y, m, pw, ph };
+  return { X, Y, m, pw, ph, x0, x1, y0, y1 };
+}
+
+/** Zoom/pan of a rectangular view (data ranges) drawn by axesBox. */
+function rectMap(b) {
+  const { m, pw, ph, x0, x1, y0, y1 } = b;
+  return {
+    zoom([px, py], f) {
+      const x = x0 + ((px - m.l) / pw) * (x1 - x0);
+      const y = y1 - ((py - m.t) / ph) * (y1 - y0);
+      return { xr: [x - (x - x0) * f, x + (x1 - x) * f], yr: [y - (y - y0) * f, y + (y1 - y) * f] };
+    },
+    pan(dx, dy) {
+      const sx = ((x1 - x0) / pw) * dx;
+      const sy = ((y1 - y0) / ph) * dy;
+      return { xr: [x0 - sx, x1 - sx], yr: [y0 + sy, y1 + sy] };
+    },
+  };
 }
 
 function range(arrays, pad = 0.05) {
@@ -202,11 +282,14 @@ function range(arrays, pad = 0.05) {
 
 /** Paths in the plane (equal aspect by default); `values` colours a trace per point. */
 export function xyChart(el, opts) {
-  return canvasChart(el, opts, (ctx, w, hgt) => {
+  return canvasChart(el, opts, (ctx, w, hgt, state) => {
     const traces = opts.traces || [];
-    const { X, Y, m, pw, ph } = axesBox(ctx, w, hgt, range(traces.map((t) => t.x)), range(traces.map((t) => t.y)), opts);
+    const box = axesBox(ctx, w, hgt, state.view?.xr || range(traces.map((t) => t.x)), state.view?.yr || range(traces.map((t) => t.y)), state.view ? { ...opts, equal: false } : opts);
+    const { X, Y, m, pw, ph } = box;
+    state.map = rectMap(box);
     const allV = traces.filter((t) => t.values).map((t) => t.values);
-    const [v0, v1] = allV.length ? range(allV, 0) : [0, 1];
+    // opts.valueRange: one colour scale shared by several charts (before/after).
+    const [v0, v1] = opts.valueRange || (allV.length ? range(allV, 0) : [0, 1]);
     ctx.save();
     ctx.beginPath();
     ctx.rect(m.l, m.t, pw, ph);
@@ -245,7 +328,7 @@ export function xyChart(el, opts) {
       ctx.fillStyle = '#5b6673';
       ctx.fillText(tick(v1), x + 14, m.t + 8);
       ctx.fillText(tick(v0), x + 14, m.t + ph);
-      if (opts.colorLabel) ctx.fillText(opts.colorLabel, x - 8, m.t + ph + 24);
+      if (opts.colorLabel) ctx.fillText(opts.colorLabel, Math.min(x - 8, w - ctx.measureText(opts.colorLabel).width - 2), m.t + ph + 24);
     }
     return legend;
   });
@@ -253,20 +336,35 @@ export function xyChart(el, opts) {
 
 /** Polar traces (angle in rad, r in any unit) with reference circles and markers. */
 export function polarChart(el, opts) {
-  return canvasChart(el, { height: 380, ...opts }, (ctx, w, hgt) => {
+  return canvasChart(el, { height: 380, ...opts }, (ctx, w, hgt, state) => {
     const traces = opts.traces || [];
-    const rmax = Math.max(1e-12, ...traces.flatMap((t) => Array.from(t.r, Math.abs)), ...(opts.circles || []).map((c) => c.r)) * 1.05;
-    const cx = w / 2;
-    const cy = hgt / 2;
+    const v = state.view || { zoom: 1, dx: 0, dy: 0 };
+    const rmax = (Math.max(1e-12, ...traces.flatMap((t) => Array.from(t.r, Math.abs)), ...(opts.circles || []).map((c) => c.r)) * 1.05) / v.zoom;
+    const cx = w / 2 + v.dx;
+    const cy = hgt / 2 + v.dy;
     const R = Math.min(w, hgt) / 2 - 20;
+    state.map = {
+      zoom: ([px, py], f) => ({ zoom: v.zoom / f, dx: px - w / 2 - (px - cx) / f, dy: py - hgt / 2 - (py - cy) / f }),
+      pan: (dx, dy) => ({ ...v, dx: v.dx + dx, dy: v.dy + dy }),
+    };
+    ctx.save();
+    ctx.beginPath();
+    ctx.rect(0, 0, w, hgt);
+    ctx.clip();
+    // Rings are labelled with what they mean: r − rOffset (the deviation
+    // when r = base circle + deviation).
+    const rOff = opts.rOffset || 0;
     const P = (a, r) => [cx + (r / rmax) * R * Math.cos(a), cy - (r / rmax) * R * Math.sin(a)];
     ctx.strokeStyle = '#d9dee4';
     ctx.fillStyle = '#5b6673';
-    for (const v of niceTicks(0, rmax, 4).filter((v) => v > 0)) {
+    const step = niceTicks(0, rmax, 4)[1] || rmax;
+    const rings = [];
+    for (let t = rOff - Math.floor(rOff / step) * step; t <= rmax * (1 + 1e-9); t += step) if (t > step * 1e-6) rings.push(t);
+    for (const v of rings) {
       ctx.beginPath();
       ctx.arc(cx, cy, (v / rmax) * R, 0, 2 * Math.PI);
       ctx.stroke();
-      ctx.fillText(tick(v), cx + (v / rmax) * R + 2, cy - 2);
+      ctx.fillText(tick(+(v - rOff).toPrecision(6)), cx + (v / rmax) * R + 2, cy - 2);
     }
     for (let d = 0; d < 360; d += 30) {
       const [x, y] = P((d * Math.PI) / 180, rmax);
@@ -308,6 +406,7 @@ export function polarChart(el, opts) {
       ctx.fill();
       if (mk.label) ctx.fillText(mk.label, x + 6, y - 6);
     }
+    ctx.restore();
     return legend;
   });
 }

@@ -81,14 +81,20 @@ export function toCsv(columns) {
   return lines.join('\n') + '\n';
 }
 
-/** Drag-and-drop area with a file picker; calls onText(text, fileName). */
-export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText }) {
-  const input = h('input', { type: 'file', accept, hidden: true });
+/** Drag-and-drop area with a file picker; calls onText(text, fileName), or
+ * with `multiple`, onFiles([{ text, name }, …]) once for all dropped files. */
+export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, multiple = false, onFiles, id }) {
+  const input = h('input', { type: 'file', accept, hidden: true, multiple, id });
   const el = h('div', { class: 'drop', tabindex: 0, role: 'button' }, label, input);
-  const read = async (file) => file && onText(await file.text(), file.name);
+  const read = async (files) => {
+    const list = Array.from(files || []);
+    if (!list.length) return;
+    if (multiple) return onFiles(await Promise.all(list.map(async (f) => ({ text: await f.text(), name: f.name }))));
+    return onText(await list[0].text(), list[0].name);
+  };
   el.addEventListener('click', () => input.click());
   el.addEventListener('keydown', (e) => (e.key === 'Enter' || e.key === ' ') && input.click());
-  input.addEventListener('change', () => read(input.files[0]));
+  input.addEventListener('change', () => read(input.files));
   el.addEventListener('dragover', (e) => {
     e.preventDefault();
     el.classList.add('over');
@@ -97,7 +103,7 @@ export function dropZone({ label = 'Drop a file here, or click to choose one', a
   el.addEventListener('drop', (e) => {
     e.preventDefault();
     el.classList.remove('over');
-    read(e.dataTransfer.files[0]);
+    read(e.dataTransfer.files);
   });
   return el;
 }
@@ -134,3 +140,95 @@ export function fmt(x, digits = 3) {
   if (a !== 0 && (a < 1e-3 || a >= 1e6)) return x.toExponential(digits);
   return x.toFixed(digits);
 }
+
+/** One run state for a panel's result areas. start() greys the previous
+ * results and disables the buttons in them (no download of stale results);
+ * ok() shows the new ones; fail(err) empties every area and puts the error
+ * in place of the results in the first one. start() returns a token;
+ * current(token) says whether a later run has started since. */
+export function runState(main, ...extra) {
+  const areas = [main, ...extra];
+  let token = 0;
+  const settle = () => {
+    for (const a of areas) {
+      a.classList.remove('stale');
+      a.removeAttribute('aria-busy');
+    }
+  };
+  return {
+    start() {
+      for (const a of areas) {
+        a.classList.add('stale');
+        a.setAttribute('aria-busy', 'true');
+        for (const b of a.querySelectorAll('button')) b.disabled = true;
+      }
+      return ++token;
+    },
+    current: (t) => t === token,
+    ok: settle,
+    clear() {
+      for (const a of areas) a.replaceChildren();
+      settle();
+    },
+    fail(err) {
+      for (const a of areas) a.replaceChildren();
+      settle();
+      return showError(main, err);
+    },
+  };
+}
+
+/** A value at a stated display resolution: rounded to `res` (0.01 → two
+ * decimals) and printed as 0 when its magnitude is below the resolution, so
+ * numerical noise (3.9e-13 µm) never shows as a value. '—' for non-finite. */
+export function fmtRes(x, res = 0.01) {
+  if (typeof x !== 'number' || !Number.isFinite(x)) return '—';
+  const decimals = Math.max(0, Math.ceil(-Math.log10(res) - 1e-9));
+  if (Math.abs(x) < res) return (0).toFixed(decimals);
+  return (Math.round(x / res) * res).toFixed(decimals);
+}
+
+/** WAI-ARIA tabs keyboard pattern on a tablist: Left/Right move to the
+ * previous/next tab (wrapping), Home/End to the first/last; the focused tab
+ * is activated (`select(name)`); only the selected tab is in the Tab order. */
+export function ariaTabs(list, select) {
+  const tabs = () => [...list.querySelectorAll('[role="tab"]')];
+  const sync = () => {
+    for (const t of tabs()) t.tabIndex = t.getAttribute('aria-selected') === 'true' ? 0 : -1;
+  };
+  list.addEventListener('keydown', (e) => {
+    const all = tabs();
+    const i = all.indexOf(document.activeElement);
+    if (i < 0) return;
+    const j = { ArrowRight: (i + 1) % all.length, ArrowLeft: (i - 1 + all.length) % all.length, Home: 0, End: all.length - 1 }[e.key];
+    if (j === undefined) return;
+    e.preventDefault();
+    all[j].focus();
+    select(all[j].dataset.tab);
+    sync();
+  });
+  document.addEventListener('mtmotion:tab', sync);
+  sync();
+}
+
+/** Text → deflate-raw → base64url (for a link's hash); null without
+ * CompressionStream. */
+export async function packText(text) {
+  if (typeof CompressionStream === 'undefined') return null;
+  const stream = new Blob([text]).stream().pipeThrough(new CompressionStream('deflate-raw'));
+  const bytes = new Uint8Array(await new Response(stream).arrayBuffer());
+  let bin = '';
+  for (let i = 0; i < bytes.length; i += 0x8000) bin += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+  return btoa(bin).replace(/\+/g, '-').replace(/\//g, '_').replace(/=+$/, '');
+}
+
+/** Inverse of packText. */
+export async function unpackText(packed) {
+  const bin = atob(packed.replace(/-/g, '+').replace(/_/g, '/'));
+  const bytes = Uint8Array.from(bin, (c) => c.charCodeAt(0));
+  const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate-raw'));
+  return new Response(stream).text();
+}
+
+/** Longest packed text a shared link carries (characters of base64url). */
+export const LINK_TEXT_LIMIT = 16000;

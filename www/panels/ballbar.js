@@ -2,7 +2,7 @@
 // one), fit its centre, its harmonics, the ISO 230-4 table and diagnostics,
 // and the travel-range bias of the centre estimate (Takayama et al.).
 // JS only gathers inputs, calls the core, draws and offers downloads.
-import { h, numberField, selectField, table, downloadText, toCsv, dropZone, showError, fmt } from '../lib/ui.js';
+import { h, numberField, selectField, table, downloadText, toCsv, dropZone, showError, fmt, fmtRes, runState } from '../lib/ui.js';
 import { polarChart, barChart, lineChart } from '../lib/plot.js';
 
 const UM = 1e-3; // mm per µm
@@ -47,28 +47,154 @@ export async function mount(root, api) {
     label: 'Drop a ball-bar trace (CSV/TSV) here, or click to choose one',
     accept: '.csv,.tsv,.txt',
     onText: async (text, name) => {
+      loaded = null;
+      fileInfo.textContent = `${name}: reading…`;
       try {
         loaded = await api.call('parseBallbarTrace', [text, { nominalRadius: f.radius.value }]);
         fileInfo.textContent = `${name}: ${loaded.runs.length} run(s), ${loaded.runs.map((r) => `${r.direction} ${r.angleRad.length} points`).join(', ')}`;
         source.value = 'file';
         await analyse();
       } catch (e) {
-        showError(out, e);
+        fileInfo.textContent = `${name}: not loaded (see the error below). No file loaded.`;
+        source.value = 'synthetic';
+        outUi.fail(e);
       }
     },
   });
   const run = h('button', { id: 'ballbar-run', class: 'primary', dataset: { run: '' }, onclick: () => analyse() }, 'Analyse');
   const out = h('div', { id: 'ballbar-results' });
+  const outUi = runState(out);
+
+  // ---- alignment from the user's own sections -----------------------------
+  // One trace per section (or one file whose runs are the sections); the
+  // core fits each section's centre, the angle errors from two or more, and
+  // the travel-range bias band around them (Takayama §2.1–2.2).
+  const AXES = {
+    b: { plane: ['Z', 'X'], along: 'Y', name: 'B' },
+    a: { plane: ['Y', 'Z'], along: 'X', name: 'A' },
+    c: { plane: ['X', 'Y'], along: 'Z', name: 'C' },
+  };
+  const al = {
+    axis: selectField({ label: 'Rotary axis', id: 'align-axis', value: 'b', options: [['b', 'B (turns in Z–X, sections along Y)'], ['a', 'A (turns in Y–Z, sections along X)'], ['c', 'C (turns in X–Y, sections along Z)']], onChange: () => renderSections() }),
+    range: numberField({ label: 'Travel range', unit: '°', value: 180, id: 'align-range', min: 1, max: 360 }),
+    radius: numberField({ label: 'Bar length', unit: 'mm', value: 100, id: 'align-radius', min: 1 }),
+    maxOrder: numberField({ label: 'Harmonics for the bias up to order', value: 10, id: 'align-max-order', min: 2, max: 30, step: 1 }),
+  };
+  let sections = []; // { name, angleDeg, deviation, height: numberField }
+  const secBox = h('div', { id: 'align-sections' });
+  const alOut = h('div', { id: 'align-results' });
+  const alUi = runState(alOut);
+  const alInfo = h('p', { id: 'align-file-info', class: 'unit' }, 'No section loaded. Expected per file: a ball-bar trace (angle + deviation, or X/Y), the angle measured from the first plane axis.');
+  const alDrop = dropZone({
+    id: 'align-files',
+    label: 'Drop one trace per section (two or more for the angle errors), or one file whose runs are the sections',
+    accept: '.csv,.tsv,.txt',
+    multiple: true,
+    onFiles: async (files) => {
+      alUi.clear();
+      sections = [];
+      renderSections();
+      try {
+        const parsed = [];
+        for (const { text, name } of files) {
+          const t = await api.call('parseBallbarTrace', [text, { nominalRadius: al.radius.value }]).catch((e) => {
+            throw new Error(`${name}: ${(e && e.message) || e}`);
+          });
+          parsed.push({ name, t });
+        }
+        // One file with several runs: each run is a section; else the first run of each file.
+        const runs = parsed.length === 1 && parsed[0].t.runs.length > 1
+          ? parsed[0].t.runs.map((r, k) => ({ name: `${parsed[0].name} run ${k + 1} (${r.direction.toUpperCase()})`, r }))
+          : parsed.map(({ name, t }) => ({ name, r: t.runs[0] }));
+        sections = runs.map(({ name, r }, k) => ({
+          name,
+          angleDeg: Float64Array.from(r.angleRad, (a) => a / RAD),
+          deviation: r.deviation,
+          height: numberField({ label: `Height of ${name}`, unit: 'mm', value: k === 0 ? 0 : 100 * k, id: `align-height-${k}` }),
+        }));
+        alInfo.textContent = `${sections.length} section(s): ${sections.map((x) => `${x.name} (${x.angleDeg.length} points)`).join(', ')}`;
+      } catch (e) {
+        alInfo.textContent = `${files.map((x) => x.name).join(', ')}: not loaded (see the error below). No section loaded.`;
+        sections = [];
+        alUi.fail(e);
+      }
+      renderSections();
+    },
+  });
+  const alRun = h('button', { id: 'align-run', class: 'primary', onclick: () => estimate() }, 'Estimate alignment');
+  function renderSections() {
+    const ax = AXES[al.axis.value];
+    secBox.replaceChildren(...sections.map((x) => {
+      x.height.el.querySelector('span').firstChild.textContent = `${ax.along} of ${x.name}`;
+      return x.height.el;
+    }));
+  }
+
+  async function estimate() {
+    alUi.start();
+    try {
+      if (!sections.length) throw new Error('no section loaded: drop one ball-bar trace per section first');
+      const ax = AXES[al.axis.value];
+      const input = {
+        sections: sections.map((x) => ({ y: x.height.value, angleDeg: x.angleDeg, deviation: x.deviation })),
+        radius: al.radius.value,
+        travelRangeDeg: al.range.value,
+        maxOrder: al.maxOrder.value,
+      };
+      for (const x of sections) if (!Number.isFinite(x.height.value)) throw new Error(`${ax.along} of ${x.name} [mm]: enter the section's position`);
+      const r = await api.call('estimateAlignmentBand', [input]);
+      renderAlignment(r, ax);
+      alUi.ok();
+    } catch (e) {
+      alUi.fail(e);
+    }
+  }
+
+  function renderAlignment(r, ax) {
+    const [p, q] = ax.plane;
+    const pm = (v, b, scale, d) => `${fmt(v * scale, d)} ± ${fmt(b * scale, d)}`;
+    const rows = r.estimate.sections.map((e, k) => [sections[k].name, fmt(e.y, 1), pm(e.z, r.sections[k].bandZ, 1 / UM, 2), pm(e.x, r.sections[k].bandX, 1 / UM, 2), fmt(e.rmsResidual / UM, 2), fmt(r.sections[k].rangeDeg, 1)]);
+    const secTable = table(['section', `${ax.along} [mm]`, `offset ${p} [µm]`, `offset ${q} [µm]`, 'fit RMS [µm]', 'travel range [°]'], rows);
+    secTable.querySelector('table').id = 'align-offsets';
+    const angle = r.estimate.deltaBz === null
+      ? h('p', { id: 'align-angle' }, 'Angle errors: need two sections at different heights.')
+      : h('p', { id: 'align-angle' },
+        `Δ${ax.name}${p.toLowerCase()} = `, h('strong', { id: 'align-angle-1' }, pm(r.estimate.deltaBz, r.bandBz, 1e6, 2)), ' µrad; ',
+        `Δ${ax.name}${q.toLowerCase()} = `, h('strong', { id: 'align-angle-2' }, pm(r.estimate.deltaBx, r.bandBx, 1e6, 2)), ' µrad (µm per m).');
+    const csv = () => toCsv({
+      section: sections.map((x) => JSON.stringify(x.name)),
+      [`${ax.along.toLowerCase()}_mm`]: r.estimate.sections.map((e) => e.y),
+      [`offset_${p.toLowerCase()}_um`]: r.estimate.sections.map((e) => e.z / UM),
+      [`band_${p.toLowerCase()}_um`]: r.sections.map((b) => b.bandZ / UM),
+      [`offset_${q.toLowerCase()}_um`]: r.estimate.sections.map((e) => e.x / UM),
+      [`band_${q.toLowerCase()}_um`]: r.sections.map((b) => b.bandX / UM),
+      [`angle_${p.toLowerCase()}_urad`]: [r.estimate.deltaBz === null ? '' : r.estimate.deltaBz * 1e6],
+      [`angle_band_${p.toLowerCase()}_urad`]: [r.bandBz === null ? '' : r.bandBz * 1e6],
+      [`angle_${q.toLowerCase()}_urad`]: [r.estimate.deltaBx === null ? '' : r.estimate.deltaBx * 1e6],
+      [`angle_band_${q.toLowerCase()}_urad`]: [r.bandBx === null ? '' : r.bandBx * 1e6],
+    });
+    const json = () => JSON.stringify({ axis: ax.name, plane: ax.plane, sectionsAlong: ax.along, units: { offsets: 'mm', heights: 'mm', angles: 'rad', travelRange: 'deg' }, inputs: { radius: al.radius.value, travelRangeDeg: al.range.value, maxOrder: al.maxOrder.value, sections: sections.map((x, k) => ({ name: x.name, position: r.estimate.sections[k].y, points: x.angleDeg.length })) }, result: r }, null, 2);
+    alOut.replaceChildren(
+      secTable,
+      angle,
+      h('p', { class: 'unit' }, `The band is the bias the travel range causes (Takayama §2.1, with each section's own harmonics of order ≥ 2) plus the bar's second-order term; a full revolution has none.`),
+      h('div', { class: 'buttons' },
+        h('button', { id: 'align-download-json', onclick: () => downloadText('alignment.json', json(), 'application/json') }, 'Download result (JSON)'),
+        h('button', { id: 'align-download-csv', onclick: () => downloadText('alignment.csv', csv(), 'text/csv') }, 'Download result (CSV)')),
+    );
+  }
 
   // ---- paper examples -----------------------------------------------------
   const exName = selectField({ label: 'Paper figure', id: 'ballbar-example', value: 'fig7', options: [['fig6', 'Fig. 6: single harmonics, 180°'], ['fig7', 'Fig. 7: travel range 90…360°'], ['fig8', 'Fig. 8: four offset positions'], ['fig12', 'Fig. 12: angle error 10 µm/350 mm'], ['fig7-phased', 'Fig. 7 with phases 26°/25°/200° (reproduces X and Z)']] });
   const exReading = selectField({ label: 'Reading', id: 'ballbar-example-reading', value: '100', options: [['100', 'Ball bar, 100 mm (default)'], ['0', 'DBB5 centre ball (radius 0)']] });
   const exOut = h('div', { id: 'ballbar-example-results' });
+  const exUi = runState(exOut);
   const exRun = h('button', { id: 'ballbar-example-run', onclick: () => example() }, 'Run example');
 
   root.replaceChildren(
     h('div', { class: 'card' }, h('h3', {}, 'Trace'), h('div', { class: 'fields' }, source.el, ...Object.values(f).map((x) => x.el), harmField), drop, fileInfo, run),
     out,
+    h('div', { class: 'card', id: 'align-card' }, h('h3', {}, 'Rotary-axis alignment from your sections (Takayama §2.2)'), h('div', { class: 'fields' }, ...Object.values(al).map((x) => x.el)), alDrop, alInfo, secBox, alRun, alOut),
     h('div', { class: 'card' }, h('h3', {}, 'The paper’s simulations (Takayama et al., Figs. 6, 7, 8, 12)'), h('div', { class: 'fields' }, exName.el, exReading.el), exRun, exOut),
   );
 
@@ -92,7 +218,7 @@ export async function mount(root, api) {
   }
 
   async function analyse() {
-    out.replaceChildren(h('p', {}, 'Computing…'));
+    const run = outUi.start();
     try {
       const trace = await getTrace();
       const r0 = trace.nominalRadius;
@@ -115,9 +241,11 @@ export async function mount(root, api) {
       const motion = Array.isArray(harmonics) ? harmonics.filter((c) => c.order >= 2) : [];
       const ranges = Array.from({ length: 34 }, (_, k) => 30 + 10 * k);
       const sweep = await api.call('travelRangeSweep', [{ offset: { z: fit.cx, x: fit.cy }, harmonics: motion, ranges, radius: r0, samples: 1000 }]);
+      if (!outUi.current(run)) return;
       render(trace, fit, harmonics, iso, sweep);
+      outUi.ok();
     } catch (e) {
-      showError(out, e);
+      if (outUi.current(run)) outUi.fail(e);
     }
   }
 
@@ -132,18 +260,19 @@ export async function mount(root, api) {
     const polarEl = h('div', { id: 'ballbar-polar' });
     const barEl = h('div', { id: 'ballbar-harmonics' });
     const sweepEl = h('div', { id: 'ballbar-sweep' });
-    const isoRows = iso.runs.map((r) => [r.direction.toUpperCase(), fmt(r.gUm, 2), fmt(r.fMaxUm, 2), fmt(r.fMinUm, 2), fmt(r.centreXMm / UM, 2), fmt(r.centreYMm / UM, 2), fmt(r.spanDeg, 1)]);
+    const isoRows = iso.runs.map((r) => [r.direction.toUpperCase(), fmtRes(r.gUm), fmtRes(r.fMaxUm), fmtRes(r.fMinUm), fmtRes(r.centreXMm / UM), fmtRes(r.centreYMm / UM), fmt(r.spanDeg, 1)]);
     const d = iso.diagnostics;
     const diagRows = d
       ? [
-          ['Centre offset X / Y', `${fmt(d.centreOffsetXUm, 2)} / ${fmt(d.centreOffsetYUm, 2)} µm`],
-          ['Backlash X', `${fmt(d.backlashXUm, 2)} µm`],
-          ['Backlash Y', `${fmt(d.backlashYUm, 2)} µm`],
-          ['Servo mismatch (X lags Y)', d.servoMismatchMs === null ? '— (needs CCW + CW and the feed)' : `${fmt(d.servoMismatchMs, 3)} ms`],
-          ['Scale mismatch (X − Y)', `${fmt(d.scaleMismatchPpm, 2)} ppm`],
-          ['Squareness (axes < 90° positive)', `${fmt(d.squarenessUrad, 2)} µrad`],
-          ['Cyclic error', d.cyclic ? `X ${fmt(d.cyclic.amplitudeXUm, 2)} µm, Y ${fmt(d.cyclic.amplitudeYUm, 2)} µm at ${fmt(d.cyclic.pitchMm, 2)} mm pitch` : '—'],
-          ...d.reversalSpikes.map((s) => [`Reversal spike ${s.direction.toUpperCase()} ${s.axis.toUpperCase()} at ${s.angleDeg}°`, `${fmt(s.heightUm, 2)} µm`]),
+          ['Centre offset X / Y (display resolution 0.01 µm)', `${fmtRes(d.centreOffsetXUm)} / ${fmtRes(d.centreOffsetYUm)} µm`],
+          ['Backlash X', d.backlashXUm === 0 ? `0 (below ${fmt(d.backlashXResolutionUm, 2)} µm, 3 standard errors)` : `${fmtRes(d.backlashXUm)} µm`],
+          ['Backlash Y', d.backlashYUm === 0 ? `0 (below ${fmt(d.backlashYResolutionUm, 2)} µm, 3 standard errors)` : `${fmtRes(d.backlashYUm)} µm`],
+          ['Servo mismatch (X lags Y, resolution 0.001 ms)', d.servoMismatchMs === null ? '— (needs CCW + CW and the feed)' : `${fmtRes(d.servoMismatchMs, 0.001)} ms`],
+          ['Scale mismatch (X − Y, resolution 0.01 ppm)', `${fmtRes(d.scaleMismatchPpm)} ppm`],
+          ['Squareness (axes < 90° positive, resolution 0.01 µrad)', `${fmtRes(d.squarenessUrad)} µrad`],
+          ['Cyclic error', d.cyclic ? `X ${fmtRes(d.cyclic.amplitudeXUm)} µm, Y ${fmtRes(d.cyclic.amplitudeYUm)} µm at ${fmt(d.cyclic.pitchMm, 2)} mm pitch` : '—'],
+          ...d.reversalSpikes.map((s) => [`Reversal spike ${s.direction.toUpperCase()} ${s.axis.toUpperCase()} at ${s.angleDeg}°`, `${fmtRes(s.heightUm)} µm`]),
+          ['Reversal spikes', d.reversalSpikes.length ? `reported above ${fmt(d.spikeThresholdUm, 2)} µm (1.5 × the largest residual away from the quadrant points)` : `none above the trace's noise threshold of ${fmt(d.spikeThresholdUm, 2)} µm`],
         ]
       : [['Diagnostics', 'need a run over a full revolution']];
     const isoTable = table(['run', 'G [µm]', 'F max [µm]', 'F min [µm]', 'LSC centre X [µm]', 'LSC centre Y [µm]', 'span [°]'], isoRows);
@@ -160,13 +289,13 @@ export async function mount(root, api) {
     );
     out.replaceChildren(
       h('div', { class: 'card' }, h('h3', {}, 'Fitted centre (least-squares circle of the first run)'),
-        h('p', {}, 'Centre X ', h('strong', { id: 'ballbar-centre-x' }, fmt(fit.cx / UM, 3)), ' µm, Y ', h('strong', { id: 'ballbar-centre-y' }, fmt(fit.cy / UM, 3)), ' µm; radius ', fmt(fit.r, 6), ' mm; RMS residual ', fmt(fit.rmsResidual / UM, 3), ' µm'),
+        h('p', {}, 'Centre X ', h('strong', { id: 'ballbar-centre-x' }, fmtRes(fit.cx / UM, 0.001)), ' µm, Y ', h('strong', { id: 'ballbar-centre-y' }, fmtRes(fit.cy / UM, 0.001)), ' µm; radius ', fmtRes(fit.r, 0.000001), ' mm; RMS residual ', fmtRes(fit.rmsResidual / UM, 0.001), ' µm (display resolution 0.001 µm)'),
         polarEl),
       h('div', { class: 'card' }, h('h3', {}, 'Harmonics of the deviation (least squares, valid on partial ranges)'), barEl),
       h('div', { class: 'card' }, h('h3', {}, 'Travel-range bias of the centre estimate (Takayama §2.1 with these harmonics)'), sweepEl),
-      h('div', { class: 'card' }, h('h3', {}, 'ISO 230-4 circular test'), isoTable, h('p', {}, 'Circular hysteresis H: ', h('strong', { id: 'ballbar-h' }, iso.hUm === null ? '— (needs CCW and CW)' : `${fmt(iso.hUm, 2)} µm`)), diagTable, downloads),
+      h('div', { class: 'card' }, h('h3', {}, 'ISO 230-4 circular test'), isoTable, h('p', {}, 'Circular hysteresis H: ', h('strong', { id: 'ballbar-h' }, iso.hUm === null ? '— (needs CCW and CW)' : `${fmtRes(iso.hUm)} µm`), ' (µm values shown to 0.01 µm; smaller magnitudes read 0)'), diagTable, downloads),
     );
-    polarChart(polarEl, { title: `Deviation, magnified (base circle = ${fmt(base, 1)} µm)`, traces, circles: [{ r: base, label: 'nominal' }], markers: [{ x: fit.cx / UM, y: fit.cy / UM, label: 'fitted centre' }] });
+    polarChart(polarEl, { title: `Deviation [µm], magnified (rings labelled with the deviation; 0 = nominal circle)`, rOffset: base, traces, circles: [{ r: base, label: 'nominal' }], markers: [{ x: fit.cx / UM, y: fit.cy / UM, label: 'fitted centre' }] });
     if (Array.isArray(harmonics)) {
       const hs = harmonics.filter((c) => c.order >= 1);
       barChart(barEl, { title: 'Amplitude by order (order 1 = centre offset)', labels: hs.map((c) => c.order), values: hs.map((c) => c.amplitude / UM), yLabel: 'µm' });
@@ -188,7 +317,7 @@ export async function mount(root, api) {
   }
 
   async function example() {
-    exOut.replaceChildren(h('p', {}, 'Computing…'));
+    exUi.start();
     try {
       const ex = await api.call('ballbarExample', [exName.value, Number(exReading.value)]);
       const paper = table(['quantity', 'range [°]', 'paper', 'ours'], ex.paper.map((p) => [p.label, p.rangeDeg || '—', p.paper, fmt(p.ours, 2)]));
@@ -203,6 +332,7 @@ export async function mount(root, api) {
         fig12: 'Why ≈ 0 with the ball bar: a motion error common to both sections cancels in the angle estimate; DBB5 gives the paper’s order for ΔBz only.',
       }[ex.name];
       exOut.replaceChildren(h('p', {}, ex.description), paper, ...(why ? [h('p', { class: 'note' }, why)] : []), chartEl);
+      exUi.ok();
       if (ex.angle.length) {
         lineChart(chartEl, { title: 'Angle-error estimate error', xLabel: 'travel range [°]', yLabel: 'µm / 700 mm', series: [{ label: 'ΔBz' }, { label: 'ΔBx' }], data: [ex.angle.map((p) => p.rangeDeg), ex.angle.map((p) => (p.errorBz * 700) / UM), ex.angle.map((p) => (p.errorBx * 700) / UM)] });
       } else if (ex.name === 'fig6') {
@@ -219,7 +349,7 @@ export async function mount(root, api) {
         });
       }
     } catch (e) {
-      showError(exOut, e);
+      exUi.fail(e);
     }
   }
 

@@ -2,7 +2,7 @@
 // core in the worker, draws and offers downloads; every number is computed
 // in Rust (feedVectorTest, bestKffp, torqueSaturation, frequencyResponse,
 // analyzeFeedVectorTrace).
-import { h, table, fmt, numberField, selectField, downloadText, toCsv, dropZone, progressBar, showError } from '../lib/ui.js';
+import { h, table, fmt, numberField, selectField, downloadText, toCsv, dropZone, progressBar, runState } from '../lib/ui.js';
 import { lineChart } from '../lib/plot.js';
 import { mapCalls } from '../lib/pool.js';
 
@@ -51,6 +51,7 @@ export async function mount(root, api) {
   const feed = numberField({ label: 'F_C', unit: 'mm/min', value: 200, id: 'servo-feed' });
   const rc = numberField({ label: 'R_C', unit: 'mm', value: 5, id: 'servo-rc' });
   const rw = numberField({ label: 'R_W', unit: 'mm', value: 8, id: 'servo-rw' });
+  const freqUnit = selectField({ label: 'Bode frequency axis', id: 'servo-bode-unit', value: 'rad', options: [['rad', 'ω [rad/s]'], ['hz', 'f [Hz]']], onChange: () => last?.before && draw() });
   const accel = numberField({ label: 'accel time', unit: 's', value: 0.064, id: 'servo-accel' });
   const dt = numberField({ label: 'time step', unit: 's', value: 0.001, id: 'servo-dt' });
   const condition = (over = {}) => {
@@ -62,9 +63,18 @@ export async function mount(root, api) {
   const status = h('div', { id: 'servo-status', class: 'lead' });
   const out = h('div', { id: 'servo-results' });
   const progress = progressBar();
-  const charts = h('div');
+  const charts = h('div', { id: 'servo-charts' });
+  const runUi = runState(out, charts);
+  const setDownloads = (on) => {
+    for (const id of ['servo-csv', 'servo-json']) {
+      const b = root.querySelector(`#${id}`);
+      if (b) b.disabled = !on;
+    }
+  };
   const sweepBox = h('div', { id: 'servo-sweep-results' });
   const traceBox = h('div', { id: 'servo-trace-results' });
+  const sweepUi = runState(sweepBox);
+  const traceUi = runState(traceBox);
   let last = null; // { cond, before, best, after, trace }
 
   const summaryRows = (label, s) => [label, fmt(s.meanAngleDiff * 1e3, 4), fmt(s.halfAmplitude * 1e3, 2), fmt(s.radiusDecrease * 1e3, 2), fmt(s.peakTorque, 0), s.saturated ? 'yes' : 'no'];
@@ -102,8 +112,14 @@ export async function mount(root, api) {
     const bode = await Promise.all(axes.map((a) => api.call('frequencyResponse', [{ ...m.axes[a], j1: a === 'c' ? cond.j1 : m.axes[a].j1, kffp: after ? last.best.kffp[a] : m.axes[a].kffp }, ws])));
     const bodeEl = [h('div'), h('div')];
     els[4].replaceChildren(...bodeEl);
-    lineChart(bodeEl[0], { title: `Bode magnitude per axis${after ? ' (Best K_FFP)' : ''}`, xLabel: 'ω [rad/s]', yLabel: 'dB', scales: { x: { time: false, distr: 3 } }, series: axes.map((a) => ({ label: a.toUpperCase() })), data: [ws, ...bode.map((b) => b.magnitude.map((v) => 20 * Math.log10(v)))] });
-    lineChart(bodeEl[1], { title: 'Bode phase per axis', xLabel: 'ω [rad/s]', yLabel: 'deg', scales: { x: { time: false, distr: 3 } }, series: axes.map((a) => ({ label: a.toUpperCase() })), data: [ws, ...bode.map((b) => b.phase.map((v) => (v * 180) / Math.PI))] });
+    // Frequency axis in rad/s or Hz (f = ω/2π); curves dashed by axis so
+    // that equal responses (X and Y share their tuning) stay visible.
+    const hz = freqUnit.value === 'hz';
+    const fs = hz ? ws.map((w) => w / (2 * Math.PI)) : ws;
+    const fLabel = hz ? 'f [Hz]' : 'ω [rad/s]';
+    const bodeSeries = axes.map((a, i) => ({ label: a.toUpperCase(), dash: [[], [8, 4], [2, 3]][i % 3], width: 2 - (i % 3) * 0.3 }));
+    lineChart(bodeEl[0], { title: `Bode magnitude per axis${after ? ' (Best K_FFP)' : ''}`, xLabel: fLabel, yLabel: 'dB', scales: { x: { time: false, distr: 3 } }, series: bodeSeries, data: [fs, ...bode.map((b) => b.magnitude.map((v) => 20 * Math.log10(v)))] });
+    lineChart(bodeEl[1], { title: 'Bode phase per axis', xLabel: fLabel, yLabel: 'deg', scales: { x: { time: false, distr: 3 } }, series: bodeSeries, data: [fs, ...bode.map((b) => b.phase.map((v) => (v * 180) / Math.PI))] });
   };
 
   const showResults = () => {
@@ -125,6 +141,9 @@ export async function mount(root, api) {
 
   const run = async (withBest) => {
     status.textContent = 'running in the worker…';
+    runUi.start();
+    setDownloads(false);
+    if (last) last.before = null;
     try {
       const m = currentMachine();
       const cond = condition();
@@ -138,10 +157,12 @@ export async function mount(root, api) {
       last = { m, cond, before, best, after, trace: last?.trace && last.traceText ? await api.call('analyzeFeedVectorTrace', [last.traceText, cond, last.mapping]) : null, traceText: last?.traceText, mapping: last?.mapping };
       showResults();
       await draw();
+      runUi.ok();
+      setDownloads(true);
       status.textContent = 'done';
     } catch (e) {
       status.textContent = '';
-      showError(out, e);
+      runUi.fail(e);
     }
   };
 
@@ -151,6 +172,7 @@ export async function mount(root, api) {
     const rows = [];
     const data = PAPER_J1.map(() => ({ before: [], after: [], half: [], kx: [], ky: [] }));
     let done = 0;
+    sweepUi.start();
     try {
       // J + J1 per load as the core sums it (the C axis' J as edited).
       const sat = await api.call('torqueSaturation', [m, { j1: PAPER_J1, torqueMax: m.axes.c.torqueMax ?? 725, accelTime: 0.064, feedAtCuttingPoint: 200, dt: dt.value }]);
@@ -177,6 +199,7 @@ export async function mount(root, api) {
       satTable.append(h('p', { class: 'note' }, "Why: reading 'preControlOff' (commanded acceleration ω/0.064 s, C loop with K_FFP = 0; the paper does not state Fig. 17's K_FFP). The paper's three points scatter ±4.7 % in ω·J, so no reading matches all three within 2 %; see docs/readings.md."));
       satTable.querySelector('table').id = 'servo-saturation-table';
       sweepBox.replaceChildren(...els, t, h('h4', {}, 'Torque-saturation limits (Figs. 17, 21)'), satTable);
+      sweepUi.ok();
       const series = sat.map((p) => ({ label: `J+J1 = ${fmt(p.jTotal, 2)}` }));
       lineChart(els[0], { title: 'Mean α − β with K_FFP set (Figs. 15, 20)', xLabel: 'ω [rad/s]', yLabel: 'mrad', series, data: [PAPER_OMEGAS, ...data.map((d) => d.before)] });
       lineChart(els[1], { title: 'Half amplitude of the shape error (Fig. 14)', xLabel: 'ω [rad/s]', yLabel: 'µm', series, data: [PAPER_OMEGAS, ...data.map((d) => d.half)] });
@@ -190,24 +213,47 @@ export async function mount(root, api) {
       });
     } catch (e) {
       progress.done();
-      showError(sweepBox, e);
+      sweepUi.fail(e);
     }
   };
 
   // ---- trace import ----
   const mapBox = h('div', { id: 'servo-trace-mapper' });
-  const onTrace = (text, name) => {
-    const header = text.split(/\r?\n/).find((l) => l.trim() && !l.startsWith('#') && /[,;\t]/.test(l)) || '';
-    const names = header.split(/[,;\t]/).map((s) => s.trim());
-    const pick = (id, label, guess) => selectField({ label, id, value: names.find((n) => guess.test(n)) || '', options: [['', '—'], ...names.map((n) => [n, n])] });
-    const cols = { time: pick('servo-map-time', 'time', /^t(ime)?/i), x: pick('servo-map-x', 'X', /^(pos_)?x/i), y: pick('servo-map-y', 'Y', /^(pos_)?y/i), c: pick('servo-map-c', 'C', /^(pos_)?c/i), torque: pick('servo-map-torque', 'torque', /torque|tcmd/i) };
-    const tUnit = selectField({ label: 'time unit', id: 'servo-map-tunit', value: '1', options: [['1', 's'], ['0.001', 'ms']] });
-    const lUnit = selectField({ label: 'X, Y unit', id: 'servo-map-lunit', value: '1', options: [['1', 'mm'], ['0.001', 'µm']] });
-    const aUnit = selectField({ label: 'C unit', id: 'servo-map-aunit', value: String(Math.PI / 180), options: [[String(Math.PI / 180), 'deg'], ['1', 'rad']] });
+  const traceInfo = h('p', { id: 'servo-trace-file', class: 'unit' }, 'No trace loaded. Expected columns: time, X, Y, C (and optionally torque), units in the header such as Time [ms] or X_mm.');
+  const onTrace = async (text, name) => {
+    // The core reads the header (and refuses non-text files); the unit each
+    // column name states sets its unit menu.
+    mapBox.replaceChildren();
+    traceUi.clear();
+    if (last) last.trace = null;
+    let columns;
+    try {
+      columns = await api.call('traceColumns', [text]);
+    } catch (e) {
+      traceInfo.textContent = `${name}: not loaded (see the error below).`;
+      traceUi.fail(e);
+      return;
+    }
+    traceInfo.textContent = `${name}: columns ${columns.map((c) => c.name).join(', ')}`;
+    const find = (guess) => columns.find((c) => guess.test(c.bare));
+    const pick = (id, label, guess) => selectField({ label, id, value: find(guess)?.name || '', options: [['', '—'], ...columns.map((c) => [c.name, c.name])] });
+    const cols = { time: pick('servo-map-time', 'time', /^t(ime)?$|^time_?s?$|^zeit$/i), x: pick('servo-map-x', 'X', /^(pos_?)?x(_pos)?$/i), y: pick('servo-map-y', 'Y', /^(pos_?)?y(_pos)?$/i), c: pick('servo-map-c', 'C', /^(pos_?)?c(_pos)?$/i), torque: pick('servo-map-torque', 'torque', /torque|tcmd|^tq/i) };
+    const unitOf = (sel) => columns.find((c) => c.name === sel.value)?.unit;
+    const TIME = { s: '1', ms: '0.001', us: '0.000001' };
+    const LEN = { mm: '1', um: '0.001', m: '1000' };
+    const ANG = { deg: String(Math.PI / 180), rad: '1' };
+    const tUnit = selectField({ label: 'time unit', id: 'servo-map-tunit', value: TIME[unitOf(cols.time)] || '1', options: [['1', 's'], ['0.001', 'ms'], ['0.000001', 'µs']] });
+    const lUnit = selectField({ label: 'X, Y unit', id: 'servo-map-lunit', value: LEN[unitOf(cols.x)] || '1', options: [['1', 'mm'], ['0.001', 'µm'], ['1000', 'm']] });
+    const aUnit = selectField({ label: 'C unit', id: 'servo-map-aunit', value: ANG[unitOf(cols.c)] || String(Math.PI / 180), options: [[String(Math.PI / 180), 'deg'], ['1', 'rad']] });
+    // Choosing another column takes its stated unit.
+    cols.time.input.addEventListener('change', () => unitOf(cols.time) in TIME && (tUnit.value = TIME[unitOf(cols.time)]));
+    cols.x.input.addEventListener('change', () => unitOf(cols.x) in LEN && (lUnit.value = LEN[unitOf(cols.x)]));
+    cols.c.input.addEventListener('change', () => unitOf(cols.c) in ANG && (aUnit.value = ANG[unitOf(cols.c)]));
     const rel = h('input', { type: 'checkbox', id: 'servo-map-relative' });
     const go = h('button', { id: 'servo-trace-run', onclick: async () => {
       const mapping = { timeScale: Number(tUnit.value), linearScale: Number(lUnit.value), angleScale: Number(aUnit.value), relative: rel.checked };
       for (const [k, s] of Object.entries(cols)) if (s.value) mapping[k] = s.value;
+      traceUi.start();
       try {
         const trace = await api.call('analyzeFeedVectorTrace', [text, condition(), mapping]);
         last = { ...(last || {}), trace, traceText: text, mapping };
@@ -215,12 +261,14 @@ export async function mount(root, api) {
           h('p', {}, `${name}: ${trace.series.t.length} samples; mean α − β `, h('b', { id: 'servo-trace-angle-diff' }, fmt(trace.summary.meanAngleDiff * 1e3, 4)), ' mrad.'),
           summaryTable([summaryRows('measured trace', trace.summary)]),
         );
+        traceUi.ok();
         if (last.before) {
           showResults();
           await draw();
         }
       } catch (e) {
-        showError(traceBox, e);
+        if (last) last.trace = null;
+        traceUi.fail(e);
       }
     } }, 'Analyse the trace');
     mapBox.replaceChildren(h('div', { class: 'row' }, ...Object.values(cols).map((c) => c.el), tUnit.el, lUnit.el, aUnit.el, h('label', { class: 'field' }, h('span', {}, 'displacements from the start'), rel)), go);
@@ -241,14 +289,14 @@ export async function mount(root, api) {
 
   root.replaceChildren(
     h('div', { class: 'card' }, h('h3', {}, `Preset ${machine.name}`), h('p', {}, machine.description), h('p', { class: 'lead' }, `Source: ${machine.source}. Edit any value; the C torque limit is ${machine.axes.c.torqueMax} N·m.`), paramTable),
-    h('div', { class: 'card' }, h('h3', {}, 'Constant-feed-speed-vector test (§2.3, §3)'), h('div', { class: 'row' }, j1.el, mode.el, omega.el, feed.el, rc.el, rw.el, accel.el, dt.el),
+    h('div', { class: 'card' }, h('h3', {}, 'Constant-feed-speed-vector test (§2.3, §3)'), h('div', { class: 'row' }, j1.el, mode.el, omega.el, feed.el, rc.el, rw.el, accel.el, dt.el, freqUnit.el),
       h('div', { class: 'row' },
         h('button', { id: 'servo-run', dataset: { run: '' }, onclick: () => run(false) }, 'Simulate'),
         h('button', { id: 'servo-best', onclick: () => run(true) }, 'Best K_FFP'),
         h('button', { id: 'servo-csv', onclick: csv }, 'Download CSV'),
         h('button', { id: 'servo-json', onclick: json }, 'Download JSON')),
       status, out, charts),
-    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace }), mapBox, traceBox),
+    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace }), traceInfo, mapBox, traceBox),
     h('div', { class: 'card' }, h('h3', {}, "The paper's sweep: R_C = 5 mm, R_W = 8 mm, ω = 0.5π … 4π rad/s, J1 = 1.70, 3.24, 4.77 kg·m² (Figs. 14, 15, 20, 21, 22)"),
       h('button', { id: 'servo-sweep', onclick: sweep }, 'Run the sweep'), progress.el, sweepBox),
   );

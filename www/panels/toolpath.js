@@ -3,7 +3,7 @@
 // download a reverse-compensated program. All computation is in the core
 // (simulateToolPath, reverseCompensate, toolpathExample); this file only
 // gathers inputs, calls the API and draws.
-import { h, numberField, selectField, table, downloadText, dropZone, showError, fmt, toCsv } from '../lib/ui.js';
+import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState } from '../lib/ui.js';
 import { xyChart, lineChart } from '../lib/plot.js';
 
 export async function mount(root, api) {
@@ -17,9 +17,9 @@ export async function mount(root, api) {
   const example = selectField({
     label: 'Built-in example', id: 'toolpath-example', value: 'arcs',
     options: [['arcs', 'Fig. 2-like path, B–D as 43 arcs'], ['lines', 'Fig. 2-like path, B–D as 83 lines']],
-    onChange: (v) => { nc.value = examples[v]; fileName = `example-${v}.nc`; },
+    onChange: (v) => { nc.value = examples[v]; fileName = `example-${v}.nc`; programChanged(); },
   });
-  const drop = dropZone({ label: 'Drop an NC program here, or click to choose one', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', onText: (text, name) => { nc.value = text; fileName = name; } });
+  const drop = dropZone({ label: 'Drop an NC program here, or click to choose one', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', onText: (text, name) => { nc.value = text; fileName = name; programChanged(); } });
   const tA = numberField({ label: 'tA (acc/dec)', value: 40, unit: 'ms', step: 1, min: 0, id: 'toolpath-ta' });
   const tx = numberField({ label: 'T X', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-tx' });
   const ty = numberField({ label: 'T Y', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-ty' });
@@ -31,9 +31,22 @@ export async function mount(root, api) {
   const run = h('button', { id: 'toolpath-run', class: 'primary', dataset: { run: '' } }, 'Simulate');
   const comp = h('button', { id: 'toolpath-compensate' }, 'Compensate');
   const out = h('div', { id: 'toolpath-out' });
-  const pathBox = h('div', { class: 'plot' });
-  const velBox = h('div', { class: 'plot' });
+  const pathBox = h('div', { class: 'plot', id: 'toolpath-path' });
+  const velBox = h('div', { class: 'plot', id: 'toolpath-velocity' });
   const compOut = h('div', { id: 'toolpath-comp-out' });
+  // One run state per result area; a new program empties both (its results
+  // would belong to the previous program).
+  const simUi = runState(out, pathBox, velBox);
+  const compUi = runState(compOut);
+  const programChanged = () => {
+    last = null;
+    lastComp = null;
+    pathChart = null;
+    compCharts.length = 0;
+    simUi.clear();
+    compUi.clear();
+  };
+  nc.addEventListener('input', programChanged);
 
   const cfg = () => ({
     tA: tA.value / 1e3,
@@ -72,9 +85,10 @@ export async function mount(root, api) {
   mag.addEventListener('input', redraw);
 
   async function simulate() {
-    out.replaceChildren(h('p', {}, 'Simulating…'));
+    const token = simUi.start();
     try {
       const s = await api.call('simulateToolPath', [nc.value, cfg()]);
+      if (!simUi.current(token)) return;
       last = s;
       const warn = s.warnings.length
         ? h('details', { class: 'warn-box' }, h('summary', {}, `${s.warnings.length} warning(s)`), h('ul', {}, ...s.warnings.map((w) => h('li', {}, `line ${w.line}, column ${w.column}: ${w.message}`))))
@@ -96,16 +110,19 @@ export async function mount(root, api) {
       velBox.replaceChildren();
       pathChart = xyChart(pathBox, { title: 'Commanded and simulated path (colour: contour error µm)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(s, Number(mag.value), 'simulated'), colorLabel: 'µm', height: 420 });
       lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY], height: 260 });
+      simUi.ok();
     } catch (e) {
-      out.replaceChildren();
-      showError(out, e);
+      last = null;
+      pathChart = null;
+      if (simUi.current(token)) simUi.fail(e);
     }
   }
 
   async function compensate() {
-    compOut.replaceChildren(h('p', {}, 'Compensating…'));
+    const token = compUi.start();
     try {
       const c = await api.call('reverseCompensate', [nc.value, cfg()]);
+      if (!compUi.current(token)) return;
       lastComp = c;
       const pct = (1 - c.after.maxErrorUm / c.before.maxErrorUm) * 100;
       const left = h('div', { class: 'plot' });
@@ -123,11 +140,15 @@ export async function mount(root, api) {
       );
       compCharts.length = 0;
       const k = Number(mag.value);
-      compCharts.push(xyChart(left, { title: 'Before', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.beforeSim, k, 'before'), colorLabel: 'µm', height: 360 }));
-      compCharts.push(xyChart(right, { title: 'After (against the original path)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.afterSim, k, 'after'), colorLabel: 'µm', height: 360 }));
+      // One colour scale for before and after (0 … the larger maximum).
+      const valueRange = [0, Math.max(c.before.maxErrorUm, c.after.maxErrorUm) || 1];
+      compCharts.push(xyChart(left, { title: 'Before', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.beforeSim, k, 'before'), colorLabel: 'µm', height: 360, valueRange }));
+      compCharts.push(xyChart(right, { title: 'After (against the original path)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.afterSim, k, 'after'), colorLabel: 'µm', height: 360, valueRange }));
+      compUi.ok();
     } catch (e) {
-      compOut.replaceChildren();
-      showError(compOut, e);
+      lastComp = null;
+      compCharts.length = 0;
+      if (compUi.current(token)) compUi.fail(e);
     }
   }
 

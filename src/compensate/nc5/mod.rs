@@ -83,8 +83,21 @@ pub enum Nc5Error {
         /// The machine's axes.
         known: String,
     },
+    /// A rotary-axis word the machine does not have (e.g. B on an A–C
+    /// machine): the program was written for another machine.
+    #[error("NC program: line {line}, column {column}: '{letter}' word, but this machine's axes are {axes}: choose the machine the program was written for")]
+    AxisWord {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column of the word.
+        column: usize,
+        /// The axis letter.
+        letter: char,
+        /// The machine's axes, e.g. "X, Y, Z, A, C".
+        axes: String,
+    },
     /// A configuration value is out of range.
-    #[error("compensateNc5: `{field}` = {value}: {why}")]
+    #[error("compensateNc5: `{field}` = {}: {why}", crate::numeric::compact(*.value))]
     BadConfig {
         /// Field.
         field: &'static str,
@@ -244,6 +257,30 @@ impl Eval {
 /// An evaluation point: source line, joint values (mm, rad), move direction.
 type EvalPoint = (usize, [f64; 6], Vector3<f64>);
 
+/// Refuses a rotary-axis word (A, B, C) the machine has no axis for, at
+/// its line and column: its value would be dropped from the model yet
+/// written back into the corrected program.
+fn check_axis_words(blocks: &[crate::nc::Block], axes: &[&str]) -> Result<(), Nc5Error> {
+    for b in blocks.iter().filter(|b| !b.block_delete) {
+        for w in &b.words {
+            let name = w.letter.to_ascii_lowercase().to_string();
+            if "ABC".contains(w.letter) && !axes.contains(&name.as_str()) {
+                return Err(Nc5Error::AxisWord {
+                    line: b.line,
+                    column: w.column,
+                    letter: w.letter,
+                    axes: axes
+                        .iter()
+                        .map(|a| a.to_ascii_uppercase())
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
 fn points_of(segments: &[Segment]) -> Result<Vec<EvalPoint>, Nc5Error> {
     let mut out = Vec::new();
     for s in segments {
@@ -292,6 +329,7 @@ pub fn compensate_nc5(text: &str, cfg: &Nc5Config) -> Result<Nc5Result, Nc5Error
         });
     }
     let program = parse(text)?;
+    check_axis_words(&program.blocks, &chain.axes())?;
     let pts = points_of(&program.segments)?;
     if pts.is_empty() {
         return Err(Nc5Error::Unsupported {
@@ -441,4 +479,29 @@ pub fn compensate_nc5(text: &str, cfg: &Nc5Config) -> Result<Nc5Result, Nc5Error
         deflection_mm: deflection[0].hypot(deflection[1]),
         machine_errors: errors,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn axis_words_the_machine_lacks_are_refused_at_their_column() {
+        let cfg = Nc5Config {
+            machine: MachineRef::Name("trunnion-ac".into()),
+            errors: GeometricErrors::default(),
+            tool_length: 50.0,
+            monte_carlo: None,
+            cutting: None,
+            compensate_axes: None,
+            feed_drive: None,
+        };
+        let nc = "G90 G21\nG0 X10 Y0 Z5 A10 C0\nG1 X20 Y5 Z5 B20 F500\n";
+        let e = compensate_nc5(nc, &cfg).unwrap_err().to_string();
+        assert!(
+            e.starts_with("NC program: line 3, column 14: 'B' word"),
+            "{e}"
+        );
+        assert!(e.contains("X, Y, Z, A, C"), "{e}");
+    }
 }

@@ -12,7 +12,7 @@ export default async function (page, check) {
   await page.fill('#ballbar-backlash-x', '4');
   await page.fill('#ballbar-harmonics-input', '3:2');
   await page.click('#ballbar-run');
-  await page.waitForFunction(() => document.querySelector('#ballbar-centre-x')?.textContent && !document.querySelector('#ballbar-results').textContent.includes('Computing'));
+  await page.waitForFunction(() => document.querySelector('#ballbar-centre-x')?.textContent && !document.querySelector('#ballbar-results').classList.contains('stale'));
   const cx = Number(await page.textContent('#ballbar-centre-x'));
   const cy = Number(await page.textContent('#ballbar-centre-y'));
   // Neither the backlash signature sign(sin θ)·cos θ nor the trefoil has a

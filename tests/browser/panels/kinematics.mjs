@@ -38,7 +38,7 @@ export default async function (page, check) {
   await page.waitForSelector('#kinematics-err-EX0C');
   await page.check('#kinematics-ideal');
   await page.click('#kinematics-cone-run');
-  await page.waitForSelector('#kinematics-cone-max', { timeout: 120_000 });
+  await page.waitForSelector('#kinematics-cone-out:not(.stale) #kinematics-cone-max', { timeout: 120_000 });
   const max = parseFloat(await page.textContent('#kinematics-cone-max'));
   check(Number.isFinite(max) && Math.abs(max) < 1e-3, `ideal machine should read 0 µm, shows ${max} µm`);
   const rows = await page.$$eval('#kinematics-cone-table tbody tr', (r) => r.length);
@@ -47,7 +47,7 @@ export default async function (page, check) {
   // all of the deviation is the example errors' (the servo models at the
   // default centre saturate the C torque at 15° and read tens of mm).
   await page.click('#kinematics-example');
-  await page.waitForSelector('#kinematics-cone-max', { timeout: 120_000 });
+  await page.waitForSelector('#kinematics-cone-out:not(.stale) #kinematics-cone-max', { timeout: 120_000 });
   const ex = parseFloat(await page.textContent('#kinematics-cone-max'));
   const inputs = { inclinationDeg: 10, barLength: 100, feed: 1000, centre: [60, 40, 20], idealServo: true, points: 1440 };
   const want = 1e3 * (await expectedWorst(page, 'trunnion-ac', inputs));
@@ -58,7 +58,7 @@ export default async function (page, check) {
   await page.selectOption('#kinematics-machine', 'pocketnc-v2-10');
   await page.waitForFunction(() => document.querySelector('#kinematics-nc-input').value.includes('G1'));
   await page.click('#kinematics-nc-run');
-  await page.waitForSelector('#kinematics-nc-reduction', { timeout: 120_000 });
+  await page.waitForSelector('#kinematics-nc-out:not(.stale) #kinematics-nc-reduction', { timeout: 120_000 });
   const red = parseFloat(await page.textContent('#kinematics-nc-reduction'));
   check(red >= 80, `compensation should cut the std by ≥ 80 %, shows ${red} %`);
 }

@@ -1,0 +1,56 @@
+// Plots: every chart shows its zoom hint; no title, legend, hint or axis
+// label box lies outside its chart's box; the tool-path plot zooms with the
+// wheel and a double-click restores it exactly; the Bode plots switch to Hz.
+async function labelsOutside(page) {
+  return page.evaluate(() => {
+    const bad = [];
+    for (const c of document.querySelectorAll('.chart')) {
+      if (!c.offsetParent) continue;
+      const box = c.getBoundingClientRect();
+      for (const t of c.querySelectorAll('.chart-title, .legend span, .chart-hint, .u-label, .u-title')) {
+        const r = t.getBoundingClientRect();
+        if (!r.width) continue;
+        if (r.left < box.left - 1 || r.right > box.right + 1 || r.top < box.top - 1 || r.bottom > box.bottom + 1) bad.push(`${t.className} "${t.textContent.slice(0, 40)}"`);
+      }
+    }
+    return bad;
+  });
+}
+
+export default async function (page, check) {
+  await page.click('[data-tab="toolpath"]');
+  await page.click('#toolpath-run');
+  await page.waitForSelector('#toolpath-path canvas');
+  const canvas = await page.$('#toolpath-path canvas');
+  const img = () => page.$eval('#toolpath-path canvas', (c) => c.toDataURL());
+  const before = await img();
+  await canvas.scrollIntoViewIfNeeded();
+  const b = await canvas.boundingBox();
+  await page.mouse.move(b.x + b.width / 2, b.y + b.height / 2);
+  await page.mouse.wheel(0, -300);
+  await page.waitForTimeout(100);
+  const zoomed = await img();
+  check(zoomed !== before, 'the wheel should zoom the tool-path plot');
+  await page.dblclick('#toolpath-path canvas');
+  await page.waitForTimeout(100);
+  check((await img()) === before, 'a double-click should restore the unzoomed view');
+  check(/wheel to zoom, drag to pan, double-click to reset/.test(await page.textContent('#toolpath-path')), 'the path plot should say how to zoom');
+  check(/drag to zoom, double-click to reset/.test(await page.textContent('#toolpath-velocity')), 'the velocity plot should say how to zoom');
+  let out = await labelsOutside(page);
+  check(out.length === 0, `tool path: labels outside their chart: ${out.join('; ')}`);
+
+  await page.click('[data-tab="servo"]');
+  await page.click('#servo-run');
+  await page.waitForFunction(() => document.querySelectorAll('#servo-charts .uplot').length >= 6);
+  await page.selectOption('#servo-bode-unit', 'hz');
+  await page.waitForFunction(() => /f \[Hz\]/.test(document.querySelector('#servo-charts').textContent));
+  out = await labelsOutside(page);
+  check(out.length === 0, `servo: labels outside their chart: ${out.join('; ')}`);
+
+  for (const tab of ['ballbar', 'kinematics']) {
+    await page.click(`[data-tab="${tab}"]`);
+    await page.waitForTimeout(200);
+    out = await labelsOutside(page);
+    check(out.length === 0, `${tab}: labels outside their chart: ${out.join('; ')}`);
+  }
+}

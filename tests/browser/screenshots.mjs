@@ -1,0 +1,34 @@
+// Screenshots of every tab at desktop (1366×900) and phone (390×844) size,
+// after the tab's main action has run, into docs/screenshots/. Run after
+// ./scripts/build: node tests/browser/screenshots.mjs
+import { mkdirSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+import { startServer } from '../../scripts/static-server.mjs';
+
+const dist = fileURLToPath(new URL('../../dist/', import.meta.url));
+const out = fileURLToPath(new URL('../../docs/screenshots/', import.meta.url));
+mkdirSync(out, { recursive: true });
+const { server, url } = await startServer(dist, 0);
+const browser = await chromium.launch({ executablePath: process.env.CHROMIUM || '/usr/bin/chromium', args: ['--headless', '--no-sandbox', '--disable-gpu'] });
+const sizes = { desktop: { width: 1366, height: 900 }, phone: { width: 390, height: 844 } };
+for (const [size, viewport] of Object.entries(sizes)) {
+  const page = await browser.newPage({ viewport, deviceScaleFactor: 1 });
+  await page.goto(url + 'index.html');
+  await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 90_000 });
+  for (const tab of ['servo', 'toolpath', 'ballbar', 'kinematics']) {
+    await page.click(`[data-tab="${tab}"]`);
+    const run = await page.$(`#panel-${tab} [data-run]`);
+    if (run) {
+      await run.click();
+      await page.waitForFunction((t) => !document.querySelector(`#panel-${t} .stale`), tab, { timeout: 120_000 });
+      await page.waitForTimeout(300);
+    }
+    await page.evaluate(() => window.scrollTo(0, 0));
+    await page.screenshot({ path: `${out}${tab}-${size}.png` });
+    console.log(`docs/screenshots/${tab}-${size}.png`);
+  }
+  await page.close();
+}
+await browser.close();
+server.close();
