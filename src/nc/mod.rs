@@ -19,6 +19,7 @@ pub mod arc;
 pub mod corner;
 pub mod program;
 pub mod segment;
+pub mod summary;
 pub mod writer;
 
 /// An error that names the line and column and says what was expected.
@@ -624,8 +625,69 @@ mod tests {
         assert!(e.message.contains("macro"));
         let e = lex("G1 5").unwrap_err();
         assert_eq!(e.column, 4);
-        let e = lex("G1 X1 @").unwrap_err();
-        assert!(e.message.contains("unexpected character '@'"));
+        let e = lex("G1 X1 $").unwrap_err();
+        assert!(e.message.contains("unexpected character '$' (U+0024)"));
+    }
+
+    #[test]
+    fn nested_comments_program_numbers_and_line_ends() {
+        let b = lex_line("G81 (DRILL (5 HOLES)) X1", 1).unwrap();
+        assert_eq!(b.comments, vec!["DRILL (5 HOLES)"]);
+        assert_eq!(b.word('X').unwrap().value, 1.0);
+        let b = lex_line(":0097 (SUB)", 1).unwrap();
+        let o = b.word('O').unwrap();
+        assert_eq!((o.value, o.text.as_str(), o.column), (97.0, "0097", 1));
+        let b = lex_line("O<FACE_MILL> (named)", 1).unwrap();
+        assert_eq!(b.program_name.as_deref(), Some("FACE_MILL"));
+        // LF, CRLF and CR alone; BOM; trailing Ctrl-Z.
+        for text in [
+            "\u{feff}G0 X1\r\nG0 X2\r\n\u{1a}",
+            "G0 X1\rG0 X2\r",
+            "G0 X1\nG0 X2",
+        ] {
+            let blocks = lex(text).unwrap();
+            assert_eq!(blocks.len(), 2, "{text:?}");
+            assert_eq!(blocks[1].word('X').unwrap().value, 2.0);
+            assert_eq!(blocks[1].line, 2);
+        }
+        let b = lex_line("G1 X1 ,R2. Y3", 1).unwrap();
+        assert_eq!(b.comma_words[0].letter, 'R');
+        assert_eq!(b.comma_words[0].value, 2.0);
+        assert_eq!(b.write(), "G1 X1 Y3,R2.");
+    }
+
+    #[test]
+    fn misleading_messages_are_fixed() {
+        // Ctrl-Z inside the text, BEL: named as U+XXXX at their column.
+        let e = lex("G0 X1\nG0\u{1a} X2\nG1").unwrap_err();
+        assert_eq!((e.line, e.column), (2, 3));
+        assert!(e.message.contains("control character U+001A"), "{e}");
+        let e = lex("G0 X\u{7}1").unwrap_err();
+        assert!(e.message.contains("U+0007"), "{e}");
+        // IF [ is a macro statement, not address I.
+        let e = lex("IF [#1 GT 5] GOTO 10").unwrap_err();
+        assert!(
+            e.message.contains("'IF' is a Fanuc Macro B statement"),
+            "{e}"
+        );
+        assert_eq!(e.column, 1);
+        let e = lex("o100 sub").unwrap_err();
+        assert!(e.message.contains("o-word 'sub'"), "{e}");
+        let e = lex("G1 X1 )").unwrap_err();
+        assert_eq!(e.column, 7);
+    }
+
+    #[test]
+    fn every_line_error_is_collected() {
+        let (blocks, errors) = lex_all("G1 X\nG0 X1\nG1 (open\nG1 Y1..2");
+        assert_eq!(blocks.len(), 4);
+        let at: Vec<(usize, usize)> = errors.errors.iter().map(|e| (e.line, e.column)).collect();
+        assert_eq!(at, vec![(1, 4), (3, 4), (4, 5)]);
+        let many = "G1 X\n".repeat(150);
+        let (_, errors) = lex_all(&many);
+        assert_eq!(errors.errors.len(), MAX_ERRORS);
+        assert!(errors.truncated);
+        assert!(errors.to_string().starts_with("100+ errors"));
     }
 
     #[test]
