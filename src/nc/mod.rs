@@ -177,6 +177,9 @@ impl NcErrors {
 impl std::fmt::Display for NcErrors {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let n = self.errors.len();
+        if n == 1 && !self.truncated {
+            return write!(f, "{}", self.errors[0]);
+        }
         write!(
             f,
             "{n}{} error{} in the program:",
@@ -567,6 +570,20 @@ fn lex_word(chars: &[char], i: &mut usize, line: usize) -> Result<Word, NcError>
         *i += 1;
     }
     let text: String = chars[start..*i].iter().collect();
+    if *i + 1 < chars.len()
+        && !text.is_empty()
+        && matches!(chars[*i], 'e' | 'E')
+        && (chars[*i + 1].is_ascii_digit() || chars[*i + 1] == '+' || chars[*i + 1] == '-')
+    {
+        return Err(NcError::new(
+            line,
+            start + 1,
+            format!(
+                "'{text}{}…' after address '{letter}': exponent notation is not valid in an NC program; write the number out",
+                chars[*i]
+            ),
+        ));
+    }
     if *i < chars.len() && (chars[*i] == '#' || chars[*i] == '[') && text.len() <= 1 {
         return Err(NcError::new(
             line,

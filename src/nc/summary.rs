@@ -55,6 +55,8 @@ pub struct Summary {
     pub planes: Vec<String>,
     /// Estimated motion time without acc/dec, s.
     pub motion_time: f64,
+    /// The rapid rate the estimate used, mm/min.
+    pub rapid_feed: f64,
     /// Warnings grouped by kind, in order of first appearance.
     pub warnings: Vec<WarningGroup>,
 }
@@ -196,6 +198,7 @@ pub fn summarize(p: &Program, rapid_feed: f64) -> Summary {
         units: units.into(),
         planes,
         motion_time: time,
+        rapid_feed,
         warnings: groups,
     }
 }
