@@ -77,7 +77,7 @@ const CORPUS: &[(&str, Outcome)] = &[
     ("linuxcnc_tort.ngc", Outcome::Ok(268)),
     (
         "printhor_example3.gcode",
-        Outcome::Err(3, 7, "canned cycle is not simulated", 41),
+        Outcome::Err(13, 7, "back boring", 10),
     ),
 ];
 

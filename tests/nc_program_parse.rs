@@ -38,7 +38,7 @@ fn every_error_case_names_line_column_and_expectation() {
     // Axis words with no motion mode; two motion codes; a cycle.
     err_at("X10 Y10", 1, 1, "no motion mode");
     err_at("G1 G2 X1 F1", 1, 4, "two motion codes");
-    err_at("G81 X1 Y1 Z-1 R1 F100", 1, 1, "canned cycle");
+    err_at("G87 X1 Y1 Z-1 R1 F100", 1, 1, "back boring");
     // Dwell without a time, negative feed.
     err_at("G4", 1, 1, "expected X (seconds) or P");
     err_at("G1 X1 F-5", 1, 7, "negative feed");

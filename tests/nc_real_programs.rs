@@ -99,7 +99,7 @@ fn g90_1_absolute_arc_centres() {
 fn threading_and_tapping_are_refused_at_their_word() {
     for (src, col) in [
         ("G0 X0 Y0\nG33.1 Z-10 K1.25", 1),
-        ("G0 X1\nG98 G84 Z-5 R1 F100", 5),
+        ("G0 X1\nG98 G84.2 Z-5 R1 F100", 5),
     ] {
         let e = parse(src).unwrap_err();
         assert_eq!((e.line, e.column), (2, col), "{e}");

@@ -17,6 +17,7 @@
 
 pub mod arc;
 pub mod corner;
+pub mod cycles;
 pub mod program;
 pub mod segment;
 pub mod summary;

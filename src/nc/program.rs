@@ -32,6 +32,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::cycles::{hole, Cycle};
 pub use super::segment::{dist, Arc, Motion, MotionCode, Plane, Pose, Segment, AXES};
 use super::{arc::arc, Block, NcError, NcErrors, Word};
 /// A non-fatal finding: a word that was ignored, a mode that is not
@@ -125,6 +126,11 @@ pub struct Modal {
     pub offset: [f64; 6],
     /// M2/M30 has ended the program.
     pub ended: bool,
+    /// The active canned cycle (G73–G89 until G80 or a G0–G3).
+    pub cycle: Option<Cycle>,
+    /// G99 in force: canned cycles return to the R level (G98, the
+    /// default, returns to the initial level).
+    pub cycle_return_r: bool,
 }
 
 /// An interpreted program.
@@ -326,6 +332,7 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
     let mut motion_word: Option<(&Word, MotionCode)> = None;
     let mut dwell: Option<&Word> = None;
     let mut non_modal: Option<(&Word, i64)> = None;
+    let mut cycle_word: Option<(&Word, i64)> = None;
     for w in b.words.iter().filter(|w| w.letter == 'G') {
         let g = (w.value * 10.0).round() as i64;
         let code = match g {
@@ -370,17 +377,32 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
                 }
                 non_modal = Some((w, g));
             }
-            330 | 331 | 332 | 730 | 740 | 741 | 760 | 800..=890 => {
-                if g == 800 {
-                    continue;
+            800 => st.cycle = None,
+            980 => st.cycle_return_r = false,
+            990 => st.cycle_return_r = true,
+            730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 890 => {
+                if let Some((prev, _)) = cycle_word {
+                    return Err(err(
+                        b,
+                        w,
+                        format!("two canned cycles in one block (G{} and G{})", prev.text, w.text),
+                    ));
                 }
+                cycle_word = Some((w, g));
+            }
+            330 | 331 | 332 | 741 | 801..=899 => {
                 return Err(err(
                     b,
                     w,
                     format!(
                         "G{}: {} is not simulated yet; post the program with the cycle expanded into G0/G1 moves",
                         w.text,
-                        if (330..=332).contains(&g) { "spindle-synchronised threading/tapping" } else { "this canned cycle" }
+                        match g {
+                            330..=332 => "spindle-synchronised threading/tapping",
+                            870 => "back boring (its shift direction is a machine parameter)",
+                            880 => "a cycle with a manual retract",
+                            _ => "this canned cycle",
+                        }
                     ),
                 ));
             }
@@ -481,6 +503,7 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
             'C' => {}
             'P' | 'U' if dwell.is_some() => {}
             'L' | 'P' if g10 => {}
+            'L' | 'P' | 'Q' if st.cycle.is_some() || cycle_word.is_some() => {}
             'M' | 'S' | 'T' | 'H' | 'D' => warn(
                 cx.warnings,
                 w,
@@ -557,6 +580,37 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
     }
     if let Some((_, m)) = motion_word {
         st.motion = Some(m);
+        st.cycle = None;
+        if let Some((w, _)) = cycle_word {
+            return Err(err(
+                b,
+                w,
+                format!(
+                    "G{} together with a motion code G0–G3 (which cancels canned cycles)",
+                    w.text
+                ),
+            ));
+        }
+    }
+    if let Some((w, g)) = cycle_word {
+        match st.cycle.as_mut() {
+            Some(c) => c.code = g,
+            None => {
+                let (_, _, n) = st.plane.axes();
+                st.cycle = Some(Cycle {
+                    code: g,
+                    initial: st.pos.get(n),
+                    r: None,
+                    bottom: None,
+                    q: 0.0,
+                    dwell: 0.0,
+                })
+            }
+        }
+        let _ = w;
+    }
+    if st.cycle.is_some() && non_modal.is_none() {
+        return canned_cycle(b, st, cx, cycle_word.map(|(w, _)| w), scale);
     }
     // Pass 3: the move.
     let is_axis = |w: &&Word| AXES.contains(&w.letter) && (w.letter != 'C' || opt.c_axis);
@@ -719,6 +773,156 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
         feed,
         fixed: false,
     });
+    Ok(())
+}
+
+/// One block in canned-cycle mode: update the cycle data, drill the holes
+/// (see [`super::cycles`]).
+fn canned_cycle(
+    b: &Block,
+    st: &mut Modal,
+    cx: &mut Ctx,
+    cycle_word: Option<&Word>,
+    scale: f64,
+) -> Result<(), NcError> {
+    let Some(mut c) = st.cycle else {
+        return Ok(());
+    };
+    let (u, v, n) = st.plane.axes();
+    let (lu, lv, ln) = (AXES[u], AXES[v], AXES[n]);
+    let wu = b.word(lu);
+    let wv = b.word(lv);
+    let wn = b.word(ln);
+    let wr = b.word('R');
+    if cycle_word.is_none() && wu.is_none() && wv.is_none() && wn.is_none() && wr.is_none() {
+        return Ok(());
+    }
+    let anchor = cycle_word
+        .or(wu)
+        .or(wv)
+        .or(wn)
+        .or(wr)
+        .unwrap_or(&b.words[0]);
+    if let Some(w) = b.words.iter().find(|w| {
+        AXES.contains(&w.letter)
+            && ![lu, lv, ln].contains(&w.letter)
+            && (w.letter != 'C' || cx.opt.c_axis)
+    }) {
+        return Err(err(
+            b,
+            w,
+            format!("{}{} in a canned-cycle block: only the plane axes {lu}/{lv} and the drilling axis {ln} are allowed", w.letter, w.text),
+        ));
+    }
+    if let Some(r) = wr {
+        c.r = Some(if st.incremental {
+            c.initial + r.value * scale
+        } else {
+            r.value * scale + st.offset[n]
+        });
+    }
+    if let Some(z) = wn {
+        let Some(r) = c.r else {
+            return Err(err(
+                b,
+                z,
+                "canned cycle: the R level must be given before or with the bottom",
+            ));
+        };
+        c.bottom = Some(if st.incremental {
+            r + z.value * scale
+        } else {
+            z.value * scale + st.offset[n]
+        });
+    }
+    if let Some(q) = b.word('Q') {
+        c.q = q.value.abs() * scale;
+    }
+    if let Some(p) = b.word('P') {
+        let ms = match cx.opt.dwell_p {
+            DwellP::Milliseconds => true,
+            DwellP::Seconds => false,
+            DwellP::Auto => !p.text.contains('.'),
+        };
+        c.dwell = if ms { p.value / 1000.0 } else { p.value };
+        if c.dwell.is_nan() || c.dwell < 0.0 {
+            return Err(err(b, p, "canned-cycle dwell P must be zero or positive"));
+        }
+    }
+    st.cycle = Some(c);
+    let code = format!("G{}", c.code as f64 / 10.0);
+    let (Some(r), Some(bottom)) = (c.r, c.bottom) else {
+        return Err(err(
+            b,
+            anchor,
+            format!("{code} needs the R level (R) and the bottom ({ln}) before its first hole"),
+        ));
+    };
+    if matches!(c.code, 730 | 830) && c.q <= 0.0 {
+        return Err(err(
+            b,
+            anchor,
+            format!("{code} (peck drilling) needs a peck depth Q greater than 0"),
+        ));
+    }
+    let feed = match st.feed {
+        Some(f) if f > 0.0 => f,
+        _ => return Err(err(
+            b,
+            anchor,
+            format!(
+                "{code} without a feed; expected an F word (mm/min) on this or an earlier block"
+            ),
+        )),
+    };
+    let repeats = match b.word('K').or(b.word('L')) {
+        Some(k) if k.value >= 0.0 && k.value.fract() == 0.0 && k.value <= 9999.0 => {
+            k.value as usize
+        }
+        Some(k) => {
+            return Err(err(
+                b,
+                k,
+                format!(
+                    "repeat count {}{} must be a whole number from 0 to 9999",
+                    k.letter, k.text
+                ),
+            ))
+        }
+        None => 1,
+    };
+    if c.code == 760 {
+        cx.warnings.push(Warning {
+            line: b.line,
+            column: anchor.column,
+            message: "G76 fine boring: the tool shift at the bottom (direction set by a machine parameter) is not simulated".into(),
+        });
+    }
+    for _ in 0..repeats {
+        let coord = |w: Option<&Word>, k: usize| match w {
+            None => st.pos.get(k),
+            Some(w) if st.incremental => st.pos.get(k) + w.value * scale,
+            Some(w) => w.value * scale + st.offset[k],
+        };
+        let (pu, pv) = (coord(wu, u), coord(wv, v));
+        let segs = hole(
+            &c,
+            st.plane,
+            st.pos,
+            pu,
+            pv,
+            r,
+            bottom,
+            st.cycle_return_r,
+            feed,
+            cx.bi,
+            b.line,
+        );
+        if let Some(last) = segs.last() {
+            st.pos = last.end;
+        }
+        cx.segments.extend(segs);
+    }
     Ok(())
 }
 
