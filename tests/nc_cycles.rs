@@ -7,7 +7,9 @@ use mtmotion::nc::cycles::PECK_CLEARANCE;
 use mtmotion::nc::program::{parse, Motion};
 
 /// A move as (kind, end): 'R' rapid, 'F' feed, 'D' dwell (end x = seconds).
-fn moves(src: &str) -> Vec<(char, [f64; 3])> {
+type Move = (char, [f64; 3]);
+
+fn moves(src: &str) -> Vec<Move> {
     let p = parse(src).unwrap_or_else(|e| panic!("{src}: {e}"));
     p.segments
         .iter()
@@ -132,7 +134,7 @@ fn boring_g85_g86_g89_g76() {
         ('R', [0.0, 0.0, 2.0]),
         ('F', [0.0, 0.0, -4.0]),
     ];
-    let cases: [(&str, Vec<(char, [f64; 3])>); 4] = [
+    let cases: [(&str, Vec<Move>); 4] = [
         ("G85", vec![('F', [0.0, 0.0, 2.0]), ('R', [0.0, 0.0, 10.0])]),
         ("G86", vec![('R', [0.0, 0.0, 10.0])]),
         (

@@ -867,13 +867,15 @@ fn canned_cycle(
     }
     let feed = match st.feed {
         Some(f) if f > 0.0 => f,
-        _ => return Err(err(
-            b,
-            anchor,
-            format!(
+        _ => {
+            return Err(err(
+                b,
+                anchor,
+                format!(
                 "{code} without a feed; expected an F word (mm/min) on this or an earlier block"
             ),
-        )),
+            ))
+        }
     };
     let repeats = match b.word('K').or(b.word('L')) {
         Some(k) if k.value >= 0.0 && k.value.fract() == 0.0 && k.value <= 9999.0 => {
