@@ -192,17 +192,22 @@ fn machine_coordinate_moves_and_offsets() {
 
 #[test]
 fn program_end_and_subprogram_calls() {
-    // M30 ends the main program: the O2000 body after it is not run inline.
+    // M30 ends the main program: the O2000 body after it is not run inline
+    // (it is a subprogram, so no warning), but other text after M30 is
+    // warned about.
     let p = parse("G0 X1\nM30\nO2000\nG1 X50 F100\nM99").unwrap();
+    assert_eq!(p.segments.len(), 1);
+    assert!(p.warnings.iter().all(|w| !w.message.contains("not run")));
+    let p = parse("G0 X1\nM30\nG1 X50 F100").unwrap();
     assert_eq!(p.segments.len(), 1);
     assert!(p
         .warnings
         .iter()
         .any(|w| w.line == 3 && w.message.contains("not run")));
-    // M98 is refused at its word, not warned and skipped.
+    // M98 to a subprogram that is not in the text: refused at its P word.
     let e = parse("G0 X1\nM98 P2000\nM30").unwrap_err();
-    assert_eq!((e.line, e.column), (2, 1));
-    assert!(e.message.contains("subprograms"), "{e}");
+    assert_eq!((e.line, e.column), (2, 5));
+    assert!(e.message.contains("O2000 is not in this program"), "{e}");
 }
 
 #[test]

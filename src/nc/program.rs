@@ -18,14 +18,29 @@
 //!   (LinuxCNC, Haas `P1.5`) and one without is milliseconds (FANUC `P1500`).
 //! - N sequence numbers, O program numbers, comments (kept by the lexer).
 //!
+//! - canned cycles G73, G74, G76, G81–G86, G89 expanded into motion
+//!   ([`super::cycles`]); Fanuc corner `,R`/`,C` ([`super::corner`]);
+//!   subprograms `M98 P… (L…/K…)` to an `O…` block of the same text ended by
+//!   `M99`, nested up to [`MAX_NESTING`] levels, every segment of a body
+//!   `fixed`; M2/M30 end the main program.
+//! - G90.1/G91.1 arc-centre modes; G92 (and G92.1/G92.2) coordinate shift,
+//!   kept as an offset so the path stays continuous; G10 data setting (no
+//!   motion); G28/G30 (the rapid to the intermediate point is simulated, the
+//!   return to the machine reference is not: warned); G53 (not simulated:
+//!   warned); G54–G59/G54.1 (warned, program frame kept).
+//!
 //! Readings chosen: the program starts at [`ParseOptions::start`] (the origin
 //! by default) in G90 G21 G17 with no motion mode and no feed, so an axis
 //! word before any G0–G3 is an error, not a silent rapid. M, S, T, H, D and
 //! unknown letters are reported as [`Warning`]s and ignored. Tool-radius
-//! (G41/G42) and length (G43) compensation, work offsets and other G codes
-//! that do not move are warned about and ignored; canned cycles (G73–G89),
-//! G28/G30 reference returns and G92 are errors because ignoring them would
-//! give a wrong path. Arc radius consistency: the end radius must match the
+//! (G41/G42) compensation is not simulated: the simulated path is the
+//! programmed path, and a warning says so; G43 length compensation is
+//! ignored (warned). What is not simulated and would change the path is a
+//! located error: G33/G33.1 threading, G84.x, G87/G88, G93/G95 feeds, M97,
+//! G65/G66 macro calls, macro `#` variables and `[ ]` expressions, LinuxCNC
+//! o-words and polar words; an `E` word stops the program as "this looks
+//! like a 3D-printer program". Every error of a program is collected
+//! ([`parse_all`]). Arc radius consistency: the end radius must match the
 //! start radius within 0.005 mm + 1e-5·R; the arc radius is their mean.
 //!
 //! Units: mm, s, degrees for A/B/C, feed in mm/min.
@@ -234,20 +249,53 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
         truncated: false,
     };
     let mut corners = Vec::new();
-    let mut modal = Vec::with_capacity(blocks.len());
+    let mut modal: Vec<Option<Modal>> = vec![None; blocks.len()];
     let mut after_end_warned = false;
-    for (bi, b) in blocks.iter().enumerate() {
+    let subs = subprogram_index(&blocks);
+    let mut stack: Vec<Frame> = Vec::new();
+    let mut executed = 0usize;
+    let mut pc = 0usize;
+    while pc < blocks.len() {
+        let bi = pc;
+        let b = &blocks[bi];
+        pc += 1;
         if st.ended {
             if !after_end_warned && !b.is_empty() && !b.percent {
                 after_end_warned = true;
-                warnings.push(Warning {
-                    line: b.line,
-                    column: 1,
-                    message: "blocks after the program end (M2/M30) are not run".into(),
-                });
+                if b.word('O').is_none() && b.program_name.is_none() {
+                    warnings.push(Warning {
+                        line: b.line,
+                        column: 1,
+                        message: "blocks after the program end (M2/M30) are not run".into(),
+                    });
+                }
             }
-            modal.push(st);
+            modal[bi].get_or_insert(st);
             continue;
+        }
+        executed += 1;
+        if executed > MAX_EXECUTED_BLOCKS {
+            errors.push(NcError::new(
+                b.line,
+                1,
+                format!(
+                    "more than {MAX_EXECUTED_BLOCKS} blocks executed: the subprogram calls and repeats look endless; check the M98 repeat counts and M99 returns"
+                ),
+            ));
+            break;
+        }
+        if let (Some(f), Some(o)) = (stack.last(), b.words.first().filter(|w| w.letter == 'O')) {
+            if bi != f.start {
+                errors.push(err(
+                    b,
+                    o,
+                    format!(
+                        "subprogram O{} reaches the next program O{} without an M99; expected M99 at the end of each subprogram",
+                        f.number, o.text
+                    ),
+                ));
+                break;
+            }
         }
         if b.block_delete && options.skip_block_delete {
             warnings.push(Warning {
@@ -257,9 +305,10 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
                     "block delete '/': this block is skipped (set skipBlockDelete: false to run it)"
                         .into(),
             });
-            modal.push(st);
+            modal[bi] = Some(st);
             continue;
         }
+        let before = segments.len();
         let mut ctx = Ctx {
             bi,
             opt: options,
@@ -274,11 +323,77 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
                 break;
             }
         }
-        modal.push(st);
+        if !stack.is_empty() {
+            for s in &mut segments[before..] {
+                s.fixed = true;
+            }
+        }
+        modal[bi] = Some(st);
+        let m = |v: f64| b.words.iter().find(|w| w.letter == 'M' && w.value == v);
+        if let Some(w) = m(98.0) {
+            match call(b, w, &subs, stack.len()) {
+                Ok((start, number, times)) => {
+                    if times > 0 {
+                        stack.push(Frame {
+                            ret: pc,
+                            start,
+                            left: times,
+                            number,
+                        });
+                        pc = start;
+                    }
+                }
+                Err(e) => errors.push(e),
+            }
+        } else if let Some(w) = m(99.0) {
+            if b.word('P').is_some() {
+                errors.push(err(
+                    b,
+                    w,
+                    "M99 P (return to a sequence number) is not supported yet",
+                ));
+            } else if let Some(f) = stack.last_mut() {
+                if f.left > 1 {
+                    f.left -= 1;
+                    pc = f.start;
+                } else {
+                    pc = f.ret;
+                    stack.pop();
+                }
+            } else {
+                warnings.push(Warning {
+                    line: b.line,
+                    column: w.column,
+                    message: "M99 in the main program repeats it endlessly on the control; it is simulated once".into(),
+                });
+                st.ended = true;
+            }
+        }
+        if st.ended {
+            stack.clear();
+        }
     }
-    while modal.len() < blocks.len() {
-        modal.push(st);
+    if !stack.is_empty() && errors.is_empty() {
+        let f = &stack[stack.len() - 1];
+        errors.push(NcError::new(
+            blocks.last().map_or(1, |b| b.line),
+            1,
+            format!("subprogram O{} ends without M99", f.number),
+        ));
     }
+    let mut last = Modal {
+        pos: options.start,
+        ..Modal::default()
+    };
+    let modal: Vec<Modal> = modal
+        .into_iter()
+        .map(|m| {
+            if let Some(m) = m {
+                last = m;
+            }
+            last
+        })
+        .collect();
     if let Err(es) = super::corner::apply_corners(&mut segments, &corners) {
         for e in es {
             errors.push(e);
@@ -294,6 +409,96 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
         warnings,
         options: *options,
     })
+}
+
+/// Blocks a program may execute (subprogram repeats included) before it
+/// is stopped as endless.
+pub const MAX_EXECUTED_BLOCKS: usize = 5_000_000;
+
+/// Deepest subprogram nesting (Fanuc allows 10 levels from the main
+/// program... controls differ; 10 is the common Fanuc limit).
+pub const MAX_NESTING: usize = 10;
+
+struct Frame {
+    ret: usize,
+    start: usize,
+    left: u32,
+    number: u32,
+}
+
+/// O-number → index of its `O` block.
+fn subprogram_index(blocks: &[Block]) -> std::collections::HashMap<u32, usize> {
+    let mut m = std::collections::HashMap::new();
+    for (i, b) in blocks.iter().enumerate() {
+        if let Some(o) = b.words.first().filter(|w| w.letter == 'O') {
+            if o.value >= 0.0 && o.value.fract() == 0.0 {
+                m.entry(o.value as u32).or_insert(i);
+            }
+        }
+    }
+    m
+}
+
+/// The target of `M98 P… (L…/K…)`: Fanuc `P` with more than four digits
+/// holds the repeat count before the four-digit program number
+/// (`P30010` = O0010 three times); `L` or `K` gives the count otherwise.
+fn call(
+    b: &Block,
+    m98: &Word,
+    subs: &std::collections::HashMap<u32, usize>,
+    depth: usize,
+) -> Result<(usize, u32, u32), NcError> {
+    let Some(p) = b.word('P') else {
+        return Err(err(b, m98, "M98 without P; expected M98 P<program number>"));
+    };
+    if p.value < 0.0 || p.value.fract() != 0.0 {
+        return Err(err(
+            b,
+            p,
+            format!("M98 P{}: expected a whole program number", p.text),
+        ));
+    }
+    let digits = p.text.trim_start_matches('+');
+    let (mut times, number) = if digits.len() > 4 {
+        let (rep, num) = digits.split_at(digits.len() - 4);
+        (
+            rep.parse::<u32>().unwrap_or(1).max(1),
+            num.parse::<u32>().unwrap_or(0),
+        )
+    } else {
+        (1, p.value as u32)
+    };
+    if let Some(l) = b.word('L').or(b.word('K')) {
+        if l.value < 0.0 || l.value.fract() != 0.0 || l.value > 9999.0 {
+            return Err(err(
+                b,
+                l,
+                format!(
+                    "repeat count {}{}: expected a whole number from 0 to 9999",
+                    l.letter, l.text
+                ),
+            ));
+        }
+        times = l.value as u32;
+    }
+    if depth >= MAX_NESTING {
+        return Err(err(
+            b,
+            m98,
+            format!("subprogram nesting deeper than {MAX_NESTING} levels"),
+        ));
+    }
+    let start = subs.get(&number).copied().ok_or_else(|| {
+        err(
+            b,
+            p,
+            format!(
+                "M98 P{}: subprogram O{number:04} is not in this program; paste the subprogram (O{number:04} … M99) after M30 and parse again",
+                p.text
+            ),
+        )
+    })?;
+    Ok((start, number, times))
 }
 
 struct Ctx<'a> {
@@ -454,14 +659,11 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
     for w in b.words.iter().filter(|w| w.letter == 'M') {
         match (w.value * 10.0).round() as i64 {
             20 | 300 => st.ended = true,
-            970 | 980 | 990 => {
+            970 => {
                 return Err(err(
                     b,
                     w,
-                    format!(
-                        "M{}: subprograms are not supported yet; expand the subprogram calls in the post-processor",
-                        w.text
-                    ),
+                    "M97 (local subprogram call by N number) is not supported yet; use M98 with an O-numbered subprogram",
                 ))
             }
             _ => {}
@@ -470,6 +672,7 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
     // Pass 2: feed and ignored words.
     let scale = if st.inch { INCH } else { 1.0 };
     let g10 = matches!(non_modal, Some((_, 100)));
+    let m98 = b.words.iter().any(|w| w.letter == 'M' && w.value == 98.0);
     for w in &b.words {
         match w.letter {
             'F' => {
@@ -503,6 +706,8 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
             'C' => {}
             'P' | 'U' if dwell.is_some() => {}
             'L' | 'P' if g10 => {}
+            'P' | 'L' if m98 => {}
+            'M' if matches!((w.value * 10.0).round() as i64, 20 | 300 | 980 | 990) => {}
             'L' | 'P' | 'Q' if st.cycle.is_some() || cycle_word.is_some() => {}
             'M' | 'S' | 'T' | 'H' | 'D' => warn(
                 cx.warnings,
