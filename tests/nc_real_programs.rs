@@ -151,6 +151,13 @@ fn unknown_option_keys_are_rejected_by_name() {
     let e = serde_json::from_str::<ParseOptions>(r#"{"dwelP": "seconds"}"#).unwrap_err();
     assert!(e.to_string().contains("dwelP"), "{e}");
     let o: ParseOptions = serde_json::from_str(r#"{"dwellP": "seconds", "cAxis": true}"#).unwrap();
+    // KEYS lists exactly the serialised keys.
+    let v = serde_json::to_value(ParseOptions::default()).unwrap();
+    let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+    keys.sort_unstable();
+    let mut want = ParseOptions::KEYS.to_vec();
+    want.sort_unstable();
+    assert_eq!(keys, want);
     assert_eq!(o.dwell_p, DwellP::Seconds);
     assert!(o.c_axis && o.skip_block_delete);
 }
@@ -249,4 +256,31 @@ fn every_error_is_reported_in_order() {
         text.contains("line 7, column 5: control character U+001A"),
         "{text}"
     );
+}
+
+#[test]
+fn summary_groups_warnings_by_kind_with_their_lines() {
+    use mtmotion::nc::summary::summarize;
+    let p = parse("G55 G0 X1\nM8\nG56 G0 X2\nM8 S100").unwrap();
+    let s = summarize(&p, 10_000.0);
+    let g: Vec<(&str, usize, Vec<usize>)> = s
+        .warnings
+        .iter()
+        .map(|g| (g.kind.as_str(), g.count, g.lines.clone()))
+        .collect();
+    assert_eq!(
+        g,
+        vec![
+            ("work offset", 2, vec![1, 3]),
+            ("M8", 2, vec![2, 4]),
+            ("S", 1, vec![4])
+        ]
+    );
+    // Every warning is in exactly one group.
+    let mut idx: Vec<usize> = s.warnings.iter().flat_map(|g| g.indices.clone()).collect();
+    idx.sort_unstable();
+    assert_eq!(idx, (0..p.warnings.len()).collect::<Vec<_>>());
+    // 2 mm of rapids at 10 m/min.
+    assert!((s.motion_time - 2.0 / 10_000.0 * 60.0).abs() < 1e-15);
+    assert_eq!(s.units, "mm");
 }

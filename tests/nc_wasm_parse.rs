@@ -58,3 +58,20 @@ fn every_error_is_listed_with_its_line() {
     );
     assert!(m.contains("\nline 3, column 4:"), "{m}");
 }
+
+#[wasm_bindgen_test]
+fn check_nc_returns_errors_as_data() {
+    let c = tp::check_nc(
+        JsValue::from_str("G1 X1\nG0 X2\nG1 Y(open"),
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
+    assert_eq!(get(&c, &["errors", "length"]).as_f64(), Some(2.0));
+    assert_eq!(get(&c, &["errors", "1", "line"]).as_f64(), Some(3.0));
+    assert_eq!(get(&c, &["errors", "1", "column"]).as_f64(), Some(4.0));
+    assert!(get(&c, &["summary"]).is_null());
+    let c = tp::check_nc(JsValue::from_str("G55 G0 X2"), JsValue::UNDEFINED).unwrap();
+    assert_eq!(get(&c, &["errors", "length"]).as_f64(), Some(0.0));
+    assert_eq!(get(&c, &["warnings", "0", "line"]).as_f64(), Some(1.0));
+    assert_eq!(get(&c, &["summary", "rapids"]).as_f64(), Some(1.0));
+}

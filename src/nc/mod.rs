@@ -24,7 +24,7 @@ pub mod summary;
 pub mod writer;
 
 /// An error that names the line and column and says what was expected.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize)]
 #[error("line {line}, column {column}: {message}")]
 pub struct NcError {
     /// 1-based line number.

@@ -103,6 +103,11 @@ pub struct ParseOptions {
     pub c_axis: bool,
 }
 
+impl ParseOptions {
+    /// The keys of the serialised form (camelCase).
+    pub const KEYS: [&'static str; 4] = ["dwellP", "start", "skipBlockDelete", "cAxis"];
+}
+
 impl Default for ParseOptions {
     fn default() -> Self {
         Self {

@@ -26,6 +26,8 @@ pub struct WarningGroup {
     pub count: usize,
     /// Their 1-based lines, in order.
     pub lines: Vec<usize>,
+    /// Their indices in the program's warning list.
+    pub indices: Vec<usize>,
 }
 
 /// Program summary.
@@ -171,17 +173,19 @@ pub fn summarize(p: &Program, rapid_feed: f64) -> Summary {
         _ => "mm",
     };
     let mut groups: Vec<WarningGroup> = Vec::new();
-    for w in &p.warnings {
+    for (i, w) in p.warnings.iter().enumerate() {
         let kind = warning_kind(&w.message);
         match groups.iter_mut().find(|g| g.kind == kind) {
             Some(g) => {
                 g.count += 1;
                 g.lines.push(w.line);
+                g.indices.push(i);
             }
             None => groups.push(WarningGroup {
                 kind,
                 count: 1,
                 lines: vec![w.line],
+                indices: vec![i],
             }),
         }
     }
