@@ -51,7 +51,7 @@ export async function mount(root, api) {
           ['path length (cutting)', `${fmt(s.totalLength, 5)} mm (${fmt(s.cuttingLength, 5)} mm)`],
           ['arcs / lines / rapids / dwells', `${s.arcs} / ${s.lines} / ${s.rapids} / ${s.dwells}`],
           ['units, arc planes', `${s.units}${s.planes.length ? `, ${s.planes.join(' ')}` : ''}`],
-          ['estimated motion time', `${fmt(s.motionTime, 5)} s (Σ length/feed, rapids at ${s.rapidFeed} mm/min, no acc/dec)`],
+          ['estimated motion time', h('span', {}, h('span', { id: 'toolpath-check-time' }, fmt(s.motionTime, 5)), ` s (Σ length/feed, rapids at ${s.rapidFeed} mm/min, no acc/dec)`)],
         ]),
         h('p', {}, 'Cutter radius compensation (G41/G42) is not simulated: the simulated path is the programmed path.'),
         c.warnings.length ? h('div', { id: 'toolpath-check-warnings' }, h('p', {}, `${c.warnings.length} warning(s), by kind:`), ...groups) : h('p', {}, 'No warnings.'),
