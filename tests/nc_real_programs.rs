@@ -38,9 +38,19 @@ fn fanuc_chamfer_c_is_not_a_c_axis_move() {
     };
     let p = parse_with("G0 X0 C15", &opt).unwrap();
     assert_eq!(p.segments[0].end.c, 15.0);
-    // Without one, C on a rapid is an error at the C word.
-    let e = parse("G0 X0 C15").unwrap_err();
-    assert_eq!((e.line, e.column), (1, 7));
+    // A program with A or B words is multi-axis: C is its rotary axis.
+    let p = parse("G0 X0 A10\nG1 X10 C30 F100").unwrap();
+    assert_eq!(p.segments[1].end.c, 30.0);
+    assert_eq!(p.segments.len(), 2);
+    // So is C on a rapid (a 3-axis Fanuc program writes C only on G01).
+    assert_eq!(parse("G0 X0 C15").unwrap().segments[0].end.c, 15.0);
+    // A chamfer with no line after it is an error at the C word.
+    let e = parse("G0 X5\nG1 X0 C15 F100").unwrap_err();
+    assert_eq!((e.line, e.column), (2, 7));
+    assert!(e.message.contains("next move to be a G01"), "{e}");
+    // C alone (no move) on a 3-axis program is an error at the C word.
+    let e = parse("G0 X5\nG1 X0 F100\nC2").unwrap_err();
+    assert_eq!((e.line, e.column), (3, 1));
     assert!(e.message.contains("no C axis"), "{e}");
 }
 

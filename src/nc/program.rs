@@ -98,8 +98,10 @@ pub struct ParseOptions {
     /// on); default true. Each skipped block gets a warning.
     pub skip_block_delete: bool,
     /// The machine has a C rotary axis, so `C` is an axis word. Default
-    /// false (a 3-axis mill): `C` on a G01 block is a Fanuc chamfer, and
-    /// anywhere else an error. A and B are always rotary axes.
+    /// false: C is still read as an axis when the program is evidently
+    /// multi-axis (an A or B word anywhere, or C on a G0/G2/G3 block);
+    /// otherwise (a 3-axis program) `C` on a G01 block is a Fanuc chamfer
+    /// and anywhere else an error. A and B are always rotary axes.
     pub c_axis: bool,
 }
 
@@ -243,6 +245,11 @@ pub fn interpret(blocks: Vec<Block>, options: &ParseOptions) -> Result<Program, 
 /// # Errors
 /// As [`parse_all`].
 pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Program, NcErrors> {
+    let effective = ParseOptions {
+        c_axis: options.c_axis || multi_axis(&blocks),
+        ..*options
+    };
+    let options = &effective;
     let mut st = Modal {
         pos: options.start,
         ..Modal::default()
@@ -413,6 +420,20 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
         segments,
         warnings,
         options: *options,
+    })
+}
+
+/// True when the program is evidently multi-axis, so C is a rotary axis
+/// even without [`ParseOptions::c_axis`]: an A or B word anywhere, or a C
+/// word in a block with G0, G2 or G3 or with an A/B word. (A 3-axis Fanuc
+/// program writes C only on G01 blocks, as a chamfer.)
+fn multi_axis(blocks: &[Block]) -> bool {
+    blocks.iter().any(|b| {
+        b.word('A').is_some()
+            || b.word('B').is_some()
+            || (b.word('C').is_some()
+                && b.words_of('G')
+                    .any(|g| matches!((g.value * 10.0).round() as i64, 0 | 20 | 30)))
     })
 }
 
