@@ -38,7 +38,7 @@ fn every_error_case_names_line_column_and_expectation() {
     // Axis words with no motion mode; two motion codes; a cycle.
     err_at("X10 Y10", 1, 1, "no motion mode");
     err_at("G1 G2 X1 F1", 1, 4, "two motion codes");
-    err_at("G81 X1 Y1 Z-1 R1 F100", 1, 1, "canned cycle");
+    err_at("G87 X1 Y1 Z-1 R1 F100", 1, 1, "back boring");
     // Dwell without a time, negative feed.
     err_at("G4", 1, 1, "expected X (seconds) or P");
     err_at("G1 X1 F-5", 1, 7, "negative feed");
@@ -46,13 +46,13 @@ fn every_error_case_names_line_column_and_expectation() {
 
 #[test]
 fn ignored_words_are_warnings_with_columns() {
-    let p = parse("T1 M6\nS10000 M3\nG41 D1 G1 X1 F100 E5").unwrap();
+    let p = parse("T1 M6\nS10000 M3\nG41 D1 G1 X1 F100 Q5").unwrap();
     let w: Vec<(usize, usize)> = p.warnings.iter().map(|w| (w.line, w.column)).collect();
     assert_eq!(
         w,
         vec![(1, 1), (1, 4), (2, 1), (2, 8), (3, 1), (3, 5), (3, 19)]
     );
-    assert!(p.warnings[6].message.contains("unknown word E5"));
+    assert!(p.warnings[6].message.contains("unknown word Q5"));
     assert!(p.warnings[4].message.contains("cutter radius compensation"));
 }
 

@@ -28,9 +28,10 @@ fn cfg(json: &str) -> JsValue {
 
 #[wasm_bindgen_test]
 fn parse_nc_crosses_as_plain_objects() {
-    let p = tp::parse_nc(JsValue::from_str(
-        "N1 G0 X10 Y0 M3\nN2 G3 X-10 Y0 R10 F2000",
-    ))
+    let p = tp::parse_nc(
+        JsValue::from_str("N1 G0 X10 Y0 M3\nN2 G3 X-10 Y0 R10 F2000"),
+        JsValue::UNDEFINED,
+    )
     .unwrap();
     assert!(!p.is_instance_of::<js_sys::Map>());
     assert_eq!(
@@ -99,7 +100,11 @@ fn reverse_compensation_crosses() {
 
 #[wasm_bindgen_test]
 fn bad_input_throws_the_core_message() {
-    let e = tp::parse_nc(JsValue::from_str("G0 X0 Y0\nG2 X10 Y0 F100")).unwrap_err();
+    let e = tp::parse_nc(
+        JsValue::from_str("G0 X0 Y0\nG2 X10 Y0 F100"),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
     assert_eq!(
         message(e),
         "line 2, column 4: arc (G2) without a centre in the G17 plane; expected I/J or R"

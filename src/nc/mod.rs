@@ -16,12 +16,15 @@
 //! segments; [`writer`] writes segments back as NC text.
 
 pub mod arc;
+pub mod corner;
+pub mod cycles;
 pub mod program;
 pub mod segment;
+pub mod summary;
 pub mod writer;
 
 /// An error that names the line and column and says what was expected.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize)]
 #[error("line {line}, column {column}: {message}")]
 pub struct NcError {
     /// 1-based line number.
@@ -69,6 +72,11 @@ pub struct Block {
     pub block_delete: bool,
     /// The line is a `%` program delimiter.
     pub percent: bool,
+    /// Fanuc corner words written with a leading comma (`,R2.`, `,C1.`),
+    /// letter `R` or `C`.
+    pub comma_words: Vec<Word>,
+    /// A named program `O<NAME>`.
+    pub program_name: Option<String>,
 }
 
 impl Block {
@@ -84,7 +92,12 @@ impl Block {
 
     /// True when the line has nothing but whitespace.
     pub fn is_empty(&self) -> bool {
-        self.words.is_empty() && self.comments.is_empty() && !self.percent && !self.block_delete
+        self.words.is_empty()
+            && self.comments.is_empty()
+            && self.comma_words.is_empty()
+            && self.program_name.is_none()
+            && !self.percent
+            && !self.block_delete
     }
 
     /// Writes the block back in canonical form: words separated by one
@@ -107,6 +120,15 @@ impl Block {
             .map(|w| format!("{}{}", w.letter, w.text))
             .collect();
         s.push_str(&words.join(" "));
+        if let Some(n) = &self.program_name {
+            if !s.is_empty() && !s.ends_with('/') {
+                s.push(' ');
+            }
+            s.push_str(&format!("O<{n}>"));
+        }
+        for w in &self.comma_words {
+            s.push_str(&format!(",{}{}", w.letter, w.text));
+        }
         if !s.is_empty() {
             parts.push(s);
         }
@@ -117,12 +139,113 @@ impl Block {
     }
 }
 
-/// Lexes a whole program.
+/// Every error of a program, in source order, up to [`MAX_ERRORS`].
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub struct NcErrors {
+    /// The errors found (at most [`MAX_ERRORS`]).
+    pub errors: Vec<NcError>,
+    /// True when more errors were found than are listed.
+    pub truncated: bool,
+}
+
+/// How many errors a program reports at most.
+pub const MAX_ERRORS: usize = 100;
+
+impl NcErrors {
+    /// The first error (there is always one).
+    pub fn first(&self) -> NcError {
+        self.errors
+            .first()
+            .cloned()
+            .unwrap_or_else(|| NcError::new(1, 1, "unknown error"))
+    }
+
+    /// Appends `e` unless the cap is reached.
+    pub fn push(&mut self, e: NcError) {
+        if self.errors.len() < MAX_ERRORS {
+            self.errors.push(e);
+        } else {
+            self.truncated = true;
+        }
+    }
+
+    /// True when no error was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.errors.is_empty()
+    }
+}
+
+impl std::fmt::Display for NcErrors {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let n = self.errors.len();
+        if n == 1 && !self.truncated {
+            return write!(f, "{}", self.errors[0]);
+        }
+        write!(
+            f,
+            "{n}{} error{} in the program:",
+            if self.truncated { "+" } else { "" },
+            if n == 1 { "" } else { "s" }
+        )?;
+        for e in &self.errors {
+            write!(f, "\n{e}")?;
+        }
+        if self.truncated {
+            write!(f, "\n(only the first {MAX_ERRORS} are listed)")?;
+        }
+        Ok(())
+    }
+}
+
+impl From<NcError> for NcErrors {
+    fn from(e: NcError) -> Self {
+        Self {
+            errors: vec![e],
+            truncated: false,
+        }
+    }
+}
+
+/// Splits program text into lines: a UTF-8 byte-order mark is dropped,
+/// line ends may be LF, CRLF or CR alone (old Macintosh/DNC files), and
+/// trailing Ctrl-Z characters (U+001A, the DOS end-of-file mark some DNC
+/// senders append) after the last line are dropped.
+pub fn split_lines(text: &str) -> Vec<&str> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let text = text.trim_end_matches(['\u{1a}', '\r', '\n']);
+    let mut out = Vec::new();
+    let bytes = text.as_bytes();
+    let mut start = 0;
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'\n' => {
+                out.push(&text[start..i]);
+                start = i + 1;
+            }
+            b'\r' => {
+                out.push(&text[start..i]);
+                if i + 1 < bytes.len() && bytes[i + 1] == b'\n' {
+                    i += 1;
+                }
+                start = i + 1;
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    if start < text.len() || out.is_empty() {
+        out.push(&text[start..]);
+    }
+    out
+}
+
+/// Lexes a whole program; the first error only (see [`lex_all`]).
 ///
 /// # Errors
 /// A letter without a number, a number without a letter, an unclosed `(`,
-/// a macro `#` expression, or a character that is no part of a word; each
-/// names its line and column.
+/// a macro `#` expression, a control character, or a character that is no
+/// part of a word; each names its line and column.
 ///
 /// # Examples
 /// ```
@@ -133,19 +256,88 @@ impl Block {
 /// assert_eq!((e.line, e.column), (1, 5));
 /// ```
 pub fn lex(text: &str) -> Result<Vec<Block>, NcError> {
-    text.lines()
+    let (blocks, errors) = lex_all(text);
+    match errors.errors.first() {
+        Some(e) => Err(e.clone()),
+        None => Ok(blocks),
+    }
+}
+
+/// Lexes a whole program and collects every line's error (one per line,
+/// up to [`MAX_ERRORS`]); a line with an error gives an empty block.
+pub fn lex_all(text: &str) -> (Vec<Block>, NcErrors) {
+    let mut errors = NcErrors {
+        errors: Vec::new(),
+        truncated: false,
+    };
+    let blocks = split_lines(text)
+        .into_iter()
         .enumerate()
-        .map(|(i, l)| lex_line(l, i + 1))
-        .collect()
+        .map(|(i, l)| {
+            lex_line(l, i + 1).unwrap_or_else(|e| {
+                errors.push(e);
+                Block {
+                    line: i + 1,
+                    ..Block::default()
+                }
+            })
+        })
+        .collect();
+    (blocks, errors)
+}
+
+/// Fanuc Macro B keywords: a letter run equal to one of these is a macro
+/// statement, not an address word.
+const MACRO_B: [&str; 26] = [
+    "IF", "GOTO", "THEN", "WHILE", "DO", "END", "EQ", "NE", "GT", "GE", "LT", "LE", "AND", "OR",
+    "XOR", "SIN", "COS", "TAN", "ATAN", "SQRT", "ABS", "ROUND", "FIX", "FUP", "BIN", "BCD",
+];
+/// LinuxCNC o-word keywords.
+const O_WORDS: [&str; 15] = [
+    "SUB",
+    "ENDSUB",
+    "CALL",
+    "IF",
+    "ELSEIF",
+    "ELSE",
+    "ENDIF",
+    "WHILE",
+    "ENDWHILE",
+    "DO",
+    "REPEAT",
+    "ENDREPEAT",
+    "RETURN",
+    "BREAK",
+    "CONTINUE",
+];
+
+fn control_char(c: char) -> bool {
+    c.is_control() && c != '\t'
 }
 
 /// Lexes one line; `line` is its 1-based number.
+///
+/// Comments: `( … )` may nest (`(DRILL (5 HOLES))` is one comment) and `;`
+/// runs to the end of the line. A Fanuc `:0097` program number is read as
+/// `O0097`; a named program `O<NAME>` sets [`Block::program_name`]. Fanuc
+/// `,R` / `,C` (corner rounding / chamfer on G01) are kept in
+/// [`Block::comma_words`].
 pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
     let chars: Vec<char> = src.chars().collect();
     let mut block = Block {
         line,
         ..Block::default()
     };
+    if let Some(i) = chars.iter().position(|&c| control_char(c)) {
+        return Err(NcError::new(
+            line,
+            i + 1,
+            format!(
+                "control character U+{:04X} is not allowed in an NC program; remove it (only tab, line ends and a final Ctrl-Z are accepted)",
+                chars[i] as u32
+            ),
+        ));
+    }
     let mut i = 0;
     let skip_ws = |i: &mut usize| {
         while *i < chars.len() && chars[*i].is_whitespace() {
@@ -160,76 +352,148 @@ pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
         block.block_delete = true;
         i += 1;
     }
+    skip_ws(&mut i);
+    if i < chars.len() && chars[i] == ':' {
+        let col = i + 1;
+        i += 1;
+        let start = i;
+        while i < chars.len() && chars[i].is_ascii_digit() {
+            i += 1;
+        }
+        let text: String = chars[start..i].iter().collect();
+        let value = text.parse().map_err(|_| {
+            NcError::new(
+                line,
+                col,
+                "':' starts a program number; expected digits such as ':0097'",
+            )
+        })?;
+        block.words.push(Word {
+            letter: 'O',
+            value,
+            text,
+            column: col,
+        });
+    }
     while i < chars.len() {
         let c = chars[i];
         let col = i + 1;
         if c.is_whitespace() {
             i += 1;
         } else if c == '(' {
-            let start = i + 1;
-            let end = chars[start..]
-                .iter()
-                .position(|&ch| ch == ')')
-                .ok_or_else(|| {
-                    NcError::new(line, col, "comment opened with '(' is not closed with ')'")
-                })?;
+            let mut depth = 0usize;
+            let mut j = i;
+            while j < chars.len() {
+                match chars[j] {
+                    '(' => depth += 1,
+                    ')' => {
+                        depth -= 1;
+                        if depth == 0 {
+                            break;
+                        }
+                    }
+                    _ => {}
+                }
+                j += 1;
+            }
+            if j >= chars.len() {
+                return Err(NcError::new(
+                    line,
+                    col,
+                    "comment opened with '(' is not closed with ')'",
+                ));
+            }
             block.comments.push(
-                chars[start..start + end]
+                chars[i + 1..j]
                     .iter()
                     .collect::<String>()
                     .trim()
                     .to_string(),
             );
-            i = start + end + 1;
+            i = j + 1;
+        } else if c == ')' {
+            return Err(NcError::new(
+                line,
+                col,
+                "')' without an opening '('; expected a comment as '( … )'",
+            ));
         } else if c == ';' {
             block
                 .comments
                 .push(chars[i + 1..].iter().collect::<String>().trim().to_string());
             break;
-        } else if c.is_ascii_alphabetic() {
-            let letter = c.to_ascii_uppercase();
-            i += 1;
-            skip_ws(&mut i);
-            let start = i;
-            if i < chars.len() && (chars[i] == '+' || chars[i] == '-') {
-                i += 1;
-            }
-            while i < chars.len() && (chars[i].is_ascii_digit() || chars[i] == '.') {
-                i += 1;
-            }
-            let text: String = chars[start..i].iter().collect();
-            if i < chars.len() && chars[i] == '#' {
-                return Err(NcError::new(
-                    line,
-                    i + 1,
-                    "macro variables ('#') are not supported; expand the macro in the post-processor",
-                ));
-            }
-            if text.is_empty() || text == "+" || text == "-" {
+        } else if c == ',' {
+            let letter = chars.get(i + 1).map(|c| c.to_ascii_uppercase());
+            if !matches!(letter, Some('R' | 'C')) {
                 return Err(NcError::new(
                     line,
                     col,
-                    format!("expected a number after address '{letter}'"),
+                    "',' must start a corner word ',R' (rounding) or ',C' (chamfer)",
                 ));
             }
-            let value: f64 = text.parse().map_err(|_| {
-                NcError::new(
-                    line,
-                    start + 1,
-                    format!("'{text}' after address '{letter}' is not a valid number"),
-                )
-            })?;
-            block.words.push(Word {
-                letter,
-                value,
-                text,
-                column: col,
-            });
-        } else if c == '#' {
+            i += 1;
+            let w = lex_word(&chars, &mut i, line)?;
+            block.comma_words.push(Word { column: col, ..w });
+        } else if c.is_ascii_alphabetic() {
+            let mut j = i;
+            while j < chars.len() && chars[j].is_ascii_alphabetic() {
+                j += 1;
+            }
+            let run: String = chars[i..j].iter().collect::<String>().to_ascii_uppercase();
+            if run.len() > 1 {
+                return Err(keyword_error(&run, line, col, &block));
+            }
+            if run == "O" && chars.get(i + 1) == Some(&'<') {
+                let close = chars[i + 2..]
+                    .iter()
+                    .position(|&c| c == '>')
+                    .ok_or_else(|| {
+                        NcError::new(line, col, "named program 'O<' is not closed with '>'")
+                    })?;
+                let name: String = chars[i + 2..i + 2 + close].iter().collect();
+                i += close + 3;
+                block.program_name = Some(name);
+                let mut k = i;
+                while k < chars.len() && chars[k].is_whitespace() {
+                    k += 1;
+                }
+                let mut e = k;
+                while e < chars.len() && chars[e].is_ascii_alphabetic() {
+                    e += 1;
+                }
+                if e > k {
+                    let kw: String = chars[k..e].iter().collect::<String>().to_ascii_uppercase();
+                    return Err(keyword_error(&kw, line, k + 1, &block));
+                }
+                continue;
+            }
+            let w = lex_word(&chars, &mut i, line)?;
+            if w.letter == 'O' {
+                let mut k = i;
+                while k < chars.len() && chars[k].is_whitespace() {
+                    k += 1;
+                }
+                if k < chars.len() && chars[k].is_ascii_alphabetic() {
+                    let mut e = k;
+                    while e < chars.len() && chars[e].is_ascii_alphabetic() {
+                        e += 1;
+                    }
+                    let kw: String = chars[k..e].iter().collect::<String>().to_ascii_uppercase();
+                    if O_WORDS.contains(&kw.as_str()) {
+                        block.words.push(w);
+                        return Err(keyword_error(&kw, line, k + 1, &block));
+                    }
+                }
+            }
+            block.words.push(w);
+        } else if c == '#' || c == '[' {
             return Err(NcError::new(
                 line,
                 col,
-                "macro variables ('#') are not supported; expand the macro in the post-processor",
+                format!(
+                    "macro {} ('{c}') is not supported yet; expand the macro in the post-processor (the simulator reads plain word-address programs)",
+                    if c == '#' { "variable" } else { "expression" }
+                ),
             ));
         } else if c.is_ascii_digit() || c == '.' || c == '-' || c == '+' {
             return Err(NcError::new(
@@ -239,15 +503,118 @@ pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
             ));
         } else if c == '%' {
             i += 1;
+        } else if c == '@' || c == '^' {
+            return Err(NcError::new(
+                line,
+                col,
+                format!(
+                    "'{c}' is a LinuxCNC polar coordinate (@ radius, ^ angle), not supported yet; write the end point as X/Y"
+                ),
+            ));
         } else {
             return Err(NcError::new(
                 line,
                 col,
-                format!("unexpected character '{c}'; expected an address word, '(' or ';'"),
+                format!(
+                    "unexpected character '{c}' (U+{:04X}); expected an address word, '(' or ';'",
+                    c as u32
+                ),
             ));
         }
     }
     Ok(block)
+}
+
+fn keyword_error(run: &str, line: usize, col: usize, block: &Block) -> NcError {
+    let o_word =
+        block.words.last().is_some_and(|w| w.letter == 'O') || block.program_name.is_some();
+    if o_word && O_WORDS.contains(&run) {
+        NcError::new(
+            line,
+            col,
+            format!(
+                "LinuxCNC o-word '{}' (subroutines and control flow) is not supported yet; expand it in the CAM post-processor",
+                run.to_ascii_lowercase()
+            ),
+        )
+    } else if MACRO_B.contains(&run) {
+        NcError::new(
+            line,
+            col,
+            format!(
+                "'{run}' is a Fanuc Macro B statement; macros are not supported yet, expand them in the post-processor"
+            ),
+        )
+    } else {
+        let letter = run.chars().next().unwrap_or('?');
+        NcError::new(
+            line,
+            col,
+            format!("expected a number after address '{letter}', found the letters '{run}'"),
+        )
+    }
+}
+
+/// One address word at `chars[*i]` (the letter); advances `*i` past it.
+fn lex_word(chars: &[char], i: &mut usize, line: usize) -> Result<Word, NcError> {
+    let col = *i + 1;
+    let letter = chars[*i].to_ascii_uppercase();
+    *i += 1;
+    while *i < chars.len() && chars[*i].is_whitespace() {
+        *i += 1;
+    }
+    let start = *i;
+    if *i < chars.len() && (chars[*i] == '+' || chars[*i] == '-') {
+        *i += 1;
+    }
+    while *i < chars.len() && (chars[*i].is_ascii_digit() || chars[*i] == '.') {
+        *i += 1;
+    }
+    let text: String = chars[start..*i].iter().collect();
+    if *i + 1 < chars.len()
+        && !text.is_empty()
+        && matches!(chars[*i], 'e' | 'E')
+        && (chars[*i + 1].is_ascii_digit() || chars[*i + 1] == '+' || chars[*i + 1] == '-')
+    {
+        return Err(NcError::new(
+            line,
+            start + 1,
+            format!(
+                "'{text}{}…' after address '{letter}': exponent notation is not valid in an NC program; write the number out",
+                chars[*i]
+            ),
+        ));
+    }
+    if *i < chars.len() && (chars[*i] == '#' || chars[*i] == '[') && text.len() <= 1 {
+        return Err(NcError::new(
+            line,
+            *i + 1,
+            format!(
+                "macro {} after address '{letter}' is not supported yet; expand the macro in the post-processor",
+                if chars[*i] == '#' { "variable" } else { "expression" }
+            ),
+        ));
+    }
+    if text.is_empty() || text == "+" || text == "-" {
+        return Err(NcError::new(
+            line,
+            col,
+            format!("expected a number after address '{letter}'"),
+        ));
+    }
+    let value: f64 = text.parse().map_err(|_| {
+        NcError::new(
+            line,
+            start + 1,
+            format!("'{text}' after address '{letter}' is not a valid number"),
+        )
+    })?;
+    Ok(Word {
+        letter,
+        value,
+        text,
+        column: col,
+    })
 }
 
 #[cfg(test)]
@@ -276,8 +643,69 @@ mod tests {
         assert!(e.message.contains("macro"));
         let e = lex("G1 5").unwrap_err();
         assert_eq!(e.column, 4);
-        let e = lex("G1 X1 @").unwrap_err();
-        assert!(e.message.contains("unexpected character '@'"));
+        let e = lex("G1 X1 $").unwrap_err();
+        assert!(e.message.contains("unexpected character '$' (U+0024)"));
+    }
+
+    #[test]
+    fn nested_comments_program_numbers_and_line_ends() {
+        let b = lex_line("G81 (DRILL (5 HOLES)) X1", 1).unwrap();
+        assert_eq!(b.comments, vec!["DRILL (5 HOLES)"]);
+        assert_eq!(b.word('X').unwrap().value, 1.0);
+        let b = lex_line(":0097 (SUB)", 1).unwrap();
+        let o = b.word('O').unwrap();
+        assert_eq!((o.value, o.text.as_str(), o.column), (97.0, "0097", 1));
+        let b = lex_line("O<FACE_MILL> (named)", 1).unwrap();
+        assert_eq!(b.program_name.as_deref(), Some("FACE_MILL"));
+        // LF, CRLF and CR alone; BOM; trailing Ctrl-Z.
+        for text in [
+            "\u{feff}G0 X1\r\nG0 X2\r\n\u{1a}",
+            "G0 X1\rG0 X2\r",
+            "G0 X1\nG0 X2",
+        ] {
+            let blocks = lex(text).unwrap();
+            assert_eq!(blocks.len(), 2, "{text:?}");
+            assert_eq!(blocks[1].word('X').unwrap().value, 2.0);
+            assert_eq!(blocks[1].line, 2);
+        }
+        let b = lex_line("G1 X1 ,R2. Y3", 1).unwrap();
+        assert_eq!(b.comma_words[0].letter, 'R');
+        assert_eq!(b.comma_words[0].value, 2.0);
+        assert_eq!(b.write(), "G1 X1 Y3,R2.");
+    }
+
+    #[test]
+    fn misleading_messages_are_fixed() {
+        // Ctrl-Z inside the text, BEL: named as U+XXXX at their column.
+        let e = lex("G0 X1\nG0\u{1a} X2\nG1").unwrap_err();
+        assert_eq!((e.line, e.column), (2, 3));
+        assert!(e.message.contains("control character U+001A"), "{e}");
+        let e = lex("G0 X\u{7}1").unwrap_err();
+        assert!(e.message.contains("U+0007"), "{e}");
+        // IF [ is a macro statement, not address I.
+        let e = lex("IF [#1 GT 5] GOTO 10").unwrap_err();
+        assert!(
+            e.message.contains("'IF' is a Fanuc Macro B statement"),
+            "{e}"
+        );
+        assert_eq!(e.column, 1);
+        let e = lex("o100 sub").unwrap_err();
+        assert!(e.message.contains("o-word 'sub'"), "{e}");
+        let e = lex("G1 X1 )").unwrap_err();
+        assert_eq!(e.column, 7);
+    }
+
+    #[test]
+    fn every_line_error_is_collected() {
+        let (blocks, errors) = lex_all("G1 X\nG0 X1\nG1 (open\nG1 Y1..2");
+        assert_eq!(blocks.len(), 4);
+        let at: Vec<(usize, usize)> = errors.errors.iter().map(|e| (e.line, e.column)).collect();
+        assert_eq!(at, vec![(1, 4), (3, 4), (4, 5)]);
+        let many = "G1 X\n".repeat(150);
+        let (_, errors) = lex_all(&many);
+        assert_eq!(errors.errors.len(), MAX_ERRORS);
+        assert!(errors.truncated);
+        assert!(errors.to_string().starts_with("100+ errors"));
     }
 
     #[test]

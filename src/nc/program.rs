@@ -18,22 +18,38 @@
 //!   (LinuxCNC, Haas `P1.5`) and one without is milliseconds (FANUC `P1500`).
 //! - N sequence numbers, O program numbers, comments (kept by the lexer).
 //!
+//! - canned cycles G73, G74, G76, G81–G86, G89 expanded into motion
+//!   ([`super::cycles`]); Fanuc corner `,R`/`,C` ([`super::corner`]);
+//!   subprograms `M98 P… (L…/K…)` to an `O…` block of the same text ended by
+//!   `M99`, nested up to [`MAX_NESTING`] levels, every segment of a body
+//!   `fixed`; M2/M30 end the main program.
+//! - G90.1/G91.1 arc-centre modes; G92 (and G92.1/G92.2) coordinate shift,
+//!   kept as an offset so the path stays continuous; G10 data setting (no
+//!   motion); G28/G30 (the rapid to the intermediate point is simulated, the
+//!   return to the machine reference is not: warned); G53 (not simulated:
+//!   warned); G54–G59/G54.1 (warned, program frame kept).
+//!
 //! Readings chosen: the program starts at [`ParseOptions::start`] (the origin
 //! by default) in G90 G21 G17 with no motion mode and no feed, so an axis
 //! word before any G0–G3 is an error, not a silent rapid. M, S, T, H, D and
 //! unknown letters are reported as [`Warning`]s and ignored. Tool-radius
-//! (G41/G42) and length (G43) compensation, work offsets and other G codes
-//! that do not move are warned about and ignored; canned cycles (G73–G89),
-//! G28/G30 reference returns and G92 are errors because ignoring them would
-//! give a wrong path. Arc radius consistency: the end radius must match the
+//! (G41/G42) compensation is not simulated: the simulated path is the
+//! programmed path, and a warning says so; G43 length compensation is
+//! ignored (warned). What is not simulated and would change the path is a
+//! located error: G33/G33.1 threading, G84.x, G87/G88, G93/G95 feeds, M97,
+//! G65/G66 macro calls, macro `#` variables and `[ ]` expressions, LinuxCNC
+//! o-words and polar words; an `E` word stops the program as "this looks
+//! like a 3D-printer program". Every error of a program is collected
+//! ([`parse_all`]). Arc radius consistency: the end radius must match the
 //! start radius within 0.005 mm + 1e-5·R; the arc radius is their mean.
 //!
 //! Units: mm, s, degrees for A/B/C, feed in mm/min.
 
 use serde::{Deserialize, Serialize};
 
+use super::cycles::{hole, Cycle};
 pub use super::segment::{dist, Arc, Motion, MotionCode, Plane, Pose, Segment, AXES};
-use super::{arc::arc, lex, Block, NcError, Word};
+use super::{arc::arc, Block, NcError, NcErrors, Word};
 /// A non-fatal finding: a word that was ignored, a mode that is not
 /// modelled.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -69,15 +85,44 @@ pub enum DwellP {
     Seconds,
 }
 
-/// Interpreter options.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "camelCase", default)]
+/// Interpreter options. Unknown keys are rejected when deserialised (a
+/// misspelt key is an error naming it, never silently dropped).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default, deny_unknown_fields)]
 pub struct ParseOptions {
     /// Reading of G4 P.
     pub dwell_p: DwellP,
     /// Where the tool is before the first block.
     pub start: Pose,
+    /// Blocks that start with `/` are skipped (the block-delete switch is
+    /// on); default true. Each skipped block gets a warning.
+    pub skip_block_delete: bool,
+    /// The machine has a C rotary axis, so `C` is an axis word. Default
+    /// false: C is still read as an axis when the program is evidently
+    /// multi-axis (an A or B word anywhere, or C on a G0/G2/G3 block);
+    /// otherwise (a 3-axis program) `C` on a G01 block is a Fanuc chamfer
+    /// and anywhere else an error. A and B are always rotary axes.
+    pub c_axis: bool,
 }
+
+impl ParseOptions {
+    /// The keys of the serialised form (camelCase).
+    pub const KEYS: [&'static str; 4] = ["dwellP", "start", "skipBlockDelete", "cAxis"];
+}
+
+impl Default for ParseOptions {
+    fn default() -> Self {
+        Self {
+            dwell_p: DwellP::default(),
+            start: Pose::default(),
+            skip_block_delete: true,
+            c_axis: false,
+        }
+    }
+}
+
+/// Feeds above this (mm/min) are warned about as implausible for milling.
+pub const MAX_PLAUSIBLE_FEED: f64 = 100_000.0;
 
 /// Modal state after a block.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -95,6 +140,19 @@ pub struct Modal {
     pub feed: Option<f64>,
     /// Position, mm / degrees.
     pub pos: Pose,
+    /// G90.1 in force: arc centres I/J/K are absolute (G91.1, the default,
+    /// makes them incremental from the arc start).
+    pub arc_center_absolute: bool,
+    /// G92 shift, mm / degrees: an absolute word `w` is the pose `w +
+    /// offset` of the continuous path (see the module header).
+    pub offset: [f64; 6],
+    /// M2/M30 has ended the program.
+    pub ended: bool,
+    /// The active canned cycle (G73–G89 until G80 or a G0–G3).
+    pub cycle: Option<Cycle>,
+    /// G99 in force: canned cycles return to the R level (G98, the
+    /// default, returns to the initial level).
+    pub cycle_return_r: bool,
 }
 
 /// An interpreted program.
@@ -112,7 +170,8 @@ pub struct Program {
     pub options: ParseOptions,
 }
 
-/// Parses and interprets a program with default options.
+/// Parses and interprets a program with default options; the first error
+/// only (see [`parse_all`] for every error).
 ///
 /// # Errors
 /// Lexer errors, and interpretation errors naming line and column: an arc
@@ -135,33 +194,225 @@ pub fn parse(text: &str) -> Result<Program, NcError> {
     parse_with(text, &ParseOptions::default())
 }
 
-/// Parses and interprets a program with `options`.
+/// Parses and interprets a program with `options`; the first error only.
 ///
 /// # Errors
 /// As [`parse`].
 pub fn parse_with(text: &str, options: &ParseOptions) -> Result<Program, NcError> {
-    interpret(lex(text)?, options)
+    parse_all(text, options).map_err(|e| e.first())
+}
+
+/// Parses and interprets a program with `options` and reports every error
+/// (one per block, up to [`super::MAX_ERRORS`]), in source order.
+///
+/// # Errors
+/// As [`parse`], all of them.
+///
+/// # Examples
+/// ```
+/// use mtmotion::nc::program::{parse_all, ParseOptions};
+/// let e = parse_all("G1 X1\nG0 X(open\nG1 X2 F100\nG2 X3", &ParseOptions::default()).unwrap_err();
+/// let lines: Vec<usize> = e.errors.iter().map(|e| e.line).collect();
+/// assert_eq!(lines, vec![1, 2, 4]);
+/// ```
+pub fn parse_all(text: &str, options: &ParseOptions) -> Result<Program, NcErrors> {
+    let (blocks, mut errors) = super::lex_all(text);
+    match interpret_all(blocks, options) {
+        Ok(p) if errors.is_empty() => Ok(p),
+        Ok(_) => Err(errors),
+        Err(e) => {
+            for x in e.errors {
+                errors.push(x);
+            }
+            errors.errors.sort_by_key(|e| (e.line, e.column));
+            Err(errors)
+        }
+    }
 }
 
 const INCH: f64 = 25.4;
 
-/// Interprets lexed blocks.
+/// Interprets lexed blocks; the first error only.
 ///
 /// # Errors
 /// As [`parse`].
 pub fn interpret(blocks: Vec<Block>, options: &ParseOptions) -> Result<Program, NcError> {
+    interpret_all(blocks, options).map_err(|e| e.first())
+}
+
+/// Interprets lexed blocks and collects every block's error.
+///
+/// # Errors
+/// As [`parse_all`].
+pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Program, NcErrors> {
+    let effective = ParseOptions {
+        c_axis: options.c_axis || multi_axis(&blocks),
+        ..*options
+    };
+    let options = &effective;
     let mut st = Modal {
         pos: options.start,
         ..Modal::default()
     };
     let mut segments = Vec::new();
     let mut warnings = Vec::new();
-    let mut modal = Vec::with_capacity(blocks.len());
-    for (bi, b) in blocks.iter().enumerate() {
-        if let Some(seg) = interpret_block(b, bi, &mut st, options, &mut warnings)? {
-            segments.push(seg);
+    let mut errors = NcErrors {
+        errors: Vec::new(),
+        truncated: false,
+    };
+    let mut corners = Vec::new();
+    let mut modal: Vec<Option<Modal>> = vec![None; blocks.len()];
+    let mut after_end_warned = false;
+    let subs = subprogram_index(&blocks);
+    let mut stack: Vec<Frame> = Vec::new();
+    let mut executed = 0usize;
+    let mut pc = 0usize;
+    while pc < blocks.len() {
+        let bi = pc;
+        let b = &blocks[bi];
+        pc += 1;
+        if st.ended {
+            if !after_end_warned && !b.is_empty() && !b.percent {
+                after_end_warned = true;
+                if b.word('O').is_none() && b.program_name.is_none() {
+                    warnings.push(Warning {
+                        line: b.line,
+                        column: 1,
+                        message: "blocks after the program end (M2/M30) are not run".into(),
+                    });
+                }
+            }
+            modal[bi].get_or_insert(st);
+            continue;
         }
-        modal.push(st);
+        executed += 1;
+        if executed > MAX_EXECUTED_BLOCKS {
+            errors.push(NcError::new(
+                b.line,
+                1,
+                format!(
+                    "more than {MAX_EXECUTED_BLOCKS} blocks executed: the subprogram calls and repeats look endless; check the M98 repeat counts and M99 returns"
+                ),
+            ));
+            break;
+        }
+        if let (Some(f), Some(o)) = (stack.last(), b.words.first().filter(|w| w.letter == 'O')) {
+            if bi != f.start {
+                errors.push(err(
+                    b,
+                    o,
+                    format!(
+                        "subprogram O{} reaches the next program O{} without an M99; expected M99 at the end of each subprogram",
+                        f.number, o.text
+                    ),
+                ));
+                break;
+            }
+        }
+        if b.block_delete && options.skip_block_delete {
+            warnings.push(Warning {
+                line: b.line,
+                column: 1,
+                message:
+                    "block delete '/': this block is skipped (set skipBlockDelete: false to run it)"
+                        .into(),
+            });
+            modal[bi] = Some(st);
+            continue;
+        }
+        let before = segments.len();
+        let mut ctx = Ctx {
+            bi,
+            opt: options,
+            warnings: &mut warnings,
+            segments: &mut segments,
+            corners: &mut corners,
+        };
+        if let Err(e) = interpret_block(b, &mut st, &mut ctx) {
+            let stop = e.message.contains("this looks like");
+            errors.push(e);
+            if stop {
+                break;
+            }
+        }
+        if !stack.is_empty() {
+            for s in &mut segments[before..] {
+                s.fixed = true;
+            }
+        }
+        modal[bi] = Some(st);
+        let m = |v: f64| b.words.iter().find(|w| w.letter == 'M' && w.value == v);
+        if let Some(w) = m(98.0) {
+            match call(b, w, &subs, stack.len()) {
+                Ok((start, number, times)) => {
+                    if times > 0 {
+                        stack.push(Frame {
+                            ret: pc,
+                            start,
+                            left: times,
+                            number,
+                        });
+                        pc = start;
+                    }
+                }
+                Err(e) => errors.push(e),
+            }
+        } else if let Some(w) = m(99.0) {
+            if b.word('P').is_some() {
+                errors.push(err(
+                    b,
+                    w,
+                    "M99 P (return to a sequence number) is not supported yet",
+                ));
+            } else if let Some(f) = stack.last_mut() {
+                if f.left > 1 {
+                    f.left -= 1;
+                    pc = f.start;
+                } else {
+                    pc = f.ret;
+                    stack.pop();
+                }
+            } else {
+                warnings.push(Warning {
+                    line: b.line,
+                    column: w.column,
+                    message: "M99 in the main program repeats it endlessly on the control; it is simulated once".into(),
+                });
+                st.ended = true;
+            }
+        }
+        if st.ended {
+            stack.clear();
+        }
+    }
+    if !stack.is_empty() && errors.is_empty() {
+        let f = &stack[stack.len() - 1];
+        errors.push(NcError::new(
+            blocks.last().map_or(1, |b| b.line),
+            1,
+            format!("subprogram O{} ends without M99", f.number),
+        ));
+    }
+    let mut last = Modal {
+        pos: options.start,
+        ..Modal::default()
+    };
+    let modal: Vec<Modal> = modal
+        .into_iter()
+        .map(|m| {
+            if let Some(m) = m {
+                last = m;
+            }
+            last
+        })
+        .collect();
+    if let Err(es) = super::corner::apply_corners(&mut segments, &corners) {
+        for e in es {
+            errors.push(e);
+        }
+    }
+    if !errors.is_empty() {
+        return Err(errors);
     }
     Ok(Program {
         blocks,
@@ -172,17 +423,125 @@ pub fn interpret(blocks: Vec<Block>, options: &ParseOptions) -> Result<Program, 
     })
 }
 
+/// True when the program is evidently multi-axis, so C is a rotary axis
+/// even without [`ParseOptions::c_axis`]: an A or B word anywhere, or a C
+/// word in a block with G0, G2 or G3 or with an A/B word. (A 3-axis Fanuc
+/// program writes C only on G01 blocks, as a chamfer.)
+fn multi_axis(blocks: &[Block]) -> bool {
+    blocks.iter().any(|b| {
+        b.word('A').is_some()
+            || b.word('B').is_some()
+            || (b.word('C').is_some()
+                && b.words_of('G')
+                    .any(|g| matches!((g.value * 10.0).round() as i64, 0 | 20 | 30)))
+    })
+}
+
+/// Blocks a program may execute (subprogram repeats included) before it
+/// is stopped as endless.
+pub const MAX_EXECUTED_BLOCKS: usize = 5_000_000;
+
+/// Deepest subprogram nesting (Fanuc allows 10 levels from the main
+/// program... controls differ; 10 is the common Fanuc limit).
+pub const MAX_NESTING: usize = 10;
+
+struct Frame {
+    ret: usize,
+    start: usize,
+    left: u32,
+    number: u32,
+}
+
+/// O-number → index of its `O` block.
+fn subprogram_index(blocks: &[Block]) -> std::collections::HashMap<u32, usize> {
+    let mut m = std::collections::HashMap::new();
+    for (i, b) in blocks.iter().enumerate() {
+        if let Some(o) = b.words.first().filter(|w| w.letter == 'O') {
+            if o.value >= 0.0 && o.value.fract() == 0.0 {
+                m.entry(o.value as u32).or_insert(i);
+            }
+        }
+    }
+    m
+}
+
+/// The target of `M98 P… (L…/K…)`: Fanuc `P` with more than four digits
+/// holds the repeat count before the four-digit program number
+/// (`P30010` = O0010 three times); `L` or `K` gives the count otherwise.
+fn call(
+    b: &Block,
+    m98: &Word,
+    subs: &std::collections::HashMap<u32, usize>,
+    depth: usize,
+) -> Result<(usize, u32, u32), NcError> {
+    let Some(p) = b.word('P') else {
+        return Err(err(b, m98, "M98 without P; expected M98 P<program number>"));
+    };
+    if p.value < 0.0 || p.value.fract() != 0.0 {
+        return Err(err(
+            b,
+            p,
+            format!("M98 P{}: expected a whole program number", p.text),
+        ));
+    }
+    let digits = p.text.trim_start_matches('+');
+    let (mut times, number) = if digits.len() > 4 {
+        let (rep, num) = digits.split_at(digits.len() - 4);
+        (
+            rep.parse::<u32>().unwrap_or(1).max(1),
+            num.parse::<u32>().unwrap_or(0),
+        )
+    } else {
+        (1, p.value as u32)
+    };
+    if let Some(l) = b.word('L').or(b.word('K')) {
+        if l.value < 0.0 || l.value.fract() != 0.0 || l.value > 9999.0 {
+            return Err(err(
+                b,
+                l,
+                format!(
+                    "repeat count {}{}: expected a whole number from 0 to 9999",
+                    l.letter, l.text
+                ),
+            ));
+        }
+        times = l.value as u32;
+    }
+    if depth >= MAX_NESTING {
+        return Err(err(
+            b,
+            m98,
+            format!("subprogram nesting deeper than {MAX_NESTING} levels"),
+        ));
+    }
+    let start = subs.get(&number).copied().ok_or_else(|| {
+        err(
+            b,
+            p,
+            format!(
+                "M98 P{}: subprogram O{number:04} is not in this program; paste the subprogram (O{number:04} … M99) after M30 and parse again",
+                p.text
+            ),
+        )
+    })?;
+    Ok((start, number, times))
+}
+
+struct Ctx<'a> {
+    bi: usize,
+    opt: &'a ParseOptions,
+    warnings: &'a mut Vec<Warning>,
+    segments: &'a mut Vec<Segment>,
+    corners: &'a mut Vec<Corner>,
+}
+
 fn err(b: &Block, w: &Word, msg: impl Into<String>) -> NcError {
     NcError::new(b.line, w.column, msg)
 }
 
-fn interpret_block(
-    b: &Block,
-    bi: usize,
-    st: &mut Modal,
-    opt: &ParseOptions,
-    warnings: &mut Vec<Warning>,
-) -> Result<Option<Segment>, NcError> {
+fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcError> {
+    let bi = cx.bi;
+    let opt = cx.opt;
     let warn = |warnings: &mut Vec<Warning>, w: &Word, m: String| {
         warnings.push(Warning {
             line: b.line,
@@ -190,9 +549,21 @@ fn interpret_block(
             message: m,
         })
     };
+    if let Some(e) = b.word('E') {
+        return Err(err(
+            b,
+            e,
+            format!(
+                "E{}: this looks like a 3D-printer program (E words drive the extruder); mtmotion reads milling programs only",
+                e.text
+            ),
+        ));
+    }
     // Pass 1: G codes and the words that set modes.
     let mut motion_word: Option<(&Word, MotionCode)> = None;
     let mut dwell: Option<&Word> = None;
+    let mut non_modal: Option<(&Word, i64)> = None;
+    let mut cycle_word: Option<(&Word, i64)> = None;
     for w in b.words.iter().filter(|w| w.letter == 'G') {
         let g = (w.value * 10.0).round() as i64;
         let code = match g {
@@ -225,39 +596,109 @@ fn interpret_block(
             210 => st.inch = false,
             900 => st.incremental = false,
             910 => st.incremental = true,
-            280 | 300 | 920 | 530 => {
+            901 => st.arc_center_absolute = true,
+            911 => st.arc_center_absolute = false,
+            280 | 300 | 530 | 100 | 920 | 921 | 922 | 923 => {
+                if let Some((prev, _)) = non_modal {
+                    return Err(err(
+                        b,
+                        w,
+                        format!("two non-modal codes in one block (G{} and G{})", prev.text, w.text),
+                    ));
+                }
+                non_modal = Some((w, g));
+            }
+            800 => st.cycle = None,
+            980 => st.cycle_return_r = false,
+            990 => st.cycle_return_r = true,
+            730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 890 => {
+                if let Some((prev, _)) = cycle_word {
+                    return Err(err(
+                        b,
+                        w,
+                        format!("two canned cycles in one block (G{} and G{})", prev.text, w.text),
+                    ));
+                }
+                cycle_word = Some((w, g));
+            }
+            330 | 331 | 332 | 741 | 801..=899 => {
                 return Err(err(
                     b,
                     w,
                     format!(
-                        "G{} (reference return / coordinate setting) is not supported; expected plain G0–G3 moves in one work coordinate system",
-                        w.text
+                        "G{}: {} is not simulated yet; post the program with the cycle expanded into G0/G1 moves",
+                        w.text,
+                        match g {
+                            330..=332 => "spindle-synchronised threading/tapping",
+                            870 => "back boring (its shift direction is a machine parameter)",
+                            880 => "a cycle with a manual retract",
+                            _ => "this canned cycle",
+                        }
                     ),
-                ))
+                ));
             }
-            730 | 740 | 760 | 810..=890 => {
+            930 | 950 | 951 => {
                 return Err(err(
                     b,
                     w,
-                    format!("canned cycle G{} is not supported; post the program with cycles expanded", w.text),
+                    format!(
+                        "G{}: {} changes the meaning of F and is not simulated; expected G94 (feed per minute)",
+                        w.text,
+                        if g == 930 { "inverse-time feed" } else { "feed per revolution" }
+                    ),
                 ))
             }
-            400 | 490 | 800 | 940 | 150 | 690 | 610 | 640 | 901 | 540..=590 => {}
-            410 | 420 => warn(
-                warnings,
+            540..=590 => warn(
+                cx.warnings,
                 w,
-                format!("G{}: cutter radius compensation is not modelled; the programmed path is used", w.text),
+                format!(
+                    "work offset G{}: its offset values are unknown here, so the program frame is kept (all work offsets coincide)",
+                    w.text
+                ),
             ),
-            430 | 440 => warn(
-                warnings,
+            400 => {}
+            490 | 940 | 150 | 690 | 610..=649 => {}
+            650 | 660 | 661 => {
+                return Err(err(
+                    b,
+                    w,
+                    format!("G{}: macro calls are not supported yet; expand the macro in the post-processor", w.text),
+                ))
+            }
+            410 | 420 => warn(
+                cx.warnings,
+                w,
+                format!(
+                    "G{}: cutter radius compensation is not simulated; the simulated path is the programmed path (the tool centre follows the written contour)",
+                    w.text
+                ),
+            ),
+            430 | 440 | 431 | 434 => warn(
+                cx.warnings,
                 w,
                 format!("G{}: tool length compensation is ignored (Z is the programmed Z)", w.text),
             ),
-            _ => warn(warnings, w, format!("G{} is not modelled and was ignored", w.text)),
+            _ => warn(cx.warnings, w, format!("G{} is not modelled and was ignored", w.text)),
+        }
+    }
+    // Subprogram and macro calls, program end.
+    for w in b.words.iter().filter(|w| w.letter == 'M') {
+        match (w.value * 10.0).round() as i64 {
+            20 | 300 => st.ended = true,
+            970 => {
+                return Err(err(
+                    b,
+                    w,
+                    "M97 (local subprogram call by N number) is not supported yet; use M98 with an O-numbered subprogram",
+                ))
+            }
+            _ => {}
         }
     }
     // Pass 2: feed and ignored words.
     let scale = if st.inch { INCH } else { 1.0 };
+    let g10 = matches!(non_modal, Some((_, 100)));
+    let m98 = b.words.iter().any(|w| w.letter == 'M' && w.value == 98.0);
     for w in &b.words {
         match w.letter {
             'F' => {
@@ -271,12 +712,31 @@ fn interpret_block(
                         ),
                     ));
                 }
-                st.feed = Some(w.value * scale);
+                let f = w.value * scale;
+                if f > MAX_PLAUSIBLE_FEED {
+                    warn(
+                        cx.warnings,
+                        w,
+                        format!(
+                            "F{} {} = {:.0} mm/min is implausible for a milling feed (above {} mm/min); check the units (G20/G21) and the F word",
+                            w.text,
+                            if st.inch { "inch/min" } else { "mm/min" },
+                            f,
+                            MAX_PLAUSIBLE_FEED
+                        ),
+                    );
+                }
+                st.feed = Some(f);
             }
-            'G' | 'N' | 'O' | 'X' | 'Y' | 'Z' | 'A' | 'B' | 'C' | 'I' | 'J' | 'K' | 'R' => {}
+            'G' | 'N' | 'O' | 'X' | 'Y' | 'Z' | 'A' | 'B' | 'I' | 'J' | 'K' | 'R' => {}
+            'C' => {}
             'P' | 'U' if dwell.is_some() => {}
+            'L' | 'P' if g10 => {}
+            'P' | 'L' if m98 => {}
+            'M' if matches!((w.value * 10.0).round() as i64, 20 | 300 | 980 | 990) => {}
+            'L' | 'P' | 'Q' if st.cycle.is_some() || cycle_word.is_some() => {}
             'M' | 'S' | 'T' | 'H' | 'D' => warn(
-                warnings,
+                cx.warnings,
                 w,
                 format!(
                     "{}{} does not affect the motion model and was ignored",
@@ -284,11 +744,22 @@ fn interpret_block(
                 ),
             ),
             _ => warn(
-                warnings,
+                cx.warnings,
                 w,
                 format!("unknown word {}{} was ignored", w.letter, w.text),
             ),
         }
+    }
+    if g10 {
+        if let Some((w, _)) = non_modal {
+            warn(
+                cx.warnings,
+                w,
+                "G10 sets offset/tool data and does not move; its words were not run as a move"
+                    .into(),
+            );
+        }
+        return Ok(());
     }
     if let Some(dw) = dwell {
         if motion_word.is_some() {
@@ -306,6 +777,16 @@ fn interpret_block(
                 DwellP::Seconds => false,
                 DwellP::Auto => !w.text.contains('.'),
             };
+            if opt.dwell_p == DwellP::Auto && ms {
+                warn(
+                    cx.warnings,
+                    w,
+                    format!(
+                        "G4 P{} read as {} ms (Fanuc: P without a decimal point is milliseconds); LinuxCNC and Grbl read it as {} s — set dwellP to 'seconds' for those controls",
+                        w.text, w.text, w.text
+                    ),
+                );
+            }
             (w, if ms { w.value / 1000.0 } else { w.value })
         } else {
             return Err(err(
@@ -317,7 +798,7 @@ fn interpret_block(
         if seconds < 0.0 || !seconds.is_finite() {
             return Err(err(b, w, "dwell time must be zero or positive"));
         }
-        return Ok(Some(Segment {
+        cx.segments.push(Segment {
             block: Some(bi),
             line: b.line,
             motion: Motion::Dwell { seconds },
@@ -325,24 +806,67 @@ fn interpret_block(
             end: st.pos,
             feed: 0.0,
             fixed: false,
-        }));
+        });
+        return Ok(());
     }
     if let Some((_, m)) = motion_word {
         st.motion = Some(m);
+        st.cycle = None;
+        if let Some((w, _)) = cycle_word {
+            return Err(err(
+                b,
+                w,
+                format!(
+                    "G{} together with a motion code G0–G3 (which cancels canned cycles)",
+                    w.text
+                ),
+            ));
+        }
+    }
+    if let Some((w, g)) = cycle_word {
+        match st.cycle.as_mut() {
+            Some(c) => c.code = g,
+            None => {
+                let (_, _, n) = st.plane.axes();
+                st.cycle = Some(Cycle {
+                    code: g,
+                    initial: st.pos.get(n),
+                    r: None,
+                    bottom: None,
+                    q: 0.0,
+                    dwell: 0.0,
+                })
+            }
+        }
+        let _ = w;
+    }
+    if st.cycle.is_some() && non_modal.is_none() {
+        return canned_cycle(b, st, cx, cycle_word.map(|(w, _)| w), scale);
     }
     // Pass 3: the move.
-    let axis_words: Vec<&Word> = b
-        .words
-        .iter()
-        .filter(|w| AXES.contains(&w.letter))
-        .collect();
+    let is_axis = |w: &&Word| AXES.contains(&w.letter) && (w.letter != 'C' || opt.c_axis);
+    let axis_words: Vec<&Word> = b.words.iter().filter(is_axis).collect();
+    if let Some((w, g)) = non_modal {
+        return non_modal_move(b, st, cx, w, g, &axis_words, scale);
+    }
+    let chamfer_c = if opt.c_axis { None } else { b.word('C') };
     let centre_words: Vec<&Word> = b
         .words
         .iter()
         .filter(|w| matches!(w.letter, 'I' | 'J' | 'K' | 'R'))
         .collect();
     if axis_words.is_empty() && centre_words.is_empty() {
-        return Ok(None);
+        if let Some(c) = chamfer_c {
+            return Err(err(
+                b,
+                c,
+                format!(
+                    "C{} without a move: this machine has no C axis (set cAxis: true if it has one); a Fanuc chamfer C belongs on a G01 block with an end point",
+                    c.text
+                ),
+            ));
+        }
+        return Ok(());
     }
     let first = axis_words
         .first()
@@ -357,12 +881,7 @@ fn interpret_block(
         ));
     };
     let start = st.pos;
-    let mut end = start;
-    for w in &axis_words {
-        let i = AXES.iter().position(|&c| c == w.letter).unwrap_or(0);
-        let v = if i < 3 { w.value * scale } else { w.value };
-        end.set(i, if st.incremental { end.get(i) + v } else { v });
-    }
+    let end = target(st, &axis_words, scale);
     let feed = match mode {
         MotionCode::Rapid => 0.0,
         _ => match st.feed {
@@ -379,20 +898,92 @@ fn interpret_block(
     let motion = match mode {
         MotionCode::Rapid => Motion::Rapid,
         MotionCode::Linear => Motion::Linear,
-        MotionCode::Cw | MotionCode::Ccw => Motion::Arc(arc(
-            b,
-            first,
-            st.plane,
-            mode == MotionCode::Cw,
-            start,
-            end,
-            scale,
-        )?),
+        MotionCode::Cw | MotionCode::Ccw => {
+            let abs_block;
+            let blk = if st.arc_center_absolute {
+                abs_block = absolute_centre_block(b, st.plane, start, scale, &st.offset);
+                &abs_block
+            } else {
+                b
+            };
+            Motion::Arc(arc(
+                blk,
+                first,
+                st.plane,
+                mode == MotionCode::Cw,
+                start,
+                end,
+                scale,
+            )?)
+        }
     };
-    if matches!(mode, MotionCode::Rapid | MotionCode::Linear) {
+    if let Some(c) = chamfer_c {
+        if mode != MotionCode::Linear {
+            return Err(err(
+                b,
+                c,
+                format!(
+                    "C{} on a G{} move: this machine has no C axis (set cAxis: true if it has one); a Fanuc chamfer C belongs on a G01 block",
+                    c.text,
+                    mode.code()
+                ),
+            ));
+        }
+    }
+    let mut corner: Option<(&Word, CornerKind)> = None;
+    for w in b.comma_words.iter().chain(chamfer_c) {
+        if corner.is_some() {
+            return Err(err(
+                b,
+                w,
+                "two corner words (R/C) in one block; expected one",
+            ));
+        }
+        let v = w.value * scale;
+        corner = Some((
+            w,
+            if w.letter == 'R' {
+                CornerKind::Round(v)
+            } else {
+                CornerKind::Chamfer(v)
+            },
+        ));
+    }
+    if mode == MotionCode::Linear {
+        if let Some(r) = b.word('R') {
+            if corner.is_some() {
+                return Err(err(
+                    b,
+                    r,
+                    "two corner words (R/C) in one block; expected one",
+                ));
+            }
+            corner = Some((r, CornerKind::Round(r.value * scale)));
+        }
+    }
+    if let Some((w, kind)) = corner {
+        if mode != MotionCode::Linear {
+            return Err(err(
+                b,
+                w,
+                format!(
+                    "corner word ,{}{} on a G{} move; corner rounding and chamfer belong on G01",
+                    w.letter,
+                    w.text,
+                    mode.code()
+                ),
+            ));
+        }
+        cx.corners.push(Corner {
+            segment: cx.segments.len(),
+            kind,
+            line: b.line,
+            column: w.column,
+        });
+    } else if matches!(mode, MotionCode::Rapid | MotionCode::Linear) {
         if let Some(w) = centre_words.first() {
             warn(
-                warnings,
+                cx.warnings,
                 w,
                 format!(
                     "{}{} has no meaning on a G{} move and was ignored",
@@ -404,7 +995,7 @@ fn interpret_block(
         }
     }
     st.pos = end;
-    Ok(Some(Segment {
+    cx.segments.push(Segment {
         block: Some(bi),
         line: b.line,
         motion,
@@ -412,7 +1003,295 @@ fn interpret_block(
         end,
         feed,
         fixed: false,
-    }))
+    });
+    Ok(())
+}
+
+/// One block in canned-cycle mode: update the cycle data, drill the holes
+/// (see [`super::cycles`]).
+fn canned_cycle(
+    b: &Block,
+    st: &mut Modal,
+    cx: &mut Ctx,
+    cycle_word: Option<&Word>,
+    scale: f64,
+) -> Result<(), NcError> {
+    let Some(mut c) = st.cycle else {
+        return Ok(());
+    };
+    let (u, v, n) = st.plane.axes();
+    let (lu, lv, ln) = (AXES[u], AXES[v], AXES[n]);
+    let wu = b.word(lu);
+    let wv = b.word(lv);
+    let wn = b.word(ln);
+    let wr = b.word('R');
+    if cycle_word.is_none() && wu.is_none() && wv.is_none() && wn.is_none() && wr.is_none() {
+        return Ok(());
+    }
+    let anchor = cycle_word
+        .or(wu)
+        .or(wv)
+        .or(wn)
+        .or(wr)
+        .unwrap_or(&b.words[0]);
+    if let Some(w) = b.words.iter().find(|w| {
+        AXES.contains(&w.letter)
+            && ![lu, lv, ln].contains(&w.letter)
+            && (w.letter != 'C' || cx.opt.c_axis)
+    }) {
+        return Err(err(
+            b,
+            w,
+            format!("{}{} in a canned-cycle block: only the plane axes {lu}/{lv} and the drilling axis {ln} are allowed", w.letter, w.text),
+        ));
+    }
+    if let Some(r) = wr {
+        c.r = Some(if st.incremental {
+            c.initial + r.value * scale
+        } else {
+            r.value * scale + st.offset[n]
+        });
+    }
+    if let Some(z) = wn {
+        let Some(r) = c.r else {
+            return Err(err(
+                b,
+                z,
+                "canned cycle: the R level must be given before or with the bottom",
+            ));
+        };
+        c.bottom = Some(if st.incremental {
+            r + z.value * scale
+        } else {
+            z.value * scale + st.offset[n]
+        });
+    }
+    if let Some(q) = b.word('Q') {
+        c.q = q.value.abs() * scale;
+    }
+    if let Some(p) = b.word('P') {
+        let ms = match cx.opt.dwell_p {
+            DwellP::Milliseconds => true,
+            DwellP::Seconds => false,
+            DwellP::Auto => !p.text.contains('.'),
+        };
+        c.dwell = if ms { p.value / 1000.0 } else { p.value };
+        if c.dwell.is_nan() || c.dwell < 0.0 {
+            return Err(err(b, p, "canned-cycle dwell P must be zero or positive"));
+        }
+    }
+    st.cycle = Some(c);
+    let code = format!("G{}", c.code as f64 / 10.0);
+    let (Some(r), Some(bottom)) = (c.r, c.bottom) else {
+        return Err(err(
+            b,
+            anchor,
+            format!("{code} needs the R level (R) and the bottom ({ln}) before its first hole"),
+        ));
+    };
+    if matches!(c.code, 730 | 830) && c.q <= 0.0 {
+        return Err(err(
+            b,
+            anchor,
+            format!("{code} (peck drilling) needs a peck depth Q greater than 0"),
+        ));
+    }
+    let feed = match st.feed {
+        Some(f) if f > 0.0 => f,
+        _ => {
+            return Err(err(
+                b,
+                anchor,
+                format!(
+                "{code} without a feed; expected an F word (mm/min) on this or an earlier block"
+            ),
+            ))
+        }
+    };
+    let repeats = match b.word('K').or(b.word('L')) {
+        Some(k) if k.value >= 0.0 && k.value.fract() == 0.0 && k.value <= 9999.0 => {
+            k.value as usize
+        }
+        Some(k) => {
+            return Err(err(
+                b,
+                k,
+                format!(
+                    "repeat count {}{} must be a whole number from 0 to 9999",
+                    k.letter, k.text
+                ),
+            ))
+        }
+        None => 1,
+    };
+    if c.code == 760 {
+        cx.warnings.push(Warning {
+            line: b.line,
+            column: anchor.column,
+            message: "G76 fine boring: the tool shift at the bottom (direction set by a machine parameter) is not simulated".into(),
+        });
+    }
+    for _ in 0..repeats {
+        let coord = |w: Option<&Word>, k: usize| match w {
+            None => st.pos.get(k),
+            Some(w) if st.incremental => st.pos.get(k) + w.value * scale,
+            Some(w) => w.value * scale + st.offset[k],
+        };
+        let (pu, pv) = (coord(wu, u), coord(wv, v));
+        let segs = hole(
+            &c,
+            st.plane,
+            st.pos,
+            pu,
+            pv,
+            r,
+            bottom,
+            st.cycle_return_r,
+            feed,
+            cx.bi,
+            b.line,
+        );
+        if let Some(last) = segs.last() {
+            st.pos = last.end;
+        }
+        cx.segments.extend(segs);
+    }
+    Ok(())
+}
+
+/// The end pose of a move with `axis_words` from `st` (G90/G91, G92 shift,
+/// inch scale).
+fn target(st: &Modal, axis_words: &[&Word], scale: f64) -> Pose {
+    let mut end = st.pos;
+    for w in axis_words {
+        let i = AXES.iter().position(|&c| c == w.letter).unwrap_or(0);
+        let v = if i < 3 { w.value * scale } else { w.value };
+        end.set(
+            i,
+            if st.incremental {
+                end.get(i) + v
+            } else {
+                v + st.offset[i]
+            },
+        );
+    }
+    end
+}
+
+/// A copy of `b` whose I/J/K are made incremental from `start` (G90.1
+/// absolute arc centres).
+fn absolute_centre_block(
+    b: &Block,
+    plane: Plane,
+    start: Pose,
+    scale: f64,
+    off: &[f64; 6],
+) -> Block {
+    let _ = plane;
+    let mut c = b.clone();
+    for w in c.words.iter_mut() {
+        let i = match w.letter {
+            'I' => 0,
+            'J' => 1,
+            'K' => 2,
+            _ => continue,
+        };
+        w.value = (w.value * scale + off[i] - start.get(i)) / scale;
+    }
+    c
+}
+
+/// G28/G30 (reference return via an intermediate point), G53 (machine
+/// coordinates), G92 (coordinate shift).
+fn non_modal_move(
+    b: &Block,
+    st: &mut Modal,
+    cx: &mut Ctx,
+    w: &Word,
+    g: i64,
+    axis_words: &[&Word],
+    scale: f64,
+) -> Result<(), NcError> {
+    let warn = |cx: &mut Ctx, m: String| {
+        cx.warnings.push(Warning {
+            line: b.line,
+            column: w.column,
+            message: m,
+        })
+    };
+    match g {
+        280 | 300 => {
+            if !axis_words.is_empty() {
+                let end = target(st, axis_words, scale);
+                cx.segments.push(Segment {
+                    block: Some(cx.bi),
+                    line: b.line,
+                    motion: Motion::Rapid,
+                    start: st.pos,
+                    end,
+                    feed: 0.0,
+                    fixed: true,
+                });
+                st.pos = end;
+            }
+            warn(
+                cx,
+                format!(
+                    "G{}: the rapid to the intermediate point is simulated; the return to the machine reference point is not (machine coordinates are unknown here, and it is not part of the contour); the tool is taken to stay at the intermediate point",
+                    w.text
+                ),
+            );
+        }
+        530 => warn(
+            cx,
+            format!(
+                "G{}: a move in machine coordinates is not part of the contour and is not simulated (the work offset is unknown); the tool is taken to stay at its last program position",
+                w.text
+            ),
+        ),
+        920 => {
+            for aw in axis_words {
+                let i = AXES.iter().position(|&c| c == aw.letter).unwrap_or(0);
+                let v = if i < 3 { aw.value * scale } else { aw.value };
+                st.offset[i] = st.pos.get(i) - v;
+            }
+            warn(
+                cx,
+                format!(
+                    "G{}: coordinate shift by ({:.4}, {:.4}, {:.4}) mm; later absolute coordinates are shifted so the path stays continuous",
+                    w.text, st.offset[0], st.offset[1], st.offset[2]
+                ),
+            );
+        }
+        921 | 922 => {
+            st.offset = [0.0; 6];
+            warn(cx, format!("G{}: the G92 coordinate shift is cancelled", w.text));
+        }
+        _ => warn(cx, format!("G{} is not modelled and was ignored", w.text)),
+    }
+    Ok(())
+}
+
+/// A Fanuc corner word waiting for the next move.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Corner {
+    /// Index of the G01 segment whose end is the corner.
+    pub segment: usize,
+    /// Rounding or chamfer.
+    pub kind: CornerKind,
+    /// Source line and column of the word.
+    pub line: usize,
+    /// 1-based column.
+    pub column: usize,
+}
+
+/// `,R` / `R` (rounding radius) or `,C` / `C` (chamfer), mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CornerKind {
+    /// Corner rounding radius, mm.
+    Round(f64),
+    /// Chamfer: distance from the virtual corner along each line, mm.
+    Chamfer(f64),
 }
 
 #[cfg(test)]
@@ -472,8 +1351,9 @@ mod tests {
             .collect();
         assert_eq!(secs, vec![1.5, 0.5, 0.25]);
         assert_eq!(p.segments[3].end.a, 90.0);
-        assert_eq!(p.warnings.len(), 4);
-        assert!(p.warnings[3].message.contains("unknown word Q2"));
+        assert_eq!(p.warnings.len(), 5);
+        assert!(p.warnings[0].message.contains("read as 1500 ms"));
+        assert!(p.warnings[4].message.contains("unknown word Q2"));
         let p = parse_with(
             "G4 P2",
             &ParseOptions {

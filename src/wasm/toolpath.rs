@@ -7,7 +7,9 @@ use wasm_bindgen::prelude::*;
 
 use super::convert::{from_js, string_arg, to_js, Obj};
 use crate::compensate::reverse::{reverse_compensate, ReverseConfig};
-use crate::nc::program::{parse, Segment, Warning};
+use crate::nc::program::{parse, parse_all, ParseOptions, Segment, Warning};
+use crate::nc::summary::{summarize, Summary};
+use crate::nc::NcError;
 use crate::toolpath::identify::{
     identify_acc_dec as identify, radius_reduction as eq3, CircleLoss,
 };
@@ -23,7 +25,17 @@ export type NcMotion =
 /** One motion segment; mm, degrees for a/b/c, feed in mm/min. */
 export interface NcSegment { block: number | null; line: number; motion: NcMotion; start: Pose; end: Pose; feed: number; fixed: boolean }
 export interface NcWarning { line: number; column: number; message: string }
-export interface ParsedNc { segments: NcSegment[]; warnings: NcWarning[] }
+/** Reading options; an unknown key is an error naming it. dwellP: how G4 P is read ('auto': with a decimal point seconds, without milliseconds; 'milliseconds': Fanuc; 'seconds': LinuxCNC/Grbl). skipBlockDelete (default true): skip '/' blocks. cAxis (default false): C is a rotary axis; otherwise C on G01 is a Fanuc chamfer. */
+export interface NcParseOptions { dwellP?: 'auto' | 'milliseconds' | 'seconds'; skipBlockDelete?: boolean; cAxis?: boolean; start?: Pose }
+export interface NcWarningGroup { kind: string; count: number; lines: number[]; indices: number[] }
+/** Lengths mm, motionTime s (Σ length/feed, rapids at rapidFeed mm/min, dwells; no acc/dec). */
+export interface NcSummary {
+  bboxMin: [number, number, number] | null; bboxMax: [number, number, number] | null;
+  totalLength: number; cuttingLength: number; arcs: number; lines: number; rapids: number; dwells: number;
+  units: string; planes: string[]; motionTime: number; rapidFeed: number; warnings: NcWarningGroup[];
+}
+export interface ParsedNc { segments: NcSegment[]; warnings: NcWarning[]; summary: NcSummary }
+export interface NcCheck { errors: NcWarning[]; truncated: boolean; warnings: NcWarning[]; summary: NcSummary | null }
 /** tA and T in s (T one value or [Tx, Ty, Tz]), dt in s, rapidFeed in mm/min, feedOverride as a fraction; dwellExactStop: every G4 first waits tA + 5·max T (exact stop, in-position check). */
 export interface ToolPathConfig { tA?: number; T?: number | [number, number, number]; dt?: number; rapidFeed?: number; feedOverride?: number; dwellExactStop?: boolean }
 export interface SegmentStats {
@@ -60,6 +72,7 @@ export interface ReverseCompensation {
 struct Parsed<'a> {
     segments: &'a [Segment],
     warnings: &'a [Warning],
+    summary: Summary,
 }
 
 /// Parses an NC program into motion segments and warnings; throws an
@@ -68,13 +81,72 @@ struct Parsed<'a> {
 #[wasm_bindgen(js_name = parseNc, unchecked_return_type = "ParsedNc")]
 pub fn parse_nc(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "NcParseOptions | undefined")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
-    let p = parse(text)?;
+    let opts = parse_options(options)?;
+    let p = parse_all(text, &opts).map_err(|e| JsError::new(&e.to_string()))?;
+    let rapid_feed = SimConfig::default().rapid_feed;
     to_js(&Parsed {
         segments: &p.segments,
         warnings: &p.warnings,
+        summary: summarize(&p, rapid_feed),
     })
+}
+
+fn parse_options(options: JsValue) -> Result<ParseOptions, JsError> {
+    if options.is_undefined() || options.is_null() {
+        return Ok(ParseOptions::default());
+    }
+    // serde-wasm-bindgen only reads the keys a struct names, so the core's
+    // deny_unknown_fields never sees a misspelt key: check here.
+    let keys: std::collections::BTreeMap<String, serde::de::IgnoredAny> =
+        from_js(options.clone(), "options")?;
+    if let Some(k) = keys
+        .keys()
+        .find(|k| !ParseOptions::KEYS.contains(&k.as_str()))
+    {
+        return Err(JsError::new(&format!(
+            "options: unknown key '{k}'; expected one of {}",
+            ParseOptions::KEYS.join(", ")
+        )));
+    }
+    from_js(options, "options")
+}
+
+#[derive(Serialize)]
+struct Checked<'a> {
+    errors: &'a [NcError],
+    truncated: bool,
+    warnings: &'a [Warning],
+    summary: Option<Summary>,
+}
+
+#[cfg(feature = "full")]
+/// Checks an NC program without throwing on program errors: every error
+/// (line, column, message; up to 100), or the warnings and the summary.
+/// Throws only for a bad `text` or `options` argument.
+#[wasm_bindgen(js_name = checkNc, unchecked_return_type = "NcCheck")]
+pub fn check_nc(
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "NcParseOptions | undefined")] options: JsValue,
+) -> Result<JsValue, JsError> {
+    let text: &str = &string_arg(&text, "text")?;
+    let opts = parse_options(options)?;
+    match parse_all(text, &opts) {
+        Ok(p) => to_js(&Checked {
+            errors: &[],
+            truncated: false,
+            warnings: &p.warnings,
+            summary: Some(summarize(&p, SimConfig::default().rapid_feed)),
+        }),
+        Err(e) => to_js(&Checked {
+            errors: &e.errors,
+            truncated: e.truncated,
+            warnings: &[],
+            summary: None,
+        }),
+    }
 }
 
 fn sim_obj(s: &Simulation, warnings: &[Warning]) -> Result<JsValue, JsError> {

@@ -12,14 +12,64 @@ export async function mount(root, api) {
     lines: await api.call('toolpathExample', ['lines']),
   };
   const nc = h('textarea', { id: 'toolpath-nc', rows: 14, spellcheck: false, style: 'width:100%;font-family:monospace' });
+  // Program check (issue 15): errors or warnings next to the text, each a
+  // link that selects its line; the summary the user checks first.
+  const check = h('div', { id: 'toolpath-check', 'aria-live': 'polite', style: 'max-height:330px;overflow:auto;font-size:90%' });
+  function selectLine(line) {
+    const lines = nc.value.split('\n');
+    let start = 0;
+    for (let i = 0; i < line - 1 && i < lines.length; i++) start += lines[i].length + 1;
+    const end = start + (lines[line - 1] ?? '').length;
+    nc.focus();
+    nc.setSelectionRange(start, end);
+    nc.scrollTop = Math.max(0, (line - 3) * (nc.scrollHeight / Math.max(lines.length, 1)));
+  }
+  const lineLink = (w, cls) => h('li', { class: cls },
+    h('a', { href: '#', class: 'nc-line', 'data-line': w.line, onclick: (e) => { e.preventDefault(); selectLine(w.line); } }, `line ${w.line}, column ${w.column}`),
+    `: ${w.message}`);
+  let checkSeq = 0;
+  async function checkProgram() {
+    const seq = ++checkSeq;
+    try {
+      const c = await api.call('checkNc', [nc.value]);
+      if (seq !== checkSeq) return;
+      if (c.errors.length) {
+        check.replaceChildren(
+          h('p', { class: 'error' }, `${c.errors.length}${c.truncated ? '+' : ''} error(s): the program cannot be simulated until they are fixed.`),
+          h('ul', { id: 'toolpath-check-errors' }, ...c.errors.map((w) => lineLink(w, 'error'))),
+        );
+        return;
+      }
+      const s = c.summary;
+      const box = s.bboxMin ? `X ${fmt(s.bboxMin[0], 4)} … ${fmt(s.bboxMax[0], 4)}, Y ${fmt(s.bboxMin[1], 4)} … ${fmt(s.bboxMax[1], 4)}, Z ${fmt(s.bboxMin[2], 4)} … ${fmt(s.bboxMax[2], 4)} mm` : '—';
+      const groups = s.warnings.map((g) => h('details', {},
+        h('summary', {}, `${g.kind} (${g.count})`),
+        h('ul', {}, ...g.indices.map((i) => lineLink(c.warnings[i], 'warn')))));
+      check.replaceChildren(
+        table(['program summary', ''], [
+          ['bounding box', box],
+          ['path length (cutting)', `${fmt(s.totalLength, 5)} mm (${fmt(s.cuttingLength, 5)} mm)`],
+          ['arcs / lines / rapids / dwells', `${s.arcs} / ${s.lines} / ${s.rapids} / ${s.dwells}`],
+          ['units, arc planes', `${s.units}${s.planes.length ? `, ${s.planes.join(' ')}` : ''}`],
+          ['estimated motion time', h('span', {}, h('span', { id: 'toolpath-check-time' }, fmt(s.motionTime, 5)), ` s (Σ length/feed, rapids at ${s.rapidFeed} mm/min, no acc/dec)`)],
+        ]),
+        h('p', {}, 'Cutter radius compensation (G41/G42) is not simulated: the simulated path is the programmed path.'),
+        c.warnings.length ? h('div', { id: 'toolpath-check-warnings' }, h('p', {}, `${c.warnings.length} warning(s), by kind:`), ...groups) : h('p', {}, 'No warnings.'),
+      );
+    } catch (e) {
+      if (seq === checkSeq) { check.replaceChildren(); showError(check, e); }
+    }
+  }
+  let checkTimer = 0;
+  nc.addEventListener('input', () => { clearTimeout(checkTimer); checkTimer = setTimeout(checkProgram, 400); });
   nc.value = examples.arcs;
   let fileName = 'program.nc';
   const example = selectField({
     label: 'Built-in example', id: 'toolpath-example', value: 'arcs',
     options: [['arcs', 'Fig. 2-like path, B–D as 43 arcs'], ['lines', 'Fig. 2-like path, B–D as 83 lines']],
-    onChange: (v) => { nc.value = examples[v]; fileName = `example-${v}.nc`; programChanged(); },
+    onChange: (v) => { nc.value = examples[v]; fileName = `example-${v}.nc`; programChanged(); checkProgram(); },
   });
-  const drop = dropZone({ label: 'Drop an NC program here, or click to choose one', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', onText: (text, name) => { nc.value = text; fileName = name; programChanged(); } });
+  const drop = dropZone({ label: 'Drop an NC program here, or click to choose one', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', onText: (text, name) => { nc.value = text; fileName = name; programChanged(); checkProgram(); } });
   const tA = numberField({ label: 'tA (acc/dec)', value: 40, unit: 'ms', step: 1, min: 0, id: 'toolpath-ta' });
   const tx = numberField({ label: 'T X', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-tx' });
   const ty = numberField({ label: 'T Y', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-ty' });
@@ -158,7 +208,7 @@ export async function mount(root, api) {
     h('div', { class: 'card' },
       h('h3', {}, 'NC program'),
       h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, example.el, drop),
-      nc),
+      h('div', { style: 'display:grid;grid-template-columns:repeat(auto-fit,minmax(280px,1fr));gap:12px' }, nc, check)),
     h('div', { class: 'card' },
       h('h3', {}, 'Model (Eq. 1 moving average tA, Eq. 2 first-order lag T per axis)'),
       h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, tA.el, tx.el, ty.el, tz.el, ovr.el, dt.el),
@@ -166,4 +216,5 @@ export async function mount(root, api) {
     h('div', { class: 'card' }, h('h3', {}, 'Simulation'), out, pathBox, velBox),
     h('div', { class: 'card' }, h('h3', {}, 'Reverse compensation (§4-3)'), compOut),
   );
+  checkProgram();
 }

@@ -1,0 +1,200 @@
+//! Every program of `tests/nc_corpus/` (see its SOURCES.md) through parse,
+//! summary and simulation, with each file's outcome pinned: either it
+//! parses (segment count pinned) or it is refused with the exact located
+//! error. For the programs that simulate, the motion time with acc/dec and
+//! servo lag off (tA = 0, T = 0) must agree within 1 % with an independent
+//! sum of length/feed computed here from the segment geometry (lines:
+//! Euclidean length; arcs: helix length √((r·|θ|)² + Δn²); rapids at the
+//! configured rapid rate; dwells added).
+//!
+//! Simulation in the default (debug) test run is limited to programs whose
+//! nominal time is under 1000 s (dt = 1 ms); the one longer program, the
+//! 40,306-line pocket (5176 s, 5.2 M samples), is parsed and summarised
+//! here and simulated by the `#[ignore]`d test below
+//! (`cargo test --release --test nc_corpus -- --ignored`).
+
+use mtmotion::nc::program::{parse_all, Motion, ParseOptions, Segment};
+use mtmotion::nc::summary::summarize;
+use mtmotion::toolpath::{simulate, Lag, SimConfig};
+
+enum Outcome {
+    /// Parses into this many segments.
+    Ok(usize),
+    /// Refused: first error's line, column and a phrase of its message,
+    /// and the number of errors reported.
+    Err(usize, usize, &'static str, usize),
+}
+
+const CORPUS: &[(&str, Outcome)] = &[
+    (
+        "cncjs_Circle_Diamond_Square_Calibration.gcode",
+        Outcome::Err(624, 18, "inconsistent radius", 5),
+    ),
+    ("cncjs_arc-xz-plane.gcode", Outcome::Ok(2)),
+    ("cncjs_arc-yz-plane.gcode", Outcome::Ok(2)),
+    ("cncjs_circle-inch.gcode", Outcome::Ok(10)),
+    (
+        "cncjs_full-circle-without-xyz.gcode",
+        Outcome::Err(11, 5, "without a centre", 2),
+    ),
+    ("cncjs_helical-thread-milling.gcode", Outcome::Ok(12)),
+    (
+        "cncjs_sample.gcode",
+        Outcome::Err(17, 5, "this looks like a 3D-printer program", 1),
+    ),
+    ("cncjs_tball-pocket.gcode", Outcome::Ok(40266)),
+    (
+        "linuxcnc_3D_Chips.ngc",
+        Outcome::Err(8, 1, "macro variable", 100),
+    ),
+    ("linuxcnc_arcspiral.ngc", Outcome::Ok(1005)),
+    ("linuxcnc_cds.ngc", Outcome::Ok(266)),
+    ("linuxcnc_comp.ngc", Outcome::Ok(43)),
+    (
+        "linuxcnc_daisy.ngc",
+        Outcome::Err(3, 6, "o-word 'sub'", 100),
+    ),
+    (
+        "linuxcnc_hole-circle.ngc",
+        Outcome::Err(10, 18, "polar coordinate", 1),
+    ),
+    (
+        "linuxcnc_mmount.ngc",
+        Outcome::Err(24, 1, "macro variable", 100),
+    ),
+    (
+        "linuxcnc_spiral.ngc",
+        Outcome::Err(8, 6, "o-word 'repeat'", 3),
+    ),
+    (
+        "linuxcnc_systems.ngc",
+        Outcome::Err(4, 1, "macro variable", 100),
+    ),
+    (
+        "linuxcnc_threading.ngc",
+        Outcome::Err(10, 1, "macro variable", 34),
+    ),
+    ("linuxcnc_tort.ngc", Outcome::Ok(268)),
+    (
+        "printhor_example3.gcode",
+        Outcome::Err(13, 7, "back boring", 10),
+    ),
+];
+
+fn read(name: &str) -> String {
+    let bytes = std::fs::read(format!(
+        "{}/tests/nc_corpus/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap_or_else(|e| panic!("{name}: {e}"));
+    String::from_utf8(bytes).unwrap_or_else(|e| panic!("{name}: not UTF-8: {e}"))
+}
+
+/// Σ length/feed, written independently of `Segment::length`.
+fn independent_time(segs: &[Segment], rapid: f64) -> f64 {
+    segs.iter()
+        .map(|s| {
+            let (a, b) = (s.start.p(), s.end.p());
+            let len = match s.motion {
+                Motion::Dwell { seconds } => return seconds,
+                Motion::Arc(arc) => {
+                    let (_, _, n) = arc.plane.axes();
+                    (arc.radius * arc.sweep.abs()).hypot(b[n] - a[n])
+                }
+                _ => ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt(),
+            };
+            let f = if matches!(s.motion, Motion::Rapid) {
+                rapid
+            } else {
+                s.feed
+            };
+            len / f * 60.0
+        })
+        .sum()
+}
+
+#[test]
+fn every_corpus_file_has_its_pinned_outcome() {
+    let listed: Vec<&str> = CORPUS.iter().map(|(n, _)| *n).collect();
+    let mut on_disk: Vec<String> =
+        std::fs::read_dir(format!("{}/tests/nc_corpus", env!("CARGO_MANIFEST_DIR")))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n != "SOURCES.md")
+            .collect();
+    on_disk.sort();
+    assert_eq!(
+        on_disk, listed,
+        "every corpus file is pinned, in name order"
+    );
+    assert!(CORPUS.len() >= 15);
+    let cfg = SimConfig::default();
+    let off = SimConfig {
+        t_a: 0.0,
+        t: Lag::All(0.0),
+        ..SimConfig::default()
+    };
+    for (name, outcome) in CORPUS {
+        let text = read(name);
+        let result = parse_all(&text, &ParseOptions::default());
+        match (outcome, result) {
+            (Outcome::Ok(n), Ok(p)) => {
+                assert_eq!(p.segments.len(), *n, "{name}");
+                let s = summarize(&p, cfg.rapid_feed);
+                let t = independent_time(&p.segments, cfg.rapid_feed);
+                assert!(
+                    (s.motion_time - t).abs() <= 1e-9 * t,
+                    "{name}: {} vs {t}",
+                    s.motion_time
+                );
+                eprintln!(
+                    "{name}: {} segments, Σ length/feed {t:.3} s",
+                    p.segments.len()
+                );
+                if t < 1000.0 {
+                    let sim = simulate(&p.segments, &p.segments, &off)
+                        .unwrap_or_else(|e| panic!("{name}: {e}"));
+                    // With acc/dec off the motion ends when the last
+                    // command ends; dt = 1 ms of sampling granularity.
+                    assert!(
+                        (sim.motion_time - t).abs() <= 0.01 * t + 2.0 * off.dt,
+                        "{name}: simulated {} s vs Σ length/feed {t} s",
+                        sim.motion_time
+                    );
+                    let sim = simulate(&p.segments, &p.segments, &cfg)
+                        .unwrap_or_else(|e| panic!("{name}: {e}"));
+                    assert!(sim.max_error.is_finite(), "{name}");
+                }
+            }
+            (Outcome::Err(line, col, phrase, count), Err(e)) => {
+                let first = &e.errors[0];
+                assert_eq!((first.line, first.column), (*line, *col), "{name}: {first}");
+                assert!(first.message.contains(phrase), "{name}: {first}");
+                assert_eq!(e.errors.len(), *count, "{name}");
+            }
+            (Outcome::Ok(_), Err(e)) => panic!("{name} should parse: {e}"),
+            (Outcome::Err(..), Ok(p)) => panic!(
+                "{name} should be refused, got {} segments",
+                p.segments.len()
+            ),
+        }
+    }
+}
+
+#[test]
+#[ignore = "5.2 M samples: run with --release -- --ignored"]
+fn the_largest_corpus_program_simulates_with_the_time_of_its_length_over_feed() {
+    let p = parse_all(&read("cncjs_tball-pocket.gcode"), &ParseOptions::default()).unwrap();
+    let off = SimConfig {
+        t_a: 0.0,
+        t: Lag::All(0.0),
+        ..SimConfig::default()
+    };
+    let t = independent_time(&p.segments, off.rapid_feed);
+    let sim = simulate(&p.segments, &p.segments, &off).unwrap();
+    assert!(
+        (sim.motion_time - t).abs() <= 0.01 * t,
+        "{} vs {t}",
+        sim.motion_time
+    );
+}

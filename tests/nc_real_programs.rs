@@ -1,0 +1,296 @@
+//! Issue 15 regressions: every silent misread of real shop-floor programs
+//! now has its fixed reading or a warning/error naming the line, and a
+//! program reports all of its errors. Expected values come from the codes'
+//! written definitions (Fanuc/LinuxCNC manuals) and plain geometry, not
+//! from the parser's output.
+
+use std::f64::consts::PI;
+
+use mtmotion::nc::program::{parse, parse_all, parse_with, DwellP, Motion, ParseOptions, Segment};
+
+fn ends(segs: &[Segment]) -> Vec<[f64; 3]> {
+    segs.iter().map(|s| s.end.p()).collect()
+}
+
+fn close(a: [f64; 3], b: [f64; 3]) -> bool {
+    (0..3).all(|k| (a[k] - b[k]).abs() < 1e-9)
+}
+
+#[test]
+fn fanuc_chamfer_c_is_not_a_c_axis_move() {
+    // 3-axis default: C on G01 is a chamfer of 2 mm from the virtual corner.
+    let p = parse("G0 X0 Y0\nG1 X10 C2 F100\nG1 Y10").unwrap();
+    let e = ends(&p.segments);
+    assert_eq!(p.segments.len(), 4);
+    assert!(close(e[1], [8.0, 0.0, 0.0]), "{e:?}");
+    assert!(close(e[2], [10.0, 2.0, 0.0]), "{e:?}");
+    assert!(close(e[3], [10.0, 10.0, 0.0]), "{e:?}");
+    assert!(p.segments.iter().all(|s| s.end.c == 0.0));
+    assert!((p.segments[2].length() - 2.0 * 2f64.sqrt()).abs() < 1e-12);
+    assert!(p.segments[1].fixed && p.segments[2].fixed && !p.segments[3].fixed);
+    // ,C is the same chamfer.
+    let q = parse("G0 X0 Y0\nG1 X10 ,C2 F100\nG1 Y10").unwrap();
+    assert_eq!(ends(&q.segments), e);
+    // A declared C axis reads C15 as 15 degrees.
+    let opt = ParseOptions {
+        c_axis: true,
+        ..Default::default()
+    };
+    let p = parse_with("G0 X0 C15", &opt).unwrap();
+    assert_eq!(p.segments[0].end.c, 15.0);
+    // A program with A or B words is multi-axis: C is its rotary axis.
+    let p = parse("G0 X0 A10\nG1 X10 C30 F100").unwrap();
+    assert_eq!(p.segments[1].end.c, 30.0);
+    assert_eq!(p.segments.len(), 2);
+    // So is C on a rapid (a 3-axis Fanuc program writes C only on G01).
+    assert_eq!(parse("G0 X0 C15").unwrap().segments[0].end.c, 15.0);
+    // A chamfer with no line after it is an error at the C word.
+    let e = parse("G0 X5\nG1 X0 C15 F100").unwrap_err();
+    assert_eq!((e.line, e.column), (2, 7));
+    assert!(e.message.contains("next move to be a G01"), "{e}");
+    // C alone (no move) on a 3-axis program is an error at the C word.
+    let e = parse("G0 X5\nG1 X0 F100\nC2").unwrap_err();
+    assert_eq!((e.line, e.column), (3, 1));
+    assert!(e.message.contains("no C axis"), "{e}");
+}
+
+#[test]
+fn fanuc_corner_rounding_inserts_a_tangent_arc() {
+    for src in [
+        "G0 X0 Y0\nG1 X20 ,R5 F100\nG1 Y20",
+        "G0 X0 Y0\nG1 X20 R5 F100\nG1 Y20",
+    ] {
+        let p = parse(src).unwrap();
+        assert_eq!(p.segments.len(), 4, "{src}");
+        // 90° turn: the tangent points lie R·tan(45°) = 5 mm from the corner.
+        let e = ends(&p.segments);
+        assert!(close(e[1], [15.0, 0.0, 0.0]), "{e:?}");
+        assert!(close(e[2], [20.0, 5.0, 0.0]), "{e:?}");
+        let Motion::Arc(a) = p.segments[2].motion else {
+            panic!("not an arc")
+        };
+        assert!(close(a.center, [15.0, 5.0, 0.0]), "{:?}", a.center);
+        assert!((a.sweep - PI / 2.0).abs() < 1e-12);
+        assert!((p.segments[2].length() - 2.5 * PI).abs() < 1e-12);
+        assert!(close(p.segments[3].start.p(), [20.0, 5.0, 0.0]));
+    }
+    // A corner larger than the line is a located error.
+    let e = parse("G0 X0 Y0\nG1 X2 ,R5 F100\nG1 Y20").unwrap_err();
+    assert_eq!((e.line, e.column), (2, 7));
+    assert!(e.message.contains("does not fit"), "{e}");
+}
+
+#[test]
+fn g10_sets_data_and_does_not_move() {
+    let p = parse("G0 X1 Y1\nG10 L2 P1 X-315. Y-315. Z-689.88\nG1 X2 F100").unwrap();
+    assert_eq!(p.segments.len(), 2);
+    assert!(close(p.segments[1].start.p(), [1.0, 1.0, 0.0]));
+    assert!(p
+        .warnings
+        .iter()
+        .any(|w| w.line == 2 && w.message.contains("does not move")));
+}
+
+#[test]
+fn g90_1_absolute_arc_centres() {
+    // Quarter circle about the origin: 90°, not the 270° an incremental
+    // reading of I/J would need.
+    let p = parse("G0 X10 Y0\nG90.1 G3 X0 Y10 I0 J0 F100").unwrap();
+    let Motion::Arc(a) = p.segments[1].motion else {
+        panic!()
+    };
+    assert!(close(a.center, [0.0, 0.0, 0.0]), "{:?}", a.center);
+    assert!((a.sweep - PI / 2.0).abs() < 1e-12, "{}", a.sweep);
+    let q = parse("G0 X10 Y0\nG91.1 G3 X0 Y10 I-10 J0 F100").unwrap();
+    assert_eq!(q.segments[1].motion, p.segments[1].motion);
+}
+
+#[test]
+fn threading_and_tapping_are_refused_at_their_word() {
+    for (src, col) in [
+        ("G0 X0 Y0\nG33.1 Z-10 K1.25", 1),
+        ("G0 X1\nG98 G84.2 Z-5 R1 F100", 5),
+    ] {
+        let e = parse(src).unwrap_err();
+        assert_eq!((e.line, e.column), (2, col), "{e}");
+        assert!(e.message.contains("not simulated"), "{e}");
+    }
+}
+
+#[test]
+fn dwell_in_every_common_form() {
+    let secs = |src: &str, d: DwellP| -> (f64, usize) {
+        let p = parse_with(
+            src,
+            &ParseOptions {
+                dwell_p: d,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        match p.segments[0].motion {
+            Motion::Dwell { seconds } => (seconds, p.warnings.len()),
+            m => panic!("{m:?}"),
+        }
+    };
+    // LinuxCNC / Grbl: P in seconds.
+    assert_eq!(secs("G4 P3", DwellP::Seconds), (3.0, 0));
+    // Fanuc: P without a decimal point in ms, X and U in seconds.
+    assert_eq!(secs("G04 P3", DwellP::Milliseconds), (0.003, 0));
+    assert_eq!(secs("G04 X1.5", DwellP::Auto), (1.5, 0));
+    assert_eq!(secs("G04 U2.", DwellP::Auto), (2.0, 0));
+    assert_eq!(secs("G4 P0.5", DwellP::Auto), (0.5, 0));
+    // Auto reads P3 as 3 ms but says that LinuxCNC/Grbl would mean 3 s.
+    assert_eq!(secs("G4 P3", DwellP::Auto), (0.003, 1));
+    let p = parse("G4 P3").unwrap();
+    assert!(p.warnings[0].message.contains("3 s"), "{}", p.warnings[0]);
+}
+
+#[test]
+fn implausible_feed_is_warned() {
+    let p = parse("G20\nG1 X1 F100100").unwrap();
+    let w = &p.warnings[0];
+    assert_eq!((w.line, w.column), (2, 7));
+    assert!(w.message.contains("implausible"), "{w}");
+    let p = parse("G20\nG1 X1 F100").unwrap();
+    assert!(p.warnings.is_empty());
+}
+
+#[test]
+fn unknown_option_keys_are_rejected_by_name() {
+    let e = serde_json::from_str::<ParseOptions>(r#"{"dwelP": "seconds"}"#).unwrap_err();
+    assert!(e.to_string().contains("dwelP"), "{e}");
+    let o: ParseOptions = serde_json::from_str(r#"{"dwellP": "seconds", "cAxis": true}"#).unwrap();
+    // KEYS lists exactly the serialised keys.
+    let v = serde_json::to_value(ParseOptions::default()).unwrap();
+    let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+    keys.sort_unstable();
+    let mut want = ParseOptions::KEYS.to_vec();
+    want.sort_unstable();
+    assert_eq!(keys, want);
+    assert_eq!(o.dwell_p, DwellP::Seconds);
+    assert!(o.c_axis && o.skip_block_delete);
+}
+
+#[test]
+fn machine_coordinate_moves_and_offsets() {
+    // G53: not simulated, warned; the tool stays where it was.
+    let p = parse("G0 X5 Y5 Z5\nG53 G0 Z0\nG1 X6 F100").unwrap();
+    assert_eq!(p.segments.len(), 2);
+    assert!(close(p.segments[1].start.p(), [5.0, 5.0, 5.0]));
+    assert!(p
+        .warnings
+        .iter()
+        .any(|w| w.line == 2 && w.message.contains("machine coordinates")));
+    // G28: the rapid to the intermediate point is simulated and fixed.
+    let p = parse("G0 X1 Y1\nG28 X10 Y10\nG1 X11 F100").unwrap();
+    assert_eq!(p.segments.len(), 3);
+    assert!(p.segments[1].fixed);
+    assert!(close(p.segments[1].end.p(), [10.0, 10.0, 0.0]));
+    assert!(p
+        .warnings
+        .iter()
+        .any(|w| w.line == 2 && w.message.contains("reference point")));
+    // G92 X0 Y0 at (10, 10): X5 is 5 mm further, the path stays continuous.
+    let p = parse("G0 X10 Y10\nG92 X0 Y0\nG1 X5 F100\nG92.1\nG1 X0").unwrap();
+    assert!(close(p.segments[1].end.p(), [15.0, 10.0, 0.0]));
+    assert!(close(p.segments[2].end.p(), [0.0, 10.0, 0.0]));
+    // Work offsets: warned, program frame kept.
+    let p = parse("G55 G0 X1\nG54.1 P3 G0 X2").unwrap();
+    assert_eq!(
+        p.warnings
+            .iter()
+            .filter(|w| w.message.starts_with("work offset"))
+            .count(),
+        2
+    );
+    assert_eq!(p.segments[1].end.x, 2.0);
+}
+
+#[test]
+fn program_end_and_subprogram_calls() {
+    // M30 ends the main program: the O2000 body after it is not run inline
+    // (it is a subprogram, so no warning), but other text after M30 is
+    // warned about.
+    let p = parse("G0 X1\nM30\nO2000\nG1 X50 F100\nM99").unwrap();
+    assert_eq!(p.segments.len(), 1);
+    assert!(p.warnings.iter().all(|w| !w.message.contains("not run")));
+    let p = parse("G0 X1\nM30\nG1 X50 F100").unwrap();
+    assert_eq!(p.segments.len(), 1);
+    assert!(p
+        .warnings
+        .iter()
+        .any(|w| w.line == 3 && w.message.contains("not run")));
+    // M98 to a subprogram that is not in the text: refused at its P word.
+    let e = parse("G0 X1\nM98 P2000\nM30").unwrap_err();
+    assert_eq!((e.line, e.column), (2, 5));
+    assert!(e.message.contains("O2000 is not in this program"), "{e}");
+}
+
+#[test]
+fn block_delete_is_an_option() {
+    let src = "G0 X0\n/G1 X5 F100\nG1 X1 F100";
+    let p = parse(src).unwrap();
+    assert_eq!(p.segments.len(), 2);
+    assert!(p
+        .warnings
+        .iter()
+        .any(|w| w.line == 2 && w.message.contains("block delete")));
+    let opt = ParseOptions {
+        skip_block_delete: false,
+        ..Default::default()
+    };
+    assert_eq!(parse_with(src, &opt).unwrap().segments.len(), 3);
+}
+
+#[test]
+fn three_d_printer_program_is_recognised() {
+    let e = parse("G21\nG92 E0\nG1 X10 Y10 E1.2 F1800").unwrap_err();
+    assert_eq!((e.line, e.column), (2, 5));
+    assert!(
+        e.message.contains("this looks like a 3D-printer program"),
+        "{e}"
+    );
+}
+
+#[test]
+fn every_error_is_reported_in_order() {
+    let src =
+        "G21\nG1 X1\nG0 X1 (DRILL (5 HOLES)\nIF [#1 GT 2] GOTO 5\nG1 X2 F100\nG2 X3\nG0 X\u{1a}2";
+    let e = parse_all(src, &ParseOptions::default()).unwrap_err();
+    let at: Vec<(usize, usize)> = e.errors.iter().map(|e| (e.line, e.column)).collect();
+    assert_eq!(at, vec![(2, 4), (3, 7), (4, 1), (6, 4), (7, 5)]);
+    let text = e.to_string();
+    assert!(text.starts_with("5 errors in the program:"), "{text}");
+    assert!(
+        text.contains("line 7, column 5: control character U+001A"),
+        "{text}"
+    );
+}
+
+#[test]
+fn summary_groups_warnings_by_kind_with_their_lines() {
+    use mtmotion::nc::summary::summarize;
+    let p = parse("G55 G0 X1\nM8\nG56 G0 X2\nM8 S100").unwrap();
+    let s = summarize(&p, 10_000.0);
+    let g: Vec<(&str, usize, Vec<usize>)> = s
+        .warnings
+        .iter()
+        .map(|g| (g.kind.as_str(), g.count, g.lines.clone()))
+        .collect();
+    assert_eq!(
+        g,
+        vec![
+            ("work offset", 2, vec![1, 3]),
+            ("M8", 2, vec![2, 4]),
+            ("S", 1, vec![4])
+        ]
+    );
+    // Every warning is in exactly one group.
+    let mut idx: Vec<usize> = s.warnings.iter().flat_map(|g| g.indices.clone()).collect();
+    idx.sort_unstable();
+    assert_eq!(idx, (0..p.warnings.len()).collect::<Vec<_>>());
+    // 2 mm of rapids at 10 m/min.
+    assert!((s.motion_time - 2.0 / 10_000.0 * 60.0).abs() < 1e-15);
+    assert_eq!(s.units, "mm");
+}
