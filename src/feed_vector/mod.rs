@@ -125,7 +125,7 @@ fn bad(field: &'static str, value: f64, expected: &str) -> FeedVectorError {
 
 impl FeedVectorError {
     /// The message in the user's words: a condition field is named by the
-    /// label and unit the page shows ("R_C [mm] = -5: …"), not by its code
+    /// label and unit the page shows (`R_C [mm] = -5: …`), not by its code
     /// name ("condition `rc`"); other errors as [`std::fmt::Display`].
     ///
     /// # Examples
