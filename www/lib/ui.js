@@ -166,11 +166,15 @@ export function runState(main, ...extra) {
     },
     current: (t) => t === token,
     ok: settle,
+    // A clear or a failure is the panel's newest state: a run still in
+    // flight (say, the analysis of the previous file) must not draw over it.
     clear() {
+      token++;
       for (const a of areas) a.replaceChildren();
       settle();
     },
     fail(err) {
+      token++;
       for (const a of areas) a.replaceChildren();
       settle();
       return showError(main, err);
