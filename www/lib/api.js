@@ -59,7 +59,9 @@ function startWorker(url, { initMessage, timeoutMs, type }) {
  */
 export async function workerApi(url, { initMessage, timeoutMs = 30_000, type = 'module' } = {}) {
   const opts = { initMessage, timeoutMs, type };
-  let { worker, version } = await startWorker(url, opts);
+  const started = await startWorker(url, opts);
+  let worker = started.worker;
+  const version = started.version;
   const pending = new Map(); // id → { msg, res, rej, onProgress, timer }, in send order
   let next = 1;
   let restarting = null;
@@ -161,7 +163,7 @@ export function inPageApi(wasm) {
       try {
         return onProgress ? f(...args, onProgress) : f(...args);
       } catch (e) {
-        if (e instanceof WebAssembly.RuntimeError) throw new Error(`the calculation failed inside the engine (${e.message}); reload the page to restart it`);
+        if (e instanceof WebAssembly.RuntimeError) throw new Error(`the calculation failed inside the engine (${e.message}); reload the page to restart it`, { cause: e });
         throw e;
       }
     },

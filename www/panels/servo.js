@@ -179,7 +179,7 @@ export async function mount(root, api) {
       // One bestKffp per (J1, ω) on all cores (lib/pool.js), in order.
       const args = PAPER_J1.flatMap((jv) => PAPER_OMEGAS.map((w) => [m, { rc: 5, rw: 8, omega: w, accelTime: 0.064, j1: jv, dt: dt.value }]));
       const results = await mapCalls(api, 'bestKffp', args, { onProgress: (d, n) => progress.set(d / n, `${d} of ${n} points`) });
-      for (const [ji, jv] of PAPER_J1.entries()) {
+      for (const ji of PAPER_J1.keys()) {
         for (const w of PAPER_OMEGAS) {
           const r = results[done];
           data[ji].before.push(r.before.meanAngleDiff * 1e3);

@@ -3,7 +3,7 @@
 // download a reverse-compensated program. All computation is in the core
 // (simulateToolPath, reverseCompensate, toolpathExample); this file only
 // gathers inputs, calls the API and draws.
-import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState } from '../lib/ui.js';
+import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState, showError } from '../lib/ui.js';
 import { xyChart, lineChart } from '../lib/plot.js';
 
 export async function mount(root, api) {
