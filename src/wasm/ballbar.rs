@@ -218,7 +218,7 @@ fn trace_from_js(v: &JsValue) -> Result<BallbarTrace, JsError> {
 #[wasm_bindgen(js_name = parseBallbarTrace, unchecked_return_type = "BallbarTrace")]
 pub fn parse_ballbar_trace(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "ParseTraceOptions | undefined")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "ParseTraceOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let opts: ParseOptions = if options.is_undefined() || options.is_null() {

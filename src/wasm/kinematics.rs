@@ -20,18 +20,6 @@ const TS: &str = r#"
 /** `[x, y, z, a, b, c]` (mm, degrees) or `{ x, y, z, a, b, c }`; missing axes are 0. */
 export type AxisValues = number[] | Partial<Record<'x'|'y'|'z'|'a'|'b'|'c', number>>;
 export type MachineArg = string | MachinePreset;
-export interface GeometricErrors {
-  /** ISO 230 location errors, e.g. { EX0C: 0.01 (mm), EB0C: 2e-5 (rad), EC0Y: 1e-5 }. */
-  location?: Record<string, number>;
-  /** ISO 230 component errors, constant or polynomial in position (mm or rad), e.g. { EXX: [0, 1e-5] }. */
-  component?: Record<string, number | number[]>;
-  /** E_ST of thasana Eq. 8: [dx, dy, dz, ex, ey, ez] in the tool frame. */
-  tool?: number[];
-  /** Full backlash width per axis, mm or rad. */
-  backlash?: Record<string, number>;
-  /** Worm-gear pitch error per rotary axis (kato Eq. 1). */
-  pitchError?: Record<string, WormHarmonic[]>;
-}
 export interface ToolPose { position: [number, number, number]; orientation: [number, number, number] }
 export interface IkBranch { q: Record<string, number>; withinLimits: boolean; singular: boolean }
 export interface ConeFrustumOptions {

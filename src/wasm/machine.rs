@@ -5,6 +5,9 @@ use wasm_bindgen::prelude::*;
 use super::convert::{string_arg, to_js};
 use crate::machine;
 
+// GeometricErrors is declared here rather than with the kinematics bindings:
+// MachinePreset uses it, and the embed module (built without kinematics)
+// must declare it too.
 #[wasm_bindgen(typescript_custom_section)]
 const TS: &str = r#"
 export interface WormHarmonic { w: number; n: number; phi: number }
@@ -22,6 +25,19 @@ export interface AxisParams {
   gearRatio?: number; backlash?: number; pitchError?: WormHarmonic[];
   /** kato Eq. 1: 'gearRatio' (W·g/N at the table, default) or 'additive' (W in rad). */ pitchReading?: 'gearRatio' | 'additive';
   /** kato Fig. 2: Coulomb friction F and load torque G at the motor, N·m. */ friction?: number; gravity?: number;
+}
+/** A machine's geometric and drive errors (ISO 230 symbols; mm, rad). */
+export interface GeometricErrors {
+  /** ISO 230 location errors, e.g. { EX0C: 0.01 (mm), EB0C: 2e-5 (rad), EC0Y: 1e-5 }. */
+  location?: Record<string, number>;
+  /** ISO 230 component errors, constant or polynomial in position (mm or rad), e.g. { EXX: [0, 1e-5] }. */
+  component?: Record<string, number | number[]>;
+  /** E_ST of thasana Eq. 8: [dx, dy, dz, ex, ey, ez] in the tool frame. */
+  tool?: number[];
+  /** Full backlash width per axis, mm or rad. */
+  backlash?: Record<string, number>;
+  /** Worm-gear pitch error per rotary axis (kato Eq. 1). */
+  pitchError?: Record<string, WormHarmonic[]>;
 }
 export interface MachinePreset {
   name: string; description: string; source: string;

@@ -160,7 +160,7 @@ pub fn feed_vector_test(
 pub fn analyze_feed_vector_trace(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "TraceMapping | undefined")] mapping: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "TraceMapping")] mapping: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let cond: Condition = from_js(condition, "condition")?;
@@ -181,7 +181,7 @@ pub fn analyze_feed_vector_trace(
 pub fn best_kffp(
     #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
     #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "BestKffpOptions | undefined")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "BestKffpOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let m = machine_arg(machine)?;
     let cond: Condition = from_js(condition, "condition")?;
@@ -216,7 +216,7 @@ pub fn torque_saturation(
 pub fn identify_pitch_error(
     angle: &[f64],
     error: &[f64],
-    #[wasm_bindgen(unchecked_param_type = "PitchIdentifyOptions | undefined")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "PitchIdentifyOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let o: crate::servo::pitch_identify::PitchIdentifyOptions =
         if options.is_undefined() || options.is_null() {

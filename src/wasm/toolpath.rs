@@ -81,7 +81,7 @@ struct Parsed<'a> {
 #[wasm_bindgen(js_name = parseNc, unchecked_return_type = "ParsedNc")]
 pub fn parse_nc(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "NcParseOptions | undefined")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "NcParseOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let opts = parse_options(options)?;
@@ -129,7 +129,7 @@ struct Checked<'a> {
 #[wasm_bindgen(js_name = checkNc, unchecked_return_type = "NcCheck")]
 pub fn check_nc(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "NcParseOptions | undefined")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "NcParseOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let opts = parse_options(options)?;

@@ -24,6 +24,10 @@ function parseHarmonics(text) {
   return out;
 }
 
+/**
+ * @param {HTMLElement} root
+ * @param {import('../lib/api.js').Api} api
+ */
 export async function mount(root, api) {
   // ---- inputs -------------------------------------------------------------
   const source = selectField({ label: 'Trace', id: 'ballbar-source', value: 'synthetic', options: [['synthetic', 'Synthetic (from the fields below)'], ['file', 'Loaded file']] });

@@ -13,6 +13,10 @@ const FIELDS = [
 const PAPER_OMEGAS = [0.5, 1, 1.5, 2, 3, 4].map((k) => k * Math.PI);
 const PAPER_J1 = [1.7, 3.24, 4.77];
 
+/**
+ * @param {HTMLElement} root
+ * @param {import('../lib/api.js').Api} api
+ */
 export async function mount(root, api) {
   const machine = await api.call('machinePreset', ['nmv5000']);
   const axes = Object.keys(machine.axes);
@@ -67,7 +71,7 @@ export async function mount(root, api) {
   const runUi = runState(out, charts);
   const setDownloads = (on) => {
     for (const id of ['servo-csv', 'servo-json']) {
-      const b = root.querySelector(`#${id}`);
+      const b = /** @type {HTMLButtonElement | null} */ (root.querySelector(`#${id}`));
       if (b) b.disabled = !on;
     }
   };
