@@ -43,7 +43,7 @@ class Calculator extends HTMLElement {
 
   connectedCallback() {
     if (this.shadowRoot) return;
-    const C = this.constructor;
+    const C = /** @type {typeof Calculator} */ (this.constructor);
     const root = this.attachShadow({ mode: 'open' });
     root.innerHTML = `<style>${STYLE}</style><div class="box" part="box"><div class="title"></div><form></form><output part="result" aria-live="polite">…</output></div>`;
     root.querySelector('.title').textContent = this.getAttribute('title') || C.title;
@@ -82,8 +82,18 @@ class Calculator extends HTMLElement {
 
   values() {
     const v = {};
-    for (const f of this.constructor.fields) v[f.name] = f.text ? this.inputs[f.name].value : Number(this.inputs[f.name].value);
+    for (const f of /** @type {typeof Calculator} */ (this.constructor).fields) v[f.name] = f.text ? this.inputs[f.name].value : Number(this.inputs[f.name].value);
     return v;
+  }
+
+  /**
+   * The result for the current input values; each calculator defines it.
+   * @param {object} _api the loaded core
+   * @param {Record<string, number | string>} _values the inputs by field name
+   * @returns {{ html: string, value: number }}
+   */
+  compute(_api, _values) {
+    throw new Error(`${this.localName}: no compute()`);
   }
 
   async update() {

@@ -131,67 +131,11 @@ pub fn estimate_alignment_band(
             ));
         }
     }
-    let mut bands = Vec::with_capacity(sections.len());
-    for (k, s) in sections.iter().enumerate() {
-        let (lo, hi) = s
-            .angle_deg
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &a| {
-                (l.min(a), h.max(a))
-            });
-        let span = (hi - lo).min(360.0);
-        let range = cfg.travel_range_deg.unwrap_or(span);
-        let centre = (lo + hi) / 2.0;
-        let rad: Vec<f64> = s.angle_deg.iter().map(|a| a.to_radians()).collect();
-        // The highest order the section's span resolves, down to 2.
-        let harmonics = (2..=cfg.max_order.max(2))
-            .rev()
-            .find_map(|n| fit_harmonics(&rad, &s.deviation, n).ok())
-            .ok_or_else(|| {
-                bad(
-                    format!("sections[{k}]"),
-                    format!(
-                        "its span of {span:.1}° and {} points resolve no harmonic of order 2: \
-                         measure a longer arc",
-                        s.angle_deg.len()
-                    ),
-                )
-            })?;
-        let motion: Vec<Harmonic> = harmonics.into_iter().filter(|h| h.order >= 2).collect();
-        let sweep = travel_range_sweep(&SweepConfig {
-            offset: Offset::default(),
-            ranges: vec![range],
-            locus: Locus {
-                harmonics: motion.clone(),
-                radius: cfg.radius,
-                samples: 3600,
-                centre_deg: centre,
-            },
-        })
-        .map_err(|e| match e {
-            AlignmentError::Fit { source, .. } => AlignmentError::Fit {
-                what: format!("sections[{k}] bias at travel range {range}°"),
-                source,
-            },
-            other => other,
-        })?;
-        let e2 = s
-            .deviation
-            .iter()
-            .fold(0.0_f64, |m, d| m.max(d.abs()))
-            .powi(2)
-            / cfg.radius;
-        bands.push(SectionBand {
-            y: s.y,
-            range_deg: range,
-            centre_deg: centre,
-            bias_z: sweep[0].error_z,
-            bias_x: sweep[0].error_x,
-            band_z: sweep[0].error_z.abs() + e2,
-            band_x: sweep[0].error_x.abs() + e2,
-            harmonics: motion,
-        });
-    }
+    let bands = sections
+        .iter()
+        .enumerate()
+        .map(|(k, s)| section_band(k, s, cfg))
+        .collect::<Result<Vec<_>, _>>()?;
     let (band_bz, band_bx) = if estimate.delta_bz.is_some() {
         let n = bands.len() as f64;
         let my = bands.iter().map(|b| b.y).sum::<f64>() / n;
@@ -209,6 +153,70 @@ pub fn estimate_alignment_band(
         sections: bands,
         band_bz,
         band_bx,
+    })
+}
+
+/// Section `k`'s band: the bias of its centre estimate at the travel range
+/// (takayama §2.1 with its own harmonics of order ≥ 2, centred on its mid
+/// angle) plus the second-order term max|Δ|²/R.
+fn section_band(k: usize, s: &Section, cfg: &BandConfig) -> Result<SectionBand, AlignmentError> {
+    let (lo, hi) = s
+        .angle_deg
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &a| {
+            (l.min(a), h.max(a))
+        });
+    let span = (hi - lo).min(360.0);
+    let range = cfg.travel_range_deg.unwrap_or(span);
+    let centre = (lo + hi) / 2.0;
+    let rad: Vec<f64> = s.angle_deg.iter().map(|a| a.to_radians()).collect();
+    // The highest order the section's span resolves, down to 2.
+    let harmonics = (2..=cfg.max_order.max(2))
+        .rev()
+        .find_map(|n| fit_harmonics(&rad, &s.deviation, n).ok())
+        .ok_or_else(|| {
+            bad(
+                format!("sections[{k}]"),
+                format!(
+                    "its span of {span:.1}° and {} points resolve no harmonic of order 2: \
+                     measure a longer arc",
+                    s.angle_deg.len()
+                ),
+            )
+        })?;
+    let motion: Vec<Harmonic> = harmonics.into_iter().filter(|h| h.order >= 2).collect();
+    let sweep = travel_range_sweep(&SweepConfig {
+        offset: Offset::default(),
+        ranges: vec![range],
+        locus: Locus {
+            harmonics: motion.clone(),
+            radius: cfg.radius,
+            samples: 3600,
+            centre_deg: centre,
+        },
+    })
+    .map_err(|e| match e {
+        AlignmentError::Fit { source, .. } => AlignmentError::Fit {
+            what: format!("sections[{k}] bias at travel range {range}°"),
+            source,
+        },
+        other => other,
+    })?;
+    let e2 = s
+        .deviation
+        .iter()
+        .fold(0.0_f64, |m, d| m.max(d.abs()))
+        .powi(2)
+        / cfg.radius;
+    Ok(SectionBand {
+        y: s.y,
+        range_deg: range,
+        centre_deg: centre,
+        bias_z: sweep[0].error_z,
+        bias_x: sweep[0].error_x,
+        band_z: sweep[0].error_z.abs() + e2,
+        band_x: sweep[0].error_x.abs() + e2,
+        harmonics: motion,
     })
 }
 

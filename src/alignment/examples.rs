@@ -147,11 +147,6 @@ fn pv(label: &str, range_deg: f64, paper: &str, ours: f64) -> PaperValue {
 /// assert!(p360.range_deg == 360.0 && p360.error_x.abs() < 1e-9);
 /// ```
 pub fn example(name: &str, radius: f64) -> Result<Example, AlignmentError> {
-    let o = |z: f64, x: f64| Offset {
-        z: z * UM,
-        x: x * UM,
-    };
-    let ranges: Vec<f64> = (0..10).map(|k| 90.0 + 30.0 * k as f64).collect();
     let mut ex = Example {
         name: name.into(),
         description: String::new(),
@@ -160,160 +155,17 @@ pub fn example(name: &str, radius: f64) -> Result<Example, AlignmentError> {
         paper: vec![],
     };
     match name {
-        "fig6" => {
-            ex.description = "Fig. 6: one harmonic of 5 µm (orders 2–10, 15, 20), offset (0, 10 µm), 180° range; rangeDeg holds the order".into();
-            let mut pts = Vec::new();
-            for n in (2..=10).chain([15, 20]) {
-                let c = sweep(o(0.0, 10.0), vec![180.0], locus(vec![h(n, 5.0)], radius))?;
-                let p = c.points[0];
-                pts.push(SweepPoint {
-                    range_deg: f64::from(n),
-                    ..p
-                });
-            }
-            let mag = |p: &SweepPoint| p.error_z.hypot(p.error_x) / UM;
-            let ratio = mag(&pts[8]) / mag(&pts[0]);
-            ex.paper.push(pv(
-                "Fig. 6: |error| of order 10 / order 2",
-                180.0,
-                "about 1/4",
-                ratio,
-            ));
-            ex.curves.push(Curve {
-                offset: o(0.0, 10.0),
-                points: pts,
-            });
-        }
+        "fig6" => fig6(&mut ex, radius)?,
         "fig7" => {
             ex.description = "Fig. 7: ranges 90°…360° step 30°, offsets (0, 0) and (0, 10 µm), harmonics 2/3/5 at 5/3/2.5 µm".into();
-            for off in [o(0.0, 0.0), o(0.0, 10.0)] {
-                ex.curves
-                    .push(sweep(off, ranges.clone(), locus(fig7_harmonics(), radius))?);
-            }
-            let p = &ex.curves[1].points;
-            let at = |w: f64| p.iter().find(|q| q.range_deg == w).copied().unwrap_or(p[0]);
-            for (w, x, z) in [(90.0, "10.9", "9.5"), (180.0, "3.5", "7.2")] {
-                ex.paper
-                    .push(pv("Fig. 7, (0, 10 µm), X", w, x, at(w).error_x.abs() / UM));
-                ex.paper
-                    .push(pv("Fig. 7, (0, 10 µm), Z", w, z, at(w).error_z.abs() / UM));
-            }
-            for c in &ex.curves {
-                let worst = |w: f64| {
-                    c.points
-                        .iter()
-                        .filter(|q| q.range_deg == w)
-                        .map(|q| q.error_z.abs().max(q.error_x.abs()) / UM)
-                        .fold(0.0, f64::max)
-                };
-                let lab = format!(
-                    "Fig. 7, ({}, {} µm), max(|Z|, |X|)",
-                    c.offset.z / UM,
-                    c.offset.x / UM
-                );
-                ex.paper.push(pv(&lab, 270.0, "≤ 2", worst(270.0)));
-                ex.paper.push(pv(&lab, 360.0, "≤ 1", worst(360.0)));
-            }
+            fig7(&mut ex, "Fig. 7", fig7_harmonics(), radius)?;
         }
         "fig7-phased" => {
             ex.description = "Fig. 7 with harmonic phases φ2, φ3, φ5 = 26°, 25°, 200° (a reading: the paper's Z components need non-zero phases): ranges 90°…360° step 30°, offsets (0, 0) and (0, 10 µm)".into();
-            for off in [o(0.0, 0.0), o(0.0, 10.0)] {
-                ex.curves.push(sweep(
-                    off,
-                    ranges.clone(),
-                    locus(fig7_phased_harmonics(), radius),
-                )?);
-            }
-            let p = &ex.curves[1].points;
-            let at = |w: f64| p.iter().find(|q| q.range_deg == w).copied().unwrap_or(p[0]);
-            for (w, x, z) in [(90.0, "10.9", "9.5"), (180.0, "3.5", "7.2")] {
-                ex.paper.push(pv(
-                    "Fig. 7 phased, (0, 10 µm), X",
-                    w,
-                    x,
-                    at(w).error_x.abs() / UM,
-                ));
-                ex.paper.push(pv(
-                    "Fig. 7 phased, (0, 10 µm), Z",
-                    w,
-                    z,
-                    at(w).error_z.abs() / UM,
-                ));
-            }
-            for c in &ex.curves {
-                let worst = |w: f64| {
-                    c.points
-                        .iter()
-                        .filter(|q| q.range_deg == w)
-                        .map(|q| q.error_z.abs().max(q.error_x.abs()) / UM)
-                        .fold(0.0, f64::max)
-                };
-                let lab = format!(
-                    "Fig. 7 phased, ({}, {} µm), max(|Z|, |X|)",
-                    c.offset.z / UM,
-                    c.offset.x / UM
-                );
-                ex.paper.push(pv(&lab, 270.0, "≤ 2", worst(270.0)));
-                ex.paper.push(pv(&lab, 360.0, "≤ 1", worst(360.0)));
-            }
+            fig7(&mut ex, "Fig. 7 phased", fig7_phased_harmonics(), radius)?;
         }
-        "fig8" => {
-            ex.description = "Fig. 8: offsets (0,0), (0,10), (10,0), (10,10) µm at 90°, 180°, 270°, 360°, harmonics 2/3/5 at 5/3/2.5 µm".into();
-            for off in [o(0.0, 0.0), o(0.0, 10.0), o(10.0, 0.0), o(10.0, 10.0)] {
-                let c = sweep(
-                    off,
-                    vec![90.0, 180.0, 270.0, 360.0],
-                    locus(fig7_harmonics(), radius),
-                )?;
-                let r270 = c.points[2].error_z.hypot(c.points[2].error_x) / UM;
-                ex.paper.push(pv(
-                    &format!("Fig. 8, ({}, {} µm), Δr'", off.z / UM, off.x / UM),
-                    270.0,
-                    "≈ 2 or less",
-                    r270,
-                ));
-                ex.curves.push(c);
-            }
-        }
-        "fig12" => {
-            ex.description = "Fig. 12: angle error 10 µm/350 mm in Z with a 10 µm Z offset (Table 1 read as Y = 0, ±350 mm), harmonics 2/3/5 at 5/3/2.5 µm".into();
-            let s = |y: f64, z: f64| SectionOffset {
-                y,
-                offset: o(z, 0.0),
-            };
-            let cfg = AngleSweepConfig {
-                sections: vec![s(0.0, 10.0), s(350.0, 20.0), s(-350.0, 0.0)],
-                ranges: ranges.clone(),
-                locus: locus(fig7_harmonics(), radius),
-            };
-            // The paper's formula uses Y1 and Y2 only.
-            let two = AngleSweepConfig {
-                sections: cfg.sections[1..].to_vec(),
-                ..cfg
-            };
-            ex.angle = angle_sweep(&two)?;
-            let at = |w: f64| {
-                ex.angle
-                    .iter()
-                    .find(|q| q.range_deg == w)
-                    .map_or(f64::NAN, |q| q.error_bz.abs() * 700.0 / UM)
-            };
-            for (w, v) in [(90.0, "21"), (210.0, "4.5"), (270.0, "1.8"), (360.0, "0.2")] {
-                ex.paper
-                    .push(pv("Fig. 12, ΔBz error, µm/700 mm", w, v, at(w)));
-            }
-            let bx = ex
-                .angle
-                .iter()
-                .map(|q| q.error_bx.abs() * 700.0 / UM)
-                .fold(0.0, f64::max);
-            ex.paper.push(pv(
-                "Fig. 12, ΔBx error (all ranges), µm/700 mm",
-                0.0,
-                "≈ 2",
-                bx,
-            ));
-        }
+        "fig8" => fig8(&mut ex, radius)?,
+        "fig12" => fig12(&mut ex, radius)?,
         _ => {
             return Err(AlignmentError::BadField {
                 field: "name".into(),
@@ -322,6 +174,152 @@ pub fn example(name: &str, radius: f64) -> Result<Example, AlignmentError> {
         }
     }
     Ok(ex)
+}
+
+/// An offset given in µm.
+fn o(z: f64, x: f64) -> Offset {
+    Offset {
+        z: z * UM,
+        x: x * UM,
+    }
+}
+
+/// Travel ranges 90°…360° in steps of 30°.
+fn fig7_ranges() -> Vec<f64> {
+    (0..10).map(|k| 90.0 + 30.0 * k as f64).collect()
+}
+
+/// Fig. 6: one harmonic per order at 180°; `rangeDeg` holds the order.
+fn fig6(ex: &mut Example, radius: f64) -> Result<(), AlignmentError> {
+    ex.description = "Fig. 6: one harmonic of 5 µm (orders 2–10, 15, 20), offset (0, 10 µm), 180° range; rangeDeg holds the order".into();
+    let mut pts = Vec::new();
+    for n in (2..=10).chain([15, 20]) {
+        let c = sweep(o(0.0, 10.0), vec![180.0], locus(vec![h(n, 5.0)], radius))?;
+        let p = c.points[0];
+        pts.push(SweepPoint {
+            range_deg: f64::from(n),
+            ..p
+        });
+    }
+    let mag = |p: &SweepPoint| p.error_z.hypot(p.error_x) / UM;
+    let ratio = mag(&pts[8]) / mag(&pts[0]);
+    ex.paper.push(pv(
+        "Fig. 6: |error| of order 10 / order 2",
+        180.0,
+        "about 1/4",
+        ratio,
+    ));
+    ex.curves.push(Curve {
+        offset: o(0.0, 10.0),
+        points: pts,
+    });
+    Ok(())
+}
+
+/// Fig. 7 (with the given harmonics): the sweeps of offsets (0, 0) and
+/// (0, 10 µm) and the paper's quoted values, labelled `label`.
+fn fig7(
+    ex: &mut Example,
+    label: &str,
+    harmonics: Vec<Harmonic>,
+    radius: f64,
+) -> Result<(), AlignmentError> {
+    for off in [o(0.0, 0.0), o(0.0, 10.0)] {
+        ex.curves
+            .push(sweep(off, fig7_ranges(), locus(harmonics.clone(), radius))?);
+    }
+    let p = &ex.curves[1].points;
+    let at = |w: f64| p.iter().find(|q| q.range_deg == w).copied().unwrap_or(p[0]);
+    for (w, x, z) in [(90.0, "10.9", "9.5"), (180.0, "3.5", "7.2")] {
+        let (ex_x, ex_z) = (at(w).error_x.abs() / UM, at(w).error_z.abs() / UM);
+        ex.paper
+            .push(pv(&format!("{label}, (0, 10 µm), X"), w, x, ex_x));
+        ex.paper
+            .push(pv(&format!("{label}, (0, 10 µm), Z"), w, z, ex_z));
+    }
+    let mut worst_rows = Vec::new();
+    for c in &ex.curves {
+        let worst = |w: f64| {
+            c.points
+                .iter()
+                .filter(|q| q.range_deg == w)
+                .map(|q| q.error_z.abs().max(q.error_x.abs()) / UM)
+                .fold(0.0, f64::max)
+        };
+        let lab = format!(
+            "{label}, ({}, {} µm), max(|Z|, |X|)",
+            c.offset.z / UM,
+            c.offset.x / UM
+        );
+        worst_rows.push(pv(&lab, 270.0, "≤ 2", worst(270.0)));
+        worst_rows.push(pv(&lab, 360.0, "≤ 1", worst(360.0)));
+    }
+    ex.paper.extend(worst_rows);
+    Ok(())
+}
+
+/// Fig. 8: four offsets at 90°, 180°, 270° and 360°.
+fn fig8(ex: &mut Example, radius: f64) -> Result<(), AlignmentError> {
+    ex.description = "Fig. 8: offsets (0,0), (0,10), (10,0), (10,10) µm at 90°, 180°, 270°, 360°, harmonics 2/3/5 at 5/3/2.5 µm".into();
+    for off in [o(0.0, 0.0), o(0.0, 10.0), o(10.0, 0.0), o(10.0, 10.0)] {
+        let c = sweep(
+            off,
+            vec![90.0, 180.0, 270.0, 360.0],
+            locus(fig7_harmonics(), radius),
+        )?;
+        let r270 = c.points[2].error_z.hypot(c.points[2].error_x) / UM;
+        ex.paper.push(pv(
+            &format!("Fig. 8, ({}, {} µm), Δr'", off.z / UM, off.x / UM),
+            270.0,
+            "≈ 2 or less",
+            r270,
+        ));
+        ex.curves.push(c);
+    }
+    Ok(())
+}
+
+/// Fig. 12: the angle error from two sections.
+fn fig12(ex: &mut Example, radius: f64) -> Result<(), AlignmentError> {
+    ex.description = "Fig. 12: angle error 10 µm/350 mm in Z with a 10 µm Z offset (Table 1 read as Y = 0, ±350 mm), harmonics 2/3/5 at 5/3/2.5 µm".into();
+    let s = |y: f64, z: f64| SectionOffset {
+        y,
+        offset: o(z, 0.0),
+    };
+    let cfg = AngleSweepConfig {
+        sections: vec![s(0.0, 10.0), s(350.0, 20.0), s(-350.0, 0.0)],
+        ranges: fig7_ranges(),
+        locus: locus(fig7_harmonics(), radius),
+    };
+    // The paper's formula uses Y1 and Y2 only.
+    let two = AngleSweepConfig {
+        sections: cfg.sections[1..].to_vec(),
+        ..cfg
+    };
+    ex.angle = angle_sweep(&two)?;
+    let at = |w: f64| {
+        ex.angle
+            .iter()
+            .find(|q| q.range_deg == w)
+            .map_or(f64::NAN, |q| q.error_bz.abs() * 700.0 / UM)
+    };
+    let rows: Vec<PaperValue> = [(90.0, "21"), (210.0, "4.5"), (270.0, "1.8"), (360.0, "0.2")]
+        .into_iter()
+        .map(|(w, v)| pv("Fig. 12, ΔBz error, µm/700 mm", w, v, at(w)))
+        .collect();
+    ex.paper.extend(rows);
+    let bx = ex
+        .angle
+        .iter()
+        .map(|q| q.error_bx.abs() * 700.0 / UM)
+        .fold(0.0, f64::max);
+    ex.paper.push(pv(
+        "Fig. 12, ΔBx error (all ranges), µm/700 mm",
+        0.0,
+        "≈ 2",
+        bx,
+    ));
+    Ok(())
 }
 
 #[cfg(test)]

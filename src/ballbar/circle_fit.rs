@@ -103,7 +103,37 @@ pub fn fit_circle(x: &[f64], y: &[f64]) -> Result<Circle, FitError> {
     if n < 3 {
         return Err(FitError::TooFewPoints(n));
     }
-    // Centroid and spread (one pass each).
+    let centroid = centroid(x, y)?;
+    let (start, s) = kasa(x, y, centroid)?;
+    // Levenberg–Marquardt on (a, b, r) in scaled coordinates
+    // ([`crate::numeric::levenberg_marquardt`]). One pass over the points
+    // per evaluation gives the cost and the normal equations together.
+    let nf = n as f64;
+    let pass = |p: &Vector3<f64>| geometric_pass(x, y, centroid, 1.0 / s, p);
+    let opts = LmOptions {
+        max_iterations: 60,
+        // Converged: the gradient vanishes to rounding (scaled units) …
+        gradient_tol: 1e-13 * nf,
+        // … or the cost no longer drops.
+        cost_drop_tol: 1e-28 * nf,
+        ..LmOptions::default()
+    };
+    let fit = levenberg_marquardt(start, pass, |p| p, &opts);
+    let (a, b, r, cost) = (fit.p[0], fit.p[1], fit.p[2], fit.normal.cost);
+    if !(a.is_finite() && b.is_finite() && r.is_finite()) {
+        return Err(FitError::Collinear);
+    }
+    let (mx, my) = centroid;
+    Ok(Circle {
+        cx: mx + a * s,
+        cy: my + b * s,
+        r: r.abs() * s,
+        rms_residual: (cost / nf).sqrt() * s,
+    })
+}
+
+/// The centroid of the points; a non-finite point is an error naming its index.
+fn centroid(x: &[f64], y: &[f64]) -> Result<(f64, f64), FitError> {
     let (mut mx, mut my) = (0.0, 0.0);
     for (i, (&a, &b)) in x.iter().zip(y).enumerate() {
         if !a.is_finite() || !b.is_finite() {
@@ -116,9 +146,16 @@ pub fn fit_circle(x: &[f64], y: &[f64]) -> Result<Circle, FitError> {
         mx += a;
         my += b;
     }
-    let nf = n as f64;
-    mx /= nf;
-    my /= nf;
+    let nf = x.len() as f64;
+    Ok((mx / nf, my / nf))
+}
+
+/// The algebraic (Kåsa) circle `x² + y² + D x + E y + F = 0` of the points
+/// centred on `centroid` and scaled to unit spread: the start `(a, b, r)` in
+/// those coordinates, and the spread `s` (the input's unit).
+fn kasa(x: &[f64], y: &[f64], centroid: (f64, f64)) -> Result<(Vector3<f64>, f64), FitError> {
+    let (mx, my) = centroid;
+    let nf = x.len() as f64;
     // Second and third moments of the centred points, for the Kåsa fit.
     let (mut suu, mut suv, mut svv, mut suz, mut svz, mut sz) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     for (&a, &b) in x.iter().zip(y) {
@@ -146,64 +183,52 @@ pub fn fit_circle(x: &[f64], y: &[f64]) -> Result<Circle, FitError> {
     if det <= 1e-20 * nf * nf {
         return Err(FitError::Collinear);
     }
-    // Kåsa: x² + y² + D x + E y + F = 0 on centred, scaled points.
     let d = -(svv * suz - suv * svz) / det;
     let e = -(suu * svz - suv * suz) / det;
     let f = -sz / nf;
     let (a, b) = (-d / 2.0, -e / 2.0);
     let r = (a * a + b * b - f).max(0.0).sqrt();
-    // Levenberg–Marquardt on (a, b, r) in scaled coordinates
-    // ([`crate::numeric::levenberg_marquardt`]). One pass over the points
-    // per evaluation gives the cost and the normal equations together.
-    let inv = 1.0 / s;
-    let pass = |p: &Vector3<f64>| -> Normal<3> {
-        // J = [−u/d, −v/d, −1] per point, accumulated into JᵀJ and Jᵀe.
-        let (a, b, r) = (p[0], p[1], p[2]);
-        let (mut m, mut g, mut cost) = ([0.0f64; 5], [0.0f64; 3], 0.0);
-        for (&px, &py) in x.iter().zip(y) {
-            let (u, v) = ((px - mx) * inv - a, (py - my) * inv - b);
-            let dist = (u * u + v * v).sqrt();
-            let (ju, jv) = if dist > 0.0 {
-                (-u / dist, -v / dist)
-            } else {
-                (0.0, 0.0)
-            };
-            let res = dist - r;
-            m[0] += ju * ju;
-            m[1] += ju * jv;
-            m[2] -= ju;
-            m[3] += jv * jv;
-            m[4] -= jv;
-            g[0] += ju * res;
-            g[1] += jv * res;
-            g[2] -= res;
-            cost += res * res;
-        }
-        Normal {
-            jtj: Matrix3::new(m[0], m[1], m[2], m[1], m[3], m[4], m[2], m[4], nf),
-            jtr: Vector3::new(g[0], g[1], g[2]),
-            cost,
-        }
-    };
-    let opts = LmOptions {
-        max_iterations: 60,
-        // Converged: the gradient vanishes to rounding (scaled units) …
-        gradient_tol: 1e-13 * nf,
-        // … or the cost no longer drops.
-        cost_drop_tol: 1e-28 * nf,
-        ..LmOptions::default()
-    };
-    let fit = levenberg_marquardt(Vector3::new(a, b, r), pass, |p| p, &opts);
-    let (a, b, r, cost) = (fit.p[0], fit.p[1], fit.p[2], fit.normal.cost);
-    if !(a.is_finite() && b.is_finite() && r.is_finite()) {
-        return Err(FitError::Collinear);
+    Ok((Vector3::new(a, b, r), s))
+}
+
+/// One pass over the points at `p = (a, b, r)` (scaled coordinates, `inv`
+/// = 1/spread): the cost and the normal equations of the orthogonal
+/// residuals |pᵢ − c| − r, with J = [−u/d, −v/d, −1] per point.
+fn geometric_pass(
+    x: &[f64],
+    y: &[f64],
+    centroid: (f64, f64),
+    inv: f64,
+    p: &Vector3<f64>,
+) -> Normal<3> {
+    let (mx, my) = centroid;
+    let (a, b, r) = (p[0], p[1], p[2]);
+    let (mut m, mut g, mut cost) = ([0.0f64; 5], [0.0f64; 3], 0.0);
+    for (&px, &py) in x.iter().zip(y) {
+        let (u, v) = ((px - mx) * inv - a, (py - my) * inv - b);
+        let dist = (u * u + v * v).sqrt();
+        let (ju, jv) = if dist > 0.0 {
+            (-u / dist, -v / dist)
+        } else {
+            (0.0, 0.0)
+        };
+        let res = dist - r;
+        m[0] += ju * ju;
+        m[1] += ju * jv;
+        m[2] -= ju;
+        m[3] += jv * jv;
+        m[4] -= jv;
+        g[0] += ju * res;
+        g[1] += jv * res;
+        g[2] -= res;
+        cost += res * res;
     }
-    Ok(Circle {
-        cx: mx + a * s,
-        cy: my + b * s,
-        r: r.abs() * s,
-        rms_residual: (cost / nf).sqrt() * s,
-    })
+    let nf = x.len() as f64;
+    Normal {
+        jtj: Matrix3::new(m[0], m[1], m[2], m[1], m[3], m[4], m[2], m[4], nf),
+        jtr: Vector3::new(g[0], g[1], g[2]),
+        cost,
+    }
 }
 
 #[cfg(test)]

@@ -227,57 +227,14 @@ fn basis(t: f64, s: f64) -> [f64; COLS] {
 /// ```
 pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
     let r0 = trace.nominal_radius;
-    let full: Vec<&Run> = trace
-        .runs
-        .iter()
-        .filter(|r| {
-            let (lo, hi) = r
-                .angle
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| {
-                    (a.min(t), b.max(t))
-                });
-            r.angle.len() == r.deviation.len() && hi - lo >= 355f64.to_radians()
-        })
-        .collect();
+    let full = full_runs(trace);
     let mut fits = Vec::new();
     let mut resid: Vec<(f64, f64)> = Vec::new();
     let mut spikes = Vec::new();
     let mut spike_threshold = 0.0f64;
     let mut se2 = [0.0f64; 2];
     for run in &full {
-        let s = run.direction.sign();
-        // Fit without the 10° after each quadrant point in the direction
-        // of travel, where reversal spikes live; the steps stay visible.
-        let keep: Vec<usize> = (0..run.angle.len())
-            .filter(|&i| !after_quadrant(run.angle[i], s, 10f64.to_radians()))
-            .collect();
-        // The model with orders 3–8, so that smooth motion errors are read
-        // neither as spikes nor as cyclic error.
-        let fit = |cols: usize| -> Option<(DVector<f64>, DVector<f64>, Vec<f64>)> {
-            let (coef, inv) = lsq_full(
-                keep.iter()
-                    .map(|&i| (basis(run.angle[i], s), run.deviation[i])),
-                cols,
-            )?;
-            let res = run
-                .angle
-                .iter()
-                .zip(&run.deviation)
-                .map(|(t, d)| {
-                    d - basis(*t, s)
-                        .iter()
-                        .zip(coef.iter())
-                        .map(|(b, c)| b * c)
-                        .sum::<f64>()
-                })
-                .collect();
-            Some((coef, inv, res))
-        };
-        let (coef, inv, res) = fit(COLS)?;
-        // Residual variance of the fitted points → backlash standard errors.
-        let dof = keep.len().saturating_sub(COLS).max(1) as f64;
-        let var = keep.iter().map(|&i| res[i] * res[i]).sum::<f64>() / dof;
+        let (coef, inv, res, var) = fit_run(run)?;
         se2[0] += var * inv[5];
         se2[1] += var * inv[6];
         let (found, threshold) = find_spikes(run, &res);
@@ -326,6 +283,62 @@ pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
         cyclic: cyclic_pitch(&resid, r0).and_then(|p| cyclic_amplitudes(&full, p, r0)),
         runs_used: fits.len(),
     })
+}
+
+/// The runs that cover a full revolution (≥ 355°).
+fn full_runs(trace: &BallbarTrace) -> Vec<&Run> {
+    trace
+        .runs
+        .iter()
+        .filter(|r| {
+            let (lo, hi) = r
+                .angle
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &t| {
+                    (a.min(t), b.max(t))
+                });
+            r.angle.len() == r.deviation.len() && hi - lo >= 355f64.to_radians()
+        })
+        .collect()
+}
+
+/// Coefficients, diagonal of the inverse normal matrix, residuals (mm),
+/// residual variance (mm²).
+type RunFit = (DVector<f64>, DVector<f64>, Vec<f64>, f64);
+
+/// The error model fitted to one run: coefficients, the diagonal of the
+/// inverse normal matrix, the residual of every sample (mm) and the
+/// residual variance of the fitted samples (mm²). The 10° after each
+/// quadrant point in the direction of travel, where reversal spikes live,
+/// are left out of the fit (the steps stay visible); orders 3–8 are in
+/// the model, so that smooth motion errors are read neither as spikes nor
+/// as cyclic error.
+fn fit_run(run: &Run) -> Option<RunFit> {
+    let s = run.direction.sign();
+    let keep: Vec<usize> = (0..run.angle.len())
+        .filter(|&i| !after_quadrant(run.angle[i], s, 10f64.to_radians()))
+        .collect();
+    let (coef, inv) = lsq_full(
+        keep.iter()
+            .map(|&i| (basis(run.angle[i], s), run.deviation[i])),
+        COLS,
+    )?;
+    let res: Vec<f64> = run
+        .angle
+        .iter()
+        .zip(&run.deviation)
+        .map(|(t, d)| {
+            d - basis(*t, s)
+                .iter()
+                .zip(coef.iter())
+                .map(|(b, c)| b * c)
+                .sum::<f64>()
+        })
+        .collect();
+    // Residual variance of the fitted points → backlash standard errors.
+    let dof = keep.len().saturating_sub(COLS).max(1) as f64;
+    let var = keep.iter().map(|&i| res[i] * res[i]).sum::<f64>() / dof;
+    Some((coef, inv, res, var))
 }
 
 /// Whether θ lies within `w` after a quadrant point in the direction `s`.

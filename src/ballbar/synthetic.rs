@@ -166,6 +166,23 @@ fn err(field: &'static str, message: impl Into<String>) -> SyntheticError {
 /// assert!((t.runs[0].deviation[1800 + 5] - 0.002).abs() < 1e-5);
 /// ```
 pub fn synthetic_trace(c: &SyntheticConfig) -> Result<BallbarTrace, SyntheticError> {
+    validate(c)?;
+    let n = ((c.samples as f64 * c.range_deg / 360.0).round() as usize).max(8);
+    let mut noise = Lcg(0x9E37_79B9_7F4A_7C15);
+    let mut runs = vec![run(c, Direction::Ccw, n, &mut noise)];
+    if c.both_directions {
+        runs.push(run(c, Direction::Cw, n, &mut noise));
+    }
+    Ok(BallbarTrace {
+        nominal_radius: c.radius,
+        feed: Some(c.feed),
+        runs,
+    })
+}
+
+/// Positive radius, feed, pitch and decay, 16 … 10⁷ samples, a range in
+/// (0, 360] degrees and finite error values.
+fn validate(c: &SyntheticConfig) -> Result<(), SyntheticError> {
     let pos = |v: f64| v.is_finite() && v > 0.0;
     if !pos(c.radius) {
         return Err(err(
@@ -221,81 +238,81 @@ pub fn synthetic_trace(c: &SyntheticConfig) -> Result<BallbarTrace, SyntheticErr
     {
         return Err(err("config", "every error value must be a finite number"));
     }
+    Ok(())
+}
+
+/// A linear congruential generator (Knuth's MMIX constants): uniform noise
+/// in [−1, 1), the same sequence on every platform.
+struct Lcg(u64);
+
+impl Lcg {
+    fn uniform(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+}
+
+/// One run of `n + 1` samples over the configured range in direction `dir`.
+fn run(c: &SyntheticConfig, dir: Direction, n: usize, noise: &mut Lcg) -> Run {
     let r = c.radius;
     let omega = c.feed / 60.0 / r; // rad/s
-    let n = ((c.samples as f64 * c.range_deg / 360.0).round() as usize).max(8);
     let (a0, a1) = (
         (c.centre_deg - c.range_deg / 2.0).to_radians(),
         (c.centre_deg + c.range_deg / 2.0).to_radians(),
     );
-    let mut seed: u64 = 0x9E37_79B9_7F4A_7C15;
-    let mut rnd = move || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
     let decay = c.spike_decay_deg.to_radians();
     let quarter = std::f64::consts::FRAC_PI_2;
-    let mut make = |dir: Direction| {
-        let s = dir.sign();
-        let (mut angle, mut deviation) = (Vec::with_capacity(n + 1), Vec::with_capacity(n + 1));
-        for i in 0..=n {
-            let f = i as f64 / n as f64;
-            let th = if s > 0.0 {
-                a0 + (a1 - a0) * f
-            } else {
-                a1 - (a1 - a0) * f
-            };
-            let (xc, yc) = (r * th.cos(), r * th.sin());
-            let mut x = r * (th - s * omega * c.servo_mismatch).cos();
-            let mut y = yc;
-            x *= 1.0 + c.scale_x;
-            y *= 1.0 + c.scale_y;
-            x += c.squareness * y;
-            // Velocity signs: ẋ ∝ −s sin θ, ẏ ∝ s cos θ.
-            x -= c.backlash_x / 2.0 * sgn(-s * th.sin());
-            y -= c.backlash_y / 2.0 * sgn(s * th.cos());
-            x += c.cyclic_amplitude * (std::f64::consts::TAU * xc / c.cyclic_pitch).sin();
-            y += c.cyclic_amplitude * (std::f64::consts::TAU * yc / c.cyclic_pitch).sin();
-            x += c.offset_x;
-            y += c.offset_y;
-            // Angle travelled since the last quadrant point.
-            let since = if s > 0.0 {
-                th.rem_euclid(quarter)
-            } else {
-                (-th).rem_euclid(quarter)
-            };
-            let spike = if c.spike != 0.0
-                && since < 10.0 * decay
-                && (th - s * since - a0).abs() > 1e-9
-                && (th - s * since - a1).abs() > 1e-9
-            {
-                c.spike * (-since / decay).exp()
-            } else {
-                0.0
-            };
-            let dr = synthesize(&c.harmonics, th) + spike + c.noise * rnd();
-            let dev = x.hypot(y) + dr - r;
-            angle.push(th);
-            deviation.push(dev);
-        }
-        Run {
-            direction: dir,
-            angle,
-            deviation,
-            lines: Vec::new(),
-        }
-    };
-    let mut runs = vec![make(Direction::Ccw)];
-    if c.both_directions {
-        runs.push(make(Direction::Cw));
+    let s = dir.sign();
+    let (mut angle, mut deviation) = (Vec::with_capacity(n + 1), Vec::with_capacity(n + 1));
+    for i in 0..=n {
+        let f = i as f64 / n as f64;
+        let th = if s > 0.0 {
+            a0 + (a1 - a0) * f
+        } else {
+            a1 - (a1 - a0) * f
+        };
+        let (xc, yc) = (r * th.cos(), r * th.sin());
+        let mut x = r * (th - s * omega * c.servo_mismatch).cos();
+        let mut y = yc;
+        x *= 1.0 + c.scale_x;
+        y *= 1.0 + c.scale_y;
+        x += c.squareness * y;
+        // Velocity signs: ẋ ∝ −s sin θ, ẏ ∝ s cos θ.
+        x -= c.backlash_x / 2.0 * sgn(-s * th.sin());
+        y -= c.backlash_y / 2.0 * sgn(s * th.cos());
+        x += c.cyclic_amplitude * (std::f64::consts::TAU * xc / c.cyclic_pitch).sin();
+        y += c.cyclic_amplitude * (std::f64::consts::TAU * yc / c.cyclic_pitch).sin();
+        x += c.offset_x;
+        y += c.offset_y;
+        // Angle travelled since the last quadrant point.
+        let since = if s > 0.0 {
+            th.rem_euclid(quarter)
+        } else {
+            (-th).rem_euclid(quarter)
+        };
+        let spike = if c.spike != 0.0
+            && since < 10.0 * decay
+            && (th - s * since - a0).abs() > 1e-9
+            && (th - s * since - a1).abs() > 1e-9
+        {
+            c.spike * (-since / decay).exp()
+        } else {
+            0.0
+        };
+        let dr = synthesize(&c.harmonics, th) + spike + c.noise * noise.uniform();
+        let dev = x.hypot(y) + dr - r;
+        angle.push(th);
+        deviation.push(dev);
     }
-    Ok(BallbarTrace {
-        nominal_radius: r,
-        feed: Some(c.feed),
-        runs,
-    })
+    Run {
+        direction: dir,
+        angle,
+        deviation,
+        lines: Vec::new(),
+    }
 }
 
 fn sgn(v: f64) -> f64 {

@@ -169,6 +169,45 @@ pub fn parse_ballbar_trace(
     text: &str,
     opts: ParseOptions,
 ) -> Result<BallbarTrace, BallbarTraceError> {
+    check_options(opts)?;
+    // The table's own hints name the servo columns; a ball-bar trace names its own.
+    let t = Table::parse(text).map_err(|e| match e {
+        TraceError::Empty => BallbarTraceError::Empty,
+        TraceError::NoHeader { line } => BallbarTraceError::NoHeader { line },
+        e => e.into(),
+    })?;
+    let (raw_angle, deviation, radius) = angle_and_deviation(&t, opts)?;
+    let angle = unwrap_angles(&raw_angle);
+    let bounds = match t.find(&["direction", "dir"]) {
+        Some(k) => runs_from_direction_column(&t, k)?,
+        None => runs_from_turning_points(&angle),
+    };
+    let runs: Vec<Run> = bounds
+        .into_iter()
+        .filter(|(a, b, _)| b - a >= MIN_RUN)
+        .map(|(a, b, direction)| Run {
+            direction,
+            angle: angle[a..b].to_vec(),
+            deviation: deviation[a..b].to_vec(),
+            lines: t.lines[a..b].to_vec(),
+        })
+        .collect();
+    if runs.is_empty() {
+        return Err(BallbarTraceError::TooShort {
+            line: t.lines[0],
+            min: MIN_RUN,
+        });
+    }
+    let feed = opts.feed.or_else(|| feed_from_time(&t, &runs, radius));
+    Ok(BallbarTrace {
+        nominal_radius: radius,
+        feed,
+        runs,
+    })
+}
+
+/// The options' radius and feed, when given, are finite and positive.
+fn check_options(opts: ParseOptions) -> Result<(), BallbarTraceError> {
     if let Some(r) = opts.nominal_radius {
         if !(r.is_finite() && r > 0.0) {
             return Err(BallbarTraceError::BadOption {
@@ -185,12 +224,15 @@ pub fn parse_ballbar_trace(
             });
         }
     }
-    // The table's own hints name the servo columns; a ball-bar trace names its own.
-    let t = Table::parse(text).map_err(|e| match e {
-        TraceError::Empty => BallbarTraceError::Empty,
-        TraceError::NoHeader { line } => BallbarTraceError::NoHeader { line },
-        e => e.into(),
-    })?;
+    Ok(())
+}
+
+/// The raw angle (rad, wrapped as read), the radial deviation (mm) and the
+/// nominal radius (mm), from angle/deviation columns or from X/Y columns.
+fn angle_and_deviation(
+    t: &Table,
+    opts: ParseOptions,
+) -> Result<(Vec<f64>, Vec<f64>, f64), BallbarTraceError> {
     let ang = t.find(&[
         "angle",
         "theta",
@@ -216,57 +258,69 @@ pub fn parse_ballbar_trace(
         t.find(&["x", "pos_x", "x_mm", "x_um"]),
         t.find(&["y", "pos_y", "y_mm", "y_um"]),
     );
-    let (raw_angle, deviation, radius) = match (ang, dev, xk, yk) {
+    match (ang, dev, xk, yk) {
         (Some(a), Some(d), _, _) => {
-            let sa = if header_says(&t, a, &["rad"]) {
+            let sa = if header_says(t, a, &["rad"]) {
                 1.0
             } else {
                 std::f64::consts::PI / 180.0
             };
-            let sd = if header_says(&t, d, &["mm"]) {
+            let sd = if header_says(t, d, &["mm"]) {
                 1.0
             } else {
                 1e-3
             };
-            (
+            Ok((
                 t.column_at(a + 1, sa)?,
                 t.column_at(d + 1, sd)?,
                 opts.nominal_radius.unwrap_or(100.0),
-            )
+            ))
         }
-        (_, _, Some(xi), Some(yi)) => {
-            let s = |k| {
-                if header_says(&t, k, &["um"]) {
-                    1e-3
-                } else {
-                    1.0
-                }
-            };
-            let (x, y) = (t.column_at(xi + 1, s(xi))?, t.column_at(yi + 1, s(yi))?);
-            // Nominal centre: the LSC of all points (collinear data is caught
-            // here and reported at the first line).
-            let c = fit_circle(&x, &y).map_err(|_| BallbarTraceError::TooShort {
-                line: t.lines[0],
-                min: MIN_RUN,
-            })?;
-            let r0 = opts.nominal_radius.unwrap_or(c.r);
-            let mut a = Vec::with_capacity(x.len());
-            let mut d = Vec::with_capacity(x.len());
-            for (i, (px, py)) in x.iter().zip(&y).enumerate() {
-                let (u, v) = (px - c.cx, py - c.cy);
-                if u.hypot(v) <= 1e-12 * c.r {
-                    return Err(BallbarTraceError::AtCentre(t.lines[i]));
-                }
-                a.push(v.atan2(u));
-                d.push(u.hypot(v) - r0);
-            }
-            (a, d, r0)
+        (_, _, Some(xi), Some(yi)) => polar_from_xy(t, xi, yi, opts),
+        _ => Err(BallbarTraceError::NoColumns(t.names.join(", "))),
+    }
+}
+
+/// Angle and deviation of X/Y positions about their least-squares centre
+/// (the nominal radius is the fitted one unless the options give it).
+fn polar_from_xy(
+    t: &Table,
+    xi: usize,
+    yi: usize,
+    opts: ParseOptions,
+) -> Result<(Vec<f64>, Vec<f64>, f64), BallbarTraceError> {
+    let s = |k| {
+        if header_says(t, k, &["um"]) {
+            1e-3
+        } else {
+            1.0
         }
-        _ => return Err(BallbarTraceError::NoColumns(t.names.join(", "))),
     };
-    // Unwrap the angle across ±180°.
+    let (x, y) = (t.column_at(xi + 1, s(xi))?, t.column_at(yi + 1, s(yi))?);
+    // Nominal centre: the LSC of all points (collinear data is caught
+    // here and reported at the first line).
+    let c = fit_circle(&x, &y).map_err(|_| BallbarTraceError::TooShort {
+        line: t.lines[0],
+        min: MIN_RUN,
+    })?;
+    let r0 = opts.nominal_radius.unwrap_or(c.r);
+    let mut a = Vec::with_capacity(x.len());
+    let mut d = Vec::with_capacity(x.len());
+    for (i, (px, py)) in x.iter().zip(&y).enumerate() {
+        let (u, v) = (px - c.cx, py - c.cy);
+        if u.hypot(v) <= 1e-12 * c.r {
+            return Err(BallbarTraceError::AtCentre(t.lines[i]));
+        }
+        a.push(v.atan2(u));
+        d.push(u.hypot(v) - r0);
+    }
+    Ok((a, d, r0))
+}
+
+/// The angle unwrapped across ±180°: each step is taken as the shorter way round.
+fn unwrap_angles(raw_angle: &[f64]) -> Vec<f64> {
     let mut angle: Vec<f64> = Vec::with_capacity(raw_angle.len());
-    for &a in &raw_angle {
+    for &a in raw_angle {
         let v = match angle.last() {
             None => a,
             Some(&prev) => {
@@ -281,110 +335,99 @@ pub fn parse_ballbar_trace(
         };
         angle.push(v);
     }
-    // Direction per sample.
-    let dir_col = t.find(&["direction", "dir"]);
-    let mut bounds = Vec::new(); // (start, end_exclusive, direction)
-    if let Some(k) = dir_col {
-        let mut start = 0;
-        for i in 0..t.rows() {
-            let v = t.columns[k][i];
-            if v != 1.0 && v != -1.0 {
-                return Err(BallbarTraceError::BadDirection {
-                    line: t.lines[i],
-                    value: v,
-                });
-            }
-            if i + 1 == t.rows() || t.columns[k][i + 1] != v {
-                bounds.push((
-                    start,
-                    i + 1,
-                    if v > 0.0 {
+    angle
+}
+
+/// A run: first sample, end (exclusive) and direction.
+type RunBounds = (usize, usize, Direction);
+
+/// Runs where the direction column (+1 CCW, −1 CW) keeps its value.
+fn runs_from_direction_column(t: &Table, k: usize) -> Result<Vec<RunBounds>, BallbarTraceError> {
+    let mut bounds = Vec::new();
+    let mut start = 0;
+    for i in 0..t.rows() {
+        let v = t.columns[k][i];
+        if v != 1.0 && v != -1.0 {
+            return Err(BallbarTraceError::BadDirection {
+                line: t.lines[i],
+                value: v,
+            });
+        }
+        if i + 1 == t.rows() || t.columns[k][i + 1] != v {
+            let direction = if v > 0.0 {
+                Direction::Ccw
+            } else {
+                Direction::Cw
+            };
+            bounds.push((start, i + 1, direction));
+            start = i + 1;
+        }
+    }
+    Ok(bounds)
+}
+
+/// Runs split where the angle turns back by more than 1° from its running
+/// extreme (noise at a standstill does not split a run).
+fn runs_from_turning_points(angle: &[f64]) -> Vec<RunBounds> {
+    let tol = 1f64.to_radians();
+    let mut bounds = Vec::new();
+    let (mut start, mut ext, mut dir) = (0usize, 0usize, None::<Direction>);
+    for i in 1..angle.len() {
+        match dir {
+            None => {
+                if (angle[i] - angle[start]).abs() > tol {
+                    dir = Some(if angle[i] > angle[start] {
                         Direction::Ccw
                     } else {
                         Direction::Cw
-                    },
-                ));
-                start = i + 1;
-            }
-        }
-    } else {
-        let tol = 1f64.to_radians();
-        let (mut start, mut ext, mut dir) = (0usize, 0usize, None::<Direction>);
-        for i in 1..angle.len() {
-            match dir {
-                None => {
-                    if (angle[i] - angle[start]).abs() > tol {
-                        dir = Some(if angle[i] > angle[start] {
-                            Direction::Ccw
-                        } else {
-                            Direction::Cw
-                        });
-                        ext = i;
-                    }
-                }
-                Some(d) => {
-                    let s = d.sign();
-                    if (angle[i] - angle[ext]) * s >= 0.0 {
-                        ext = i;
-                    } else if (angle[ext] - angle[i]) * s > tol {
-                        bounds.push((start, ext + 1, d));
-                        start = ext;
-                        ext = i;
-                        dir = Some(if d == Direction::Ccw {
-                            Direction::Cw
-                        } else {
-                            Direction::Ccw
-                        });
-                    }
+                    });
+                    ext = i;
                 }
             }
-        }
-        if let Some(d) = dir {
-            bounds.push((start, angle.len(), d));
+            Some(d) => {
+                let s = d.sign();
+                if (angle[i] - angle[ext]) * s >= 0.0 {
+                    ext = i;
+                } else if (angle[ext] - angle[i]) * s > tol {
+                    bounds.push((start, ext + 1, d));
+                    start = ext;
+                    ext = i;
+                    dir = Some(if d == Direction::Ccw {
+                        Direction::Cw
+                    } else {
+                        Direction::Ccw
+                    });
+                }
+            }
         }
     }
-    let runs: Vec<Run> = bounds
-        .into_iter()
-        .filter(|(a, b, _)| b - a >= MIN_RUN)
-        .map(|(a, b, direction)| Run {
-            direction,
-            angle: angle[a..b].to_vec(),
-            deviation: deviation[a..b].to_vec(),
-            lines: t.lines[a..b].to_vec(),
+    if let Some(d) = dir {
+        bounds.push((start, angle.len(), d));
+    }
+    bounds
+}
+
+/// The feed (mm/min) from a time column: |Δθ|·R/Δt of each run, the median.
+fn feed_from_time(t: &Table, runs: &[Run], radius: f64) -> Option<f64> {
+    let k = t.find(&["time", "t", "time_s", "time_ms"])?;
+    let scale = if header_says(t, k, &["ms"]) {
+        1e-3
+    } else {
+        1.0
+    };
+    let time = &t.columns[k];
+    let row = |run: &Run, j: usize| t.lines.iter().position(|&l| l == run.lines[j]);
+    let mut feeds: Vec<f64> = runs
+        .iter()
+        .filter_map(|r| {
+            let (i0, i1) = (row(r, 0)?, row(r, r.lines.len() - 1)?);
+            let dt = (time[i1] - time[i0]) * scale;
+            let da = (r.angle[r.angle.len() - 1] - r.angle[0]).abs();
+            (dt > 0.0).then(|| da * radius / dt * 60.0)
         })
         .collect();
-    if runs.is_empty() {
-        return Err(BallbarTraceError::TooShort {
-            line: t.lines[0],
-            min: MIN_RUN,
-        });
-    }
-    let feed = opts.feed.or_else(|| {
-        let k = t.find(&["time", "t", "time_s", "time_ms"])?;
-        let scale = if header_says(&t, k, &["ms"]) {
-            1e-3
-        } else {
-            1.0
-        };
-        let time = &t.columns[k];
-        let row = |run: &Run, j: usize| t.lines.iter().position(|&l| l == run.lines[j]);
-        let mut feeds: Vec<f64> = runs
-            .iter()
-            .filter_map(|r| {
-                let (i0, i1) = (row(r, 0)?, row(r, r.lines.len() - 1)?);
-                let dt = (time[i1] - time[i0]) * scale;
-                let da = (r.angle[r.angle.len() - 1] - r.angle[0]).abs();
-                (dt > 0.0).then(|| da * radius / dt * 60.0)
-            })
-            .collect();
-        feeds.sort_by(f64::total_cmp);
-        feeds.get(feeds.len() / 2).copied()
-    });
-    Ok(BallbarTrace {
-        nominal_radius: radius,
-        feed,
-        runs,
-    })
+    feeds.sort_by(f64::total_cmp);
+    feeds.get(feeds.len() / 2).copied()
 }
 
 #[cfg(test)]

@@ -116,6 +116,14 @@ pub fn torque_saturation(
     machine: &Machine,
     q: &SaturationQuery,
 ) -> Result<Vec<SaturationPoint>, BestKffpError> {
+    check_query(q)?;
+    q.j1.iter()
+        .map(|&j1| saturation_point(machine, q, j1))
+        .collect()
+}
+
+/// A feed at the cutting point > 0, at least one load, acc/dec time in 0…100 s.
+fn check_query(q: &SaturationQuery) -> Result<(), BestKffpError> {
     if !(q.feed_at_cutting_point.is_finite() && q.feed_at_cutting_point > 0.0) {
         return Err(BestKffpError::BadQuery {
             field: "feedAtCuttingPoint",
@@ -140,83 +148,87 @@ pub fn torque_saturation(
             expected: "the acc/dec time must be between 0 and 100 s",
         });
     }
-    let mut out = Vec::with_capacity(q.j1.len());
-    for &j1 in &q.j1 {
-        let omega_ref = 1.0;
-        let cond = Condition {
-            rc: 1.0,
-            rw: 1.0,
-            omega: omega_ref,
-            accel_time: q.accel_time,
-            j1,
-            torque_max: Some(q.torque_max),
-            duration: None,
-            dt: q.dt,
-            kffp: None,
-        };
-        cond.validate()?;
-        let mut axes = feed_vector::axes_for(machine, &cond)?;
-        axes[2].torque_max = None;
-        // The saturating acceleration is ω_sat over the command's
-        // acceleration time: the acc/dec ramp, or with accelTime 0 (acc/dec
-        // once) the Ts smoothing that then shapes the velocity step alone.
-        let t_acc = if q.accel_time > 0.0 {
-            q.accel_time
-        } else {
-            axes[2].ts
-        };
-        if t_acc <= 0.0 {
-            return Err(BestKffpError::BadQuery {
-                field: "accelTime",
-                value: q.accel_time,
-                expected: "with accelTime 0 and no Ts on the C axis the command is a velocity step with no finite acceleration; give accelTime > 0 s",
-            });
-        }
-        if q.reading == SaturationReading::InertiaOnly {
-            let j = axes[2].inertia();
-            let accel_sat = q.torque_max / j;
-            let omega_sat = accel_sat * t_acc;
-            out.push(SaturationPoint {
-                j_total: j,
-                accel_sat,
-                omega_sat,
-                rc_min: q.feed_at_cutting_point / 60.0 / omega_sat,
-                torque_per_omega: q.torque_max / omega_sat,
-            });
-            continue;
-        }
-        if q.reading == SaturationReading::PreControlOff {
-            axes[2].kffp = 0.0;
-        }
-        let dt = cond.step();
-        // through the acc/dec, the smoothing and the settling of the loop
-        let n_f = (feed_vector::steady_from(&axes, &cond) / dt).ceil() + 1.0;
-        if n_f > feed_vector::MAX_SAMPLES as f64 {
-            return Err(BestKffpError::BadQuery {
-                field: "dt",
-                value: dt,
-                expected: "too fine for this acc/dec time: the run would exceed the 4,000,000-sample budget; raise dt or shorten accelTime",
-            });
-        }
-        let n = n_f as usize;
-        let pad = feed_vector::read_ahead_pad(&axes, dt);
-        let cmd: Vec<f64> = (0..n + pad)
-            .map(|i| feed_vector::command::angle(i as f64 * dt, omega_ref, q.accel_time))
-            .collect();
-        let r = feed_vector::run_axis("c", &axes[2], dt, &cmd, n)?;
-        let peak = r.torque.iter().fold(0.0_f64, |m, t| m.max(t.abs()));
-        let per_omega = peak / omega_ref;
-        let omega_sat = q.torque_max / per_omega;
-        let accel_sat = omega_sat / t_acc;
-        out.push(SaturationPoint {
-            j_total: axes[2].inertia(),
+    Ok(())
+}
+
+/// The saturation point of the C axis with load inertia `j1` (kg·m²).
+fn saturation_point(
+    machine: &Machine,
+    q: &SaturationQuery,
+    j1: f64,
+) -> Result<SaturationPoint, BestKffpError> {
+    let omega_ref = 1.0;
+    let cond = Condition {
+        rc: 1.0,
+        rw: 1.0,
+        omega: omega_ref,
+        accel_time: q.accel_time,
+        j1,
+        torque_max: Some(q.torque_max),
+        duration: None,
+        dt: q.dt,
+        kffp: None,
+    };
+    cond.validate()?;
+    let mut axes = feed_vector::axes_for(machine, &cond)?;
+    axes[2].torque_max = None;
+    // The saturating acceleration is ω_sat over the command's
+    // acceleration time: the acc/dec ramp, or with accelTime 0 (acc/dec
+    // once) the Ts smoothing that then shapes the velocity step alone.
+    let t_acc = if q.accel_time > 0.0 {
+        q.accel_time
+    } else {
+        axes[2].ts
+    };
+    if t_acc <= 0.0 {
+        return Err(BestKffpError::BadQuery {
+            field: "accelTime",
+            value: q.accel_time,
+            expected: "with accelTime 0 and no Ts on the C axis the command is a velocity step with no finite acceleration; give accelTime > 0 s",
+        });
+    }
+    if q.reading == SaturationReading::InertiaOnly {
+        let j = axes[2].inertia();
+        let accel_sat = q.torque_max / j;
+        let omega_sat = accel_sat * t_acc;
+        return Ok(SaturationPoint {
+            j_total: j,
             accel_sat,
             omega_sat,
             rc_min: q.feed_at_cutting_point / 60.0 / omega_sat,
-            torque_per_omega: per_omega,
+            torque_per_omega: q.torque_max / omega_sat,
         });
     }
-    Ok(out)
+    if q.reading == SaturationReading::PreControlOff {
+        axes[2].kffp = 0.0;
+    }
+    let dt = cond.step();
+    // through the acc/dec, the smoothing and the settling of the loop
+    let n_f = (feed_vector::steady_from(&axes, &cond) / dt).ceil() + 1.0;
+    if n_f > feed_vector::MAX_SAMPLES as f64 {
+        return Err(BestKffpError::BadQuery {
+            field: "dt",
+            value: dt,
+            expected: "too fine for this acc/dec time: the run would exceed the 4,000,000-sample budget; raise dt or shorten accelTime",
+        });
+    }
+    let n = n_f as usize;
+    let pad = feed_vector::read_ahead_pad(&axes, dt);
+    let cmd: Vec<f64> = (0..n + pad)
+        .map(|i| feed_vector::command::angle(i as f64 * dt, omega_ref, q.accel_time))
+        .collect();
+    let r = feed_vector::run_axis("c", &axes[2], dt, &cmd, n)?;
+    let peak = r.torque.iter().fold(0.0_f64, |m, t| m.max(t.abs()));
+    let per_omega = peak / omega_ref;
+    let omega_sat = q.torque_max / per_omega;
+    let accel_sat = omega_sat / t_acc;
+    Ok(SaturationPoint {
+        j_total: axes[2].inertia(),
+        accel_sat,
+        omega_sat,
+        rc_min: q.feed_at_cutting_point / 60.0 / omega_sat,
+        torque_per_omega: per_omega,
+    })
 }
 
 #[cfg(test)]

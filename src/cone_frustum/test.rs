@@ -25,11 +25,11 @@ use std::f64::consts::TAU;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::path::{Geometry, Method};
+use super::path::{Geometry, Method, PathPoint};
 use super::{drive, sensitivity, ConeFrustumError};
 use crate::kinematics::inverse::limits_from_degrees;
 use crate::kinematics::{Chain, GeometricErrors, Model, Pose, AXES};
-use crate::machine::MachineRef;
+use crate::machine::{Machine, MachineRef};
 use crate::servo::{AxisKind, AxisParams};
 
 fn perpendicular() -> Method {
@@ -189,6 +189,59 @@ fn placeholder_axis(kind: AxisKind) -> AxisParams {
 /// ```
 pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, ConeFrustumError> {
     let (machine, chain) = cfg.machine.resolve()?;
+    let geo = geometry(cfg)?;
+    let radius = geo.circle_radius();
+    let duration = TAU * radius / (cfg.feed / 60.0);
+    let n = cfg.points;
+    let s = Sampling {
+        n,
+        lead: (n as f64 * cfg.lead_in_deg / 360.0).ceil() as usize,
+        dir: if cfg.clockwise { -1.0 } else { 1.0 },
+        dt: duration / n as f64,
+    };
+    let present: Vec<usize> = (0..6)
+        .filter(|i| chain.axes().contains(&AXES[*i]))
+        .collect();
+    let cmd = commands(cfg, &chain, &machine, &geo, &s)?;
+    let (q_act, series) = drive_axes(cfg, &machine, &cmd.q, &present, &s)?;
+    let r = bar_readings(cfg, &chain, &geo, &cmd, &q_act, &present, &s)?;
+    let max_deviation = r
+        .deviation
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    let min_deviation = r.deviation.iter().copied().fold(f64::INFINITY, f64::min);
+    Ok(ConeFrustumResult {
+        angle_deg: r.angle_deg,
+        time: r.time,
+        deviation: r.deviation,
+        path: r.path,
+        axes: series,
+        axis_sensitivity: present
+            .iter()
+            .zip(r.axis_sens)
+            .map(|(k, v)| Series {
+                name: AXES[*k].to_string(),
+                values: v,
+            })
+            .collect(),
+        error_sensitivity: r
+            .symbols
+            .into_iter()
+            .zip(r.err_sens)
+            .map(|(s, v)| Series { name: s, values: v })
+            .collect(),
+        bar_length: geo.bar_length,
+        radius,
+        duration,
+        max_deviation,
+        min_deviation,
+    })
+}
+
+/// The checked configuration as the path geometry: half apex, inclination,
+/// bar direction, bar length (from `radius` when given) and centre.
+fn geometry(cfg: &ConeFrustumConfig) -> Result<Geometry, ConeFrustumError> {
     if !(cfg.half_apex_deg.is_finite() && cfg.half_apex_deg > 0.0 && cfg.half_apex_deg < 90.0) {
         return Err(bad(
             "halfApexDeg",
@@ -247,31 +300,53 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
             "must be three finite coordinates in mm",
         ));
     }
-    let geo = Geometry {
+    Ok(Geometry {
         half_apex: theta,
         inclination: cfg.inclination_deg.to_radians(),
         method: cfg.method,
         bar_length,
         centre: Vector3::from(centre),
-    };
-    let radius = geo.circle_radius();
-    let duration = TAU * radius / (cfg.feed / 60.0);
-    let n = cfg.points;
-    let dt = duration / n as f64;
-    let lead = (n as f64 * cfg.lead_in_deg / 360.0).ceil() as usize;
-    let dir = if cfg.clockwise { -1.0 } else { 1.0 };
+    })
+}
+
+/// How the revolution is sampled: `n` samples after `lead` lead-in ones,
+/// direction `dir` (±1), step `dt` in s.
+struct Sampling {
+    n: usize,
+    lead: usize,
+    dir: f64,
+    dt: f64,
+}
+
+impl Sampling {
+    /// Path angle φ of sample `i`, rad (0 at the start of the measured revolution).
+    fn phi(&self, i: usize) -> f64 {
+        self.dir * TAU * (i as f64 - self.lead as f64) / self.n as f64
+    }
+}
+
+/// The path points and the continuous axis commands of every sample.
+struct Commands {
+    points: Vec<PathPoint>,
+    q: Vec<[f64; 6]>,
+}
+
+/// Inverse kinematics of every sample (the within-limit solutions), then
+/// one continuous branch through them.
+fn commands(
+    cfg: &ConeFrustumConfig,
+    chain: &Chain,
+    machine: &Machine,
+    geo: &Geometry,
+    s: &Sampling,
+) -> Result<Commands, ConeFrustumError> {
     let limits = limits_from_degrees(&machine.limits);
-    let present: Vec<usize> = (0..6)
-        .filter(|i| chain.axes().contains(&AXES[*i]))
-        .collect();
-    // Commands.
-    let ik = crate::kinematics::inverse::Inverse::new(&chain, cfg.tool_length)?;
-    let total = lead + n;
-    // Every point's within-limit solutions, once.
+    let ik = crate::kinematics::inverse::Inverse::new(chain, cfg.tool_length)?;
+    let total = s.lead + s.n;
     let mut points = Vec::with_capacity(total);
     let mut candidates: Vec<Vec<[f64; 6]>> = Vec::with_capacity(total);
     for i in 0..total {
-        let phi = dir * TAU * (i as f64 - lead as f64) / n as f64;
+        let phi = s.phi(i);
         let pt = geo.point(phi);
         let pose = Pose {
             position: pt.tip.into(),
@@ -289,13 +364,23 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         candidates.push(inside);
         points.push(pt);
     }
-    let q_cmd = continuous_commands(&candidates, |i| {
-        (dir * TAU * (i as f64 - lead as f64) / n as f64).to_degrees()
-    })?;
-    // Drives.
-    let mut q_act = q_cmd.clone();
+    let q = continuous_commands(&candidates, |i| s.phi(i).to_degrees())?;
+    Ok(Commands { points, q })
+}
+
+/// Each present axis' drive (servo model, or ideal) following its command,
+/// with the configuration's backlash and pitch error: the actual axis
+/// positions of every sample and the per-axis series of the measured part.
+fn drive_axes(
+    cfg: &ConeFrustumConfig,
+    machine: &Machine,
+    q_cmd: &[[f64; 6]],
+    present: &[usize],
+    s: &Sampling,
+) -> Result<(Vec<[f64; 6]>, Vec<AxisSeries>), ConeFrustumError> {
+    let mut q_act = q_cmd.to_vec();
     let mut series = Vec::new();
-    for &k in &present {
+    for &k in present {
         let letter = AXES[k];
         let kind = if k < 3 {
             AxisKind::Linear
@@ -322,7 +407,7 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         let act = if cfg.ideal_servo {
             drive::ideal(&params, &cmd)
         } else {
-            drive::servo(&params, dt, &cmd)
+            drive::servo(&params, s.dt, &cmd)
         }
         .map_err(|e| ConeFrustumError::Servo {
             axis: letter.to_uppercase(),
@@ -334,75 +419,82 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         series.push(AxisSeries {
             axis: letter.to_string(),
             kind,
-            command: cmd[lead..].to_vec(),
-            actual: act[lead..].to_vec(),
+            command: cmd[s.lead..].to_vec(),
+            actual: act[s.lead..].to_vec(),
         });
     }
-    // Bar readings.
-    let model = Model::new(&chain, &cfg.errors, cfg.tool_length)?;
-    let nominal = Model::new(&chain, &GeometricErrors::default(), cfg.tool_length)?;
-    let symbols = crate::kinematics::errors::error_symbols(&chain);
+    Ok((q_act, series))
+}
+
+/// What the bar reads over the measured revolution, with the sensitivities.
+struct BarReadings {
+    angle_deg: Vec<f64>,
+    time: Vec<f64>,
+    deviation: Vec<f64>,
+    path: [Vec<f64>; 3],
+    axis_sens: Vec<Vec<f64>>,
+    symbols: Vec<String>,
+    err_sens: Vec<Vec<f64>>,
+}
+
+/// The bar-length change of each measured sample (forward kinematics with
+/// the errors at the actual axis positions), the nominal path, and the
+/// sensitivities to each axis and each location error at the command.
+fn bar_readings(
+    cfg: &ConeFrustumConfig,
+    chain: &Chain,
+    geo: &Geometry,
+    cmd: &Commands,
+    q_act: &[[f64; 6]],
+    present: &[usize],
+    s: &Sampling,
+) -> Result<BarReadings, ConeFrustumError> {
+    let n = s.n;
+    let model = Model::new(chain, &cfg.errors, cfg.tool_length)?;
+    let nominal = Model::new(chain, &GeometricErrors::default(), cfg.tool_length)?;
+    let symbols = crate::kinematics::errors::error_symbols(chain);
     let perturbed = symbols
         .iter()
-        .map(|s| sensitivity::perturbed(&chain, &GeometricErrors::default(), cfg.tool_length, s))
+        .map(|e| sensitivity::perturbed(chain, &GeometricErrors::default(), cfg.tool_length, e))
         .collect::<Result<Vec<_>, _>>()?;
-    let mut deviation = Vec::with_capacity(n);
-    let mut path = [
-        Vec::with_capacity(n),
-        Vec::with_capacity(n),
-        Vec::with_capacity(n),
-    ];
-    let mut axis_sens = vec![Vec::with_capacity(n); present.len()];
-    let mut err_sens = vec![Vec::with_capacity(n); symbols.len()];
-    let mut angle_deg = Vec::with_capacity(n);
-    let mut time = Vec::with_capacity(n);
-    for i in lead..total {
-        let (p, _) = model.eval(&q_act[i]);
-        deviation.push((p - geo.centre).norm() - bar_length);
-        let pt = &points[i];
-        for (c, v) in path.iter_mut().zip(pt.tip.iter()) {
+    let mut r = BarReadings {
+        angle_deg: Vec::with_capacity(n),
+        time: Vec::with_capacity(n),
+        deviation: Vec::with_capacity(n),
+        path: [
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+        ],
+        axis_sens: vec![Vec::with_capacity(n); present.len()],
+        err_sens: vec![Vec::with_capacity(n); symbols.len()],
+        symbols,
+    };
+    let measured = q_act[s.lead..]
+        .iter()
+        .zip(&cmd.q[s.lead..])
+        .zip(&cmd.points[s.lead..]);
+    for (k, ((qa, qc), pt)) in measured.enumerate() {
+        let (p, _) = model.eval(qa);
+        r.deviation.push((p - geo.centre).norm() - geo.bar_length);
+        for (c, v) in r.path.iter_mut().zip(pt.tip.iter()) {
             c.push(*v);
         }
-        for (s, v) in axis_sens
+        for (a, v) in r
+            .axis_sens
             .iter_mut()
-            .zip(sensitivity::axes(&nominal, &q_cmd[i], &pt.bar, &present))
+            .zip(sensitivity::axes(&nominal, qc, &pt.bar, present))
         {
-            s.push(v);
+            a.push(v);
         }
-        for (s, m) in err_sens.iter_mut().zip(&perturbed) {
-            s.push(sensitivity::error(m, &q_cmd[i], &pt.bar));
+        for (e, m) in r.err_sens.iter_mut().zip(&perturbed) {
+            e.push(sensitivity::error(m, qc, &pt.bar));
         }
-        let j = (i - lead) as f64;
-        angle_deg.push(360.0 * j / n as f64);
-        time.push(j * dt);
+        let j = k as f64;
+        r.angle_deg.push(360.0 * j / n as f64);
+        r.time.push(j * s.dt);
     }
-    let max_deviation = deviation.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let min_deviation = deviation.iter().copied().fold(f64::INFINITY, f64::min);
-    Ok(ConeFrustumResult {
-        angle_deg,
-        time,
-        deviation,
-        path,
-        axes: series,
-        axis_sensitivity: present
-            .iter()
-            .zip(axis_sens)
-            .map(|(k, v)| Series {
-                name: AXES[*k].to_string(),
-                values: v,
-            })
-            .collect(),
-        error_sensitivity: symbols
-            .into_iter()
-            .zip(err_sens)
-            .map(|(s, v)| Series { name: s, values: v })
-            .collect(),
-        bar_length,
-        radius,
-        duration,
-        max_deviation,
-        min_deviation,
-    })
+    Ok(r)
 }
 
 /// The chain of a machine reference (for callers that need it).

@@ -188,30 +188,6 @@ impl GeometricErrors {
     pub fn resolve(&self, chain: &Chain) -> Result<[AxisErrors; 6], KinematicsError> {
         let mut out: [AxisErrors; 6] = Default::default();
         let present = chain.axes();
-        let check_axis = |key: &str, axis: usize| {
-            if present.contains(&AXES[axis]) {
-                Ok(())
-            } else {
-                Err(KinematicsError::BadError {
-                    key: key.to_string(),
-                    why: format!(
-                        "this machine has no {} axis (axes: {})",
-                        AXES[axis].to_uppercase(),
-                        present.join(", ")
-                    ),
-                })
-            }
-        };
-        let finite = |key: &str, v: f64| {
-            if v.is_finite() {
-                Ok(())
-            } else {
-                Err(KinematicsError::BadError {
-                    key: key.to_string(),
-                    why: "must be a finite number (mm or rad)".into(),
-                })
-            }
-        };
         for (key, v) in &self.location {
             let s = parse_symbol(key).filter(|s| s.location).ok_or_else(|| {
                 KinematicsError::BadError {
@@ -221,7 +197,7 @@ impl GeometricErrors {
                             .into(),
                 }
             })?;
-            check_axis(&format!("location.{key}"), s.axis)?;
+            check_axis(&present, &format!("location.{key}"), s.axis)?;
             finite(&format!("location.{key}"), *v)?;
             if s.d == own(s.axis) {
                 out[s.axis].zero += v;
@@ -237,7 +213,7 @@ impl GeometricErrors {
                         .into(),
                 }
             })?;
-            check_axis(&format!("component.{key}"), s.axis)?;
+            check_axis(&present, &format!("component.{key}"), s.axis)?;
             let coeffs = c.to_vec();
             for v in &coeffs {
                 finite(&format!("component.{key}"), *v)?;
@@ -253,6 +229,13 @@ impl GeometricErrors {
         for (i, v) in self.tool.iter().enumerate() {
             finite(&format!("tool[{i}]"), *v)?;
         }
+        self.check_drive_errors(&present)?;
+        Ok(out)
+    }
+
+    /// Backlash widths ≥ 0 on axes the machine has, pitch errors on its
+    /// rotary axes with finite harmonics.
+    fn check_drive_errors(&self, present: &[&str]) -> Result<(), KinematicsError> {
         for (key, v) in &self.backlash {
             let axis = Chain::axis_index(&key.to_ascii_lowercase()).ok_or_else(|| {
                 KinematicsError::BadError {
@@ -260,7 +243,7 @@ impl GeometricErrors {
                     why: "expected an axis letter x, y, z, a, b or c".into(),
                 }
             })?;
-            check_axis(&format!("backlash.{key}"), axis)?;
+            check_axis(present, &format!("backlash.{key}"), axis)?;
             if !(v.is_finite() && *v >= 0.0) {
                 return Err(KinematicsError::BadError {
                     key: format!("backlash.{key}"),
@@ -275,7 +258,7 @@ impl GeometricErrors {
                     key: format!("pitchError.{key}"),
                     why: "expected a rotary axis letter a, b or c".into(),
                 })?;
-            check_axis(&format!("pitchError.{key}"), axis)?;
+            check_axis(present, &format!("pitchError.{key}"), axis)?;
             for (i, h) in hs.iter().enumerate() {
                 if !(h.w.is_finite() && h.n.is_finite() && h.phi.is_finite()) {
                     return Err(KinematicsError::BadError {
@@ -285,7 +268,35 @@ impl GeometricErrors {
                 }
             }
         }
-        Ok(out)
+        Ok(())
+    }
+}
+
+/// An error on an axis the machine does not have is refused, naming the key.
+fn check_axis(present: &[&str], key: &str, axis: usize) -> Result<(), KinematicsError> {
+    if present.contains(&AXES[axis]) {
+        Ok(())
+    } else {
+        Err(KinematicsError::BadError {
+            key: key.to_string(),
+            why: format!(
+                "this machine has no {} axis (axes: {})",
+                AXES[axis].to_uppercase(),
+                present.join(", ")
+            ),
+        })
+    }
+}
+
+/// An error value must be a finite number.
+fn finite(key: &str, v: f64) -> Result<(), KinematicsError> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(KinematicsError::BadError {
+            key: key.to_string(),
+            why: "must be a finite number (mm or rad)".into(),
+        })
     }
 }
 

@@ -32,92 +32,26 @@ pub fn arc(
     scale: f64,
 ) -> Result<Arc, NcError> {
     let (u, v, n) = plane.axes();
-    let p0 = start.p();
-    let p1 = end.p();
-    let letters = ['I', 'J', 'K'];
-    let (lu, lv) = (letters[u], letters[v]);
+    let g = ArcBlock {
+        b,
+        first,
+        plane,
+        cw,
+        p0: start.p(),
+        p1: end.p(),
+        scale,
+    };
+    let (p0, p1) = (g.p0, g.p1);
     let chord = (p1[u] - p0[u]).hypot(p1[v] - p0[v]);
-    let tol = |r: f64| 0.005 + 1e-5 * r.abs();
     let mut center = [0.0; 3];
     center[n] = p0[n];
-    let r_form;
-    let radius;
-    if let Some(rw) = b.word('R') {
-        r_form = true;
-        let r = rw.value * scale;
-        if r == 0.0 {
-            return Err(err(
-                b,
-                rw,
-                "arc radius R is zero; expected a non-zero radius",
-            ));
-        }
-        if chord < 1e-9 {
-            return Err(err(
-                b,
-                rw,
-                "a full circle cannot be given by R; expected I/J/K for the centre",
-            ));
-        }
-        let half = chord / 2.0;
-        if half > r.abs() + tol(r) {
-            return Err(err(
-                b,
-                rw,
-                format!(
-                    "inconsistent radius: R{} is smaller than half the chord ({:.4} mm); expected |R| ≥ {:.4}",
-                    rw.text,
-                    half / scale,
-                    half / scale
-                ),
-            ));
-        }
-        let h = (r * r - half * half).max(0.0).sqrt();
-        let (mu, mv) = ((p0[u] + p1[u]) / 2.0, (p0[v] + p1[v]) / 2.0);
-        let (du, dv) = ((p1[u] - p0[u]) / chord, (p1[v] - p0[v]) / chord);
-        // Left of the chord for CCW minor arcs; right for CW; flipped for R < 0.
-        let side = if cw { -1.0 } else { 1.0 } * r.signum();
-        center[u] = mu - dv * h * side;
-        center[v] = mv + du * h * side;
-        radius = r.abs();
-    } else {
-        r_form = false;
-        let iw = b.word(lu);
-        let jw = b.word(lv);
-        if iw.is_none() && jw.is_none() {
-            return Err(err(
-                b,
-                first,
-                format!(
-                    "arc (G{}) without a centre in the G{} plane; expected {lu}/{lv} or R",
-                    if cw { 2 } else { 3 },
-                    plane.code()
-                ),
-            ));
-        }
-        center[u] = p0[u] + iw.map_or(0.0, |w| w.value * scale);
-        center[v] = p0[v] + jw.map_or(0.0, |w| w.value * scale);
-        let r0 = (p0[u] - center[u]).hypot(p0[v] - center[v]);
-        let r1 = (p1[u] - center[u]).hypot(p1[v] - center[v]);
-        if r0 < 1e-9 {
-            return Err(err(
-                b,
-                iw.or(jw).unwrap_or(first),
-                "arc centre equals the start point; expected a non-zero radius",
-            ));
-        }
-        if (r0 - r1).abs() > tol(r0) {
-            return Err(err(
-                b,
-                iw.or(jw).unwrap_or(first),
-                format!(
-                    "inconsistent radius: start radius {:.4} but end radius {:.4} (mm); check the end point and {lu}/{lv}",
-                    r0, r1
-                ),
-            ));
-        }
-        radius = 0.5 * (r0 + r1);
-    }
+    let r_form = b.word('R').is_some();
+    let (cu, cv, radius) = match b.word('R') {
+        Some(rw) => g.centre_from_r(rw, chord)?,
+        None => g.centre_from_ijk()?,
+    };
+    center[u] = cu;
+    center[v] = cv;
     let th0 = (p0[v] - center[v]).atan2(p0[u] - center[u]);
     let th1 = (p1[v] - center[v]).atan2(p1[u] - center[u]);
     let tau = std::f64::consts::TAU;
@@ -140,4 +74,107 @@ pub fn arc(
         sweep,
         r_form,
     })
+}
+
+/// Tolerance of the radius checks, mm: 0.005 mm + 1e-5·R.
+fn tol(r: f64) -> f64 {
+    0.005 + 1e-5 * r.abs()
+}
+
+/// A G2/G3 block with its start and end points (mm).
+struct ArcBlock<'a> {
+    b: &'a Block,
+    first: &'a Word,
+    plane: Plane,
+    cw: bool,
+    p0: [f64; 3],
+    p1: [f64; 3],
+    scale: f64,
+}
+
+impl ArcBlock<'_> {
+    /// The centre's in-plane coordinates and the radius from R: R > 0 the
+    /// arc up to 180°, R < 0 the arc over 180°.
+    fn centre_from_r(&self, rw: &Word, chord: f64) -> Result<(f64, f64, f64), NcError> {
+        let (b, p0, p1) = (self.b, self.p0, self.p1);
+        let (u, v, _) = self.plane.axes();
+        let r = rw.value * self.scale;
+        if r == 0.0 {
+            return Err(err(
+                b,
+                rw,
+                "arc radius R is zero; expected a non-zero radius",
+            ));
+        }
+        if chord < 1e-9 {
+            return Err(err(
+                b,
+                rw,
+                "a full circle cannot be given by R; expected I/J/K for the centre",
+            ));
+        }
+        let half = chord / 2.0;
+        if half > r.abs() + tol(r) {
+            return Err(err(
+                b,
+                rw,
+                format!(
+                    "inconsistent radius: R{} is smaller than half the chord ({:.4} mm); expected |R| ≥ {:.4}",
+                    rw.text,
+                    half / self.scale,
+                    half / self.scale
+                ),
+            ));
+        }
+        let h = (r * r - half * half).max(0.0).sqrt();
+        let (mu, mv) = ((p0[u] + p1[u]) / 2.0, (p0[v] + p1[v]) / 2.0);
+        let (du, dv) = ((p1[u] - p0[u]) / chord, (p1[v] - p0[v]) / chord);
+        // Left of the chord for CCW minor arcs; right for CW; flipped for R < 0.
+        let side = if self.cw { -1.0 } else { 1.0 } * r.signum();
+        Ok((mu - dv * h * side, mv + du * h * side, r.abs()))
+    }
+
+    /// The centre's in-plane coordinates from I/J/K (incremental from the
+    /// start) and the radius, the mean of the start and end radii.
+    fn centre_from_ijk(&self) -> Result<(f64, f64, f64), NcError> {
+        let (b, first, p0, p1) = (self.b, self.first, self.p0, self.p1);
+        let (u, v, _) = self.plane.axes();
+        let letters = ['I', 'J', 'K'];
+        let (lu, lv) = (letters[u], letters[v]);
+        let iw = b.word(lu);
+        let jw = b.word(lv);
+        if iw.is_none() && jw.is_none() {
+            return Err(err(
+                b,
+                first,
+                format!(
+                    "arc (G{}) without a centre in the G{} plane; expected {lu}/{lv} or R",
+                    if self.cw { 2 } else { 3 },
+                    self.plane.code()
+                ),
+            ));
+        }
+        let cu = p0[u] + iw.map_or(0.0, |w| w.value * self.scale);
+        let cv = p0[v] + jw.map_or(0.0, |w| w.value * self.scale);
+        let r0 = (p0[u] - cu).hypot(p0[v] - cv);
+        let r1 = (p1[u] - cu).hypot(p1[v] - cv);
+        if r0 < 1e-9 {
+            return Err(err(
+                b,
+                iw.or(jw).unwrap_or(first),
+                "arc centre equals the start point; expected a non-zero radius",
+            ));
+        }
+        if (r0 - r1).abs() > tol(r0) {
+            return Err(err(
+                b,
+                iw.or(jw).unwrap_or(first),
+                format!(
+                    "inconsistent radius: start radius {:.4} but end radius {:.4} (mm); check the end point and {lu}/{lv}",
+                    r0, r1
+                ),
+            ));
+        }
+        Ok((cu, cv, 0.5 * (r0 + r1)))
+    }
 }

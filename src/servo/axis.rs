@@ -126,6 +126,50 @@ impl AxisParams {
     /// assert!(c.validate().unwrap_err().to_string().contains("kpp"));
     /// ```
     pub fn validate(&self) -> Result<(), ServoError> {
+        self.check_ranges()?;
+        if self.kvp == 0.0 && self.kvi == 0.0 {
+            return Err(ServoError::BadParameter {
+                field: "kvp",
+                value: 0.0,
+                expected: "kvp or kvi must be > 0 for the velocity loop to act",
+            });
+        }
+        if let Some(t) = self.torque_max {
+            if !(t.is_finite() && (1e-6..=1e7).contains(&t)) {
+                return Err(ServoError::BadParameter {
+                    field: "torqueMax",
+                    value: t,
+                    expected: "must be between 1e-6 and 1e7 N·m (omit it for no limit)",
+                });
+            }
+        }
+        if !(self.gravity.is_finite() && self.gravity.abs() <= 1e6) {
+            return Err(ServoError::BadParameter {
+                field: "gravity",
+                value: self.gravity,
+                expected: "the load torque must be between −1e6 and 1e6 N·m",
+            });
+        }
+        self.validate_mechanism()?;
+        match (self.kind, self.lead) {
+            (AxisKind::Linear, None) => Err(ServoError::MissingParameter {
+                field: "lead",
+                why: "a linear axis needs its ball-screw lead in m",
+            }),
+            (_, Some(l)) if !(l.is_finite() && (1e-6..=100.0).contains(&l)) => {
+                Err(ServoError::BadParameter {
+                    field: "lead",
+                    value: l,
+                    expected: "must be between 1e-6 and 100 m",
+                })
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// The drive's numbers within their physical ranges, with no
+    /// subnormal values.
+    fn check_ranges(&self) -> Result<(), ServoError> {
         // Physical ranges: wide enough for any machine tool, narrow enough
         // that no later step overflows, divides by a subnormal or allocates
         // for a window longer than any servo setting (a delay or average
@@ -176,44 +220,7 @@ impl AxisParams {
                 });
             }
         }
-        if self.kvp == 0.0 && self.kvi == 0.0 {
-            return Err(ServoError::BadParameter {
-                field: "kvp",
-                value: 0.0,
-                expected: "kvp or kvi must be > 0 for the velocity loop to act",
-            });
-        }
-        if let Some(t) = self.torque_max {
-            if !(t.is_finite() && (1e-6..=1e7).contains(&t)) {
-                return Err(ServoError::BadParameter {
-                    field: "torqueMax",
-                    value: t,
-                    expected: "must be between 1e-6 and 1e7 N·m (omit it for no limit)",
-                });
-            }
-        }
-        if !(self.gravity.is_finite() && self.gravity.abs() <= 1e6) {
-            return Err(ServoError::BadParameter {
-                field: "gravity",
-                value: self.gravity,
-                expected: "the load torque must be between −1e6 and 1e6 N·m",
-            });
-        }
-        self.validate_mechanism()?;
-        match (self.kind, self.lead) {
-            (AxisKind::Linear, None) => Err(ServoError::MissingParameter {
-                field: "lead",
-                why: "a linear axis needs its ball-screw lead in m",
-            }),
-            (_, Some(l)) if !(l.is_finite() && (1e-6..=100.0).contains(&l)) => {
-                Err(ServoError::BadParameter {
-                    field: "lead",
-                    value: l,
-                    expected: "must be between 1e-6 and 100 m",
-                })
-            }
-            _ => Ok(()),
-        }
+        Ok(())
     }
 
     /// Checks the fields of the mechanism after the motor (gear ratio,

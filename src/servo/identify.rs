@@ -144,20 +144,7 @@ pub fn identify_axis(
     trace: &MeasuredTrace,
 ) -> Result<Identified, IdentifyError> {
     check(trace)?;
-    initial.validate()?;
-    for (f, v) in [
-        ("j", initial.j),
-        ("c", initial.c),
-        ("kvp", initial.kvp),
-        ("kpp", initial.kpp),
-    ] {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(bad(
-                format!("initial.{f}"),
-                format!("{v}: the initial guess must be > 0 (the fit works on its logarithm)"),
-            ));
-        }
-    }
+    check_initial(initial)?;
     let lag = rms(trace
         .position
         .iter()
@@ -178,61 +165,24 @@ pub fn identify_axis(
             ));
         }
     }
-    let free: Vec<usize> = if tq.is_some() {
-        vec![0, 1, 2, 3]
-    } else {
-        vec![1, 2, 3]
+    let fit_problem = Problem {
+        initial,
+        trace,
+        lag,
+        tq,
+        free: if tq.is_some() {
+            vec![0, 1, 2, 3]
+        } else {
+            vec![1, 2, 3]
+        },
     };
-    let residuals = |p: &[f64; 4]| -> Result<Vec<f64>, IdentifyError> {
-        let a = with(initial, p);
-        let r = simulate_axis(&a, trace.dt, &trace.command)?;
-        let mut out: Vec<f64> = r
-            .position
-            .iter()
-            .zip(&trace.position)
-            .map(|(s, m)| (s - m) / lag)
-            .collect();
-        if let Some((t, s)) = tq {
-            out.extend(r.torque.iter().zip(t).map(|(a, b)| (a - b) / s));
-        }
-        Ok(out)
-    };
-    let sq = |r: &[f64]| r.iter().map(|x| x * x).sum::<f64>();
     // Levenberg–Marquardt ([`crate::numeric::levenberg_marquardt_lazy`]):
     // a trial costs one simulation, the Jacobian (forward differences, one
     // simulation per free parameter) only where a trial is accepted. J is
     // held (its row of the normal equations is the identity) when no
     // torque is given; steps are limited to ±1 in the logarithm.
-    let normal = |v: &Vector4<f64>| -> Result<Normal<4>, IdentifyError> {
-        let p: [f64; 4] = (*v).into();
-        let r = residuals(&p)?;
-        let h = 1e-6;
-        let mut cols: Vec<(usize, Vec<f64>)> = Vec::with_capacity(free.len());
-        for &i in &free {
-            let mut q = p;
-            q[i] += h;
-            let rq = residuals(&q)?;
-            cols.push((i, rq.iter().zip(&r).map(|(a, b)| (a - b) / h).collect()));
-        }
-        let (mut jtj, mut jtr) = (Matrix4::zeros(), Vector4::zeros());
-        for i in 0..4 {
-            if !free.contains(&i) {
-                jtj[(i, i)] = 1.0;
-            }
-        }
-        for (i, ci) in &cols {
-            for (k, ck) in &cols {
-                jtj[(*i, *k)] = ci.iter().zip(ck).map(|(x, y)| x * y).sum();
-            }
-            jtr[*i] = ci.iter().zip(&r).map(|(x, y)| x * y).sum();
-        }
-        Ok(Normal {
-            jtj,
-            jtr,
-            cost: sq(&r),
-        })
-    };
-    let cost = |v: &Vector4<f64>| residuals(&(*v).into()).map(|r| sq(&r));
+    let normal = |v: &Vector4<f64>| fit_problem.normal(v);
+    let cost = |v: &Vector4<f64>| fit_problem.residuals(&(*v).into()).map(|r| sq(&r));
     let opts = LmOptions {
         lambda: 1e-3,
         max_iterations: 600,
@@ -251,7 +201,7 @@ pub fn identify_axis(
     let fit = levenberg_marquardt_lazy(start, cost, normal, |v| v, &opts)?;
     let p: [f64; 4] = fit.p.into();
     let iterations = fit.steps;
-    let r = residuals(&p)?;
+    let r = fit_problem.residuals(&p)?;
     let axis = with(initial, &p);
     let n = trace.command.len();
     let rms_position = rms(r[..n].iter().map(|x| x * lag));
@@ -263,4 +213,89 @@ pub fn identify_axis(
         rms_torque,
         iterations,
     })
+}
+
+/// The initial guess' J, C, Kvp and Kpp must be > 0: the fit works on their logarithms.
+fn check_initial(initial: &AxisParams) -> Result<(), IdentifyError> {
+    initial.validate()?;
+    for (f, v) in [
+        ("j", initial.j),
+        ("c", initial.c),
+        ("kvp", initial.kvp),
+        ("kpp", initial.kpp),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(bad(
+                format!("initial.{f}"),
+                format!("{v}: the initial guess must be > 0 (the fit works on its logarithm)"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Sum of squares.
+fn sq(r: &[f64]) -> f64 {
+    r.iter().map(|x| x * x).sum::<f64>()
+}
+
+/// The least-squares problem: parameters are ln J, ln C, ln Kvp, ln Kpp;
+/// residuals are the position error scaled by the RMS following error
+/// `lag`, then (with a torque trace) the torque error scaled by its RMS.
+struct Problem<'a> {
+    initial: &'a AxisParams,
+    trace: &'a MeasuredTrace,
+    lag: f64,
+    tq: Option<(&'a Vec<f64>, f64)>,
+    /// The parameters fitted (J only with a torque trace).
+    free: Vec<usize>,
+}
+
+impl Problem<'_> {
+    fn residuals(&self, p: &[f64; 4]) -> Result<Vec<f64>, IdentifyError> {
+        let a = with(self.initial, p);
+        let r = simulate_axis(&a, self.trace.dt, &self.trace.command)?;
+        let mut out: Vec<f64> = r
+            .position
+            .iter()
+            .zip(&self.trace.position)
+            .map(|(s, m)| (s - m) / self.lag)
+            .collect();
+        if let Some((t, s)) = self.tq {
+            out.extend(r.torque.iter().zip(t).map(|(a, b)| (a - b) / s));
+        }
+        Ok(out)
+    }
+
+    /// Normal equations JᵀJ, Jᵀr at `v` (forward differences, step 1e-6 in
+    /// the logarithm); a held parameter's row is the identity.
+    fn normal(&self, v: &Vector4<f64>) -> Result<Normal<4>, IdentifyError> {
+        let p: [f64; 4] = (*v).into();
+        let r = self.residuals(&p)?;
+        let h = 1e-6;
+        let mut cols: Vec<(usize, Vec<f64>)> = Vec::with_capacity(self.free.len());
+        for &i in &self.free {
+            let mut q = p;
+            q[i] += h;
+            let rq = self.residuals(&q)?;
+            cols.push((i, rq.iter().zip(&r).map(|(a, b)| (a - b) / h).collect()));
+        }
+        let (mut jtj, mut jtr) = (Matrix4::zeros(), Vector4::zeros());
+        for i in 0..4 {
+            if !self.free.contains(&i) {
+                jtj[(i, i)] = 1.0;
+            }
+        }
+        for (i, ci) in &cols {
+            for (k, ck) in &cols {
+                jtj[(*i, *k)] = ci.iter().zip(ck).map(|(x, y)| x * y).sum();
+            }
+            jtr[*i] = ci.iter().zip(&r).map(|(x, y)| x * y).sum();
+        }
+        Ok(Normal {
+            jtj,
+            jtr,
+            cost: sq(&r),
+        })
+    }
 }

@@ -161,6 +161,34 @@ pub fn identify_pitch_error(
     error: &[f64],
     opts: &PitchIdentifyOptions,
 ) -> Result<PitchIdentification, PitchIdentifyError> {
+    check_trace(angle, error)?;
+    check_options(opts)?;
+    let tau = std::f64::consts::TAU;
+    let span = angle[angle.len() - 1] - angle[0];
+    let revolutions = (span / tau + 1e-9).floor() as usize;
+    if revolutions == 0 {
+        return Err(bad(
+            "angle",
+            format!("covers {span} rad; the FFT needs at least one whole revolution (2π rad)"),
+        ));
+    }
+    let y = resample(angle, error, opts.samples, revolutions);
+    let (spectrum, mut peaks) = spectrum_at_orders(&y, angle[0], opts, revolutions);
+    // 3. the peaks
+    let largest = peaks.iter().map(|p| p.amplitude).fold(0.0, f64::max);
+    let threshold = opts.threshold.unwrap_or(0.05 * largest);
+    peaks.retain(|p| p.amplitude >= threshold && p.amplitude > 0.0);
+    peaks.sort_by(|a, b| b.amplitude.total_cmp(&a.amplitude));
+    peaks.truncate(opts.max_peaks);
+    Ok(PitchIdentification {
+        revolutions,
+        spectrum,
+        peaks,
+    })
+}
+
+/// The trace: equal lengths, at least 8 finite samples, strictly increasing angle.
+fn check_trace(angle: &[f64], error: &[f64]) -> Result<(), PitchIdentifyError> {
     if angle.len() != error.len() {
         return Err(bad(
             "error",
@@ -198,6 +226,11 @@ pub fn identify_pitch_error(
             ),
         ));
     }
+    Ok(())
+}
+
+/// The options: samples ≥ 16, 1 ≤ maxOrder < samples/2, threshold ≥ 0.
+fn check_options(opts: &PitchIdentifyOptions) -> Result<(), PitchIdentifyError> {
     if opts.samples < 16 {
         return Err(bad(
             "samples",
@@ -222,18 +255,14 @@ pub fn identify_pitch_error(
             ));
         }
     }
-    let tau = std::f64::consts::TAU;
-    let span = angle[angle.len() - 1] - angle[0];
-    let revolutions = (span / tau + 1e-9).floor() as usize;
-    if revolutions == 0 {
-        return Err(bad(
-            "angle",
-            format!("covers {span} rad; the FFT needs at least one whole revolution (2π rad)"),
-        ));
-    }
-    // 1. resample onto `samples` points per revolution, linear interpolation
-    let m = opts.samples * revolutions;
-    let step = tau / opts.samples as f64;
+    Ok(())
+}
+
+/// Step 1: the error resampled onto `samples` points per revolution over
+/// `revolutions` whole revolutions from the first angle (linear interpolation).
+fn resample(angle: &[f64], error: &[f64], samples: usize, revolutions: usize) -> Vec<f64> {
+    let m = samples * revolutions;
+    let step = std::f64::consts::TAU / samples as f64;
     let mut y = Vec::with_capacity(m);
     let mut j = 0;
     for i in 0..m {
@@ -245,7 +274,21 @@ pub fn identify_pitch_error(
         let f = ((t - t0) / (t1 - t0)).clamp(0.0, 1.0);
         y.push(error[j] + f * (error[j + 1] - error[j]));
     }
-    // 2. the DFT at each integer order (bin N·K of the resampled record)
+    y
+}
+
+/// Step 2: the DFT of the resampled record `y` at each integer order 0…maxOrder
+/// (bin N·K): the one-sided amplitude spectrum and one candidate peak per
+/// order ≥ 1, phases referred to θ = 0 (the record starts at `theta0`).
+fn spectrum_at_orders(
+    y: &[f64],
+    theta0: f64,
+    opts: &PitchIdentifyOptions,
+    revolutions: usize,
+) -> (Vec<f64>, Vec<PitchPeak>) {
+    let tau = std::f64::consts::TAU;
+    let m = y.len();
+    let step = tau / opts.samples as f64;
     let mut spectrum = Vec::with_capacity(opts.max_order + 1);
     let mut peaks = Vec::new();
     for n in 0..=opts.max_order {
@@ -271,7 +314,7 @@ pub fn identify_pitch_error(
         }
         // y ≈ 2s sin + 2c cos = a sin(Nθ' + ψ'), θ' = θ − θ0
         let a = 2.0 * s.hypot(c);
-        let psi = (2.0 * c).atan2(2.0 * s) - n as f64 * angle[0];
+        let psi = (2.0 * c).atan2(2.0 * s) - n as f64 * theta0;
         spectrum.push(a);
         peaks.push(PitchPeak {
             order: n,
@@ -279,15 +322,5 @@ pub fn identify_pitch_error(
             phase: psi.rem_euclid(tau),
         });
     }
-    // 3. the peaks
-    let largest = peaks.iter().map(|p| p.amplitude).fold(0.0, f64::max);
-    let threshold = opts.threshold.unwrap_or(0.05 * largest);
-    peaks.retain(|p| p.amplitude >= threshold && p.amplitude > 0.0);
-    peaks.sort_by(|a, b| b.amplitude.total_cmp(&a.amplitude));
-    peaks.truncate(opts.max_peaks);
-    Ok(PitchIdentification {
-        revolutions,
-        spectrum,
-        peaks,
-    })
+    (spectrum, peaks)
 }

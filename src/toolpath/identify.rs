@@ -145,6 +145,48 @@ fn cost(d: &[CircleLoss], p: [f64; 2]) -> f64 {
 /// assert!((id.t_a - 0.05).abs() < 1e-6 && (id.t - 0.02).abs() < 1e-6);
 /// ```
 pub fn identify_acc_dec(data: &[CircleLoss]) -> Result<AccDec, IdentifyError> {
+    check_data(data)?;
+    // Levenberg–Marquardt ([`crate::numeric::levenberg_marquardt`]) with a
+    // forward-difference Jacobian, tA and T kept ≥ 0, from the best point
+    // of a grid.
+    let normal = |v: &Vector2<f64>| -> Normal<2> {
+        let p = [v[0], v[1]];
+        let r = residuals(data, p);
+        let (mut jtj, mut jtr) = (Matrix2::zeros(), Vector2::zeros());
+        for (row, ri) in jacobian(data, p).iter().zip(&r) {
+            let j = Vector2::new(row[0], row[1]);
+            jtj += j * j.transpose();
+            jtr += j * *ri;
+        }
+        Normal {
+            jtj,
+            jtr,
+            cost: r.iter().map(|x| x * x).sum(),
+        }
+    };
+    let opts = LmOptions {
+        lambda: 1e-3,
+        ..LmOptions::default()
+    };
+    let start = grid_start(data);
+    let fit = levenberg_marquardt(
+        Vector2::new(start[0], start[1]),
+        normal,
+        |v| v.map(|x| x.max(0.0)),
+        &opts,
+    );
+    let (p, c) = ([fit.p[0], fit.p[1]], fit.normal.cost);
+    check_conditioning(data, p)?;
+    Ok(AccDec {
+        t_a: p[0],
+        t: p[1],
+        residual: (c / data.len() as f64).sqrt(),
+    })
+}
+
+/// At least two rows, each with a positive feed and radius and a loss
+/// between 0 and the radius, and at least two distinct `F/R`.
+fn check_data(data: &[CircleLoss]) -> Result<(), IdentifyError> {
     if data.len() < 2 {
         return Err(IdentifyError::Underdetermined(format!(
             "{} circle(s) given; expected at least two with different F/R",
@@ -181,7 +223,12 @@ pub fn identify_acc_dec(data: &[CircleLoss]) -> Result<AccDec, IdentifyError> {
                 .into(),
         ));
     }
-    // Grid start.
+    Ok(())
+}
+
+/// The best `[tA, T]` (s) of a 41 × 41 logarithmic grid over 0.1 ms…1 s
+/// (and the origin).
+fn grid_start(data: &[CircleLoss]) -> [f64; 2] {
     let mut best = ([0.0, 0.0], cost(data, [0.0, 0.0]));
     for i in 0..=40 {
         for j in 0..=40 {
@@ -195,50 +242,31 @@ pub fn identify_acc_dec(data: &[CircleLoss]) -> Result<AccDec, IdentifyError> {
             }
         }
     }
-    // Levenberg–Marquardt ([`crate::numeric::levenberg_marquardt`]) with a
-    // forward-difference Jacobian, tA and T kept ≥ 0.
-    let jac = |p: [f64; 2]| -> Vec<[f64; 2]> {
-        let r0 = residuals(data, p);
-        let mut j = vec![[0.0; 2]; data.len()];
-        for k in 0..2 {
-            let h = 1e-7 * p[k].abs().max(1e-4);
-            let mut q = p;
-            q[k] += h;
-            let r1 = residuals(data, q);
-            for (row, (a, b)) in j.iter_mut().zip(r1.iter().zip(&r0)) {
-                row[k] = (a - b) / h;
-            }
+    best.0
+}
+
+/// Forward-difference Jacobian of the residuals at `p` (relative step 1e-7,
+/// at least 1e-11 s).
+fn jacobian(data: &[CircleLoss], p: [f64; 2]) -> Vec<[f64; 2]> {
+    let r0 = residuals(data, p);
+    let mut j = vec![[0.0; 2]; data.len()];
+    for k in 0..2 {
+        let h = 1e-7 * p[k].abs().max(1e-4);
+        let mut q = p;
+        q[k] += h;
+        let r1 = residuals(data, q);
+        for (row, (a, b)) in j.iter_mut().zip(r1.iter().zip(&r0)) {
+            row[k] = (a - b) / h;
         }
-        j
-    };
-    let normal = |v: &Vector2<f64>| -> Normal<2> {
-        let p = [v[0], v[1]];
-        let r = residuals(data, p);
-        let (mut jtj, mut jtr) = (Matrix2::zeros(), Vector2::zeros());
-        for (row, ri) in jac(p).iter().zip(&r) {
-            let j = Vector2::new(row[0], row[1]);
-            jtj += j * j.transpose();
-            jtr += j * *ri;
-        }
-        Normal {
-            jtj,
-            jtr,
-            cost: r.iter().map(|x| x * x).sum(),
-        }
-    };
-    let opts = LmOptions {
-        lambda: 1e-3,
-        ..LmOptions::default()
-    };
-    let fit = levenberg_marquardt(
-        Vector2::new(best.0[0], best.0[1]),
-        normal,
-        |v| v.map(|x| x.max(0.0)),
-        &opts,
-    );
-    let (p, c) = ([fit.p[0], fit.p[1]], fit.normal.cost);
-    // Conditioning in relative terms: columns scaled by the parameters.
-    let j = jac(p);
+    }
+    j
+}
+
+/// Refuses a fit whose Jacobian, columns scaled by the parameters, has a
+/// condition number above 1e6 (eigenvalue ratio of JᵀJ below 1e-12): the
+/// data cannot separate tA from T.
+fn check_conditioning(data: &[CircleLoss], p: [f64; 2]) -> Result<(), IdentifyError> {
+    let j = jacobian(data, p);
     let scale = [p[0].max(1e-4), p[1].max(1e-4)];
     let mut a = [[0.0; 2]; 2];
     for row in &j {
@@ -258,11 +286,7 @@ pub fn identify_acc_dec(data: &[CircleLoss]) -> Result<AccDec, IdentifyError> {
             (l1 / l2.max(1e-300)).sqrt()
         )));
     }
-    Ok(AccDec {
-        t_a: p[0],
-        t: p[1],
-        residual: (c / data.len() as f64).sqrt(),
-    })
+    Ok(())
 }
 
 #[cfg(test)]

@@ -12,41 +12,44 @@ use crate::ballbar::{self, BallbarTrace, Direction, ParseOptions, Run, Synthetic
 
 #[wasm_bindgen(typescript_custom_section)]
 const TS: &str = r#"
-export interface CircleFit { cx: number; cy: number; r: number; rmsResidual: number }
+/** Centre, radius and RMS residual in the unit of the x, y given to fitCircle (mm in the page). */
+export interface CircleFit { /** [as x, y] */ cx: number; /** [as x, y] */ cy: number; /** [as x, y] */ r: number; /** [as x, y] */ rmsResidual: number }
 /** A sin(n·θ + φ); amplitude in the deviation's unit (mm), phase in rad. */
-export interface HarmonicComponent { order: number; amplitude: number; phase: number }
+export interface HarmonicComponent { /** [-] n */ order: number; /** [mm] A */ amplitude: number; /** [rad] φ */ phase: number }
 /** Lengths in mm, angles in degrees (ranges, centre), phases in rad. */
 export interface TravelRangeSweepConfig {
-  offset?: { z: number; x: number };
+  /** [mm] true centre offset */ offset?: { z: number; x: number };
   harmonics?: HarmonicComponent[];
-  ranges: number[];
-  /** Ball-bar radius, mm (default 100); 0 = DBB5 centre-ball reading. */
+  /** [deg] travel ranges */ ranges: number[];
+  /** [mm] Ball-bar radius (default 100); 0 = DBB5 centre-ball reading. */
   radius?: number;
-  /** Samples per revolution (default 1000). */
+  /** [-] Samples per revolution (default 1000). */
   samples?: number;
   /** Centre of every range, degrees (default 0: 180° means −90°…90°). */
   centreDeg?: number;
 }
 /** errorZ, errorX: estimated − true centre, mm. */
-export interface SweepPoint { rangeDeg: number; errorZ: number; errorX: number }
-export interface AlignmentSection { y: number; angleDeg: Float64Array | number[]; deviation: Float64Array | number[] }
-export interface AlignmentInput { sections: AlignmentSection[]; /** bar length, mm (default 100) */ radius?: number }
+export interface SweepPoint { rangeDeg: number; /** [mm] */ errorZ: number; /** [mm] */ errorX: number }
+export interface AlignmentSection { /** [mm] height of the section */ y: number; angleDeg: Float64Array | number[]; /** [mm] */ deviation: Float64Array | number[] }
+export interface AlignmentInput { sections: AlignmentSection[]; /** [mm] bar length (default 100) */ radius?: number }
 export interface AlignmentEstimate {
-  sections: { y: number; z: number; x: number; rmsResidual: number }[];
-  /** rad (mm/mm); null with one section. */ deltaBz: number | null; deltaBx: number | null;
+  /** [mm] each section's height, estimated centre and fit RMS */ sections: { y: number; z: number; x: number; rmsResidual: number }[];
+  /** [rad] (mm/mm); null with one section. */ deltaBz: number | null; /** [rad] */ deltaBx: number | null;
 }
 export interface AngleSweepConfig {
-  sections: { y: number; offset: { z: number; x: number } }[];
-  ranges: number[]; harmonics?: HarmonicComponent[]; radius?: number; samples?: number; centreDeg?: number;
+  /** [mm] heights and true centre offsets */ sections: { y: number; offset: { z: number; x: number } }[];
+  /** [deg] */ ranges: number[]; harmonics?: HarmonicComponent[]; /** [mm] */ radius?: number; /** [-] */ samples?: number; centreDeg?: number;
 }
 /** Angle errors in rad. */
-export interface AngleSweepPoint { rangeDeg: number; deltaBz: number; deltaBx: number; errorBz: number; errorBx: number }
-export interface BallbarRun { direction: 'ccw' | 'cw'; /** rad, unwrapped */ angleRad: Float64Array; /** mm */ deviation: Float64Array }
-export interface BallbarTrace { /** mm */ nominalRadius: number; /** mm/min */ feed: number | null; runs: BallbarRun[] }
-export interface ParseTraceOptions { nominalRadius?: number; feed?: number }
+export interface AngleSweepPoint {
+  rangeDeg: number; /** [rad] */ deltaBz: number; /** [rad] */ deltaBx: number; /** [rad] */ errorBz: number; /** [rad] */ errorBx: number;
+}
+export interface BallbarRun { direction: 'ccw' | 'cw'; /** [rad] unwrapped */ angleRad: Float64Array; /** [mm] */ deviation: Float64Array }
+export interface BallbarTrace { /** [mm] */ nominalRadius: number; /** [mm/min] */ feed: number | null; runs: BallbarRun[] }
+export interface ParseTraceOptions { /** [mm] */ nominalRadius?: number; /** [mm/min] */ feed?: number }
 export interface CircularTestRun {
   direction: 'ccw' | 'cw'; gUm: number; fMaxUm: number; fMinUm: number;
-  centreXMm: number; centreYMm: number; radiusMm: number; spanDeg: number; points: number;
+  centreXMm: number; centreYMm: number; radiusMm: number; spanDeg: number; /** [-] samples in the run */ points: number;
 }
 export interface BallbarDiagnostics {
   centreOffsetXUm: number; centreOffsetYUm: number; backlashXUm: number; backlashYUm: number;
@@ -54,22 +57,24 @@ export interface BallbarDiagnostics {
   /** Only spikes above spikeThresholdUm (1.5 × the largest residual away from the quadrant points). */
   reversalSpikes: { direction: 'ccw' | 'cw'; axis: 'x' | 'y'; angleDeg: number; heightUm: number }[]; spikeThresholdUm: number;
   servoMismatchMs: number | null; scaleMismatchPpm: number; squarenessUrad: number;
-  cyclic: { pitchMm: number; amplitudeXUm: number; amplitudeYUm: number } | null; runsUsed: number;
+  cyclic: { pitchMm: number; amplitudeXUm: number; amplitudeYUm: number } | null; /** [-] */ runsUsed: number;
 }
 export interface CircularTestResult { nominalRadiusMm: number; runs: CircularTestRun[]; hUm: number | null; diagnostics: BallbarDiagnostics | null }
 /** mm, rad, s, mm/min; every field optional. */
 export interface SyntheticTraceConfig {
-  radius?: number; feed?: number; samples?: number; rangeDeg?: number; centreDeg?: number; bothDirections?: boolean;
-  offsetX?: number; offsetY?: number; harmonics?: HarmonicComponent[];
-  scaleX?: number; scaleY?: number; squareness?: number; servoMismatch?: number;
-  backlashX?: number; backlashY?: number; spike?: number; spikeDecayDeg?: number;
-  cyclicAmplitude?: number; cyclicPitch?: number; noise?: number;
+  /** [mm] bar length */ radius?: number; /** [mm/min] */ feed?: number; /** [-] per revolution */ samples?: number;
+  rangeDeg?: number; centreDeg?: number; bothDirections?: boolean;
+  /** [mm] */ offsetX?: number; /** [mm] */ offsetY?: number; harmonics?: HarmonicComponent[];
+  /** [-] scale error, 1e-6 = 1 ppm */ scaleX?: number; /** [-] */ scaleY?: number; /** [rad] */ squareness?: number;
+  /** [s] X lags Y */ servoMismatch?: number;
+  /** [mm] */ backlashX?: number; /** [mm] */ backlashY?: number; /** [mm] reversal-spike height */ spike?: number; spikeDecayDeg?: number;
+  /** [mm] */ cyclicAmplitude?: number; /** [mm] */ cyclicPitch?: number; /** [mm] uniform noise half-width */ noise?: number;
 }
 export interface PaperExample {
   name: string; description: string;
-  curves: { offset: { z: number; x: number }; points: SweepPoint[] }[];
+  curves: { /** [mm] true centre */ offset: { z: number; x: number }; points: SweepPoint[] }[];
   angle: AngleSweepPoint[];
-  paper: { label: string; rangeDeg: number; paper: string; ours: number }[];
+  paper: { label: string; rangeDeg: number; paper: string; /** [µm, or µm/700 mm for Fig. 12] ours, in the paper's unit */ ours: number }[];
 }
 "#;
 
@@ -218,7 +223,7 @@ fn trace_from_js(v: &JsValue) -> Result<BallbarTrace, JsError> {
 #[wasm_bindgen(js_name = parseBallbarTrace, unchecked_return_type = "BallbarTrace")]
 pub fn parse_ballbar_trace(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "ParseTraceOptions | undefined")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "ParseTraceOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let opts: ParseOptions = if options.is_undefined() || options.is_null() {
@@ -267,14 +272,14 @@ pub fn ballbar_example(
 const TS_BAND: &str = r#"
 export interface AlignmentBandInput extends AlignmentInput {
   /** Travel range W, degrees (default: each section's own span). */ travelRangeDeg?: number;
-  /** Highest harmonic order fitted for the bias (default 10). */ maxOrder?: number;
+  /** [-] Highest harmonic order fitted for the bias (default 10). */ maxOrder?: number;
 }
 export interface AlignmentBand {
   /** bandZ, bandX: half-widths of each offset band, mm (bias + second-order term). */
   estimate: AlignmentEstimate;
-  /** Predicted bias of each section's centre, mm; its offset band is ±|bias|. */
+  /** [mm] Heights; predicted bias of each section's centre, its offset band is ±|bias|. */
   sections: { y: number; rangeDeg: number; centreDeg: number; biasZ: number; biasX: number; bandZ: number; bandX: number; harmonics: HarmonicComponent[] }[];
-  /** Half-widths of the angle-error bands, rad; null with one section. */ bandBz: number | null; bandBx: number | null;
+  /** [rad] Half-widths of the angle-error bands; null with one section. */ bandBz: number | null; /** [rad] */ bandBx: number | null;
 }
 "#;
 

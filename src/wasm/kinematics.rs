@@ -20,40 +20,44 @@ const TS: &str = r#"
 /** `[x, y, z, a, b, c]` (mm, degrees) or `{ x, y, z, a, b, c }`; missing axes are 0. */
 export type AxisValues = number[] | Partial<Record<'x'|'y'|'z'|'a'|'b'|'c', number>>;
 export type MachineArg = string | MachinePreset;
-export interface GeometricErrors {
-  /** ISO 230 location errors, e.g. { EX0C: 0.01 (mm), EB0C: 2e-5 (rad), EC0Y: 1e-5 }. */
-  location?: Record<string, number>;
-  /** ISO 230 component errors, constant or polynomial in position (mm or rad), e.g. { EXX: [0, 1e-5] }. */
-  component?: Record<string, number | number[]>;
-  /** E_ST of thasana Eq. 8: [dx, dy, dz, ex, ey, ez] in the tool frame. */
-  tool?: number[];
-  /** Full backlash width per axis, mm or rad. */
-  backlash?: Record<string, number>;
-  /** Worm-gear pitch error per rotary axis (kato Eq. 1). */
-  pitchError?: Record<string, WormHarmonic[]>;
-}
-export interface ToolPose { position: [number, number, number]; orientation: [number, number, number] }
-export interface IkBranch { q: Record<string, number>; withinLimits: boolean; singular: boolean }
+export interface ToolPose { /** [mm] tool tip */ position: [number, number, number]; /** [-] tool axis direction */ orientation: [number, number, number] }
+export interface IkBranch { /** [mm or deg] axis positions */ q: Record<string, number>; withinLimits: boolean; singular: boolean }
+/** forwardKinematicsBulk: n × 3 flat arrays. */
+export interface ToolPoses { /** [mm] tool tips */ position: Float64Array; /** [-] tool axes */ orientation: Float64Array }
 export interface ConeFrustumOptions {
   machine: MachineArg; halfApexDeg: number; inclinationDeg: number;
-  method?: 'perpendicular' | 'parallel'; barLength?: number; feed: number;
-  radius?: number; centre?: [number, number, number]; errors?: GeometricErrors;
-  idealServo?: boolean; toolLength?: number; points?: number; clockwise?: boolean; leadInDeg?: number;
+  method?: 'perpendicular' | 'parallel'; /** [mm] */ barLength?: number; /** [mm/min] of the spindle ball */ feed: number;
+  /** [mm] spindle-ball circle */ radius?: number; /** [mm] table ball */ centre?: [number, number, number]; errors?: GeometricErrors;
+  idealServo?: boolean; /** [mm] */ toolLength?: number; /** [-] samples per revolution */ points?: number; clockwise?: boolean; leadInDeg?: number;
 }
 export interface ConeFrustumResult {
-  angle: Float64Array; time: Float64Array; deviation: Float64Array;
-  path: { x: Float64Array; y: Float64Array; z: Float64Array };
-  axes: Record<string, { command: Float64Array; actual: Float64Array }>;
-  sensitivity: { axes: Record<string, Float64Array>; errors: Record<string, Float64Array> };
-  barLength: number; radius: number; duration: number; maxDeviation: number; minDeviation: number;
+  /** [deg] path angle */ angle: Float64Array; /** [s] */ time: Float64Array; /** [mm] change of bar length */ deviation: Float64Array;
+  /** [mm] nominal spindle-ball path */ path: { x: Float64Array; y: Float64Array; z: Float64Array };
+  /** [mm or deg] per-axis command and actual position */ axes: Record<string, { command: Float64Array; actual: Float64Array }>;
+  /** [mm/mm or mm/rad] sensitivity of the bar to each axis and each location error */ sensitivity: { axes: Record<string, Float64Array>; errors: Record<string, Float64Array> };
+  /** [mm] */ barLength: number; /** [mm] */ radius: number; /** [s] */ duration: number; /** [mm] */ maxDeviation: number; /** [mm] */ minDeviation: number;
 }
 export interface Nc5Stats { meanMm: number[]; stdMm: number[]; meanRad: number[]; stdRad: number[] }
+/** compensateNc5 options. */
+export interface Nc5Options {
+  machine: MachineArg; errors?: GeometricErrors; /** [mm] */ toolLength?: number;
+  monteCarlo?: { /** [-] */ seed?: number; sigmaMm?: number; sigmaRad?: number; repeatabilityMm?: number };
+  cutting?: Record<string, unknown>; compensateAxes?: string[];
+  /** thasana Eq. 9 PID drives (units as in servo::pid). */
+  feedDrive?: { /** [-] P */ p: number; /** [1/s] I */ i: number; /** [s] D */ d: number; /** [1/s] N */ n: number; /** [1/s² per unit of u] plant gain */ k: number; /** [1/s] plant damping */ a: number };
+}
 export interface Nc5Result {
-  nc: string; before: Nc5Stats; after: Nc5Stats; lines: number[];
-  beforePoints: { x: Float64Array; y: Float64Array; z: Float64Array; a: Float64Array; b: Float64Array };
-  afterPoints: { x: Float64Array; y: Float64Array; z: Float64Array; a: Float64Array; b: Float64Array };
+  nc: string; before: Nc5Stats; after: Nc5Stats; /** [-] source lines of the evaluation points */ lines: number[];
+  /** [mm, rad] x, y, z in mm; a, b in rad */ beforePoints: { x: Float64Array; y: Float64Array; z: Float64Array; a: Float64Array; b: Float64Array };
+  /** [mm, rad] x, y, z in mm; a, b in rad */ afterPoints: { x: Float64Array; y: Float64Array; z: Float64Array; a: Float64Array; b: Float64Array };
   reductionPercent: number[]; totalReductionPercent: number; deflectionMm: number; machineErrors: GeometricErrors;
 }
+/** sShapeTestPiece options. */
+export interface SShapeOptions {
+  machine: MachineArg; /** [-] of the full-size part (paper: 0.15) */ scale?: number; /** [mm] */ toolLength?: number;
+  /** [mm] part origin */ origin?: number[]; /** [mm/min] */ feed?: number;
+}
+export interface SShapeTestPiece { /** [mm] tool-tip targets */ points: number[][]; /** [-] tool axes */ axes: number[][]; nc: string }
 "#;
 
 #[derive(Deserialize)]
@@ -142,7 +146,7 @@ pub fn forward_kinematics(
 /// Bulk forward kinematics: `q` is a flat `Float64Array` of `n × 6` axis
 /// values (mm, degrees); returns flat `position` and `orientation` arrays of
 /// `n × 3`.
-#[wasm_bindgen(js_name = forwardKinematicsBulk, unchecked_return_type = "{ position: Float64Array; orientation: Float64Array }")]
+#[wasm_bindgen(js_name = forwardKinematicsBulk, unchecked_return_type = "ToolPoses")]
 pub fn forward_kinematics_bulk(
     #[wasm_bindgen(unchecked_param_type = "MachineArg")] machine: JsValue,
     q: &[f64],
@@ -293,10 +297,7 @@ fn points_obj(p: &nc5::PointErrors) -> JsValue {
 #[wasm_bindgen(js_name = compensateNc5, unchecked_return_type = "Nc5Result")]
 pub fn compensate_nc5(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
-    #[wasm_bindgen(
-        unchecked_param_type = "{ machine: MachineArg; errors?: GeometricErrors; toolLength?: number; monteCarlo?: { seed?: number; sigmaMm?: number; sigmaRad?: number; repeatabilityMm?: number }; cutting?: Record<string, unknown>; compensateAxes?: string[]; feedDrive?: { p: number; i: number; d: number; n: number; k: number; a: number } }"
-    )]
-    options: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Nc5Options")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let cfg: nc5::Nc5Config = from_js(options, "options")?;
@@ -317,12 +318,9 @@ pub fn compensate_nc5(
 
 /// The ISO 10791-7 S-shape test piece (scaled) and its 5-axis program with
 /// 64 evaluation points.
-#[wasm_bindgen(js_name = sShapeTestPiece, unchecked_return_type = "{ points: number[][]; axes: number[][]; nc: string }")]
+#[wasm_bindgen(js_name = sShapeTestPiece, unchecked_return_type = "SShapeTestPiece")]
 pub fn s_shape_test_piece(
-    #[wasm_bindgen(
-        unchecked_param_type = "{ machine: MachineArg; scale?: number; toolLength?: number; origin?: number[]; feed?: number }"
-    )]
-    options: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "SShapeOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let o: s_shape::SShapeOptions = from_js(options, "options")?;
     to_js(&s_shape::s_shape(&o)?)

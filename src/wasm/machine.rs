@@ -5,28 +5,54 @@ use wasm_bindgen::prelude::*;
 use super::convert::{string_arg, to_js};
 use crate::machine;
 
+// GeometricErrors is declared here rather than with the kinematics bindings:
+// MachinePreset uses it, and the embed module (built without kinematics)
+// must declare it too.
 #[wasm_bindgen(typescript_custom_section)]
 const TS: &str = r#"
-export interface WormHarmonic { w: number; n: number; phi: number }
+export interface WormHarmonic {
+  /** [-] Amplitude W of the ratio ripple (kato Eq. 1; rad with pitchReading 'additive'). */ w: number;
+  /** [-] Order N, cycles per output revolution. */ n: number;
+  /** [rad] Phase φ. */ phi: number;
+}
 export interface AxisParams {
   kind: 'linear' | 'rotary';
-  /** Equivalent inertia, kg·m². */ j: number;
-  /** Load inertia, kg·m². */ j1: number;
-  /** Viscous damping, N·m·s/rad. */ c: number;
-  /** Position gain, 1/s. */ kpp: number;
-  kvp: number; kvi: number;
-  /** Pre-Control coefficient, %. */ kffp: number;
-  /** Smoothing, averaging and preceding times, s. */ ts: number; ta: number; tp: number;
-  /** Torque limit, N·m. */ torqueMax?: number;
-  /** Ball-screw lead, m. */ lead?: number;
-  gearRatio?: number; backlash?: number; pitchError?: WormHarmonic[];
+  /** [kg·m²] Equivalent inertia. */ j: number;
+  /** [kg·m²] Load inertia. */ j1: number;
+  /** [N·m·s/rad] Viscous damping. */ c: number;
+  /** [1/s] Position gain. */ kpp: number;
+  /** [N·m·s/rad] Velocity proportional gain. */ kvp: number;
+  /** [N·m/rad] Velocity integral gain. */ kvi: number;
+  /** [%] Pre-Control coefficient. */ kffp: number;
+  /** [s] Smoothing time. */ ts: number;
+  /** [s] Averaging time. */ ta: number;
+  /** [s] Preceding time. */ tp: number;
+  /** [N·m] Torque limit. */ torqueMax?: number;
+  /** [m] Ball-screw lead. */ lead?: number;
+  /** [-] Worm-gear ratio, motor rev per output rev. */ gearRatio?: number;
+  /** [mm or rad] Backlash (full width): mm on a linear axis, rad on a rotary one. */ backlash?: number;
+  pitchError?: WormHarmonic[];
   /** kato Eq. 1: 'gearRatio' (W·g/N at the table, default) or 'additive' (W in rad). */ pitchReading?: 'gearRatio' | 'additive';
-  /** kato Fig. 2: Coulomb friction F and load torque G at the motor, N·m. */ friction?: number; gravity?: number;
+  /** [N·m] kato Fig. 2: Coulomb friction F at the motor. */ friction?: number;
+  /** [N·m] kato Fig. 2: load torque G at the motor. */ gravity?: number;
+}
+/** A machine's geometric and drive errors (ISO 230 symbols; mm, rad). */
+export interface GeometricErrors {
+  /** [mm or rad] ISO 230 location errors, e.g. { EX0C: 0.01 (mm), EB0C: 2e-5 (rad), EC0Y: 1e-5 }. */
+  location?: Record<string, number>;
+  /** [mm or rad] ISO 230 component errors, constant or polynomial in position, e.g. { EXX: [0, 1e-5] }. */
+  component?: Record<string, number | number[]>;
+  /** [mm, rad] E_ST of thasana Eq. 8: [dx, dy, dz] in mm, [ex, ey, ez] in rad, in the tool frame. */
+  tool?: number[];
+  /** [mm or rad] Full backlash width per axis. */
+  backlash?: Record<string, number>;
+  /** Worm-gear pitch error per rotary axis (kato Eq. 1). */
+  pitchError?: Record<string, WormHarmonic[]>;
 }
 export interface MachinePreset {
   name: string; description: string; source: string;
   axes: Record<string, AxisParams>;
-  /** mm for linear axes, degrees for rotary axes. */
+  /** [mm or deg] Travel limits: mm for linear axes, degrees for rotary axes. */
   limits?: Record<string, [number, number]>;
   /** Illustrative ISO 230-7 location errors and backlash for the page (not measured). */
   exampleErrors?: GeometricErrors;

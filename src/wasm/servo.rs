@@ -14,50 +14,62 @@ use crate::servo::{response, simulate, AxisParams};
 
 #[wasm_bindgen(typescript_custom_section)]
 const TS: &str = r#"
-export interface FrequencyResponse { magnitude: Float64Array; phase: Float64Array }
-export interface SimulateInput { /** Step, s. */ dt: number; /** Command, mm or rad. */ position: Float64Array }
-export interface AxisResponse { position: Float64Array; velocity: Float64Array; torque: Float64Array; saturated: boolean }
-export interface KffpSet { x: number; y: number; c: number }
+export interface FrequencyResponse { /** [-] |G(jω)| */ magnitude: Float64Array; /** [rad] ∠G(jω) */ phase: Float64Array }
+export interface SimulateInput { /** [s] Step. */ dt: number; /** [mm or rad] Command: mm on a linear axis, rad on a rotary one. */ position: Float64Array }
+export interface AxisResponse {
+  /** [mm or rad] Table position. */ position: Float64Array; /** [mm/s or rad/s] */ velocity: Float64Array;
+  /** [N·m] Motor torque (clipped at torqueMax). */ torque: Float64Array; saturated: boolean;
+}
+export interface KffpSet { /** [%] */ x: number; /** [%] */ y: number; /** [%] */ c: number }
 export interface FeedVectorCondition {
-  /** mm */ rc: number; /** mm */ rw: number; /** rad/s */ omega: number;
-  /** s */ accelTime: number; /** kg·m² on C */ j1: number;
-  /** N·m */ torqueMax?: number; /** s */ duration?: number; /** s, default 0.001 */ dt?: number;
+  /** [mm] */ rc: number; /** [mm] */ rw: number; /** [rad/s] */ omega: number;
+  /** [s] */ accelTime: number; /** [kg·m²] load on C */ j1: number;
+  /** [N·m] */ torqueMax?: number; /** [s] */ duration?: number; /** [s] default 0.001 */ dt?: number;
   /** % */ kffp?: KffpSet;
 }
 export interface FeedVectorSummary {
-  /** rad */ meanAngleDiff: number; /** mm */ halfAmplitude: number; /** mm */ radiusDecrease: number;
-  /** N·m */ peakTorque: number; saturated: boolean; /** s */ steadyFrom: number; periods: number;
+  /** [rad] */ meanAngleDiff: number; /** [mm] */ halfAmplitude: number; /** [mm] */ radiusDecrease: number;
+  /** [N·m] */ peakTorque: number; saturated: boolean; /** [s] */ steadyFrom: number; /** [-] whole periods analysed */ periods: number;
 }
 export interface FeedVectorSeries {
-  t: Float64Array; xCmd: Float64Array; yCmd: Float64Array; cCmd: Float64Array;
-  x: Float64Array; y: Float64Array; c: Float64Array; torqueC: Float64Array;
-  shapeError: Float64Array; alpha: Float64Array; beta: Float64Array; angleDiff: Float64Array;
-  radiusError: Float64Array; omegaC: Float64Array; omegaL: Float64Array;
+  /** [s] */ t: Float64Array; /** [mm] */ xCmd: Float64Array; /** [mm] */ yCmd: Float64Array; /** [rad] */ cCmd: Float64Array;
+  /** [mm] */ x: Float64Array; /** [mm] */ y: Float64Array; /** [rad] */ c: Float64Array; /** [N·m] */ torqueC: Float64Array;
+  /** [mm] ΔR_C (Eq. 5) */ shapeError: Float64Array; /** [rad] α (Eq. 8) */ alpha: Float64Array; /** [rad] β (Eq. 9) */ beta: Float64Array;
+  /** [rad] α − β (Eq. 10) */ angleDiff: Float64Array;
+  /** [mm] ΔR (Eq. 11) */ radiusError: Float64Array; /** [rad/s] */ omegaC: Float64Array; /** [rad/s] */ omegaL: Float64Array;
 }
 export interface FeedVectorResult { series: FeedVectorSeries; summary: FeedVectorSummary }
 export interface TraceMapping {
   time?: string; x?: string; y?: string; c?: string; torque?: string;
-  /** s per unit, default 1 */ timeScale?: number; /** mm per unit, default 1 */ linearScale?: number;
-  /** rad per unit, default π/180 */ angleScale?: number; torqueScale?: number;
-  motionStart?: number; relative?: boolean; steadyFrom?: number;
+  /** [s/unit] default 1 */ timeScale?: number; /** [mm/unit] default 1 */ linearScale?: number;
+  /** [rad/unit] default π/180 */ angleScale?: number; /** [N·m/unit] default 1 */ torqueScale?: number;
+  /** [s] start of the commanded motion */ motionStart?: number; relative?: boolean; /** [s] after the motion start */ steadyFrom?: number;
 }
-export interface BestKffpOptions { method?: 'auto' | 'analytic' | 'simulated'; kMin?: number; kMax?: number }
+export interface BestKffpOptions { method?: 'auto' | 'analytic' | 'simulated'; /** [%] */ kMin?: number; /** [%] */ kMax?: number }
 export interface BestKffpResult {
   kffp: KffpSet; before: FeedVectorSummary; after: FeedVectorSummary; method: 'analytic' | 'simulated';
-  alphaTh: number; residualX: number; residualY: number;
+  /** [rad] α_th of C (Eq. 17) */ alphaTh: number; /** [rad] α_th − β_th of X (Eq. 19) */ residualX: number; /** [rad] */ residualY: number;
 }
-export interface SaturationQuery { j1: number[]; torqueMax: number; accelTime: number; /** mm/min */ feedAtCuttingPoint: number; dt?: number;
+export interface SaturationQuery { /** [kg·m²] */ j1: number[]; /** [N·m] */ torqueMax: number; /** [s] */ accelTime: number; /** [mm/min] */ feedAtCuttingPoint: number; /** [s] */ dt?: number;
   /** How the paper's saturation point is read; names in `machinePreset('nmv5000').saturationReadings` (default 'preControlOff'). */
   reading?: 'preControlOff' | 'presetKffp' | 'inertiaOnly' }
-export interface SaturationPoint { jTotal: number; accelSat: number; omegaSat: number; rcMin: number; torquePerOmega: number }
+export interface SaturationPoint {
+  /** [kg·m²] J + J1 */ jTotal: number; /** [rad/s²] */ accelSat: number; /** [rad/s] */ omegaSat: number; /** [mm] */ rcMin: number;
+  /** [N·m·s/rad] */ torquePerOmega: number;
+}
 /** kato Fig. 3: options of identifyPitchError. */
-export interface PitchIdentifyOptions { samples?: number; maxOrder?: number; /** rad */ threshold?: number; maxPeaks?: number }
+export interface PitchIdentifyOptions { /** [-] */ samples?: number; /** [-] */ maxOrder?: number; /** [rad] */ threshold?: number; /** [-] */ maxPeaks?: number }
 /** a·sin(N θ + ψ): amplitude in rad at the table (the additive reading of Eq. 1). */
-export interface PitchPeak { order: number; amplitude: number; phase: number }
-export interface PitchIdentification { revolutions: number; spectrum: number[]; peaks: PitchPeak[] }
+export interface PitchPeak { /** [-] */ order: number; /** [rad] */ amplitude: number; /** [rad] */ phase: number }
+export interface PitchIdentification { /** [-] */ revolutions: number; /** [rad] amplitude per order 0…maxOrder */ spectrum: number[]; peaks: PitchPeak[] }
 /** suzuki Table 1 identification: a measured response to a known command (one sample per dt). */
-export interface MeasuredTrace { /** s */ dt: number; command: number[]; position: number[]; /** N·m; needed to identify J */ torque?: number[] }
-export interface IdentifiedAxis { axis: AxisParams; jIdentified: boolean; rmsPosition: number; rmsTorque: number; iterations: number }
+export interface MeasuredTrace {
+  /** [s] */ dt: number; /** [mm or rad] */ command: number[]; /** [mm or rad] */ position: number[];
+  /** [N·m] needed to identify J */ torque?: number[];
+}
+export interface IdentifiedAxis {
+  axis: AxisParams; jIdentified: boolean; /** [mm or rad] */ rmsPosition: number; /** [N·m] */ rmsTorque: number; /** [-] */ iterations: number;
+}
 "#;
 
 /// A machine given as a preset name or as a full machine object.
@@ -160,7 +172,7 @@ pub fn feed_vector_test(
 pub fn analyze_feed_vector_trace(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "TraceMapping | undefined")] mapping: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "TraceMapping")] mapping: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let cond: Condition = from_js(condition, "condition")?;
@@ -181,7 +193,7 @@ pub fn analyze_feed_vector_trace(
 pub fn best_kffp(
     #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
     #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "BestKffpOptions | undefined")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "BestKffpOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let m = machine_arg(machine)?;
     let cond: Condition = from_js(condition, "condition")?;
@@ -216,7 +228,7 @@ pub fn torque_saturation(
 pub fn identify_pitch_error(
     angle: &[f64],
     error: &[f64],
-    #[wasm_bindgen(unchecked_param_type = "PitchIdentifyOptions | undefined")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "PitchIdentifyOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let o: crate::servo::pitch_identify::PitchIdentifyOptions =
         if options.is_undefined() || options.is_null() {

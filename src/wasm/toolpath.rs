@@ -17,53 +17,62 @@ use crate::toolpath::{example, SimConfig, Simulation};
 
 #[wasm_bindgen(typescript_custom_section)]
 const TS: &str = r#"
-export interface Pose { x: number; y: number; z: number; a: number; b: number; c: number }
+export interface Pose { /** [mm] */ x: number; /** [mm] */ y: number; /** [mm] */ z: number; /** [deg] */ a: number; /** [deg] */ b: number; /** [deg] */ c: number }
 export type NcMotion =
   | { type: 'rapid' } | { type: 'linear' }
-  | { type: 'arc'; center: [number, number, number]; radius: number; plane: 'XY' | 'ZX' | 'YZ'; sweep: number; rForm: boolean }
+  | { type: 'arc'; /** [mm] */ center: [number, number, number]; /** [mm] */ radius: number; plane: 'XY' | 'ZX' | 'YZ'; /** [rad] signed */ sweep: number; rForm: boolean }
   | { type: 'dwell'; seconds: number };
 /** One motion segment; mm, degrees for a/b/c, feed in mm/min. */
-export interface NcSegment { block: number | null; line: number; motion: NcMotion; start: Pose; end: Pose; feed: number; fixed: boolean }
-export interface NcWarning { line: number; column: number; message: string }
+export interface NcSegment {
+  /** [-] index of its block; null for an inserted segment */ block: number | null; /** [-] 1-based source line */ line: number; motion: NcMotion; start: Pose; end: Pose;
+  /** [mm/min] */ feed: number; fixed: boolean;
+}
+export interface NcWarning { /** [-] 1-based */ line: number; /** [-] 1-based */ column: number; message: string }
 /** Reading options; an unknown key is an error naming it. dwellP: how G4 P is read ('auto': with a decimal point seconds, without milliseconds; 'milliseconds': Fanuc; 'seconds': LinuxCNC/Grbl). skipBlockDelete (default true): skip '/' blocks. cAxis (default false): C is a rotary axis; otherwise C on G01 is a Fanuc chamfer. */
 export interface NcParseOptions { dwellP?: 'auto' | 'milliseconds' | 'seconds'; skipBlockDelete?: boolean; cAxis?: boolean; start?: Pose }
-export interface NcWarningGroup { kind: string; count: number; lines: number[]; indices: number[] }
+export interface NcWarningGroup { kind: string; /** [-] */ count: number; /** [-] source lines */ lines: number[]; /** [-] indices into warnings */ indices: number[] }
 /** Lengths mm, motionTime s (Σ length/feed, rapids at rapidFeed mm/min, dwells; no acc/dec). */
 export interface NcSummary {
-  bboxMin: [number, number, number] | null; bboxMax: [number, number, number] | null;
-  totalLength: number; cuttingLength: number; arcs: number; lines: number; rapids: number; dwells: number;
-  units: string; planes: string[]; motionTime: number; rapidFeed: number; warnings: NcWarningGroup[];
+  /** [mm] */ bboxMin: [number, number, number] | null; /** [mm] */ bboxMax: [number, number, number] | null;
+  /** [mm] */ totalLength: number; /** [mm] */ cuttingLength: number;
+  /** [-] */ arcs: number; /** [-] */ lines: number; /** [-] */ rapids: number; /** [-] */ dwells: number;
+  units: string; planes: string[]; /** [s] */ motionTime: number; /** [mm/min] */ rapidFeed: number; warnings: NcWarningGroup[];
 }
 export interface ParsedNc { segments: NcSegment[]; warnings: NcWarning[]; summary: NcSummary }
 export interface NcCheck { errors: NcWarning[]; truncated: boolean; warnings: NcWarning[]; summary: NcSummary | null }
 /** tA and T in s (T one value or [Tx, Ty, Tz]), dt in s, rapidFeed in mm/min, feedOverride as a fraction; dwellExactStop: every G4 first waits tA + 5·max T (exact stop, in-position check). */
-export interface ToolPathConfig { tA?: number; T?: number | [number, number, number]; dt?: number; rapidFeed?: number; feedOverride?: number; dwellExactStop?: boolean }
+export interface ToolPathConfig {
+  /** [s] */ tA?: number; /** [s] */ T?: number | [number, number, number]; /** [s] */ dt?: number; /** [mm/min] */ rapidFeed?: number;
+  /** [-] fraction */ feedOverride?: number; dwellExactStop?: boolean;
+}
 export interface SegmentStats {
-  segment: number; line: number; kind: 'line' | 'arc' | 'rapid'; length: number; radius: number;
-  maxErrorUm: number; meanDeviation: number | null; halfDeviation: [number | null, number | null]; samples: number;
+  /** [-] */ segment: number; /** [-] */ line: number; kind: 'line' | 'arc' | 'rapid'; /** [mm] */ length: number; /** [mm] */ radius: number;
+  maxErrorUm: number; /** [mm] */ meanDeviation: number | null; /** [mm] */ halfDeviation: [number | null, number | null]; /** [-] */ samples: number;
 }
 /** Time series (Float64Array, mm, mm/s, µm) and summary of one simulation. */
 export interface ToolPathSimulation {
-  t: Float64Array;
-  cmdX: Float64Array; cmdY: Float64Array; cmdZ: Float64Array;
-  simX: Float64Array; simY: Float64Array; simZ: Float64Array;
-  nearX: Float64Array; nearY: Float64Array; nearZ: Float64Array;
-  velCmdX: Float64Array; velCmdY: Float64Array; velCmdZ: Float64Array;
-  velSimX: Float64Array; velSimY: Float64Array; velSimZ: Float64Array;
+  /** [s] */ t: Float64Array;
+  /** [mm] */ cmdX: Float64Array; /** [mm] */ cmdY: Float64Array; /** [mm] */ cmdZ: Float64Array;
+  /** [mm] */ simX: Float64Array; /** [mm] */ simY: Float64Array; /** [mm] */ simZ: Float64Array;
+  /** [mm] */ nearX: Float64Array; /** [mm] */ nearY: Float64Array; /** [mm] */ nearZ: Float64Array;
+  /** [mm/s] */ velCmdX: Float64Array; /** [mm/s] */ velCmdY: Float64Array; /** [mm/s] */ velCmdZ: Float64Array;
+  /** [mm/s] */ velSimX: Float64Array; /** [mm/s] */ velSimY: Float64Array; /** [mm/s] */ velSimZ: Float64Array;
   errorUm: Float64Array;
-  maxErrorUm: number; maxErrorTime: number; maxErrorLine: number;
-  motionTime: number; nominalTime: number;
+  maxErrorUm: number; /** [s] */ maxErrorTime: number; /** [-] */ maxErrorLine: number;
+  /** [s] */ motionTime: number; /** [s] */ nominalTime: number;
   segments: SegmentStats[]; warnings: NcWarning[];
 }
-export interface RadiusReductionInput { feed: number; radius: number; tA: number; T: number }
-export interface CircleLoss { feed: number; radius: number; radiusLoss: number }
-export interface AccDec { tA: number; T: number; residual: number }
-export interface ReverseConfig extends ToolPathConfig { dwell?: number; iterations?: number }
-export interface CompSummary { maxErrorUm: number; motionTime: number }
-export interface SegmentChange { segment: number; line: number; kind: string; radiusBefore: number; radiusAfter: number; endShiftUm: number }
+export interface RadiusReductionInput { /** [mm/min] */ feed: number; /** [mm] */ radius: number; /** [s] */ tA: number; /** [s] */ T: number }
+export interface CircleLoss { /** [mm/min] */ feed: number; /** [mm] */ radius: number; /** [mm] */ radiusLoss: number }
+export interface AccDec { /** [s] */ tA: number; /** [s] */ T: number; /** [mm] RMS of the Δr residuals */ residual: number }
+export interface ReverseConfig extends ToolPathConfig { /** [s] */ dwell?: number; /** [-] */ iterations?: number }
+export interface CompSummary { maxErrorUm: number; /** [s] */ motionTime: number }
+export interface SegmentChange {
+  /** [-] */ segment: number; /** [-] */ line: number; kind: string; /** [mm] */ radiusBefore: number; /** [mm] */ radiusAfter: number; endShiftUm: number;
+}
 export interface ReverseCompensation {
   nc: string; before: CompSummary; after: CompSummary; segments: SegmentChange[];
-  dwells: { afterLine: number; seconds: number }[]; historyUm: number[];
+  dwells: { /** [-] */ afterLine: number; seconds: number }[]; historyUm: number[];
   beforeSim: ToolPathSimulation; afterSim: ToolPathSimulation;
 }
 "#;
@@ -81,7 +90,7 @@ struct Parsed<'a> {
 #[wasm_bindgen(js_name = parseNc, unchecked_return_type = "ParsedNc")]
 pub fn parse_nc(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "NcParseOptions | undefined")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "NcParseOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let opts = parse_options(options)?;
@@ -129,7 +138,7 @@ struct Checked<'a> {
 #[wasm_bindgen(js_name = checkNc, unchecked_return_type = "NcCheck")]
 pub fn check_nc(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "NcParseOptions | undefined")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "NcParseOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let opts = parse_options(options)?;

@@ -9,6 +9,33 @@
 // unusable. Calls queued behind the one that ended are sent to the new
 // worker; only that one call fails, with a message in words.
 
+/**
+ * Options of one call: `onProgress(fraction, message)` for the functions
+ * that report progress, `signal` cancels, `timeoutMs` limits the time.
+ * @typedef {{ onProgress?: (fraction: number, message: string) => void, signal?: AbortSignal, timeoutMs?: number }} CallOptions
+ */
+
+/** @typedef {typeof import('../pkg/mtmotion.js')} Core the wasm module's exports (pkg/mtmotion.d.ts) */
+/**
+ * The name of a core function the page may call (not the module's own
+ * initialisers).
+ * @typedef {Exclude<{ [K in keyof Core]: Core[K] extends (...args: any[]) => any ? K : never }[keyof Core], 'default' | 'initSync' | 'start'>} CoreFunction
+ */
+/**
+ * A typed call: `api.call('fitCircle', [x, y])` checks the arguments
+ * against the core's `.d.ts` and resolves to its result type.
+ * @typedef {<K extends CoreFunction>(fn: K, args?: Parameters<Core[K]>, options?: CallOptions) => Promise<ReturnType<Core[K]>>} CoreCall
+ */
+
+/**
+ * The page's handle on the core (the same shape in a worker and in-page).
+ * @typedef {object} Api
+ * @property {string} version the core's version
+ * @property {'worker' | 'in-page'} mode where the calls run
+ * @property {number} restarts workers replaced so far
+ * @property {CoreCall} call
+ */
+
 /** Default time limit of one call, ms. */
 export const CALL_TIMEOUT_MS = 60_000;
 
@@ -56,14 +83,21 @@ function startWorker(url, { initMessage, timeoutMs, type }) {
  * `api.call(fn, args, { onProgress, signal, timeoutMs })`: `signal` (an
  * AbortSignal) cancels the call; `timeoutMs` (default CALL_TIMEOUT_MS)
  * stops it. `api.restarts` counts the workers replaced so far.
+ *
+ * @param {string | URL} url
+ * @param {{ initMessage?: unknown, timeoutMs?: number, type?: WorkerType }} [options]
+ * @returns {Promise<Api>}
  */
 export async function workerApi(url, { initMessage, timeoutMs = 30_000, type = 'module' } = {}) {
   const opts = { initMessage, timeoutMs, type };
-  let { worker, version } = await startWorker(url, opts);
+  const started = await startWorker(url, opts);
+  let worker = started.worker;
+  const version = started.version;
   const pending = new Map(); // id → { msg, res, rej, onProgress, timer }, in send order
   let next = 1;
   let restarting = null;
-  const api = { version, mode: 'worker', restarts: 0 };
+  /** @type {Api} */
+  const api = { version, mode: 'worker', restarts: 0, call: undefined };
 
   const finish = (id) => {
     const p = pending.get(id);
@@ -117,7 +151,13 @@ export async function workerApi(url, { initMessage, timeoutMs = 30_000, type = '
     );
   }
 
-  api.call = (fn, args = [], { onProgress, signal, timeoutMs: limit = CALL_TIMEOUT_MS } = {}) => {
+  /**
+   * @param {string} fn
+   * @param {unknown[]} [args]
+   * @param {CallOptions} [options]
+   * @returns {Promise<any>}
+   */
+  const send = (fn, args = [], { onProgress, signal, timeoutMs: limit = CALL_TIMEOUT_MS } = {}) => {
     const id = next++;
     return new Promise((res, rej) => {
       if (signal?.aborted) {
@@ -143,27 +183,38 @@ export async function workerApi(url, { initMessage, timeoutMs = 30_000, type = '
       if (!restarting) worker.postMessage(msg);
     });
   };
+  api.call = /** @type {CoreCall} */ (send);
   return api;
 }
 
-/** Same interface over an already-initialised wasm module namespace. */
+/**
+ * Same interface over an already-initialised wasm module namespace.
+ * @returns {Api}
+ */
 export function inPageApi(wasm) {
   return {
     version: wasm.version(),
     mode: 'in-page',
     restarts: 0,
-    async call(fn, args = [], { onProgress, signal } = {}) {
-      const f = wasm[fn];
-      if (typeof f !== 'function' || fn === 'default' || fn.startsWith('init')) throw new Error(`unknown function '${fn}'`);
-      // Yield once so the page can paint the "running" state first.
-      await new Promise((r) => setTimeout(r, 0));
-      if (signal?.aborted) throw new Error('cancelled');
-      try {
-        return onProgress ? f(...args, onProgress) : f(...args);
-      } catch (e) {
-        if (e instanceof WebAssembly.RuntimeError) throw new Error(`the calculation failed inside the engine (${e.message}); reload the page to restart it`);
-        throw e;
-      }
-    },
+    call: /** @type {CoreCall} */ (callInPage),
   };
+
+  /**
+   * @param {string} fn
+   * @param {unknown[]} [args]
+   * @param {CallOptions} [options]
+   */
+  async function callInPage(fn, args = [], { onProgress, signal } = {}) {
+    const f = wasm[fn];
+    if (typeof f !== 'function' || fn === 'default' || fn.startsWith('init')) throw new Error(`unknown function '${fn}'`);
+    // Yield once so the page can paint the "running" state first.
+    await new Promise((r) => setTimeout(r, 0));
+    if (signal?.aborted) throw new Error('cancelled');
+    try {
+      return onProgress ? f(...args, onProgress) : f(...args);
+    } catch (e) {
+      if (e instanceof WebAssembly.RuntimeError) throw new Error(`the calculation failed inside the engine (${e.message}); reload the page to restart it`, { cause: e });
+      throw e;
+    }
+  }
 }

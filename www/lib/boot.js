@@ -8,24 +8,29 @@ export const PANELS = ['servo', 'toolpath', 'ballbar', 'kinematics'];
 
 function selectTab(name) {
   if (!PANELS.includes(name)) return;
-  for (const b of document.querySelectorAll('[data-tab]')) b.setAttribute('aria-selected', String(b.dataset.tab === name));
-  for (const s of document.querySelectorAll('[data-panel]')) s.hidden = s.dataset.panel !== name;
+  for (const b of byData('[data-tab]')) b.setAttribute('aria-selected', String(b.dataset.tab === name));
+  for (const s of byData('[data-panel]')) s.hidden = s.dataset.panel !== name;
   document.dispatchEvent(new CustomEvent('mtmotion:tab', { detail: name }));
 }
 
-const activeTab = () => document.querySelector('[data-tab][aria-selected="true"]')?.dataset.tab || PANELS[0];
+/** The HTML elements matching `selector` (every `[data-…]` the page marks is one). */
+const byData = (selector) => /** @type {NodeListOf<HTMLElement>} */ (document.querySelectorAll(selector));
+
+const activeTab = () => byData('[data-tab][aria-selected="true"]')[0]?.dataset.tab || PANELS[0];
 
 // Deep links: the hash holds the panel and the values of its id'd inputs and
 // selects, e.g. #tab=toolpath&toolpath-ta=0.064. Text areas and files are not
 // kept (programs and traces are too large for a link).
+/** @returns {(HTMLInputElement | HTMLSelectElement)[]} */
 function inputsOf(panel) {
-  return [...document.querySelectorAll(`#panel-${panel} input[id], #panel-${panel} select[id]`)].filter((e) => e.type !== 'file' && e.type !== 'button');
+  const all = /** @type {NodeListOf<HTMLInputElement | HTMLSelectElement>} */ (document.querySelectorAll(`#panel-${panel} input[id], #panel-${panel} select[id]`));
+  return [...all].filter((e) => e.type !== 'file' && e.type !== 'button');
 }
 
 function writeHash() {
   const tab = activeTab();
   const q = new URLSearchParams({ tab });
-  for (const e of inputsOf(tab)) q.set(e.id, e.type === 'checkbox' ? String(e.checked) : e.value);
+  for (const e of inputsOf(tab)) q.set(e.id, e instanceof HTMLInputElement && e.type === 'checkbox' ? String(e.checked) : e.value);
   history.replaceState(null, '', `#${q}`);
   addTexts(tab, q);
 }
@@ -60,8 +65,10 @@ export function linkValueProblem(e, raw) {
 // A pasted program (a panel's id'd textarea) travels in the link, deflated
 // and base64url-coded, when it fits (LINK_TEXT_LIMIT); otherwise the link
 // says so and the page asks for the program to be loaded again.
+const textsOf = (tab) => /** @type {NodeListOf<HTMLTextAreaElement>} */ (document.querySelectorAll(`#panel-${tab} textarea[id]`));
+
 async function addTexts(tab, q) {
-  for (const t of document.querySelectorAll(`#panel-${tab} textarea[id]`)) {
+  for (const t of textsOf(tab)) {
     const packed = t.value ? await packText(t.value) : null;
     if (packed && packed.length <= LINK_TEXT_LIMIT) q.set(`${t.id}.z`, packed);
     else if (t.value) q.set(`${t.id}.z`, 'too-large');
@@ -70,7 +77,7 @@ async function addTexts(tab, q) {
 }
 
 async function restoreTexts(tab, q) {
-  for (const t of document.querySelectorAll(`#panel-${tab} textarea[id]`)) {
+  for (const t of textsOf(tab)) {
     const packed = q.get(`${t.id}.z`);
     if (!packed) continue;
     let note = null;
@@ -107,7 +114,7 @@ async function restoreHash() {
   }
   for (const e of inputsOf(tab)) {
     if (!q.has(e.id)) continue;
-    if (e.type === 'checkbox') e.checked = q.get(e.id) === 'true';
+    if (e instanceof HTMLInputElement && e.type === 'checkbox') e.checked = q.get(e.id) === 'true';
     else e.value = q.get(e.id);
     e.dispatchEvent(new Event('input', { bubbles: true }));
     e.dispatchEvent(new Event('change', { bubbles: true }));
@@ -115,7 +122,7 @@ async function restoreHash() {
   // Texts after the inputs (an example menu's change would overwrite them).
   await restoreTexts(tab, q);
   // A panel marks its main action with data-run; a shared link re-runs it.
-  document.querySelector(`#panel-${tab} [data-run]`)?.click();
+  byData(`#panel-${tab} [data-run]`)[0]?.click();
 }
 
 /** makeApi() → Promise<api>; loadPanel(name) → Promise<{ mount(root, api) }>. */
@@ -128,7 +135,7 @@ export async function boot({ makeApi, loadPanel }) {
     history.pushState(null, '', `#${new URLSearchParams({ tab: name })}`);
     writeHash();
   };
-  for (const b of document.querySelectorAll('[data-tab]')) b.addEventListener('click', () => openTab(b.dataset.tab));
+  for (const b of byData('[data-tab]')) b.addEventListener('click', () => openTab(b.dataset.tab));
   ariaTabs(document.querySelector('[role="tablist"]'), openTab);
   let api;
   try {

@@ -360,11 +360,11 @@ export function polarChart(el, opts) {
     const step = niceTicks(0, rmax, 4)[1] || rmax;
     const rings = [];
     for (let t = rOff - Math.floor(rOff / step) * step; t <= rmax * (1 + 1e-9); t += step) if (t > step * 1e-6) rings.push(t);
-    for (const v of rings) {
+    for (const ring of rings) {
       ctx.beginPath();
-      ctx.arc(cx, cy, (v / rmax) * R, 0, 2 * Math.PI);
+      ctx.arc(cx, cy, (ring / rmax) * R, 0, 2 * Math.PI);
       ctx.stroke();
-      ctx.fillText(tick(+(v - rOff).toPrecision(6)), cx + (v / rmax) * R + 2, cy - 2);
+      ctx.fillText(tick(+(ring - rOff).toPrecision(6)), cx + (ring / rmax) * R + 2, cy - 2);
     }
     for (let d = 0; d < 360; d += 30) {
       const [x, y] = P((d * Math.PI) / 180, rmax);

@@ -12,6 +12,8 @@
 // `spawn` makes one worker: by default a module worker running
 // www/pool-worker.js; the Node test passes worker_threads instead.
 
+/** @typedef {{ onProgress?: (done: number, total: number) => void, signal?: AbortSignal }} MapOptions */
+
 const defaultSpawn = () => new Worker(new URL('../pool-worker.js', import.meta.url), { type: 'module' });
 
 /** Creates a pool of `size` workers (started lazily, on the first task). */
@@ -51,7 +53,7 @@ export function createPool({ size = globalThis.navigator?.hardwareConcurrency ||
    * aborting `signal` terminates the workers (new ones start on the next map)
    * and rejects with an AbortError.
    */
-  function map(fn, argsList, { onProgress, signal } = {}) {
+  function map(fn, argsList, /** @type {MapOptions} */ { onProgress, signal } = {}) {
     start();
     const results = new Array(argsList.length);
     let next = 0;
@@ -147,7 +149,7 @@ export function sharedPool() {
  * one through `api` (the page's single worker) where there is no pool.
  * Results in argsList order; `onProgress(done, total)` after each call.
  */
-export async function mapCalls(api, fn, argsList, { onProgress, signal } = {}) {
+export async function mapCalls(api, fn, argsList, /** @type {MapOptions} */ { onProgress, signal } = {}) {
   const pool = sharedPool();
   if (pool) return pool.map(fn, argsList, { onProgress, signal });
   const out = [];

@@ -19,7 +19,11 @@ export function h(tag, attrs = {}, ...children) {
   return el;
 }
 
-/** A labelled number input. `value` reads the current number (NaN if empty). */
+/**
+ * A labelled number input. `value` reads the current number (NaN if empty).
+ * @param {{ label: string, value: number | string, unit?: string, step?: number | string, min?: number,
+ *   max?: number, id?: string, title?: string, onChange?: (value: number) => void }} options
+ */
 export function numberField({ label, value, unit, step = 'any', min, max, id, title, onChange }) {
   const input = h('input', { type: 'number', step, min, max, id, title, value: String(value) });
   if (onChange) input.addEventListener('change', () => onChange(Number(input.value)));
@@ -36,7 +40,10 @@ export function numberField({ label, value, unit, step = 'any', min, max, id, ti
   };
 }
 
-/** A labelled select; options are [value, text] pairs. */
+/**
+ * A labelled select; options are [value, text] pairs.
+ * @param {{ label: string, options: string[][], value?: string, id?: string, onChange?: (value: string) => void }} options
+ */
 export function selectField({ label, options, value, id, onChange }) {
   const select = h('select', { id }, options.map(([v, t]) => h('option', { value: v, selected: v === value }, t)));
   if (onChange) select.addEventListener('change', () => onChange(select.value));
@@ -81,8 +88,13 @@ export function toCsv(columns) {
   return lines.join('\n') + '\n';
 }
 
-/** Drag-and-drop area with a file picker; calls onText(text, fileName), or
- * with `multiple`, onFiles([{ text, name }, …]) once for all dropped files. */
+/**
+ * Drag-and-drop area with a file picker; calls onText(text, fileName), or
+ * with `multiple`, onFiles([{ text, name }, …]) once for all dropped files.
+ * @param {{ label?: string, accept?: string, id?: string, multiple?: boolean,
+ *   onText?: (text: string, name: string) => unknown,
+ *   onFiles?: (files: { text: string, name: string }[]) => unknown }} options
+ */
 export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, multiple = false, onFiles, id }) {
   const input = h('input', { type: 'file', accept, hidden: true, multiple, id });
   const el = h('div', { class: 'drop', tabindex: 0, role: 'button' }, label, input);

@@ -31,7 +31,7 @@ export function serveCalls(wasm, ready) {
       if (typeof f !== 'function' || fn === 'default' || fn.startsWith('init')) throw new Error(`unknown function '${fn}'`);
       const callArgs = progress ? [...args, (fraction, message) => self.postMessage({ id, progress: [fraction, message] })] : args;
       const result = f(...callArgs);
-      self.postMessage({ id, result }, [...new Set(transferables(result))]);
+      self.postMessage({ id, result }, { transfer: [...new Set(transferables(result))] });
     } catch (e) {
       self.postMessage({ id, error: String((e && e.message) || e), trap: isTrap(e) });
     }

@@ -24,6 +24,10 @@ function parseHarmonics(text) {
   return out;
 }
 
+/**
+ * @param {HTMLElement} root
+ * @param {import('../lib/api.js').Api} api
+ */
 export async function mount(root, api) {
   // ---- inputs -------------------------------------------------------------
   const source = selectField({ label: 'Trace', id: 'ballbar-source', value: 'synthetic', options: [['synthetic', 'Synthetic (from the fields below)'], ['file', 'Loaded file']] });
@@ -159,8 +163,8 @@ export async function mount(root, api) {
     const angle = r.estimate.deltaBz === null
       ? h('p', { id: 'align-angle' }, 'Angle errors: need two sections at different heights.')
       : h('p', { id: 'align-angle' },
-        `Δ${ax.name}${p.toLowerCase()} = `, h('strong', { id: 'align-angle-1' }, pm(r.estimate.deltaBz, r.bandBz, 1e6, 2)), ' µrad; ',
-        `Δ${ax.name}${q.toLowerCase()} = `, h('strong', { id: 'align-angle-2' }, pm(r.estimate.deltaBx, r.bandBx, 1e6, 2)), ' µrad (µm per m).');
+          `Δ${ax.name}${p.toLowerCase()} = `, h('strong', { id: 'align-angle-1' }, pm(r.estimate.deltaBz, r.bandBz, 1e6, 2)), ' µrad; ',
+          `Δ${ax.name}${q.toLowerCase()} = `, h('strong', { id: 'align-angle-2' }, pm(r.estimate.deltaBx, r.bandBx, 1e6, 2)), ' µrad (µm per m).');
     const csv = () => toCsv({
       section: sections.map((x) => JSON.stringify(x.name)),
       [`${ax.along.toLowerCase()}_mm`]: r.estimate.sections.map((e) => e.y),
@@ -218,7 +222,7 @@ export async function mount(root, api) {
   }
 
   async function analyse() {
-    const run = outUi.start();
+    const token = outUi.start();
     try {
       const trace = await getTrace();
       const r0 = trace.nominalRadius;
@@ -241,11 +245,11 @@ export async function mount(root, api) {
       const motion = Array.isArray(harmonics) ? harmonics.filter((c) => c.order >= 2) : [];
       const ranges = Array.from({ length: 34 }, (_, k) => 30 + 10 * k);
       const sweep = await api.call('travelRangeSweep', [{ offset: { z: fit.cx, x: fit.cy }, harmonics: motion, ranges, radius: r0, samples: 1000 }]);
-      if (!outUi.current(run)) return;
+      if (!outUi.current(token)) return;
       render(trace, fit, harmonics, iso, sweep);
       outUi.ok();
     } catch (e) {
-      if (outUi.current(run)) outUi.fail(e);
+      if (outUi.current(token)) outUi.fail(e);
     }
   }
 

@@ -17,6 +17,10 @@ const MACHINES = [
 // bar, and the core names the axis that leaves its limits.
 const CONE_CENTRE = { 'trunnion-ac': [60, 40, 20], 'table-on-table-bc': [60, 40, 20] };
 
+/**
+ * @param {HTMLElement} root
+ * @param {import('../lib/api.js').Api} api
+ */
 export async function mount(root, api) {
   const out = h('div', {});
   const machineSel = selectField({ label: 'Machine', options: MACHINES, value: 'trunnion-ac', id: 'kinematics-machine', onChange: () => loadMachine() });
@@ -96,6 +100,7 @@ export async function mount(root, api) {
   const coneUi = runState(coneOut);
   async function runCone() {
     coneUi.start();
+    /** @type {[number, 'perpendicular' | 'parallel'][]} */
     const combos = [[15, 'perpendicular'], [15, 'parallel'], [45, 'perpendicular'], [45, 'parallel']];
     const results = [];
     try {

@@ -13,6 +13,10 @@ const FIELDS = [
 const PAPER_OMEGAS = [0.5, 1, 1.5, 2, 3, 4].map((k) => k * Math.PI);
 const PAPER_J1 = [1.7, 3.24, 4.77];
 
+/**
+ * @param {HTMLElement} root
+ * @param {import('../lib/api.js').Api} api
+ */
 export async function mount(root, api) {
   const machine = await api.call('machinePreset', ['nmv5000']);
   const axes = Object.keys(machine.axes);
@@ -67,7 +71,7 @@ export async function mount(root, api) {
   const runUi = runState(out, charts);
   const setDownloads = (on) => {
     for (const id of ['servo-csv', 'servo-json']) {
-      const b = root.querySelector(`#${id}`);
+      const b = /** @type {HTMLButtonElement | null} */ (root.querySelector(`#${id}`));
       if (b) b.disabled = !on;
     }
   };
@@ -179,7 +183,7 @@ export async function mount(root, api) {
       // One bestKffp per (J1, ω) on all cores (lib/pool.js), in order.
       const args = PAPER_J1.flatMap((jv) => PAPER_OMEGAS.map((w) => [m, { rc: 5, rw: 8, omega: w, accelTime: 0.064, j1: jv, dt: dt.value }]));
       const results = await mapCalls(api, 'bestKffp', args, { onProgress: (d, n) => progress.set(d / n, `${d} of ${n} points`) });
-      for (const [ji, jv] of PAPER_J1.entries()) {
+      for (const ji of PAPER_J1.keys()) {
         for (const w of PAPER_OMEGAS) {
           const r = results[done];
           data[ji].before.push(r.before.meanAngleDiff * 1e3);

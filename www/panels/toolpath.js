@@ -3,9 +3,13 @@
 // download a reverse-compensated program. All computation is in the core
 // (simulateToolPath, reverseCompensate, toolpathExample); this file only
 // gathers inputs, calls the API and draws.
-import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState } from '../lib/ui.js';
+import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState, showError } from '../lib/ui.js';
 import { xyChart, lineChart } from '../lib/plot.js';
 
+/**
+ * @param {HTMLElement} root
+ * @param {import('../lib/api.js').Api} api
+ */
 export async function mount(root, api) {
   const examples = {
     arcs: await api.call('toolpathExample', ['arcs']),
@@ -98,6 +102,7 @@ export async function mount(root, api) {
   };
   nc.addEventListener('input', programChanged);
 
+  /** @returns {import('../pkg/mtmotion.js').ToolPathConfig} */
   const cfg = () => ({
     tA: tA.value / 1e3,
     T: [tx.value / 1e3, ty.value / 1e3, tz.value / 1e3],

@@ -45,7 +45,7 @@ use crate::kinematics::{
     newton, q_from_degrees, q_to_degrees, GeometricErrors, KinematicsError, Model, AXES,
 };
 use crate::machine::MachineRef;
-use crate::nc::program::{parse, Motion, Pose as NcPose, Segment};
+use crate::nc::program::{parse, Motion, Pose as NcPose, Program, Segment};
 use crate::nc::NcError;
 use cutting_force::Cutting;
 use monte_carlo::{MonteCarlo, Rng};
@@ -337,67 +337,15 @@ pub fn compensate_nc5(text: &str, cfg: &Nc5Config) -> Result<Nc5Result, Nc5Error
             why: "the program has no G0/G1 move to compensate".into(),
         });
     }
-    let mut errors = cfg.errors.clone();
-    let mut noise = Vec::new();
-    if let Some(mc) = &cfg.monte_carlo {
-        for (f, v) in [
-            ("monteCarlo.sigmaMm", mc.sigma_mm),
-            ("monteCarlo.sigmaRad", mc.sigma_rad),
-            ("monteCarlo.repeatabilityMm", mc.repeatability_mm),
-        ] {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(Nc5Error::BadConfig {
-                    field: f,
-                    value: v,
-                    why: "must be ≥ 0",
-                });
-            }
-        }
-        let mut rng = Rng::new(mc.seed);
-        errors = monte_carlo::draw(&chain, &errors, mc, &mut rng);
-        if mc.repeatability_mm > 0.0 {
-            noise = (0..pts.len())
-                .map(|_| {
-                    Vector3::new(rng.normal(), rng.normal(), rng.normal()) * mc.repeatability_mm
-                })
-                .collect();
-        }
-    }
-    let deflection = match &cfg.cutting {
-        Some(c) => {
-            c.validate()
-                .map_err(|(field, value, why)| Nc5Error::BadConfig { field, value, why })?;
-            let f = c.forces(720);
-            // Mean lateral force in the feed frame → tip deflection.
-            [c.deflection(f.mean[0]), c.deflection(f.mean[1])]
-        }
-        None => [0.0; 2],
-    };
+    let (errors, noise) = machine_errors(cfg, &chain, pts.len())?;
+    let deflection = deflection_of(cfg)?;
     let eval = Eval {
         model: Model::new(&chain, &errors, cfg.tool_length)?,
         nominal: Model::new(&chain, &GeometricErrors::default(), cfg.tool_length)?,
         deflection,
         noise,
     };
-    let mut axes: Vec<usize> = (0..6)
-        .filter(|i| chain.axes().contains(&AXES[*i]))
-        .collect();
-    if let Some(only) = &cfg.compensate_axes {
-        let mut chosen = Vec::with_capacity(only.len());
-        for (index, a) in only.iter().enumerate() {
-            match axes.iter().find(|&&i| AXES[i] == a.as_str()) {
-                Some(&i) => chosen.push(i),
-                None => {
-                    return Err(Nc5Error::BadAxis {
-                        index,
-                        axis: a.clone(),
-                        known: axes.iter().map(|&i| AXES[i]).collect::<Vec<_>>().join(", "),
-                    })
-                }
-            }
-        }
-        axes = chosen;
-    }
+    let axes = compensated_axes(cfg, &chain)?;
     let driven = match &cfg.feed_drive {
         Some(d) => Some(feed_drive::positions_at_block_ends(&program.segments, d)?),
         None => None,
@@ -421,7 +369,110 @@ pub fn compensate_nc5(text: &str, cfg: &Nc5Config) -> Result<Nc5Result, Nc5Error
         };
         corrected.push(qc);
     }
-    // Write the corrected program.
+    let nc = write_corrected(&program, &corrected, &axes);
+    let after = evaluate_written(&nc, cfg, &eval, &pts)?;
+    let (b, a) = (stats(&before), stats(&after));
+    let red = |x: f64, y: f64| if x > 0.0 { 100.0 * (1.0 - y / x) } else { 0.0 };
+    let reduction = [
+        red(b.std_mm[0], a.std_mm[0]),
+        red(b.std_mm[1], a.std_mm[1]),
+        red(b.std_mm[2], a.std_mm[2]),
+        red(b.std_rad[0], a.std_rad[0]),
+        red(b.std_rad[1], a.std_rad[1]),
+    ];
+    Ok(Nc5Result {
+        nc,
+        before: b,
+        after: a,
+        before_points: before,
+        after_points: after,
+        lines: pts.iter().map(|p| p.0).collect(),
+        reduction_percent: reduction,
+        total_reduction_percent: (reduction[0] + reduction[1] + reduction[3] + reduction[4]) / 4.0,
+        deflection_mm: deflection[0].hypot(deflection[1]),
+        machine_errors: errors,
+    })
+}
+
+/// The machine's errors: the configured ones, plus one seeded Monte-Carlo
+/// machine and per-point repeatability noise (mm) when asked for.
+fn machine_errors(
+    cfg: &Nc5Config,
+    chain: &crate::kinematics::Chain,
+    points: usize,
+) -> Result<(GeometricErrors, Vec<Vector3<f64>>), Nc5Error> {
+    let Some(mc) = &cfg.monte_carlo else {
+        return Ok((cfg.errors.clone(), Vec::new()));
+    };
+    for (f, v) in [
+        ("monteCarlo.sigmaMm", mc.sigma_mm),
+        ("monteCarlo.sigmaRad", mc.sigma_rad),
+        ("monteCarlo.repeatabilityMm", mc.repeatability_mm),
+    ] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(Nc5Error::BadConfig {
+                field: f,
+                value: v,
+                why: "must be ≥ 0",
+            });
+        }
+    }
+    let mut rng = Rng::new(mc.seed);
+    let errors = monte_carlo::draw(chain, &cfg.errors, mc, &mut rng);
+    let mut noise = Vec::new();
+    if mc.repeatability_mm > 0.0 {
+        noise = (0..points)
+            .map(|_| Vector3::new(rng.normal(), rng.normal(), rng.normal()) * mc.repeatability_mm)
+            .collect();
+    }
+    Ok((errors, noise))
+}
+
+/// The tool-tip deflection (mm) of the mean lateral cutting force, in the
+/// feed frame; zero without a cutting model.
+fn deflection_of(cfg: &Nc5Config) -> Result<[f64; 2], Nc5Error> {
+    match &cfg.cutting {
+        Some(c) => {
+            c.validate()
+                .map_err(|(field, value, why)| Nc5Error::BadConfig { field, value, why })?;
+            let f = c.forces(720);
+            // Mean lateral force in the feed frame → tip deflection.
+            Ok([c.deflection(f.mean[0]), c.deflection(f.mean[1])])
+        }
+        None => Ok([0.0; 2]),
+    }
+}
+
+/// The axes the compensation may move: the chosen ones, or all of the machine's.
+fn compensated_axes(
+    cfg: &Nc5Config,
+    chain: &crate::kinematics::Chain,
+) -> Result<Vec<usize>, Nc5Error> {
+    let axes: Vec<usize> = (0..6)
+        .filter(|i| chain.axes().contains(&AXES[*i]))
+        .collect();
+    let Some(only) = &cfg.compensate_axes else {
+        return Ok(axes);
+    };
+    let mut chosen = Vec::with_capacity(only.len());
+    for (index, a) in only.iter().enumerate() {
+        match axes.iter().find(|&&i| AXES[i] == a.as_str()) {
+            Some(&i) => chosen.push(i),
+            None => {
+                return Err(Nc5Error::BadAxis {
+                    index,
+                    axis: a.clone(),
+                    known: axes.iter().map(|&i| AXES[i]).collect::<Vec<_>>().join(", "),
+                })
+            }
+        }
+    }
+    Ok(chosen)
+}
+
+/// The program with each G0/G1 end point replaced by its corrected axis
+/// values (axes not compensated keep their programmed value).
+fn write_corrected(program: &Program, corrected: &[[f64; 6]], axes: &[usize]) -> String {
     let mut segs = program.segments.clone();
     let mut k = 0;
     let mut last: Option<NcPose> = None;
@@ -445,40 +496,29 @@ pub fn compensate_nc5(text: &str, cfg: &Nc5Config) -> Result<Nc5Result, Nc5Error
         }
         last = Some(s.end);
     }
-    let nc = crate::nc::writer::write(&program, &segs);
-    // Evaluate the program as written.
-    let written = parse(&nc)?;
+    crate::nc::writer::write(program, &segs)
+}
+
+/// The errors of the program as written (read back, so its rounding
+/// counts), at the original program's evaluation points.
+fn evaluate_written(
+    nc: &str,
+    cfg: &Nc5Config,
+    eval: &Eval,
+    pts: &[EvalPoint],
+) -> Result<PointErrors, Nc5Error> {
+    let written = parse(nc)?;
     let wpts = points_of(&written.segments)?;
     let driven_after = match &cfg.feed_drive {
         Some(d) => Some(feed_drive::positions_at_block_ends(&written.segments, d)?),
         None => None,
     };
     let mut after = PointErrors::default();
-    for (i, ((_, qw, _), (_, qn, dir))) in wpts.iter().zip(&pts).enumerate() {
+    for (i, ((_, qw, _), (_, qn, dir))) in wpts.iter().zip(pts).enumerate() {
         let actual = driven_after.as_ref().map_or(qw, |d| &d[i]);
         eval.push(&mut after, i, actual, qn, dir);
     }
-    let (b, a) = (stats(&before), stats(&after));
-    let red = |x: f64, y: f64| if x > 0.0 { 100.0 * (1.0 - y / x) } else { 0.0 };
-    let reduction = [
-        red(b.std_mm[0], a.std_mm[0]),
-        red(b.std_mm[1], a.std_mm[1]),
-        red(b.std_mm[2], a.std_mm[2]),
-        red(b.std_rad[0], a.std_rad[0]),
-        red(b.std_rad[1], a.std_rad[1]),
-    ];
-    Ok(Nc5Result {
-        nc,
-        before: b,
-        after: a,
-        before_points: before,
-        after_points: after,
-        lines: pts.iter().map(|p| p.0).collect(),
-        reduction_percent: reduction,
-        total_reduction_percent: (reduction[0] + reduction[1] + reduction[3] + reduction[4]) / 4.0,
-        deflection_mm: deflection[0].hypot(deflection[1]),
-        machine_errors: errors,
-    })
+    Ok(after)
 }
 
 #[cfg(test)]

@@ -109,34 +109,7 @@ pub fn s_shape(o: &SShapeOptions) -> Result<SShape, KinematicsError> {
         field: "machine".into(),
         why: e.to_string(),
     })?;
-    let (len, amp, height) = (300.0 * o.scale, 60.0 * o.scale, 80.0 * o.scale);
-    let twist = 20f64.to_radians();
-    let org = Vector3::from(o.origin);
-    let upper = |s: f64| {
-        org + Vector3::new(
-            len * (s - 0.5),
-            amp * (std::f64::consts::TAU * s).sin(),
-            0.0,
-        )
-    };
-    let lower = |s: f64| {
-        org + Vector3::new(
-            len * (s - 0.5) + 0.25 * height * (std::f64::consts::TAU * s).cos(),
-            amp * (std::f64::consts::TAU * s + twist).sin(),
-            -height,
-        )
-    };
-    let mut points = Vec::with_capacity(64);
-    let mut axes = Vec::with_capacity(64);
-    for level in 0..2 {
-        for i in 0..32 {
-            let s = (i as f64 + 0.5) / 32.0;
-            let (u, l) = (upper(s), lower(s));
-            let axis = (u - l).normalize();
-            points.push(if level == 0 { u } else { l }.into());
-            axes.push(axis.into());
-        }
-    }
+    let (points, axes) = targets(o);
     let limits = limits_from_degrees(&machine.limits);
     let present = chain.axes();
     let mut nc =
@@ -189,4 +162,39 @@ pub fn s_shape(o: &SShapeOptions) -> Result<SShape, KinematicsError> {
     }
     nc.push_str("M30\n%\n");
     Ok(SShape { points, axes, nc })
+}
+
+/// The 64 tool-tip targets (32 on the upper S curve, then 32 on the lower,
+/// mm) and the tool axis of each (the ruling from the lower to the upper
+/// curve): a 300 × 60 × 80 mm part at `scale`, the lower curve twisted 20°.
+fn targets(o: &SShapeOptions) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
+    let (len, amp, height) = (300.0 * o.scale, 60.0 * o.scale, 80.0 * o.scale);
+    let twist = 20f64.to_radians();
+    let org = Vector3::from(o.origin);
+    let upper = |s: f64| {
+        org + Vector3::new(
+            len * (s - 0.5),
+            amp * (std::f64::consts::TAU * s).sin(),
+            0.0,
+        )
+    };
+    let lower = |s: f64| {
+        org + Vector3::new(
+            len * (s - 0.5) + 0.25 * height * (std::f64::consts::TAU * s).cos(),
+            amp * (std::f64::consts::TAU * s + twist).sin(),
+            -height,
+        )
+    };
+    let mut points = Vec::with_capacity(64);
+    let mut axes = Vec::with_capacity(64);
+    for level in 0..2 {
+        for i in 0..32 {
+            let s = (i as f64 + 0.5) / 32.0;
+            let (u, l) = (upper(s), lower(s));
+            let axis = (u - l).normalize();
+            points.push(if level == 0 { u } else { l }.into());
+            axes.push(axis.into());
+        }
+    }
+    (points, axes)
 }
