@@ -1,7 +1,7 @@
 // Page start-up shared by the served page (main.js) and the single-file page
 // (standalone.js): start the core, mount the panels, restore the deep link,
 // then mark the page ready for the tests.
-import { showError, ariaTabs, downloadText, packText, unpackText, LINK_TEXT_LIMIT, h } from './ui.js';
+import { showError, ariaTabs, downloadText, packText, unpackText, LINK_TEXT_LIMIT, linkedDrops, h } from './ui.js';
 import { reportHtml } from './report.js';
 
 export const PANELS = ['servo', 'toolpath', 'ballbar', 'kinematics'];
@@ -19,8 +19,8 @@ const byData = (selector) => /** @type {NodeListOf<HTMLElement>} */ (document.qu
 const activeTab = () => byData('[data-tab][aria-selected="true"]')[0]?.dataset.tab || PANELS[0];
 
 // Deep links: the hash holds the panel and the values of its id'd inputs and
-// selects, e.g. #tab=toolpath&toolpath-ta=0.064. Text areas and files are not
-// kept (programs and traces are too large for a link).
+// selects, e.g. #tab=toolpath&toolpath-ta=0.064. Pasted programs and dropped
+// traces travel deflated when they fit (addTexts below).
 /** @returns {(HTMLInputElement | HTMLSelectElement)[]} */
 function inputsOf(panel) {
   const all = /** @type {NodeListOf<HTMLInputElement | HTMLSelectElement>} */ (document.querySelectorAll(`#panel-${panel} input[id], #panel-${panel} select[id]`));
@@ -73,7 +73,35 @@ async function addTexts(tab, q) {
     if (packed && packed.length <= LINK_TEXT_LIMIT) q.set(`${t.id}.z`, packed);
     else if (t.value) q.set(`${t.id}.z`, 'too-large');
   }
+  for (const [key, drop] of linkedDrops) {
+    if (!key.startsWith(`${tab}-`) || !drop.file) continue;
+    const packed = await packText(`${drop.file.name}\n${drop.file.text}`);
+    q.set(`${key}.z`, packed && packed.length <= LINK_TEXT_LIMIT ? packed : `too-large:${drop.file.name.slice(0, 80)}`);
+  }
   if (activeTab() === tab) history.replaceState(null, '', `#${q}`);
+}
+
+/** A dropped trace from the link is dropped again (its panel's own handler
+ * reads it); one too large for a link, or damaged, is named in a note. */
+async function restoreDrops(tab, q) {
+  for (const [key, drop] of linkedDrops) {
+    const packed = q.get(`${key}.z`);
+    if (!key.startsWith(`${tab}-`) || !packed) continue;
+    let note = null;
+    if (packed.startsWith('too-large')) note = `The shared link could not carry the file ${packed.slice(10) || ''} (too large for a link): load it again.`;
+    else {
+      try {
+        const text = await unpackText(packed);
+        const cut = text.indexOf('\n');
+        drop.file = { name: text.slice(0, cut), text: text.slice(cut + 1) };
+        await drop.onText(drop.file.text, drop.file.name);
+      } catch {
+        note = 'The file in the shared link is damaged: load it again.';
+      }
+    }
+    drop.el.parentElement.querySelector('.link-note')?.remove();
+    if (note) drop.el.before(h('p', { class: 'error-box link-note', role: 'alert' }, note));
+  }
 }
 
 async function restoreTexts(tab, q) {
@@ -121,6 +149,7 @@ async function restoreHash() {
   }
   // Texts after the inputs (an example menu's change would overwrite them).
   await restoreTexts(tab, q);
+  await restoreDrops(tab, q);
   // A panel marks its main action with data-run; a shared link re-runs it.
   byData(`#panel-${tab} [data-run]`)[0]?.click();
 }

@@ -91,18 +91,27 @@ export function toCsv(columns) {
 /**
  * Drag-and-drop area with a file picker; calls onText(text, fileName), or
  * with `multiple`, onFiles([{ text, name }, …]) once for all dropped files.
- * @param {{ label?: string, accept?: string, id?: string, multiple?: boolean,
+ * A single-file zone with a `link` key (starting with its panel's name)
+ * puts the dropped file in the shared link (linkedDrops).
+ * @param {{ label?: string, accept?: string, id?: string, multiple?: boolean, link?: string,
  *   onText?: (text: string, name: string) => unknown,
  *   onFiles?: (files: { text: string, name: string }[]) => unknown }} options
  */
-export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, multiple = false, onFiles, id }) {
+export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, multiple = false, onFiles, id, link }) {
   const input = h('input', { type: 'file', accept, hidden: true, multiple, id });
   const el = h('div', { class: 'drop', tabindex: 0, role: 'button' }, label, input);
+  if (link && !multiple) linkedDrops.set(link, { el, onText, file: null });
   const read = async (files) => {
     const list = Array.from(files || []);
     if (!list.length) return;
     if (multiple) return onFiles(await Promise.all(list.map(async (f) => ({ text: await f.text(), name: f.name }))));
-    return onText(await list[0].text(), list[0].name);
+    const file = { text: await list[0].text(), name: list[0].name };
+    if (link) {
+      linkedDrops.get(link).file = file;
+      // The page's link follows every change; a dropped file is one.
+      el.dispatchEvent(new Event('change', { bubbles: true }));
+    }
+    return onText(file.text, file.name);
   };
   el.addEventListener('click', () => input.click());
   el.addEventListener('keydown', (e) => (e.key === 'Enter' || e.key === ' ') && input.click());
@@ -119,6 +128,14 @@ export function dropZone({ label = 'Drop a file here, or click to choose one', a
   });
   return el;
 }
+
+/**
+ * Drop zones whose file travels in a shared link, by link key (the key
+ * starts with the panel's name, e.g. 'ballbar-trace'): the zone, its
+ * handler, and the file last dropped on it.
+ * @type {Map<string, { el: HTMLElement, onText: (text: string, name: string) => unknown, file: { text: string, name: string } | null }>}
+ */
+export const linkedDrops = new Map();
 
 /** A progress bar: set(fraction 0…1, message), done(). */
 export function progressBar() {

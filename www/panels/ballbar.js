@@ -48,6 +48,7 @@ export async function mount(root, api) {
   let loaded = null;
   const fileInfo = h('p', { id: 'ballbar-file-info', class: 'unit' }, 'No file loaded (CSV/TSV: angle + deviation, or X/Y).');
   const drop = dropZone({
+    link: 'ballbar-trace',
     label: 'Drop a ball-bar trace (CSV/TSV) here, or click to choose one',
     accept: '.csv,.tsv,.txt',
     onText: async (text, name) => {

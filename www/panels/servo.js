@@ -300,7 +300,7 @@ export async function mount(root, api) {
         h('button', { id: 'servo-csv', onclick: csv }, 'Download CSV'),
         h('button', { id: 'servo-json', onclick: json }, 'Download JSON')),
       status, out, charts),
-    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace }), traceInfo, mapBox, traceBox),
+    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ link: 'servo-trace', label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace }), traceInfo, mapBox, traceBox),
     h('div', { class: 'card' }, h('h3', {}, "The paper's sweep: R_C = 5 mm, R_W = 8 mm, ω = 0.5π … 4π rad/s, J1 = 1.70, 3.24, 4.77 kg·m² (Figs. 14, 15, 20, 21, 22)"),
       h('button', { id: 'servo-sweep', onclick: sweep }, 'Run the sweep'), progress.el, sweepBox),
   );
