@@ -48,6 +48,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::cycles::{hole, Cycle};
+use super::macro_exec::{has_macros, Macros, Step};
 pub use super::segment::{dist, Arc, Motion, MotionCode, Plane, Pose, Segment, AXES};
 use super::{arc::arc, Block, NcError, NcErrors, Word};
 /// A non-fatal finding: a word that was ignored, a mode that is not
@@ -267,6 +268,12 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
     let mut stack: Vec<Frame> = Vec::new();
     let mut executed = 0usize;
     let mut pc = 0usize;
+    let mut mac = if needs_macros(&blocks) {
+        Some(Macros::new(&blocks)?)
+    } else {
+        None
+    };
+    let mut runs = vec![0u32; blocks.len()];
     while pc < blocks.len() {
         let bi = pc;
         let b = &blocks[bi];
@@ -320,6 +327,27 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
             modal[bi] = Some(st);
             continue;
         }
+        runs[bi] = runs[bi].saturating_add(1);
+        let evaluated;
+        let mut computed = false;
+        let b = match mac.as_mut() {
+            Some(m) if b.macro_line.is_some() || has_g65(b) => {
+                let r = m.step(&blocks, bi, &mut pc, &st, &mut warnings);
+                match macro_flow(r, m, &subs, &mut stack, &mut pc, &mut errors) {
+                    Flow::Run(nb, c) => {
+                        evaluated = nb;
+                        computed = c;
+                        &evaluated
+                    }
+                    Flow::Next => {
+                        modal[bi] = Some(st);
+                        continue;
+                    }
+                    Flow::Stop => break,
+                }
+            }
+            _ => b,
+        };
         let before = segments.len();
         let mut ctx = Ctx {
             bi,
@@ -335,7 +363,7 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
                 break;
             }
         }
-        if !stack.is_empty() {
+        if !stack.is_empty() || computed || mac.as_ref().is_some_and(|m| m.depth() > 0) {
             for s in &mut segments[before..] {
                 s.fixed = true;
             }
@@ -351,6 +379,7 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
                             start,
                             left: times,
                             number,
+                            locals: false,
                         });
                         pc = start;
                     }
@@ -370,6 +399,11 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
                     pc = f.start;
                 } else {
                     pc = f.ret;
+                    if f.locals {
+                        if let Some(m) = mac.as_mut() {
+                            m.vars.pop_level();
+                        }
+                    }
                     stack.pop();
                 }
             } else {
@@ -406,6 +440,13 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
             last
         })
         .collect();
+    for s in &mut segments {
+        if s.block
+            .is_some_and(|bi| runs.get(bi).is_some_and(|&n| n > 1))
+        {
+            s.fixed = true;
+        }
+    }
     if let Err(es) = super::corner::apply_corners(&mut segments, &corners) {
         for e in es {
             errors.push(e);
@@ -450,6 +491,81 @@ struct Frame {
     start: usize,
     left: u32,
     number: u32,
+    /// A G65 call: its own local variables, dropped at M99.
+    locals: bool,
+}
+
+/// What the interpreter loop does after a macro step.
+enum Flow {
+    Run(Block, bool),
+    Next,
+    Stop,
+}
+
+fn has_g65(b: &Block) -> bool {
+    b.words.iter().any(|w| w.letter == 'G' && w.value == 65.0)
+}
+
+fn needs_macros(blocks: &[Block]) -> bool {
+    has_macros(blocks) || blocks.iter().any(has_g65)
+}
+
+/// Applies a macro step's outcome: a G65 call pushes a frame with its own
+/// locals; an error is recorded (and stops the run after an alarm or the
+/// loop budget).
+fn macro_flow(
+    r: Result<Step, NcError>,
+    m: &mut Macros,
+    subs: &std::collections::HashMap<u32, usize>,
+    stack: &mut Vec<Frame>,
+    pc: &mut usize,
+    errors: &mut NcErrors,
+) -> Flow {
+    let call = match r {
+        Ok(Step::Run(b, computed)) => return Flow::Run(b, computed),
+        Ok(Step::Done) => return Flow::Next,
+        Err(e) => {
+            errors.push(e);
+            return if m.stop { Flow::Stop } else { Flow::Next };
+        }
+        Ok(Step::Call {
+            number,
+            times,
+            args,
+            p,
+        }) => (number, times, args, p),
+    };
+    let (number, times, args, p) = call;
+    if stack.len() + m.depth() >= MAX_NESTING {
+        errors.push(NcError::new(
+            m.vars.line,
+            p.column,
+            format!(
+                "G65 P{}: macro calls nested deeper than {MAX_NESTING} levels",
+                p.text
+            ),
+        ));
+        m.stop = true;
+        return Flow::Stop;
+    }
+    let Some(&start) = subs.get(&number) else {
+        errors.push(NcError::new(
+            m.vars.line,
+            p.column,
+            format!("G65 P{}: macro program O{number:04} is not in this program; paste it (O{number:04} … M99) after M30, or drop its file together with the program", p.text),
+        ));
+        return Flow::Next;
+    };
+    m.vars.push_level(&args);
+    stack.push(Frame {
+        ret: *pc,
+        start,
+        left: times,
+        number,
+        locals: true,
+    });
+    *pc = start;
+    Flow::Next
 }
 
 /// O-number → index of its `O` block.
@@ -621,6 +737,16 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
                 }
                 cycle_word = Some((w, g));
             }
+            50..=52 => {
+                return Err(err(
+                    b,
+                    w,
+                    format!(
+                        "G{}: spline interpolation is not simulated; post the program with lines and arcs (G1/G2/G3)",
+                        w.text
+                    ),
+                ))
+            }
             330 | 331 | 332 | 741 | 801..=899 => {
                 return Err(err(
                     b,
@@ -658,11 +784,11 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
             ),
             400 => {}
             490 | 940 | 150 | 690 | 610..=649 => {}
-            650 | 660 | 661 => {
+            660 | 661 => {
                 return Err(err(
                     b,
                     w,
-                    format!("G{}: macro calls are not supported yet; expand the macro in the post-processor", w.text),
+                    format!("G{}: modal macro calls are not supported; call the macro with G65 at each position", w.text),
                 ))
             }
             410 | 420 => warn(
