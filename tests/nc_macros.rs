@@ -161,3 +161,24 @@ fn structure_and_expression_errors_are_located() {
     let e = parse("#50=1").unwrap_err();
     assert!(e.message.contains("does not exist"), "{e}");
 }
+
+#[test]
+fn okuma_programs_are_recognised_at_their_first_mark() {
+    let cases = [
+        ("O1000\nG90 G0 X0\nVC1=10\nG1 X1", (3, 1)),
+        ("G90\nIF [#1 EQ 0] N100\nG0 X1", (2, 14)),
+        ("G90\nGOTO N100", (2, 1)),
+        ("G90\nCALL O2000 PX=1", (2, 1)),
+        ("G0 X0\nG15 H1\nG0 X1", (2, 1)),
+    ];
+    for (src, at) in cases {
+        let e = parse_all(src, &ParseOptions::default()).unwrap_err();
+        assert_eq!(e.errors.len(), 1, "{src}: {e}");
+        let e = &e.errors[0];
+        assert_eq!((e.line, e.column), at, "{src}: {e}");
+        assert!(
+            e.message.contains("this looks like an Okuma OSP program"),
+            "{e}"
+        );
+    }
+}

@@ -463,6 +463,9 @@ impl<'a> Cursor<'a> {
             return Ok(Expr::Exists(n));
         }
         let Some(f) = Func::from_name(name) else {
+            if is_okuma_word(name) {
+                return Err((col, okuma_message(name)));
+            }
             return Err((
                 col,
                 format!("'{name}' is not a macro function; expected SIN, COS, TAN, ASIN, ACOS, ATAN, SQRT, ABS, ROUND, FIX, FUP, EXP, LN or EXISTS"),
@@ -508,6 +511,21 @@ impl<'a> Cursor<'a> {
             _ => Err((self.col(), "expected a variable '#'".into())),
         }
     }
+}
+
+/// Letter runs that only Okuma OSP programs use: common variables
+/// `VC1`, system variables `VS…`, `CALL O…`, `NIF`, `RTS`, `MSG`.
+pub fn is_okuma_word(run: &str) -> bool {
+    ["VC", "VS", "CALL", "NIF", "RTS", "MSG"]
+        .iter()
+        .any(|k| run.starts_with(k))
+}
+
+/// The refusal of an Okuma OSP program.
+pub fn okuma_message(found: &str) -> String {
+    format!(
+        "'{found}': this looks like an Okuma OSP program (VC variables, NIF, CALL O…, GOTO N…, G15 H); mtmotion reads ISO/Fanuc, Haas and LinuxCNC programs: post the part for a Fanuc-compatible control"
+    )
 }
 
 /// A token as shown in a message.

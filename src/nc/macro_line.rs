@@ -13,7 +13,9 @@
 //! Assignments on a line take effect after the line's words are evaluated
 //! (LinuxCNC; Fanuc allows one assignment alone on its line).
 
-use super::macro_expr::{show, tokenize, Cursor, Expr, Tok, Token, VarRef};
+use super::macro_expr::{
+    is_okuma_word, okuma_message, show, tokenize, Cursor, Expr, Tok, Token, VarRef,
+};
 use super::{Block, NcError, Word};
 
 /// A macro line: the statement and the source text (written back as is).
@@ -180,11 +182,11 @@ pub fn is_macro_line(src: &str) -> bool {
     code.iter().enumerate().any(|(i, t)| match t {
         Tok::Hash | Tok::Named(_) | Tok::Open => true,
         Tok::Word(w) if STMT_WORDS.contains(&w.as_str()) => true,
-        Tok::Word(w) if O_KEYWORDS.contains(&w.as_str()) && i >= 2 => {
-            matches!(code[i - 2], Tok::Word(o) if o == "O") && matches!(code[i - 1], Tok::Num(..))
-        }
         Tok::Word(w) if O_KEYWORDS.contains(&w.as_str()) && i >= 1 => {
-            matches!(code[i - 1], Tok::Label(_))
+            let numbered = i >= 2
+                && matches!(code[i - 2], Tok::Word(o) if o == "O")
+                && matches!(code[i - 1], Tok::Num(..));
+            numbered || matches!(code[i - 1], Tok::Label(_))
         }
         _ => false,
     })
@@ -254,6 +256,9 @@ fn statement(c: &mut Cursor) -> PResult<Stmt> {
         let cond = c.bracketed()?;
         if c.eat_word("GOTO") {
             return Ok(Stmt::IfGoto(cond, c.unary()?, col));
+        }
+        if matches!(c.peek(), Some(Tok::Word(w)) if w == "N") {
+            return Err((c.col(), okuma_message("IF […] N…")));
         }
         if c.eat_word("THEN") {
             let assigns = assignments(c)?;
@@ -412,21 +417,11 @@ fn o_word(c: &mut Cursor) -> PResult<Option<Stmt>> {
 
 /// The message for a letter run that is no keyword.
 fn keyword_message(run: &str) -> String {
-    if ["VC", "CALL", "NIF", "RTS", "MSG"]
-        .iter()
-        .any(|k| run.starts_with(k))
-    {
+    if is_okuma_word(run) {
         return okuma_message(run);
     }
     let letter = run.chars().next().unwrap_or('?');
     format!("expected a number after address '{letter}', found the letters '{run}'")
-}
-
-/// The refusal of an Okuma OSP program.
-pub fn okuma_message(found: &str) -> String {
-    format!(
-        "'{found}': this looks like an Okuma OSP program (User Task variables, NIF, CALL O…, GOTO N…); mtmotion reads ISO/Fanuc, Haas and LinuxCNC programs: post the part for a Fanuc-compatible control"
-    )
 }
 
 #[cfg(test)]

@@ -559,6 +559,8 @@ fn keyword_error(run: &str, line: usize, col: usize, block: &Block) -> NcError {
                 run.to_ascii_lowercase()
             ),
         )
+    } else if macro_expr::is_okuma_word(run) {
+        NcError::new(line, col, macro_expr::okuma_message(run))
     } else if MACRO_B.contains(&run) {
         NcError::new(
             line,

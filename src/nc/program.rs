@@ -218,6 +218,13 @@ pub fn parse_with(text: &str, options: &ParseOptions) -> Result<Program, NcError
 /// ```
 pub fn parse_all(text: &str, options: &ParseOptions) -> Result<Program, NcErrors> {
     let (blocks, mut errors) = super::lex_all(text);
+    if let Some(e) = errors
+        .errors
+        .iter()
+        .find(|e| e.message.contains("this looks like"))
+    {
+        return Err(NcErrors::from(e.clone()));
+    }
     match interpret_all(blocks, options) {
         Ok(p) if errors.is_empty() => Ok(p),
         Ok(_) => Err(errors),
@@ -782,6 +789,9 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
                     w.text
                 ),
             ),
+            150 if b.word('H').is_some() => {
+                return Err(err(b, w, super::macro_expr::okuma_message("G15 H")));
+            }
             400 => {}
             490 | 940 | 150 | 690 | 610..=649 => {}
             660 | 661 => {
