@@ -305,6 +305,7 @@ impl Macros {
             }
             VarKey::Num(3006) => {
                 self.vars.warnings.push(Warning {
+ file: None,
                     line: b.line,
                     column: col,
                     message: format!("message stop #3006={n}: {msg} (the control stops until cycle start; simulated as continuing)"),

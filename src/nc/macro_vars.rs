@@ -171,6 +171,7 @@ impl Variables {
     fn warn(&mut self, key: &VarKey, message: String) {
         if self.warned.insert((self.line, key.clone())) {
             self.warnings.push(Warning {
+                file: None,
                 line: self.line,
                 column: 1,
                 message,

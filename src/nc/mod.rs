@@ -18,6 +18,7 @@
 pub mod arc;
 pub mod corner;
 pub mod cycles;
+pub mod files;
 pub mod macro_exec;
 pub mod macro_expr;
 pub mod macro_line;
@@ -29,7 +30,7 @@ pub mod writer;
 
 /// An error that names the line and column and says what was expected.
 #[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize)]
-#[error("line {line}, column {column}: {message}")]
+#[error("{}line {line}, column {column}: {message}", .file.as_ref().map(|f| format!("file {f}, ")).unwrap_or_default())]
 pub struct NcError {
     /// 1-based line number.
     pub line: usize,
@@ -37,6 +38,10 @@ pub struct NcError {
     pub column: usize,
     /// What was found and what was expected.
     pub message: String,
+    /// The file, when the line is in one of the extra files given to
+    /// [`program::parse_files`] (none: the main program).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
 }
 
 impl NcError {
@@ -46,6 +51,7 @@ impl NcError {
             line,
             column,
             message: message.into(),
+            file: None,
         }
     }
 }

@@ -48,6 +48,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::cycles::{hole, Cycle};
+pub use super::files::{parse_files, NcFile};
 use super::macro_exec::{has_macros, Macros, Step};
 pub use super::segment::{dist, Arc, Motion, MotionCode, Plane, Pose, Segment, AXES};
 use super::{arc::arc, Block, NcError, NcErrors, Word};
@@ -61,10 +62,17 @@ pub struct Warning {
     pub column: usize,
     /// What was ignored and why.
     pub message: String,
+    /// The file, when the line is in one of the extra files given to
+    /// [`parse_files`] (none: the main program).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
 }
 
 impl std::fmt::Display for Warning {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if let Some(name) = &self.file {
+            write!(f, "file {name}, ")?;
+        }
         write!(
             f,
             "line {}, column {}: {}",
@@ -217,25 +225,7 @@ pub fn parse_with(text: &str, options: &ParseOptions) -> Result<Program, NcError
 /// assert_eq!(lines, vec![1, 2, 4]);
 /// ```
 pub fn parse_all(text: &str, options: &ParseOptions) -> Result<Program, NcErrors> {
-    let (blocks, mut errors) = super::lex_all(text);
-    if let Some(e) = errors
-        .errors
-        .iter()
-        .find(|e| e.message.contains("this looks like"))
-    {
-        return Err(NcErrors::from(e.clone()));
-    }
-    match interpret_all(blocks, options) {
-        Ok(p) if errors.is_empty() => Ok(p),
-        Ok(_) => Err(errors),
-        Err(e) => {
-            for x in e.errors {
-                errors.push(x);
-            }
-            errors.errors.sort_by_key(|e| (e.line, e.column));
-            Err(errors)
-        }
-    }
+    parse_files(text, &[], options)
 }
 
 const INCH: f64 = 25.4;
@@ -285,11 +275,19 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
         let bi = pc;
         let b = &blocks[bi];
         pc += 1;
+        if let Some(e) = left_file(&blocks, b, &stack, mac.as_ref()) {
+            match e {
+                Some(e) => errors.push(e),
+                None => break,
+            }
+            break;
+        }
         if st.ended {
             if !after_end_warned && !b.is_empty() && !b.percent {
                 after_end_warned = true;
                 if b.word('O').is_none() && b.program_name.is_none() {
                     warnings.push(Warning {
+                        file: None,
                         line: b.line,
                         column: 1,
                         message: "blocks after the program end (M2/M30) are not run".into(),
@@ -325,6 +323,7 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
         }
         if b.block_delete && options.skip_block_delete {
             warnings.push(Warning {
+                file: None,
                 line: b.line,
                 column: 1,
                 message:
@@ -415,6 +414,7 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
                 }
             } else {
                 warnings.push(Warning {
+ file: None,
                     line: b.line,
                     column: w.column,
                     message: "M99 in the main program repeats it endlessly on the control; it is simulated once".into(),
@@ -507,6 +507,29 @@ enum Flow {
     Run(Block, bool),
     Next,
     Stop,
+}
+
+/// The run reaching a block of another file: the end of the main program
+/// (`Some(None)`) when no call is active, or an error when a called
+/// subprogram runs past the end of its file without M99.
+fn left_file(
+    blocks: &[Block],
+    b: &Block,
+    stack: &[Frame],
+    mac: Option<&Macros>,
+) -> Option<Option<NcError>> {
+    match stack.last() {
+        Some(f) if blocks[f.start].file != b.file => Some(Some(NcError::new(
+            blocks[f.start].line,
+            1,
+            format!(
+                "subprogram O{} runs to the end of its file without M99; expected M99 at its end",
+                f.number
+            ),
+        ))),
+        None if b.file != 0 && mac.is_none_or(|m| m.depth() == 0) => Some(None),
+        _ => None,
+    }
 }
 
 fn has_g65(b: &Block) -> bool {
@@ -642,7 +665,7 @@ fn call(
             b,
             p,
             format!(
-                "M98 P{}: subprogram O{number:04} is not in this program; paste the subprogram (O{number:04} … M99) after M30 and parse again",
+                "M98 P{}: subprogram O{number:04} is not in this program; paste the subprogram (O{number:04} … M99) after M30, or drop its file together with the program",
                 p.text
             ),
         )
@@ -667,6 +690,7 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
     let opt = cx.opt;
     let warn = |warnings: &mut Vec<Warning>, w: &Word, m: String| {
         warnings.push(Warning {
+            file: None,
             line: b.line,
             column: w.column,
             message: m,
@@ -1262,6 +1286,7 @@ fn canned_cycle(
     };
     if c.code == 760 {
         cx.warnings.push(Warning {
+ file: None,
             line: b.line,
             column: anchor.column,
             message: "G76 fine boring: the tool shift at the bottom (direction set by a machine parameter) is not simulated".into(),
@@ -1350,6 +1375,7 @@ fn non_modal_move(
 ) -> Result<(), NcError> {
     let warn = |cx: &mut Ctx, m: String| {
         cx.warnings.push(Warning {
+            file: None,
             line: b.line,
             column: w.column,
             message: m,
