@@ -171,6 +171,9 @@ const O_KEYWORDS: [&str; 15] = [
 /// True when `src` holds macro code: a `#` or `[` outside comments, a
 /// Macro B statement keyword, or an o-word (`o100 sub`, `o<x> call`).
 pub fn is_macro_line(src: &str) -> bool {
+    if !might_be_macro(src) {
+        return false;
+    }
     let Ok(toks) = tokenize(src) else {
         return src.contains('#') || src.contains('[');
     };
@@ -190,6 +193,22 @@ pub fn is_macro_line(src: &str) -> bool {
         }
         _ => false,
     })
+}
+
+/// Fast pre-check (most lines of a large CAM program are plain words): a
+/// macro line has a `#`, a `[` or a run of two letters somewhere.
+fn might_be_macro(src: &str) -> bool {
+    let mut run = 0;
+    for c in src.bytes() {
+        if c == b'#' || c == b'[' {
+            return true;
+        }
+        run = if c.is_ascii_alphabetic() { run + 1 } else { 0 };
+        if run >= 2 {
+            return true;
+        }
+    }
+    false
 }
 
 /// Reads a macro line into a [`Block`] holding its [`MacroLine`]. The

@@ -179,6 +179,15 @@ pub struct Program {
     pub options: ParseOptions,
 }
 
+impl Program {
+    /// True when the program holds macro code (Macro B, o-words, G65): its
+    /// text cannot be rewritten block by block, because a block may run
+    /// several times or with computed words (its segments are `fixed`).
+    pub fn has_macros(&self) -> bool {
+        needs_macros(&self.blocks)
+    }
+}
+
 /// Parses and interprets a program with default options; the first error
 /// only (see [`parse_all`] for every error).
 ///
