@@ -182,3 +182,34 @@ fn okuma_programs_are_recognised_at_their_first_mark() {
         );
     }
 }
+
+mod never_panics {
+    use mtmotion::nc::program::{parse_all, ParseOptions};
+    use proptest::prelude::*;
+
+    /// Pieces of macro code, shuffled into random lines: whatever comes
+    /// out, parsing returns a program or located errors, never a panic
+    /// or a non-finite coordinate.
+    const PIECES: [&str; 32] = [
+        "#1", "#2", "#[#1]", "#0", "#3000", "#<a>", "=", "[", "]", "+", "-", "*", "/", "**",
+        " EQ ", " LT ", " AND ", "SIN", "ATAN", "SQRT", "IF", "GOTO", "WHILE", "DO1", "END1",
+        "G1", "X", "N10", "o1", " while ", " endwhile", "1.5",
+    ];
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+        #[test]
+        fn random_macro_text(lines in prop::collection::vec(prop::collection::vec(0..PIECES.len(), 0..8), 1..8)) {
+            let text: String = lines
+                .iter()
+                .map(|l| l.iter().map(|&i| PIECES[i]).collect::<String>())
+                .collect::<Vec<_>>()
+                .join("\n");
+            if let Ok(p) = parse_all(&format!("G21 F100\n{text}"), &ParseOptions::default()) {
+                for s in &p.segments {
+                    prop_assert!(s.end.to_array().iter().all(|v| v.is_finite()), "{text}");
+                }
+            }
+        }
+    }
+}
