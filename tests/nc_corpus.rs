@@ -43,16 +43,13 @@ const CORPUS: &[(&str, Outcome)] = &[
         Outcome::Err(17, 5, "this looks like a 3D-printer program", 1),
     ),
     ("cncjs_tball-pocket.gcode", Outcome::Ok(40266)),
-    (
-        "linuxcnc_3D_Chips.ngc",
-        Outcome::Err(8, 1, "macro variable", 100),
-    ),
+    ("linuxcnc_3D_Chips.ngc", Outcome::Ok(4684)),
     ("linuxcnc_arcspiral.ngc", Outcome::Ok(1005)),
     ("linuxcnc_cds.ngc", Outcome::Ok(266)),
     ("linuxcnc_comp.ngc", Outcome::Ok(43)),
     (
         "linuxcnc_daisy.ngc",
-        Outcome::Err(3, 6, "o-word 'sub'", 100),
+        Outcome::Err(26, 1, "inverse-time feed", 1),
     ),
     (
         "linuxcnc_hole-circle.ngc",
@@ -60,19 +57,19 @@ const CORPUS: &[(&str, Outcome)] = &[
     ),
     (
         "linuxcnc_mmount.ngc",
-        Outcome::Err(24, 1, "macro variable", 100),
+        Outcome::Err(314, 1, "G33.1: spindle-synchronised", 6),
     ),
     (
         "linuxcnc_spiral.ngc",
-        Outcome::Err(8, 6, "o-word 'repeat'", 3),
+        Outcome::Err(9, 8, "polar coordinate", 1),
     ),
     (
         "linuxcnc_systems.ngc",
-        Outcome::Err(4, 1, "macro variable", 100),
+        Outcome::Err(15, 1, "G5.1: spline interpolation", 100),
     ),
     (
         "linuxcnc_threading.ngc",
-        Outcome::Err(10, 1, "macro variable", 34),
+        Outcome::Err(36, 1, "G33: spindle-synchronised", 6),
     ),
     ("linuxcnc_tort.ngc", Outcome::Ok(268)),
     (

@@ -256,10 +256,10 @@ fn three_d_printer_program_is_recognised() {
 #[test]
 fn every_error_is_reported_in_order() {
     let src =
-        "G21\nG1 X1\nG0 X1 (DRILL (5 HOLES)\nIF [#1 GT 2] GOTO 5\nG1 X2 F100\nG2 X3\nG0 X\u{1a}2";
+        "G21\nG1 X1\nG0 X1 (DRILL (5 HOLES)\nIF [#1 GT] GOTO 5\nG1 X2 F100\nG2 X3\nG0 X\u{1a}2";
     let e = parse_all(src, &ParseOptions::default()).unwrap_err();
     let at: Vec<(usize, usize)> = e.errors.iter().map(|e| (e.line, e.column)).collect();
-    assert_eq!(at, vec![(2, 4), (3, 7), (4, 1), (6, 4), (7, 5)]);
+    assert_eq!(at, vec![(2, 4), (3, 7), (4, 10), (6, 4), (7, 5)]);
     let text = e.to_string();
     assert!(text.starts_with("5 errors in the program:"), "{text}");
     assert!(

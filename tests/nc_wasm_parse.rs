@@ -75,3 +75,27 @@ fn check_nc_returns_errors_as_data() {
     assert_eq!(get(&c, &["warnings", "0", "line"]).as_f64(), Some(1.0));
     assert_eq!(get(&c, &["summary", "rapids"]).as_f64(), Some(1.0));
 }
+
+#[wasm_bindgen_test]
+fn extra_files_hold_the_subprograms() {
+    let files = r#"{"files":[{"name":"O2000.nc","text":"O2000\nG91 G1 X5 F100\nG90\nM99"},{"name":"bad.nc","text":"O3000\nG1 X\nM99"}]}"#;
+    let good = r#"{"files":[{"name":"O2000.nc","text":"O2000\nG91 G1 X5 F100\nG90\nM99"}]}"#;
+    let p = tp::parse_nc(JsValue::from_str("G0 X0\nM98 P2000\nM30"), obj(good)).unwrap();
+    // An error in any file is reported, called or not.
+    let e = tp::parse_nc(JsValue::from_str("G0 X0\nM98 P2000\nM30"), obj(files)).unwrap_err();
+    assert!(message(e).contains("file bad.nc, line 2, column 4"));
+    assert_eq!(get(&p, &["segments", "1", "end", "x"]).as_f64(), Some(5.0));
+    let c = tp::check_nc(JsValue::from_str("M98 P3000\nM30"), obj(files)).unwrap();
+    assert_eq!(
+        get(&c, &["errors", "0", "file"]).as_string().as_deref(),
+        Some("bad.nc")
+    );
+    assert_eq!(get(&c, &["errors", "0", "line"]).as_f64(), Some(2.0));
+    let cfg =
+        r#"{"files":[{"name":"O2000.nc","text":"O2000\nG91 G1 X5 F100\nG90\nM99"}],"tA":0,"T":0}"#;
+    let s = tp::simulate_tool_path(JsValue::from_str("G0 X0\nM98 P2000\nM30"), obj(cfg)).unwrap();
+    let t = get(&s, &["nominalTime"]).as_f64().unwrap();
+    assert!((t - 3.0).abs() < 1e-9, "5 mm at 100 mm/min: {t}");
+    let texts = js_sys::JSON::parse(r#"["O2000\nM99","G0 X0\nM30"]"#).unwrap();
+    assert_eq!(tp::nc_main_file(texts).unwrap(), 1);
+}

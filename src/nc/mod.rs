@@ -18,6 +18,11 @@
 pub mod arc;
 pub mod corner;
 pub mod cycles;
+pub mod files;
+pub mod macro_exec;
+pub mod macro_expr;
+pub mod macro_line;
+pub mod macro_vars;
 pub mod program;
 pub mod segment;
 pub mod summary;
@@ -25,7 +30,7 @@ pub mod writer;
 
 /// An error that names the line and column and says what was expected.
 #[derive(Debug, Clone, PartialEq, thiserror::Error, serde::Serialize)]
-#[error("line {line}, column {column}: {message}")]
+#[error("{}line {line}, column {column}: {message}", .file.as_ref().map(|f| format!("file {f}, ")).unwrap_or_default())]
 pub struct NcError {
     /// 1-based line number.
     pub line: usize,
@@ -33,6 +38,10 @@ pub struct NcError {
     pub column: usize,
     /// What was found and what was expected.
     pub message: String,
+    /// The file, when the line is in one of the extra files given to
+    /// [`program::parse_files`] (none: the main program).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
 }
 
 impl NcError {
@@ -42,6 +51,7 @@ impl NcError {
             line,
             column,
             message: message.into(),
+            file: None,
         }
     }
 }
@@ -77,6 +87,12 @@ pub struct Block {
     pub comma_words: Vec<Word>,
     /// A named program `O<NAME>`.
     pub program_name: Option<String>,
+    /// A macro statement (Fanuc Macro B or LinuxCNC o-word code); its
+    /// `words` then hold only a literal `N` number.
+    pub macro_line: Option<Box<macro_line::MacroLine>>,
+    /// Index of the file the block came from (0: the main program; see
+    /// [`program::parse_files`]).
+    pub file: usize,
 }
 
 impl Block {
@@ -96,6 +112,7 @@ impl Block {
             && self.comments.is_empty()
             && self.comma_words.is_empty()
             && self.program_name.is_none()
+            && self.macro_line.is_none()
             && !self.percent
             && !self.block_delete
     }
@@ -109,6 +126,9 @@ impl Block {
     /// assert_eq!(b.write(), "N10 G01 X-1.50 F2000 (cut)");
     /// ```
     pub fn write(&self) -> String {
+        if let Some(m) = &self.macro_line {
+            return m.src.clone();
+        }
         let mut parts: Vec<String> = Vec::new();
         if self.percent {
             parts.push("%".into());
@@ -160,8 +180,13 @@ impl NcErrors {
             .unwrap_or_else(|| NcError::new(1, 1, "unknown error"))
     }
 
-    /// Appends `e` unless the cap is reached.
+    /// Appends `e` unless the cap is reached or the same error (line,
+    /// column, message) is already listed (a block run many times by a
+    /// loop or a subprogram reports its error once).
     pub fn push(&mut self, e: NcError) {
+        if self.errors.contains(&e) {
+            return;
+        }
         if self.errors.len() < MAX_ERRORS {
             self.errors.push(e);
         } else {
@@ -323,6 +348,9 @@ fn control_char(c: char) -> bool {
 /// `,R` / `,C` (corner rounding / chamfer on G01) are kept in
 /// [`Block::comma_words`].
 pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
+    if macro_line::is_macro_line(src) && !src.chars().any(control_char) {
+        return macro_line::lex_macro(src, line);
+    }
     let chars: Vec<char> = src.chars().collect();
     let mut block = Block {
         line,
@@ -537,6 +565,8 @@ fn keyword_error(run: &str, line: usize, col: usize, block: &Block) -> NcError {
                 run.to_ascii_lowercase()
             ),
         )
+    } else if macro_expr::is_okuma_word(run) {
+        NcError::new(line, col, macro_expr::okuma_message(run))
     } else if MACRO_B.contains(&run) {
         NcError::new(
             line,
@@ -639,8 +669,8 @@ mod tests {
         assert!(e.message.contains("not a valid number"));
         let e = lex("G1 (open").unwrap_err();
         assert_eq!((e.line, e.column), (1, 4));
-        let e = lex("G1 X#1").unwrap_err();
-        assert!(e.message.contains("macro"));
+        let b = lex("G1 X#1").unwrap();
+        assert!(b[0].macro_line.is_some());
         let e = lex("G1 5").unwrap_err();
         assert_eq!(e.column, 4);
         let e = lex("G1 X1 $").unwrap_err();
@@ -682,15 +712,12 @@ mod tests {
         assert!(e.message.contains("control character U+001A"), "{e}");
         let e = lex("G0 X\u{7}1").unwrap_err();
         assert!(e.message.contains("U+0007"), "{e}");
-        // IF [ is a macro statement, not address I.
-        let e = lex("IF [#1 GT 5] GOTO 10").unwrap_err();
-        assert!(
-            e.message.contains("'IF' is a Fanuc Macro B statement"),
-            "{e}"
-        );
-        assert_eq!(e.column, 1);
-        let e = lex("o100 sub").unwrap_err();
-        assert!(e.message.contains("o-word 'sub'"), "{e}");
+        // IF [ is a macro statement, not address I; o100 sub an o-word.
+        for src in ["IF [#1 GT 5] GOTO 10", "o100 sub"] {
+            assert!(lex(src).unwrap()[0].macro_line.is_some(), "{src}");
+        }
+        let e = lex("IF [#1 GT] GOTO 10").unwrap_err();
+        assert_eq!(e.column, 10, "{e}");
         let e = lex("G1 X1 )").unwrap_err();
         assert_eq!(e.column, 7);
     }

@@ -48,6 +48,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::cycles::{hole, Cycle};
+pub use super::files::{parse_files, NcFile};
+use super::macro_exec::{has_macros, Macros, Step};
 pub use super::segment::{dist, Arc, Motion, MotionCode, Plane, Pose, Segment, AXES};
 use super::{arc::arc, Block, NcError, NcErrors, Word};
 /// A non-fatal finding: a word that was ignored, a mode that is not
@@ -60,10 +62,17 @@ pub struct Warning {
     pub column: usize,
     /// What was ignored and why.
     pub message: String,
+    /// The file, when the line is in one of the extra files given to
+    /// [`parse_files`] (none: the main program).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
 }
 
 impl std::fmt::Display for Warning {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if let Some(name) = &self.file {
+            write!(f, "file {name}, ")?;
+        }
         write!(
             f,
             "line {}, column {}: {}",
@@ -170,6 +179,15 @@ pub struct Program {
     pub options: ParseOptions,
 }
 
+impl Program {
+    /// True when the program holds macro code (Macro B, o-words, G65): its
+    /// text cannot be rewritten block by block, because a block may run
+    /// several times or with computed words (its segments are `fixed`).
+    pub fn has_macros(&self) -> bool {
+        needs_macros(&self.blocks)
+    }
+}
+
 /// Parses and interprets a program with default options; the first error
 /// only (see [`parse_all`] for every error).
 ///
@@ -216,18 +234,7 @@ pub fn parse_with(text: &str, options: &ParseOptions) -> Result<Program, NcError
 /// assert_eq!(lines, vec![1, 2, 4]);
 /// ```
 pub fn parse_all(text: &str, options: &ParseOptions) -> Result<Program, NcErrors> {
-    let (blocks, mut errors) = super::lex_all(text);
-    match interpret_all(blocks, options) {
-        Ok(p) if errors.is_empty() => Ok(p),
-        Ok(_) => Err(errors),
-        Err(e) => {
-            for x in e.errors {
-                errors.push(x);
-            }
-            errors.errors.sort_by_key(|e| (e.line, e.column));
-            Err(errors)
-        }
-    }
+    parse_files(text, &[], options)
 }
 
 const INCH: f64 = 25.4;
@@ -267,15 +274,29 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
     let mut stack: Vec<Frame> = Vec::new();
     let mut executed = 0usize;
     let mut pc = 0usize;
+    let mut mac = if needs_macros(&blocks) {
+        Some(Macros::new(&blocks)?)
+    } else {
+        None
+    };
+    let mut runs = vec![0u32; blocks.len()];
     while pc < blocks.len() {
         let bi = pc;
         let b = &blocks[bi];
         pc += 1;
+        if let Some(e) = left_file(&blocks, b, &stack, mac.as_ref()) {
+            match e {
+                Some(e) => errors.push(e),
+                None => break,
+            }
+            break;
+        }
         if st.ended {
             if !after_end_warned && !b.is_empty() && !b.percent {
                 after_end_warned = true;
                 if b.word('O').is_none() && b.program_name.is_none() {
                     warnings.push(Warning {
+                        file: None,
                         line: b.line,
                         column: 1,
                         message: "blocks after the program end (M2/M30) are not run".into(),
@@ -311,6 +332,7 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
         }
         if b.block_delete && options.skip_block_delete {
             warnings.push(Warning {
+                file: None,
                 line: b.line,
                 column: 1,
                 message:
@@ -320,6 +342,27 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
             modal[bi] = Some(st);
             continue;
         }
+        runs[bi] = runs[bi].saturating_add(1);
+        let evaluated;
+        let mut computed = false;
+        let b = match mac.as_mut() {
+            Some(m) if b.macro_line.is_some() || has_g65(b) => {
+                let r = m.step(&blocks, bi, &mut pc, &st, &mut warnings);
+                match macro_flow(r, m, &subs, &mut stack, &mut pc, &mut errors) {
+                    Flow::Run(nb, c) => {
+                        evaluated = nb;
+                        computed = c;
+                        &evaluated
+                    }
+                    Flow::Next => {
+                        modal[bi] = Some(st);
+                        continue;
+                    }
+                    Flow::Stop => break,
+                }
+            }
+            _ => b,
+        };
         let before = segments.len();
         let mut ctx = Ctx {
             bi,
@@ -335,7 +378,7 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
                 break;
             }
         }
-        if !stack.is_empty() {
+        if !stack.is_empty() || computed || mac.as_ref().is_some_and(|m| m.depth() > 0) {
             for s in &mut segments[before..] {
                 s.fixed = true;
             }
@@ -351,6 +394,7 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
                             start,
                             left: times,
                             number,
+                            locals: false,
                         });
                         pc = start;
                     }
@@ -370,10 +414,16 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
                     pc = f.start;
                 } else {
                     pc = f.ret;
+                    if f.locals {
+                        if let Some(m) = mac.as_mut() {
+                            m.vars.pop_level();
+                        }
+                    }
                     stack.pop();
                 }
             } else {
                 warnings.push(Warning {
+ file: None,
                     line: b.line,
                     column: w.column,
                     message: "M99 in the main program repeats it endlessly on the control; it is simulated once".into(),
@@ -406,6 +456,13 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
             last
         })
         .collect();
+    for s in &mut segments {
+        if s.block
+            .is_some_and(|bi| runs.get(bi).is_some_and(|&n| n > 1))
+        {
+            s.fixed = true;
+        }
+    }
     if let Err(es) = super::corner::apply_corners(&mut segments, &corners) {
         for e in es {
             errors.push(e);
@@ -450,6 +507,104 @@ struct Frame {
     start: usize,
     left: u32,
     number: u32,
+    /// A G65 call: its own local variables, dropped at M99.
+    locals: bool,
+}
+
+/// What the interpreter loop does after a macro step.
+enum Flow {
+    Run(Block, bool),
+    Next,
+    Stop,
+}
+
+/// The run reaching a block of another file: the end of the main program
+/// (`Some(None)`) when no call is active, or an error when a called
+/// subprogram runs past the end of its file without M99.
+fn left_file(
+    blocks: &[Block],
+    b: &Block,
+    stack: &[Frame],
+    mac: Option<&Macros>,
+) -> Option<Option<NcError>> {
+    match stack.last() {
+        Some(f) if blocks[f.start].file != b.file => Some(Some(NcError::new(
+            blocks[f.start].line,
+            1,
+            format!(
+                "subprogram O{} runs to the end of its file without M99; expected M99 at its end",
+                f.number
+            ),
+        ))),
+        None if b.file != 0 && mac.is_none_or(|m| m.depth() == 0) => Some(None),
+        _ => None,
+    }
+}
+
+fn has_g65(b: &Block) -> bool {
+    b.words.iter().any(|w| w.letter == 'G' && w.value == 65.0)
+}
+
+fn needs_macros(blocks: &[Block]) -> bool {
+    has_macros(blocks) || blocks.iter().any(has_g65)
+}
+
+/// Applies a macro step's outcome: a G65 call pushes a frame with its own
+/// locals; an error is recorded (and stops the run after an alarm or the
+/// loop budget).
+fn macro_flow(
+    r: Result<Step, NcError>,
+    m: &mut Macros,
+    subs: &std::collections::HashMap<u32, usize>,
+    stack: &mut Vec<Frame>,
+    pc: &mut usize,
+    errors: &mut NcErrors,
+) -> Flow {
+    let call = match r {
+        Ok(Step::Run(b, computed)) => return Flow::Run(b, computed),
+        Ok(Step::Done) => return Flow::Next,
+        Err(e) => {
+            errors.push(e);
+            return if m.stop { Flow::Stop } else { Flow::Next };
+        }
+        Ok(Step::Call {
+            number,
+            times,
+            args,
+            p,
+        }) => (number, times, args, p),
+    };
+    let (number, times, args, p) = call;
+    if stack.len() + m.depth() >= MAX_NESTING {
+        errors.push(NcError::new(
+            m.vars.line,
+            p.column,
+            format!(
+                "G65 P{}: macro calls nested deeper than {MAX_NESTING} levels",
+                p.text
+            ),
+        ));
+        m.stop = true;
+        return Flow::Stop;
+    }
+    let Some(&start) = subs.get(&number) else {
+        errors.push(NcError::new(
+            m.vars.line,
+            p.column,
+            format!("G65 P{}: macro program O{number:04} is not in this program; paste it (O{number:04} … M99) after M30, or drop its file together with the program", p.text),
+        ));
+        return Flow::Next;
+    };
+    m.vars.push_level(&args);
+    stack.push(Frame {
+        ret: *pc,
+        start,
+        left: times,
+        number,
+        locals: true,
+    });
+    *pc = start;
+    Flow::Next
 }
 
 /// O-number → index of its `O` block.
@@ -519,7 +674,7 @@ fn call(
             b,
             p,
             format!(
-                "M98 P{}: subprogram O{number:04} is not in this program; paste the subprogram (O{number:04} … M99) after M30 and parse again",
+                "M98 P{}: subprogram O{number:04} is not in this program; paste the subprogram (O{number:04} … M99) after M30, or drop its file together with the program",
                 p.text
             ),
         )
@@ -544,6 +699,7 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
     let opt = cx.opt;
     let warn = |warnings: &mut Vec<Warning>, w: &Word, m: String| {
         warnings.push(Warning {
+            file: None,
             line: b.line,
             column: w.column,
             message: m,
@@ -621,6 +777,16 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
                 }
                 cycle_word = Some((w, g));
             }
+            50..=52 => {
+                return Err(err(
+                    b,
+                    w,
+                    format!(
+                        "G{}: spline interpolation is not simulated; post the program with lines and arcs (G1/G2/G3)",
+                        w.text
+                    ),
+                ))
+            }
             330 | 331 | 332 | 741 | 801..=899 => {
                 return Err(err(
                     b,
@@ -656,13 +822,16 @@ fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcErro
                     w.text
                 ),
             ),
+            150 if b.word('H').is_some() => {
+                return Err(err(b, w, super::macro_expr::okuma_message("G15 H")));
+            }
             400 => {}
             490 | 940 | 150 | 690 | 610..=649 => {}
-            650 | 660 | 661 => {
+            660 | 661 => {
                 return Err(err(
                     b,
                     w,
-                    format!("G{}: macro calls are not supported yet; expand the macro in the post-processor", w.text),
+                    format!("G{}: modal macro calls are not supported; call the macro with G65 at each position", w.text),
                 ))
             }
             410 | 420 => warn(
@@ -1126,6 +1295,7 @@ fn canned_cycle(
     };
     if c.code == 760 {
         cx.warnings.push(Warning {
+ file: None,
             line: b.line,
             column: anchor.column,
             message: "G76 fine boring: the tool shift at the bottom (direction set by a machine parameter) is not simulated".into(),
@@ -1214,6 +1384,7 @@ fn non_modal_move(
 ) -> Result<(), NcError> {
     let warn = |cx: &mut Ctx, m: String| {
         cx.warnings.push(Warning {
+            file: None,
             line: b.line,
             column: w.column,
             message: m,

@@ -7,7 +7,8 @@ use wasm_bindgen::prelude::*;
 
 use super::convert::{from_js, string_arg, to_js, Obj};
 use crate::compensate::reverse::{reverse_compensate, ReverseConfig};
-use crate::nc::program::{parse, parse_all, ParseOptions, Segment, Warning};
+use crate::nc::files::{main_file, parse_files, NcFile};
+use crate::nc::program::{ParseOptions, Segment, Warning};
 use crate::nc::summary::{summarize, Summary};
 use crate::nc::NcError;
 use crate::toolpath::identify::{
@@ -27,9 +28,12 @@ export interface NcSegment {
   /** [-] index of its block; null for an inserted segment */ block: number | null; /** [-] 1-based source line */ line: number; motion: NcMotion; start: Pose; end: Pose;
   /** [mm/min] */ feed: number; fixed: boolean;
 }
-export interface NcWarning { /** [-] 1-based */ line: number; /** [-] 1-based */ column: number; message: string }
+/** file: set when the line is in one of the extra `files` (absent: the main program). */
+export interface NcWarning { /** [-] 1-based */ line: number; /** [-] 1-based */ column: number; message: string; file?: string }
+/** An extra program file holding subprograms (O… M99, G65 macros, o<name> sub … endsub) the main program calls. */
+export interface NcFile { name: string; text: string }
 /** Reading options; an unknown key is an error naming it. dwellP: how G4 P is read ('auto': with a decimal point seconds, without milliseconds; 'milliseconds': Fanuc; 'seconds': LinuxCNC/Grbl). skipBlockDelete (default true): skip '/' blocks. cAxis (default false): C is a rotary axis; otherwise C on G01 is a Fanuc chamfer. */
-export interface NcParseOptions { dwellP?: 'auto' | 'milliseconds' | 'seconds'; skipBlockDelete?: boolean; cAxis?: boolean; start?: Pose }
+export interface NcParseOptions { dwellP?: 'auto' | 'milliseconds' | 'seconds'; skipBlockDelete?: boolean; cAxis?: boolean; start?: Pose; files?: NcFile[] }
 export interface NcWarningGroup { kind: string; /** [-] */ count: number; /** [-] source lines */ lines: number[]; /** [-] indices into warnings */ indices: number[] }
 /** Lengths mm, motionTime s (Σ length/feed, rapids at rapidFeed mm/min, dwells; no acc/dec). */
 export interface NcSummary {
@@ -42,7 +46,7 @@ export interface ParsedNc { segments: NcSegment[]; warnings: NcWarning[]; summar
 export interface NcCheck { errors: NcWarning[]; truncated: boolean; warnings: NcWarning[]; summary: NcSummary | null }
 /** tA and T in s (T one value or [Tx, Ty, Tz]), dt in s, rapidFeed in mm/min, feedOverride as a fraction; dwellExactStop: every G4 first waits tA + 5·max T (exact stop, in-position check). */
 export interface ToolPathConfig {
-  /** [s] */ tA?: number; /** [s] */ T?: number | [number, number, number]; /** [s] */ dt?: number; /** [mm/min] */ rapidFeed?: number;
+  files?: NcFile[]; /** [s] */ tA?: number; /** [s] */ T?: number | [number, number, number]; /** [s] */ dt?: number; /** [mm/min] */ rapidFeed?: number;
   /** [-] fraction */ feedOverride?: number; dwellExactStop?: boolean;
 }
 export interface SegmentStats {
@@ -93,14 +97,44 @@ pub fn parse_nc(
     #[wasm_bindgen(unchecked_optional_param_type = "NcParseOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
+    let (files, options) = take_files(options)?;
     let opts = parse_options(options)?;
-    let p = parse_all(text, &opts).map_err(|e| JsError::new(&e.to_string()))?;
+    let p = parse_files(text, &files, &opts).map_err(|e| JsError::new(&e.to_string()))?;
     let rapid_feed = SimConfig::default().rapid_feed;
     to_js(&Parsed {
         segments: &p.segments,
         warnings: &p.warnings,
         summary: summarize(&p, rapid_feed),
     })
+}
+
+/// Splits the optional `files` key off an options object: the extra files
+/// and the options without it.
+fn take_files(options: JsValue) -> Result<(Vec<NcFile>, JsValue), JsError> {
+    if !options.is_object() {
+        return Ok((Vec::new(), options));
+    }
+    let key = JsValue::from_str("files");
+    let files = js_sys::Reflect::get(&options, &key).unwrap_or(JsValue::UNDEFINED);
+    if files.is_undefined() {
+        return Ok((Vec::new(), options));
+    }
+    let files: Vec<NcFile> = from_js(files, "files (expected [{ name, text }])")?;
+    let rest = js_sys::Object::assign(&js_sys::Object::new(), options.unchecked_ref());
+    let _ = js_sys::Reflect::delete_property(&rest, &key);
+    Ok((files, rest.into()))
+}
+
+/// Index of the main program among several dropped program texts: the
+/// first that ends with M2/M30, else the first that is no subprogram.
+#[cfg(feature = "full")]
+#[wasm_bindgen(js_name = ncMainFile)]
+pub fn nc_main_file(
+    #[wasm_bindgen(unchecked_param_type = "string[]")] texts: JsValue,
+) -> Result<usize, JsError> {
+    let texts: Vec<String> = from_js(texts, "texts")?;
+    let refs: Vec<&str> = texts.iter().map(String::as_str).collect();
+    Ok(main_file(&refs))
 }
 
 fn parse_options(options: JsValue) -> Result<ParseOptions, JsError> {
@@ -116,7 +150,7 @@ fn parse_options(options: JsValue) -> Result<ParseOptions, JsError> {
         .find(|k| !ParseOptions::KEYS.contains(&k.as_str()))
     {
         return Err(JsError::new(&format!(
-            "options: unknown key '{k}'; expected one of {}",
+            "options: unknown key '{k}'; expected one of {}, files",
             ParseOptions::KEYS.join(", ")
         )));
     }
@@ -141,8 +175,9 @@ pub fn check_nc(
     #[wasm_bindgen(unchecked_optional_param_type = "NcParseOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
+    let (files, options) = take_files(options)?;
     let opts = parse_options(options)?;
-    match parse_all(text, &opts) {
+    match parse_files(text, &files, &opts) {
         Ok(p) => to_js(&Checked {
             errors: &[],
             truncated: false,
@@ -196,12 +231,14 @@ pub fn simulate_tool_path(
     #[wasm_bindgen(unchecked_param_type = "ToolPathConfig")] config: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
+    let (files, config) = take_files(config)?;
     let cfg: SimConfig = if config.is_undefined() || config.is_null() {
         SimConfig::default()
     } else {
         from_js(config, "config")?
     };
-    let p = parse(text)?;
+    let p = parse_files(text, &files, &ParseOptions::default())
+        .map_err(|e| JsError::new(&e.first().to_string()))?;
     let s = crate::toolpath::simulate_program(&p, &cfg)?;
     sim_obj(&s, &p.warnings)
 }

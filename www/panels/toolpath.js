@@ -5,6 +5,7 @@
 // gathers inputs, calls the API and draws.
 import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState, showError } from '../lib/ui.js';
 import { xyChart, lineChart } from '../lib/plot.js';
+import { programFiles } from './toolpath-files.js';
 
 /**
  * @param {HTMLElement} root
@@ -28,14 +29,14 @@ export async function mount(root, api) {
     nc.setSelectionRange(start, end);
     nc.scrollTop = Math.max(0, (line - 3) * (nc.scrollHeight / Math.max(lines.length, 1)));
   }
-  const lineLink = (w, cls) => h('li', { class: cls },
+  const lineLink = (w, cls) => w.file ? h('li', { class: cls }, `${w.file}, line ${w.line}, column ${w.column}: ${w.message}`) : h('li', { class: cls },
     h('a', { href: '#', class: 'nc-line', 'data-line': w.line, onclick: (e) => { e.preventDefault(); selectLine(w.line); } }, `line ${w.line}, column ${w.column}`),
     `: ${w.message}`);
   let checkSeq = 0;
   async function checkProgram() {
     const seq = ++checkSeq;
     try {
-      const c = await api.call('checkNc', [nc.value]);
+      const c = await api.call('checkNc', [nc.value, files.options()]);
       if (seq !== checkSeq) return;
       if (c.errors.length) {
         check.replaceChildren(
@@ -71,9 +72,10 @@ export async function mount(root, api) {
   const example = selectField({
     label: 'Built-in example', id: 'toolpath-example', value: 'arcs',
     options: [['arcs', 'Fig. 2-like path, B–D as 43 arcs'], ['lines', 'Fig. 2-like path, B–D as 83 lines']],
-    onChange: (v) => { nc.value = examples[v]; fileName = `example-${v}.nc`; programChanged(); checkProgram(); },
+    onChange: (v) => { files.clear(); nc.value = examples[v]; fileName = `example-${v}.nc`; programChanged(); checkProgram(); },
   });
-  const drop = dropZone({ label: 'Drop an NC program here, or click to choose one', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', onText: (text, name) => { nc.value = text; fileName = name; programChanged(); checkProgram(); } });
+  const files = programFiles(api, { onMain: (text, name) => { nc.value = text; fileName = name; programChanged(); checkProgram(); } });
+  const drop = dropZone({ label: 'Drop an NC program (with its subprogram files, if any) here, or click to choose', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', multiple: true, onFiles: files.take, id: 'toolpath-file' });
   const tA = numberField({ label: 'tA (acc/dec)', value: 40, unit: 'ms', step: 1, min: 0, id: 'toolpath-ta' });
   const tx = numberField({ label: 'T X', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-tx' });
   const ty = numberField({ label: 'T Y', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-ty' });
@@ -142,11 +144,11 @@ export async function mount(root, api) {
   async function simulate() {
     const token = simUi.start();
     try {
-      const s = await api.call('simulateToolPath', [nc.value, cfg()]);
+      const s = await api.call('simulateToolPath', [nc.value, files.options(cfg())]);
       if (!simUi.current(token)) return;
       last = s;
       const warn = s.warnings.length
-        ? h('details', { class: 'warn-box' }, h('summary', {}, `${s.warnings.length} warning(s)`), h('ul', {}, ...s.warnings.map((w) => h('li', {}, `line ${w.line}, column ${w.column}: ${w.message}`))))
+        ? h('details', { class: 'warn-box' }, h('summary', {}, `${s.warnings.length} warning(s)`), h('ul', {}, ...s.warnings.map((w) => h('li', {}, `${w.file ? `${w.file}, ` : ''}line ${w.line}, column ${w.column}: ${w.message}`))))
         : '';
       const worst = [...s.segments].sort((a, b) => b.maxErrorUm - a.maxErrorUm).slice(0, 8);
       out.replaceChildren(
@@ -213,6 +215,7 @@ export async function mount(root, api) {
     h('div', { class: 'card' },
       h('h3', {}, 'NC program'),
       h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, example.el, drop),
+      files.note,
       h('div', { style: 'display:grid;grid-template-columns:repeat(auto-fit,minmax(280px,1fr));gap:12px' }, nc, check)),
     h('div', { class: 'card' },
       h('h3', {}, 'Model (Eq. 1 moving average tA, Eq. 2 first-order lag T per axis)'),

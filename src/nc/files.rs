@@ -1,0 +1,179 @@
+//! Several program files read as one program: the main program plus extra
+//! files holding the subprograms (Fanuc `O…` … `M99`, G65 macros) and
+//! LinuxCNC subroutines (`o<name> sub` … `endsub`) it calls, as a control
+//! keeps them in its memory or subroutine folder.
+//!
+//! Readings chosen: the extra files are appended after the main program;
+//! the run starts at the main program's first line and ends at its end (or
+//! at M2/M30), so an extra file's blocks run only when called. Lines of an
+//! extra file keep their own numbering; every error and warning in one
+//! names the file (`file` field), and its segments carry their line in
+//! that file. [`main_file`] picks the main program among dropped files:
+//! the first that ends with M2/M30, else the first that is no subprogram
+//! (no M99, no o-word `sub`), else the first.
+
+use serde::{Deserialize, Serialize};
+
+use super::macro_line::{OKw, Stmt};
+use super::program::{interpret_all, ParseOptions, Program};
+use super::{Block, NcError, NcErrors};
+
+/// One extra program file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NcFile {
+    /// File name, as shown in messages.
+    pub name: String,
+    /// Its text.
+    pub text: String,
+}
+
+/// Parses the main program `text` with the subprogram files `files` and
+/// reports every error, each naming its file (none for the main program),
+/// line and column.
+///
+/// # Errors
+/// As [`super::program::parse_all`], over all files.
+///
+/// # Examples
+/// ```
+/// use mtmotion::nc::files::{parse_files, NcFile};
+/// use mtmotion::nc::program::ParseOptions;
+/// let sub = NcFile { name: "O2000.nc".into(), text: "O2000\nG91 G1 X5 F100\nG90\nM99".into() };
+/// let p = parse_files("G0 X0\nM98 P2000\nG0 X100\nM30", &[sub], &ParseOptions::default()).unwrap();
+/// let x: Vec<f64> = p.segments.iter().map(|s| s.end.x).collect();
+/// assert_eq!(x, vec![0.0, 5.0, 100.0]);
+/// let bad = NcFile { name: "O3000.nc".into(), text: "O3000\nG1 X\nM99".into() };
+/// let e = parse_files("M98 P3000", &[bad], &ParseOptions::default()).unwrap_err();
+/// assert_eq!(e.errors[0].to_string(), "file O3000.nc, line 2, column 4: expected a number after address 'X'");
+/// ```
+pub fn parse_files(
+    text: &str,
+    files: &[NcFile],
+    options: &ParseOptions,
+) -> Result<Program, NcErrors> {
+    let (mut blocks, mut errors) = super::lex_all(text);
+    let mut spans: Vec<(usize, &str)> = Vec::new();
+    let mut offset = blocks.len();
+    for (k, f) in files.iter().enumerate() {
+        let (bs, es) = super::lex_all(&f.text);
+        for mut e in es.errors {
+            e.file = Some(f.name.clone());
+            errors.push(e);
+        }
+        spans.push((offset, f.name.as_str()));
+        let n = bs.len();
+        blocks.extend(bs.into_iter().map(|b| Block {
+            file: k + 1,
+            line: b.line + offset,
+            ..b
+        }));
+        offset += n;
+    }
+    if let Some(e) = errors
+        .errors
+        .iter()
+        .find(|e| e.message.contains("this looks like"))
+    {
+        return Err(NcErrors::from(e.clone()));
+    }
+    match interpret_all(blocks, options) {
+        Ok(mut p) if errors.is_empty() => {
+            relocate_program(&mut p, &spans);
+            Ok(p)
+        }
+        Ok(_) => Err(errors),
+        Err(e) => {
+            for mut x in e.errors {
+                relocate_error(&mut x, &spans);
+                errors.push(x);
+            }
+            errors
+                .errors
+                .sort_by(|a, b| (&a.file, a.line, a.column).cmp(&(&b.file, b.line, b.column)));
+            Err(errors)
+        }
+    }
+}
+
+/// The file and the line in it of a line of the joined program.
+fn locate(line: usize, spans: &[(usize, &str)]) -> (Option<String>, usize) {
+    match spans.iter().rev().find(|(off, _)| line > *off) {
+        Some((off, name)) => (Some((*name).to_string()), line - off),
+        None => (None, line),
+    }
+}
+
+fn relocate_error(e: &mut NcError, spans: &[(usize, &str)]) {
+    if e.file.is_none() {
+        (e.file, e.line) = locate(e.line, spans);
+    }
+}
+
+fn relocate_program(p: &mut Program, spans: &[(usize, &str)]) {
+    if spans.is_empty() {
+        return;
+    }
+    for w in &mut p.warnings {
+        (w.file, w.line) = locate(w.line, spans);
+    }
+    for s in &mut p.segments {
+        s.line = locate(s.line, spans).1;
+    }
+    for b in &mut p.blocks {
+        b.line = locate(b.line, spans).1;
+    }
+}
+
+/// Index of the main program among `texts` (see the module header).
+///
+/// # Examples
+/// ```
+/// use mtmotion::nc::files::main_file;
+/// assert_eq!(main_file(&["O2000\nG1 X1\nM99", "G0 X0\nM98 P2000\nM30"]), 1);
+/// assert_eq!(main_file(&["o<a> sub\nG0 X1\no<a> endsub", "o<a> call"]), 1);
+/// ```
+pub fn main_file(texts: &[&str]) -> usize {
+    let lexed: Vec<Vec<Block>> = texts.iter().map(|t| super::lex_all(t).0).collect();
+    let has_m = |bs: &[Block], codes: &[f64]| {
+        bs.iter().any(|b| {
+            b.words
+                .iter()
+                .any(|w| w.letter == 'M' && codes.contains(&w.value))
+        })
+    };
+    let is_sub = |bs: &[Block]| {
+        has_m(bs, &[99.0])
+            || bs.iter().any(|b| {
+                matches!(
+                    b.macro_line.as_deref().map(|m| &m.stmt),
+                    Some(Stmt::O(_, OKw::Sub, _, _))
+                )
+            }) && !bs.iter().any(|b| {
+                matches!(
+                    b.macro_line.as_deref().map(|m| &m.stmt),
+                    Some(Stmt::O(_, OKw::Call, _, _))
+                ) && !inside_sub(bs, b)
+            })
+    };
+    lexed
+        .iter()
+        .position(|bs| has_m(bs, &[2.0, 30.0]))
+        .or_else(|| lexed.iter().position(|bs| !is_sub(bs)))
+        .unwrap_or(0)
+}
+
+/// True when `b` lies between an o-word `sub` and its `endsub` in `bs`.
+fn inside_sub(bs: &[Block], b: &Block) -> bool {
+    let mut depth = 0i32;
+    for x in bs {
+        if std::ptr::eq(x, b) {
+            return depth > 0;
+        }
+        match x.macro_line.as_deref().map(|m| &m.stmt) {
+            Some(Stmt::O(_, OKw::Sub, _, _)) => depth += 1,
+            Some(Stmt::O(_, OKw::EndSub, _, _)) => depth -= 1,
+            _ => {}
+        }
+    }
+    false
+}
