@@ -183,6 +183,8 @@ fn okuma_programs_are_recognised_at_their_first_mark() {
     }
 }
 
+// proptest is a native-only dev-dependency.
+#[cfg(not(target_arch = "wasm32"))]
 mod never_panics {
     use mtmotion::nc::program::{parse_all, ParseOptions};
     use proptest::prelude::*;
