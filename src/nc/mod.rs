@@ -18,6 +18,7 @@
 pub mod arc;
 pub mod corner;
 pub mod cycles;
+pub mod patch;
 pub mod program;
 pub mod segment;
 pub mod summary;

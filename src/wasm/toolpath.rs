@@ -40,7 +40,8 @@ export interface NcCheck { errors: NcWarning[]; truncated: boolean; warnings: Nc
 export interface ToolPathConfig { tA?: number; T?: number | [number, number, number]; dt?: number; rapidFeed?: number; feedOverride?: number; dwellExactStop?: boolean }
 export interface SegmentStats {
   segment: number; line: number; kind: 'line' | 'arc' | 'rapid'; length: number; radius: number;
-  maxErrorUm: number; meanDeviation: number | null; halfDeviation: [number | null, number | null]; samples: number;
+  maxErrorUm: number; meanDeviation: number | null; halfDeviation: [number | null, number | null];
+  halfVector: [[number, number, number] | null, [number, number, number] | null]; samples: number;
 }
 /** Time series (Float64Array, mm, mm/s, µm) and summary of one simulation. */
 export interface ToolPathSimulation {
