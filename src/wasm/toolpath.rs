@@ -6,7 +6,7 @@ use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
 use super::convert::{from_js, string_arg, to_js, Obj};
-use crate::compensate::reverse::{reverse_compensate, ReverseConfig};
+use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
 use crate::nc::program::{parse, parse_all, ParseOptions, Segment, Warning};
 use crate::nc::summary::{summarize, Summary};
 use crate::nc::NcError;
@@ -59,12 +59,15 @@ export interface ToolPathSimulation {
 export interface RadiusReductionInput { feed: number; radius: number; tA: number; T: number }
 export interface CircleLoss { feed: number; radius: number; radiusLoss: number }
 export interface AccDec { tA: number; T: number; residual: number }
-export interface ReverseConfig extends ToolPathConfig { dwell?: number; iterations?: number }
+/** dwell s (unset: automatic 0.1 s, 0: none); timeBudget: largest motion-time growth as a fraction (default 0.05). */
+export interface ReverseConfig extends ToolPathConfig { dwell?: number; iterations?: number; timeBudget?: number }
+/** One region (cutting moves between rapids and fixed segments): errors in µm; reason says why it was left unchanged. */
+export interface RegionNote { firstLine: number; lastLine: number; arcs: number; lines: number; beforeUm: number; afterUm: number; changed: boolean; reason: string }
 export interface CompSummary { maxErrorUm: number; motionTime: number }
 export interface SegmentChange { segment: number; line: number; kind: string; radiusBefore: number; radiusAfter: number; endShiftUm: number }
 export interface ReverseCompensation {
   nc: string; before: CompSummary; after: CompSummary; segments: SegmentChange[];
-  dwells: { afterLine: number; seconds: number }[]; historyUm: number[];
+  dwells: { afterLine: number; seconds: number }[]; regions: RegionNote[]; historyUm: number[];
   beforeSim: ToolPathSimulation; afterSim: ToolPathSimulation;
 }
 "#;
@@ -227,12 +230,14 @@ pub fn identify_acc_dec(
     to_js(&identify(&d)?)
 }
 
-/// Reverse compensation of the program (§4-3(2)).
+/// Reverse compensation of the program (§4-3(2)). `onProgress(fraction,
+/// stage)` is called between simulations; returning `false` cancels.
 #[cfg(feature = "full")]
 #[wasm_bindgen(js_name = reverseCompensate, unchecked_return_type = "ReverseCompensation")]
 pub fn reverse_compensate_js(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ReverseConfig")] config: JsValue,
+    on_progress: Option<js_sys::Function>,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let cfg: ReverseConfig = if config.is_undefined() || config.is_null() {
@@ -240,13 +245,24 @@ pub fn reverse_compensate_js(
     } else {
         from_js(config, "config")?
     };
-    let c = reverse_compensate(text, &cfg)?;
+    let mut progress = |f: f64, stage: &str| match &on_progress {
+        Some(cb) => cb
+            .call2(
+                &JsValue::NULL,
+                &JsValue::from_f64(f),
+                &JsValue::from_str(stage),
+            )
+            .map_or(true, |v| v.as_bool() != Some(false)),
+        None => true,
+    };
+    let c = reverse_compensate_with(text, &cfg, &mut progress)?;
     Ok(Obj::new()
         .val("nc", JsValue::from_str(&c.nc))
         .ser("before", &c.before)?
         .ser("after", &c.after)?
         .ser("segments", &c.segments)?
         .ser("dwells", &c.dwells)?
+        .ser("regions", &c.regions)?
         .ser("historyUm", &c.history_um)?
         .val("beforeSim", sim_obj(&c.sim_before, &[])?)
         .val("afterSim", sim_obj(&c.sim_after, &[])?)

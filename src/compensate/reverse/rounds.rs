@@ -15,7 +15,11 @@
 //!
 //! Every region (see [`super::region`]) keeps the edit of the round in
 //! which its own maximum error was lowest; a region whose error stops
-//! falling for two rounds stops being corrected. Regions are separated by
+//! falling for two rounds stops being corrected. A round simulates only
+//! the windows (rapid to rapid) that hold a region still being corrected,
+//! each alone — the cost of a round falls as regions settle; the written
+//! program is then checked against the whole original path
+//! ([`super::reverse_compensate`]). Regions are separated by
 //! rapids (which end in an exact stop) and by fixed segments, so the edit
 //! of one region barely changes another's error, and the best rounds of
 //! different regions combine.
@@ -80,11 +84,17 @@ pub fn run(
     let mut best_err = vec![f64::INFINITY; nr];
     let mut stall = vec![0usize; nr];
     let mut history = Vec::new();
+    let mut errs = vec![0.0; nr];
+    let mut live_window = vec![true; regions.windows.len()];
     for round in 0..=iterations {
-        let segs = rebuild(orig, &edit);
-        let sim = simulate(&segs, orig, cfg)?;
-        history.push(sim.max_error * 1e3);
-        let errs = region_errors(regions, &sim.segments);
+        let stats = simulate_windows(orig, regions, cfg, &edit, &live_window)?;
+        let fresh = region_errors(regions, &stats);
+        for r in 0..nr {
+            if live_window[regions.window[r]] {
+                errs[r] = fresh[r];
+            }
+        }
+        history.push(errs.iter().copied().fold(0.0, f64::max) * 1e3);
         let mut active = false;
         for r in 0..nr {
             if errs[r] < best_err[r] {
@@ -99,8 +109,14 @@ pub fn run(
         if round == iterations || !active {
             break;
         }
+        live_window.iter_mut().for_each(|w| *w = false);
+        for r in 0..nr {
+            if stall[r] < 2 && regions.movable[r] {
+                live_window[regions.window[r]] = true;
+            }
+        }
         let mut by_seg: Vec<Option<&SegmentStats>> = vec![None; orig.len()];
-        for st in &sim.segments {
+        for st in &stats {
             if let Some(slot) = by_seg.get_mut(st.segment) {
                 *slot = Some(st);
             }
@@ -112,6 +128,44 @@ pub fn run(
         error: best_err,
         history_um: history,
     })
+}
+
+/// Simulates the windows marked `live` of the edited program, each alone
+/// against its own original segments (see [`Regions::windows`]); the
+/// statistics carry whole-program segment indices.
+///
+/// # Errors
+/// As [`simulate`].
+pub fn simulate_windows(
+    orig: &[Segment],
+    regions: &Regions,
+    cfg: &SimConfig,
+    edit: &Edit,
+    live: &[bool],
+) -> Result<Vec<SegmentStats>, ToolpathError> {
+    let mut out = Vec::new();
+    for (w, range) in regions.windows.iter().enumerate() {
+        if !live[w] {
+            continue;
+        }
+        let part = Edit {
+            radius: edit.radius[range.clone()].to_vec(),
+            vertex_shift: edit.vertex_shift[range.clone()].to_vec(),
+            dwell_after: edit.dwell_after[range.clone()].to_vec(),
+        };
+        let reference = &orig[range.clone()];
+        let segs = rebuild(reference, &part);
+        let sim = match simulate(&segs, reference, cfg) {
+            Ok(s) => s,
+            Err(ToolpathError::Empty) => continue,
+            Err(e) => return Err(e),
+        };
+        out.extend(sim.segments.into_iter().map(|mut st| {
+            st.segment += range.start;
+            st
+        }));
+    }
+    Ok(out)
 }
 
 /// One correction of `edit` from the per-segment statistics.

@@ -1,0 +1,32 @@
+// Node benchmarks of reverseCompensate on the repository's corpus of real
+// programs (tests/nc_corpus/, wasm build in pkg/), and of parse + simulate
+// of large programs at dt = 1 ms: the corpus's 40,306-line CNCjs pocket
+// and a GENERATED 35,000-line raster (zig-zag of G1 moves, made here for
+// the benchmark only — not a real program).
+// Targets: reverse compensation < 5 s per program; parse + simulate of
+// 35,000 lines < 1 s.
+import { readFileSync } from 'node:fs';
+import { wasm, bench } from './harness.mjs';
+
+const dir = new URL('../../tests/nc_corpus/', import.meta.url);
+const read = (f) => readFileSync(new URL(f, dir), 'utf8');
+const cfg = { tA: 0.04, T: 0.015, dt: 0.001 };
+
+const lines = ['G21 G90 G17', 'G0 X0 Y0 Z1', 'G1 Z-1 F3000'];
+for (let i = 0; i < 34996; i++) lines.push(`G1 X${i % 2 ? 0 : 20}. Y${(0.1 * Math.floor((i + 1) / 2)).toFixed(1)}`);
+const raster = lines.join('\n');
+bench('parseNc + simulateToolPath generated raster, 35,000 lines', () => wasm.simulateToolPath(raster, cfg), { runs: 3, warmup: 1, target: 1000 });
+const pocket = read('cncjs_tball-pocket.gcode');
+bench('parseNc + simulateToolPath cncjs_tball-pocket (40,306 lines)', () => wasm.simulateToolPath(pocket, cfg), { runs: 1, warmup: 0, target: 1000 });
+
+const ratios = [];
+for (const f of ['cncjs_arc-xz-plane.gcode', 'cncjs_arc-yz-plane.gcode', 'cncjs_circle-inch.gcode', 'cncjs_helical-thread-milling.gcode', 'linuxcnc_comp.ngc', 'linuxcnc_arcspiral.ngc', 'linuxcnc_cds.ngc', 'linuxcnc_tort.ngc', 'cncjs_tball-pocket.gcode']) {
+  const text = read(f);
+  let r;
+  bench(`reverseCompensate ${f}`, () => { r = wasm.reverseCompensate(text, cfg); }, { runs: 1, warmup: 0, target: 5000 });
+  ratios.push(r.after.maxErrorUm / r.before.maxErrorUm);
+  console.log(`  ${f}: ${r.before.maxErrorUm.toFixed(1)} → ${r.after.maxErrorUm.toFixed(1)} µm (×${(r.after.maxErrorUm / r.before.maxErrorUm).toFixed(3)}), time ${r.before.motionTime.toFixed(3)} → ${r.after.motionTime.toFixed(3)} s`);
+}
+ratios.sort((a, b) => a - b);
+const m = ratios.length;
+console.log(`  median after/before max error: ${(m % 2 ? ratios[(m - 1) / 2] : 0.5 * (ratios[m / 2 - 1] + ratios[m / 2])).toFixed(3)}`);
