@@ -4,11 +4,10 @@
 //! against the original path), the motion time stays within the +5 %
 //! budget, the result reads back, and each program's after/before ratio
 //! is pinned at what was measured (a regression fails). The median ratio
-//! is printed and pinned too: it is about 0.99, far from the 0.6 one
-//! would like — on these programs the largest error sits at corners
-//! (line–arc and arc–arc direction changes) that neither a radius change
-//! nor a line-vertex shift reaches, and dwells there would exceed the
-//! time budget (see docs/toolpath.md).
+//! is printed and pinned too: 0.685 over the eight programs, above the
+//! 0.6 one would like — three programs (a slow inch circle, the cutter-
+//! compensation demo, the "torture" program of random arcs) barely
+//! improve, see docs/toolpath.md.
 //!
 //! The default run takes the small programs; the three larger ones and
 //! the 40,306-line pocket run with
@@ -19,15 +18,15 @@ use mtmotion::nc::program::parse;
 
 /// (file, after/before ratio measured, tA 40 ms, T 15 ms, dt 1 ms).
 const SMALL: &[(&str, f64)] = &[
-    ("cncjs_arc-xz-plane.gcode", 1.0),
-    ("cncjs_arc-yz-plane.gcode", 1.0),
+    ("cncjs_arc-xz-plane.gcode", 0.008),
+    ("cncjs_arc-yz-plane.gcode", 0.008),
     ("cncjs_circle-inch.gcode", 1.0),
-    ("cncjs_helical-thread-milling.gcode", 0.928),
+    ("cncjs_helical-thread-milling.gcode", 0.098),
     ("linuxcnc_comp.ngc", 0.951),
 ];
 const LARGE: &[(&str, f64)] = &[
-    ("linuxcnc_arcspiral.ngc", 0.847),
-    ("linuxcnc_cds.ngc", 0.972),
+    ("linuxcnc_arcspiral.ngc", 0.418),
+    ("linuxcnc_cds.ngc", 0.951),
     ("linuxcnc_tort.ngc", 1.0),
 ];
 
@@ -103,5 +102,5 @@ fn every_simulating_corpus_program_is_never_worse_median_pinned() {
     r.extend(check(LARGE));
     let m = median(r);
     eprintln!("median after/before (8 programs): {m:.3}");
-    assert!(m <= 0.99, "median {m:.3} rose above the measured 0.986");
+    assert!(m <= 0.69, "median {m:.3} rose above the measured 0.685");
 }

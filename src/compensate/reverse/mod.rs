@@ -29,7 +29,11 @@
 //!   corners) never move, and arcs touching them keep their radius;
 //! - *dwells*: candidates are the joints where a run of at least three short
 //!   cutting segments (nominal duration `< max(2·tA, 4·T)`) meets a longer
-//!   one — the paper's B and D. With `dwell` unset, 0.1 s dwells are tried
+//!   one — the paper's B and D — and, beyond the paper, the sharp corners
+//!   of a region ([`sharp_corners`]: a turn over 10°, where the tool cuts
+//!   the corner short; real programs' largest error sits there), the ones
+//!   with the largest original error first, as many as the time budget
+//!   allows. With `dwell` unset, 0.1 s dwells are tried
 //!   at all candidates (for small programs, [`MAX_DWELL_TRIAL_SAMPLES`], each is
 //!   then removed again if the error does not rise by more than 1 %
 //!   without it); a region takes them only where they lower its error, and
@@ -62,8 +66,11 @@ use rounds::{copy_region, identity};
 pub const MAX_DWELL_TRIAL_SAMPLES: usize = 2_000_000;
 /// Default time budget: +5 % motion time (the paper's +3.9 % fits).
 pub const DEFAULT_TIME_BUDGET: f64 = 0.05;
+/// How much an unchanged region's error may rise through its neighbours'
+/// changes (rounding of the written numbers), mm.
+const NEIGHBOUR_SLACK: f64 = 1e-4;
 /// Rounds of writing, checking and reverting regions at most.
-const MAX_CHECKS: usize = 4;
+const MAX_CHECKS: usize = 5;
 
 /// Settings of the reverse compensation.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -208,6 +215,42 @@ pub fn dwell_candidates(orig: &[Segment], sim: &SimConfig) -> Vec<usize> {
     out
 }
 
+/// Smallest turn between consecutive cutting moves that counts as a
+/// corner for a dwell, rad (10°: CAM chains of short lines turn less).
+pub const CORNER_TURN: f64 = 10.0 * std::f64::consts::PI / 180.0;
+
+/// The joints between two cutting moves of one region where the path
+/// turns by more than [`CORNER_TURN`]: there the tool cuts the corner
+/// short, and a dwell (the NC stops at the corner) removes that error.
+pub fn sharp_corners(orig: &[Segment], rg: &Regions) -> Vec<usize> {
+    let dir = |s: &Segment, at_end: bool| {
+        let (a, b) = if at_end {
+            (1.0 - 1e-6, 1.0)
+        } else {
+            (0.0, 1e-6)
+        };
+        let (p, q) = (s.point_at(a), s.point_at(b));
+        let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+        let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        (l > 0.0).then(|| [d[0] / l, d[1] / l, d[2] / l])
+    };
+    let moves: Vec<usize> = (0..orig.len())
+        .filter(|&i| !matches!(orig[i].motion, Motion::Dwell { .. }))
+        .collect();
+    moves
+        .windows(2)
+        .filter_map(|w| {
+            let (i, k) = (w[0], w[1]);
+            if rg.of[i].is_none() || rg.of[i] != rg.of[k] {
+                return None;
+            }
+            let (u, v) = (dir(&orig[i], true)?, dir(&orig[k], false)?);
+            let c = (u[0] * v[0] + u[1] * v[1] + u[2] * v[2]).clamp(-1.0, 1.0);
+            (c.acos() > CORNER_TURN).then_some(i)
+        })
+        .collect()
+}
+
 fn validate(cfg: &ReverseConfig) -> Result<(), ToolpathError> {
     cfg.sim.validate()?;
     let bad = |field, message: &str| {
@@ -348,10 +391,11 @@ fn try_dwells(
     before: &Simulation,
 ) -> Result<Dwelt, ToolpathError> {
     let dwell = cfg.dwell.unwrap_or(0.1);
-    let cands: Vec<usize> = dwell_candidates(orig, &cfg.sim)
-        .into_iter()
-        .filter(|&i| rg.of[i].is_some())
-        .collect();
+    let mut cands: Vec<usize> = dwell_candidates(orig, &cfg.sim);
+    cands.extend(sharp_corners(orig, rg));
+    cands.retain(|&i| rg.of[i].is_some());
+    cands.sort_unstable();
+    cands.dedup();
     if dwell <= 0.0 || cands.is_empty() {
         return Ok(Dwelt::None);
     }
@@ -381,6 +425,18 @@ fn try_dwells(
             cands.iter().filter_map(|&i| rg.of[i]).collect(),
         ));
     }
+    // The joints with the largest original error first, as many as the
+    // budget allows.
+    let mut seg_err = vec![0.0f64; orig.len()];
+    for st in &before.segments {
+        if let Some(e) = seg_err.get_mut(st.segment) {
+            *e = e.max(st.max_error_um);
+        }
+    }
+    let next_err = |i: usize| seg_err.get(i + 1).copied().unwrap_or(0.0);
+    cands.sort_by(|&a, &b| (seg_err[b].max(next_err(b))).total_cmp(&seg_err[a].max(next_err(a))));
+    cands.truncate((allowed / each) as usize);
+    cands.sort_unstable();
     let mut set = cands.clone();
     let mut cur = with(&set)?;
     let worst = |r: &rounds::Rounds| r.error.iter().copied().fold(0.0, f64::max);
@@ -470,6 +526,26 @@ fn check(
                 copy_region(rg, r, &id, &mut edit);
                 reverted[r] = Some(w);
                 bad = true;
+            }
+        }
+        // An unchanged region that got worse: its changed neighbours
+        // reached it (no exact stop between them); they go back.
+        for r in 0..rg.members.len() {
+            if changed(rg, r, &edit, &id) || after[r] <= before_err[r] + NEIGHBOUR_SLACK {
+                continue;
+            }
+            for q in [r.wrapping_sub(1), r + 1] {
+                if q < rg.members.len() && changed(rg, q, &edit, &id) {
+                    copy_region(rg, q, &id, &mut edit);
+                    reverted[q] = Some(format!(
+                        "it raised the error of the neighbouring region (lines {}–{}) from {} to {} µm",
+                        orig[rg.members[r][0]].line,
+                        orig[rg.members[r][rg.members[r].len() - 1]].line,
+                        crate::numeric::compact(before_err[r] * 1e3),
+                        crate::numeric::compact(after[r] * 1e3)
+                    ));
+                    bad = true;
+                }
             }
         }
         let worse = sim.max_error > before.max_error;
