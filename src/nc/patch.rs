@@ -62,10 +62,15 @@ impl NumStyle {
     /// # Examples
     /// ```
     /// use mtmotion::nc::patch::NumStyle;
-    /// let b = mtmotion::nc::lex("G1 X.25 Y1.500\nX2.000").unwrap();
+    /// let b = mtmotion::nc::lex("G1 X0.250 Y1.500\nX2.000").unwrap();
     /// let s = NumStyle::of(&b, false);
-    /// assert_eq!(s.format(-0.5), "-.500");
+    /// assert_eq!(s.format(-0.5), "-0.500");
     /// assert_eq!(s.format(3.0), "3.000");
+    /// let b = mtmotion::nc::lex("g1x.25y1.5\nx75.").unwrap();
+    /// let s = NumStyle::of(&b, false);
+    /// assert_eq!(s.format(-0.5), "-.5");
+    /// assert_eq!(s.format(3.0), "3.");
+    /// assert_eq!(s.format(0.12345), ".123");
     /// ```
     pub fn of(blocks: &[Block], inch: bool) -> Self {
         let mut decimals = 0;
