@@ -14,8 +14,15 @@ const dir = new URL('../../tests/nc_corpus/', import.meta.url);
 const read = (f) => readFileSync(new URL(f, dir), 'utf8');
 const cfg = { tA: 0.04, T: 0.015, dt: 0.001 };
 
-const lines = ['G21 G90 G17', 'G0 X0 Y0 Z1', 'G1 Z-1 F3000'];
-for (let i = 0; i < 34996; i++) lines.push(`G1 X${i % 2 ? 0 : 20}. Y${(0.1 * Math.floor((i + 1) / 2)).toFixed(1)}`);
+// Rows of 20 chords of 1.5 mm at F4000 along X, 0.2 mm apart (a CAM
+// finishing raster's shape): 35,000 lines, about 800 s of motion.
+const lines = ['G21 G90 G17', 'G0 X0 Y0 Z1', 'G1 Z-1 F4000'];
+for (let i = 0; lines.length < 35000; i++) {
+  const row = Math.floor(i / 21), k = i % 21;
+  if (k === 20) { lines.push(`G1 Y${(0.2 * (row + 1)).toFixed(1)}`); continue; }
+  const x = row % 2 ? 30 - 1.5 * (k + 1) : 1.5 * (k + 1);
+  lines.push(`G1 X${x.toFixed(1)}`);
+}
 const raster = lines.join('\n');
 bench('parseNc + simulateToolPath generated raster, 35,000 lines', () => wasm.simulateToolPath(raster, cfg), { runs: 3, warmup: 1, target: 1000 });
 const pocket = read('cncjs_tball-pocket.gcode');
