@@ -89,7 +89,7 @@ fn eq3_and_identification() {
 #[wasm_bindgen_test]
 fn reverse_compensation_crosses() {
     let nc = tp::toolpath_example(JsValue::from_str("arcs")).unwrap();
-    let r = tp::reverse_compensate_js(JsValue::from_str(&nc), JsValue::UNDEFINED).unwrap();
+    let r = tp::reverse_compensate_js(JsValue::from_str(&nc), JsValue::UNDEFINED, None).unwrap();
     let text = get(&r, &["nc"]).as_string().unwrap();
     assert!(text.contains("N40 G3") && text.contains("(C)"));
     let before = get(&r, &["before", "maxErrorUm"]).as_f64().unwrap();

@@ -23,6 +23,7 @@ pub mod macro_exec;
 pub mod macro_expr;
 pub mod macro_line;
 pub mod macro_vars;
+pub mod patch;
 pub mod program;
 pub mod segment;
 pub mod summary;

@@ -114,6 +114,9 @@ pub enum ToolpathError {
     /// Nothing to simulate.
     #[error("the program has no cutting or rapid move with a non-zero length")]
     Empty,
+    /// The caller stopped the run (a progress callback returned false).
+    #[error("cancelled")]
+    Cancelled,
     /// The run would need too many samples.
     #[error("the simulation would need {samples} samples (limit {limit}); increase dt or shorten the program")]
     TooLong {

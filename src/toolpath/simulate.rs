@@ -48,6 +48,10 @@ pub struct SegmentStats {
     /// The same over the first and the second half of the segment's
     /// length (used to shift the vertices of line programs), mm.
     pub half_deviation: [Option<f64>; 2],
+    /// The mean contour-error vector `near − simulated` per axis X, Y, Z
+    /// over the first and the second half (any plane; used to shift the
+    /// vertices of line chains per axis), mm.
+    pub half_vector: [Option<[f64; 3]>; 2],
     /// Number of samples nearest to this segment.
     pub samples: usize,
 }
@@ -61,6 +65,8 @@ struct Acc {
     n_dev: usize,
     /// Sum and count of the normal deviation over each half.
     half: [f64; 4],
+    /// Sum of `near − simulated` per half and axis, and the count per half.
+    vec: [[f64; 4]; 2],
 }
 
 /// Result of a simulation.
@@ -175,6 +181,11 @@ pub fn simulate(
             continue;
         };
         a.samples += 1;
+        let hv = usize::from(nr.s - el.s0 > 0.5 * el.len);
+        for ax in 0..3 {
+            a.vec[hv][ax] += nr.point[ax] - q[ax];
+        }
+        a.vec[hv][3] += 1.0;
         if nr.dist > a.max_error {
             a.max_error = nr.dist;
         }
@@ -225,6 +236,10 @@ pub fn simulate(
                 half_deviation: [0, 1].map(|h| {
                     let half = &acc[i].half;
                     (half[2 * h + 1] > 0.0).then(|| half[2 * h] / half[2 * h + 1])
+                }),
+                half_vector: [0, 1].map(|h| {
+                    let v = &acc[i].vec[h];
+                    (v[3] > 0.0).then(|| [v[0] / v[3], v[1] / v[3], v[2] / v[3]])
                 }),
                 samples: acc[i].samples,
             }

@@ -6,7 +6,7 @@ use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
 use super::convert::{from_js, string_arg, to_js, Obj};
-use crate::compensate::reverse::{reverse_compensate, ReverseConfig};
+use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
 use crate::nc::files::{main_file, parse_files, NcFile};
 use crate::nc::program::{ParseOptions, Segment, Warning};
 use crate::nc::summary::{summarize, Summary};
@@ -51,7 +51,8 @@ export interface ToolPathConfig {
 }
 export interface SegmentStats {
   /** [-] */ segment: number; /** [-] */ line: number; kind: 'line' | 'arc' | 'rapid'; /** [mm] */ length: number; /** [mm] */ radius: number;
-  maxErrorUm: number; /** [mm] */ meanDeviation: number | null; /** [mm] */ halfDeviation: [number | null, number | null]; /** [-] */ samples: number;
+  maxErrorUm: number; /** [mm] */ meanDeviation: number | null; /** [mm] */ halfDeviation: [number | null, number | null];
+  /** [mm] mean contour-error vector of each half */ halfVector: [[number, number, number] | null, [number, number, number] | null]; /** [-] */ samples: number;
 }
 /** Time series (Float64Array, mm, mm/s, µm) and summary of one simulation. */
 export interface ToolPathSimulation {
@@ -69,14 +70,20 @@ export interface ToolPathSimulation {
 export interface RadiusReductionInput { /** [mm/min] */ feed: number; /** [mm] */ radius: number; /** [s] */ tA: number; /** [s] */ T: number }
 export interface CircleLoss { /** [mm/min] */ feed: number; /** [mm] */ radius: number; /** [mm] */ radiusLoss: number }
 export interface AccDec { /** [s] */ tA: number; /** [s] */ T: number; /** [mm] RMS of the Δr residuals */ residual: number }
-export interface ReverseConfig extends ToolPathConfig { /** [s] */ dwell?: number; /** [-] */ iterations?: number }
+/** dwell (unset: automatic 0.1 s, 0: none); timeBudget: largest motion-time growth as a fraction (default 0.05). */
+export interface ReverseConfig extends Omit<ToolPathConfig, 'files'> { /** [s] */ dwell?: number; /** [-] */ iterations?: number; /** [-] fraction */ timeBudget?: number }
+/** One region (cutting moves between rapids and fixed segments); reason says why it was left unchanged. */
+export interface RegionNote {
+  /** [-] */ firstLine: number; /** [-] */ lastLine: number; /** [-] */ arcs: number; /** [-] */ lines: number;
+  beforeUm: number; afterUm: number; changed: boolean; reason: string;
+}
 export interface CompSummary { maxErrorUm: number; /** [s] */ motionTime: number }
 export interface SegmentChange {
   /** [-] */ segment: number; /** [-] */ line: number; kind: string; /** [mm] */ radiusBefore: number; /** [mm] */ radiusAfter: number; endShiftUm: number;
 }
 export interface ReverseCompensation {
   nc: string; before: CompSummary; after: CompSummary; segments: SegmentChange[];
-  dwells: { /** [-] */ afterLine: number; seconds: number }[]; historyUm: number[];
+  dwells: { /** [-] */ afterLine: number; seconds: number }[]; regions: RegionNote[]; historyUm: number[];
   beforeSim: ToolPathSimulation; afterSim: ToolPathSimulation;
 }
 "#;
@@ -272,26 +279,45 @@ pub fn identify_acc_dec(
     to_js(&identify(&d)?)
 }
 
-/// Reverse compensation of the program (§4-3(2)).
+/// Reverse compensation of the program (§4-3(2)). `onProgress(fraction,
+/// stage)` is called between simulations; returning `false` cancels.
 #[cfg(feature = "full")]
 #[wasm_bindgen(js_name = reverseCompensate, unchecked_return_type = "ReverseCompensation")]
 pub fn reverse_compensate_js(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ReverseConfig")] config: JsValue,
+    on_progress: Option<js_sys::Function>,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
+    let (files, config) = take_files(config)?;
+    if !files.is_empty() {
+        return Err(JsError::new(
+            "reverseCompensate rewrites one program text: paste the subprograms it calls after M30 in the same text (config.files is not read here)",
+        ));
+    }
     let cfg: ReverseConfig = if config.is_undefined() || config.is_null() {
         ReverseConfig::default()
     } else {
         from_js(config, "config")?
     };
-    let c = reverse_compensate(text, &cfg)?;
+    let mut progress = |f: f64, stage: &str| match &on_progress {
+        Some(cb) => cb
+            .call2(
+                &JsValue::NULL,
+                &JsValue::from_f64(f),
+                &JsValue::from_str(stage),
+            )
+            .map_or(true, |v| v.as_bool() != Some(false)),
+        None => true,
+    };
+    let c = reverse_compensate_with(text, &cfg, &mut progress)?;
     Ok(Obj::new()
         .val("nc", JsValue::from_str(&c.nc))
         .ser("before", &c.before)?
         .ser("after", &c.after)?
         .ser("segments", &c.segments)?
         .ser("dwells", &c.dwells)?
+        .ser("regions", &c.regions)?
         .ser("historyUm", &c.history_um)?
         .val("beforeSim", sim_obj(&c.sim_before, &[])?)
         .val("afterSim", sim_obj(&c.sim_after, &[])?)

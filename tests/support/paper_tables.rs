@@ -431,6 +431,7 @@ fn qiu(r: &mut Rows) {
             dwell_exact_stop: true,
             ..Default::default()
         },
+        ..ReverseConfig::default()
     };
     let stop = reverse_compensate(&src, &stop_cfg).unwrap();
     r.push(

@@ -3,7 +3,7 @@
 // download a reverse-compensated program. All computation is in the core
 // (simulateToolPath, reverseCompensate, toolpathExample); this file only
 // gathers inputs, calls the API and draws.
-import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState, showError } from '../lib/ui.js';
+import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState, progressBar, showError } from '../lib/ui.js';
 import { xyChart, lineChart } from '../lib/plot.js';
 import { programFiles } from './toolpath-files.js';
 
@@ -86,6 +86,11 @@ export async function mount(root, api) {
   const mag = h('input', { type: 'range', id: 'toolpath-mag', min: 1, max: 2000, step: 1, value: 200, title: 'error magnification' });
   const run = h('button', { id: 'toolpath-run', class: 'primary', dataset: { run: '' } }, 'Simulate');
   const comp = h('button', { id: 'toolpath-compensate' }, 'Compensate');
+  const cancel = h('button', { id: 'toolpath-cancel', hidden: true }, 'Cancel');
+  const budget = numberField({ label: 'Time budget', value: 5, unit: '%', step: 1, min: 0, id: 'toolpath-budget' });
+  const compProgress = progressBar();
+  let compAbort = null;
+  cancel.addEventListener('click', () => compAbort?.abort());
   const out = h('div', { id: 'toolpath-out' });
   const pathBox = h('div', { class: 'plot', id: 'toolpath-path' });
   const velBox = h('div', { class: 'plot', id: 'toolpath-velocity' });
@@ -112,17 +117,42 @@ export async function mount(root, api) {
     feedOverride: ovr.value / 100,
   });
 
+  // Drawing only: a plot gets at most this many points; every
+  // stride-th sample is drawn plus, in each stride, the sample with the
+  // largest error, so the peak stays visible. The numbers (tables,
+  // maximum, CSV) always use every sample.
+  const MAX_DRAWN = 20000;
+  /** Every stride-th value, so a plot gets at most MAX_DRAWN points (drawing only). */
+  function thinned(a) {
+    const stride = Math.max(1, Math.ceil(a.length / MAX_DRAWN));
+    if (stride === 1) return a;
+    const out = new Float64Array(Math.ceil(a.length / stride));
+    for (let i = 0, j = 0; i < a.length; i += stride, j++) out[j] = a[i];
+    return out;
+  }
   /** Path traces: commanded path and the simulated path with its error magnified by k. */
   function pathTraces(s, k, label) {
     const n = s.t.length;
-    const x = new Float64Array(n), y = new Float64Array(n);
-    for (let i = 0; i < n; i++) {
-      x[i] = s.nearX[i] + k * (s.simX[i] - s.nearX[i]);
-      y[i] = s.nearY[i] + k * (s.simY[i] - s.nearY[i]);
+    const stride = Math.max(1, Math.ceil(n / MAX_DRAWN));
+    const idx = [];
+    for (let i = 0; i < n; i += stride) {
+      let worst = i;
+      for (let j = i + 1; j < Math.min(n, i + stride); j++) if (s.errorUm[j] > s.errorUm[worst]) worst = j;
+      idx.push(i);
+      if (worst !== i) idx.push(worst);
     }
+    const m = idx.length;
+    const x = new Float64Array(m), y = new Float64Array(m), cx = new Float64Array(m), cy = new Float64Array(m), e = new Float64Array(m);
+    idx.forEach((i, j) => {
+      x[j] = s.nearX[i] + k * (s.simX[i] - s.nearX[i]);
+      y[j] = s.nearY[i] + k * (s.simY[i] - s.nearY[i]);
+      cx[j] = s.cmdX[i];
+      cy[j] = s.cmdY[i];
+      e[j] = s.errorUm[i];
+    });
     return [
-      { x: s.cmdX, y: s.cmdY, label: 'commanded', color: '#495057', width: 1 },
-      { x, y, values: s.errorUm, label: `${label} (error ×${k})`, width: 2 },
+      { x: cx, y: cy, label: 'commanded', color: '#495057', width: 1 },
+      { x, y, values: e, label: `${label} (error ×${k}${stride > 1 ? `, every ${stride}th sample drawn` : ''})`, width: 2 },
     ];
   }
 
@@ -166,7 +196,7 @@ export async function mount(root, api) {
       pathBox.replaceChildren();
       velBox.replaceChildren();
       pathChart = xyChart(pathBox, { title: 'Commanded and simulated path (colour: contour error µm)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(s, Number(mag.value), 'simulated'), colorLabel: 'µm', height: 420 });
-      lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY], height: 260 });
+      lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY].map(thinned), height: 260 });
       simUi.ok();
     } catch (e) {
       last = null;
@@ -177,8 +207,16 @@ export async function mount(root, api) {
 
   async function compensate() {
     const token = compUi.start();
+    compAbort?.abort();
+    const abort = new AbortController();
+    compAbort = abort;
+    cancel.hidden = false;
+    compProgress.set(0, 'starting');
     try {
-      const c = await api.call('reverseCompensate', [nc.value, cfg()]);
+      const c = await api.call('reverseCompensate', [nc.value, { ...cfg(), timeBudget: budget.value / 100 }], {
+        signal: abort.signal,
+        onProgress: (f, stage) => compProgress.set(f, stage),
+      });
       if (!compUi.current(token)) return;
       lastComp = c;
       const pct = (1 - c.after.maxErrorUm / c.before.maxErrorUm) * 100;
@@ -192,6 +230,12 @@ export async function mount(root, api) {
         ]),
         h('p', {}, `Error ${pct >= 0 ? 'reduced' : 'increased'} by ${fmt(Math.abs(pct), 3)} %; rounds: ${c.historyUm.map((e) => fmt(e, 3)).join(' → ')} µm; dwells: ${c.dwells.length ? c.dwells.map((d) => `${d.seconds} s after line ${d.afterLine}`).join(', ') : 'none'}.`),
         h('button', { id: 'toolpath-download', class: 'primary', onclick: () => downloadText(`${base}-compensated.nc`, c.nc, 'text/plain') }, 'Download compensated .nc'),
+        h('details', { id: 'toolpath-regions', open: c.regions.some((r) => !r.changed) },
+          h('summary', {}, `${c.regions.filter((r) => r.changed).length} of ${c.regions.length} region(s) changed; the others are left unchanged, and why`),
+          table(['lines', 'arcs / lines', 'before µm', 'after µm', 'changed', 'left unchanged because'], c.regions.slice(0, 500).map((r) => [
+            `${r.firstLine}–${r.lastLine}`, `${r.arcs} / ${r.lines}`, fmt(r.beforeUm, 4), fmt(r.afterUm, 4), r.changed ? 'yes' : 'no', r.reason || '—',
+          ])),
+          c.regions.length > 500 ? h('p', {}, `(first 500 of ${c.regions.length} regions shown)`) : ''),
         h('div', { class: 'grid2', style: 'display:grid;grid-template-columns:1fr 1fr;gap:8px' }, left, right),
         h('details', {}, h('summary', {}, 'Compensated program'), h('pre', { id: 'toolpath-comp-nc', style: 'max-height:300px;overflow:auto' }, c.nc)),
       );
@@ -205,7 +249,16 @@ export async function mount(root, api) {
     } catch (e) {
       lastComp = null;
       compCharts.length = 0;
-      if (compUi.current(token)) compUi.fail(e);
+      if (compUi.current(token)) {
+        if (abort.signal.aborted) showError(compOut, new Error('Reverse compensation cancelled.'));
+        else compUi.fail(e);
+      }
+    } finally {
+      if (compAbort === abort) {
+        compAbort = null;
+        cancel.hidden = true;
+        compProgress.done();
+      }
     }
   }
 
@@ -220,9 +273,9 @@ export async function mount(root, api) {
     h('div', { class: 'card' },
       h('h3', {}, 'Model (Eq. 1 moving average tA, Eq. 2 first-order lag T per axis)'),
       h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, tA.el, tx.el, ty.el, tz.el, ovr.el, dt.el),
-      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, run, comp, h('label', {}, 'Error magnification ', mag, ' ', magLabel))),
+      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, run, budget.el, comp, cancel, h('label', {}, 'Error magnification ', mag, ' ', magLabel))),
     h('div', { class: 'card' }, h('h3', {}, 'Simulation'), out, pathBox, velBox),
-    h('div', { class: 'card' }, h('h3', {}, 'Reverse compensation (§4-3)'), compOut),
+    h('div', { class: 'card' }, h('h3', {}, 'Reverse compensation (§4-3)'), compProgress.el, compOut),
   );
   checkProgram();
 }

@@ -1,4 +1,5 @@
-//! Reverse compensation of the NC program (qiu §4-3(2)).
+//! Reverse compensation of the NC program (qiu §4-3(2)), safe on real
+//! programs.
 //!
 //! The paper's method, for arc programs: simulate the program (§4-2), take
 //! each arc's mean radius loss `Δrᵢ` over the samples nearest to it, give
@@ -11,37 +12,65 @@
 //! Readings and extensions:
 //! - the loss is signed (`Rᵢ − ρ`, positive inside) rather than its
 //!   absolute value, so an arc that overshoots is pulled in, not pushed out;
-//! - *iteration*: the compensated program is simulated against the
-//!   **original** path and the radii are corrected again by the remaining
-//!   mean loss; this repeats while the maximum error keeps falling (at most
-//!   `iterations` times), and the best program is kept;
-//! - *lines*: for line–line joints (programs made only of lines) the
-//!   equivalent move is a vertex shift: the mean signed normal deviation of
-//!   the samples in the half-segments on either side of the vertex, moved
-//!   against along the bisector (scaled by `1/cos(φ/2)` as for an offset
-//!   polyline), iterated the same way;
+//!   arcs in G17, G18 and G19 and helices are treated alike (the loss is
+//!   measured in the arc's plane, the centre and the helix rise are kept);
+//! - *iteration* and *lines*: see [`rounds`] — the compensated program is
+//!   simulated against the **original** path and corrected again; vertices
+//!   between lines (CAM chains of short G01) move by the mean contour-error
+//!   vector per axis;
+//! - *regions* ([`region`]): runs of cutting moves between rapids and
+//!   fixed segments. Each keeps the round in which its own maximum error
+//!   was lowest, and keeps its change only when the *written* program,
+//!   simulated against the original path, has a lower maximum error there
+//!   than the original; otherwise it is left unchanged, with the reason in
+//!   [`RegionNote`]. So the result is never worse than the original
+//!   program: when in doubt it is the original text;
+//! - fixed segments (subprogram bodies, canned-cycle expansions, Fanuc
+//!   corners) never move, and arcs touching them keep their radius;
 //! - *dwells*: candidates are the joints where a run of at least three short
 //!   cutting segments (nominal duration `< max(2·tA, 4·T)`) meets a longer
-//!   one — the paper's B and D. With `dwell` unset, 0.1 s dwells are tried
-//!   at all candidates, then each is removed again if the error does not
-//!   rise by more than 1 % without it; dwells are dropped altogether when
-//!   they do not lower the error or when the motion time would grow by more
-//!   than 5 %. `dwell: 0` disables them; a positive `dwell` sets their length;
-//! - the output keeps every source block with its N number, comments and
-//!   other words ([`crate::nc::writer`]); connecting lines and dwells are new
-//!   blocks without N numbers. "After" is measured by parsing that text and
-//!   simulating it against the original path.
+//!   one — the paper's B and D — and, beyond the paper, the sharp corners
+//!   of a region ([`sharp_corners`]: a turn over 10°, where the tool cuts
+//!   the corner short; real programs' largest error sits there), the ones
+//!   with the largest original error first, as many as the time budget
+//!   allows. With `dwell` unset, 0.1 s dwells are tried
+//!   at all candidates (for small programs, [`MAX_DWELL_TRIAL_SAMPLES`], each is
+//!   then removed again if the error does not rise by more than 1 %
+//!   without it); a region takes them only where they lower its error, and
+//!   all are dropped when the motion time would exceed the time budget.
+//!   `dwell: 0` disables them; a positive `dwell` sets their length;
+//! - *time budget*: the compensated motion time may exceed the original's
+//!   by at most `timeBudget` (default 5 %);
+//! - the output is the original text with only the moved words changed
+//!   ([`crate::nc::patch`]): units, number format, N numbers, comments,
+//!   dwell form and line endings are the original's.
 //!
 //! Units: mm, s; errors reported in µm where the field says so.
 
 pub mod geometry;
+pub mod region;
+pub mod rounds;
 
 use serde::{Deserialize, Serialize};
 
+use crate::nc::patch::write_source;
 use crate::nc::program::{dist, parse, Motion, Program, Segment};
-use crate::nc::writer::write;
 use crate::toolpath::{simulate, SimConfig, Simulation, ToolpathError};
 use geometry::{rebuild, Edit};
+use region::{kinds, region_errors, regions, Regions};
+use rounds::{copy_region, identity};
+
+/// Dwell candidates are removed one by one (each trial costs a full set
+/// of rounds) only while candidates × samples stays below this; beyond it
+/// they are tried all together only.
+pub const MAX_DWELL_TRIAL_SAMPLES: usize = 2_000_000;
+/// Default time budget: +5 % motion time (the paper's +3.9 % fits).
+pub const DEFAULT_TIME_BUDGET: f64 = 0.05;
+/// How much an unchanged region's error may rise through its neighbours'
+/// changes (rounding of the written numbers), mm.
+const NEIGHBOUR_SLACK: f64 = 1e-4;
+/// Rounds of writing, checking and reverting regions at most.
+const MAX_CHECKS: usize = 5;
 
 /// Settings of the reverse compensation.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -54,6 +83,9 @@ pub struct ReverseConfig {
     pub dwell: Option<f64>,
     /// Most correction rounds after the first.
     pub iterations: usize,
+    /// Largest allowed growth of the motion time, as a fraction (0.05 = +5 %).
+    #[serde(rename = "timeBudget")]
+    pub time_budget: f64,
 }
 
 impl Default for ReverseConfig {
@@ -62,6 +94,7 @@ impl Default for ReverseConfig {
             sim: SimConfig::default(),
             dwell: None,
             iterations: 6,
+            time_budget: DEFAULT_TIME_BUDGET,
         }
     }
 }
@@ -104,10 +137,32 @@ pub struct DwellAt {
     pub seconds: f64,
 }
 
+/// The verdict on one region.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct RegionNote {
+    /// First and last source line of the region.
+    pub first_line: usize,
+    /// Last source line.
+    pub last_line: usize,
+    /// Arcs and lines in it.
+    pub arcs: usize,
+    /// Lines in it.
+    pub lines: usize,
+    /// Its maximum error in the original program, µm.
+    pub before_um: f64,
+    /// Its maximum error in the returned program, µm.
+    pub after_um: f64,
+    /// The returned program changes it.
+    pub changed: bool,
+    /// Why it was left unchanged (empty when changed).
+    pub reason: String,
+}
+
 /// The result of [`reverse_compensate`].
 #[derive(Debug, Clone)]
 pub struct Compensation {
-    /// The corrected program.
+    /// The corrected program (the original text where nothing helped).
     pub nc: String,
     /// The original program against its own path.
     pub before: Summary,
@@ -117,118 +172,14 @@ pub struct Compensation {
     pub segments: Vec<SegmentChange>,
     /// Inserted dwells.
     pub dwells: Vec<DwellAt>,
-    /// Maximum error of each correction round of the kept run, µm.
+    /// Per region: before, after, and why it was left unchanged.
+    pub regions: Vec<RegionNote>,
+    /// Maximum error of each correction round, µm.
     pub history_um: Vec<f64>,
     /// The simulation of the original program.
     pub sim_before: Simulation,
     /// The simulation of the corrected program against the original path.
     pub sim_after: Simulation,
-}
-
-struct Run {
-    segments: Vec<Segment>,
-    edit: Edit,
-    error: f64,
-    time: f64,
-    history: Vec<f64>,
-}
-
-fn run(orig: &[Segment], cfg: &ReverseConfig, dwell_after: Vec<f64>) -> Result<Run, ToolpathError> {
-    let n = orig.len();
-    let mut edit = Edit {
-        radius: orig
-            .iter()
-            .map(|s| {
-                if let Motion::Arc(a) = s.motion {
-                    a.radius
-                } else {
-                    0.0
-                }
-            })
-            .collect(),
-        vertex_shift: vec![[0.0; 3]; n],
-        dwell_after,
-    };
-    let moves: Vec<usize> = (0..n)
-        .filter(|&i| !matches!(orig[i].motion, Motion::Dwell { .. }))
-        .collect();
-    let mut best: Option<Run> = None;
-    let mut history = Vec::new();
-    let mut stall = 0;
-    for round in 0..=cfg.iterations {
-        let segs = rebuild(orig, &edit);
-        let sim = simulate(&segs, orig, &cfg.sim)?;
-        history.push(sim.max_error * 1e3);
-        if best.as_ref().is_none_or(|b| sim.max_error < b.error) {
-            best = Some(Run {
-                segments: segs,
-                edit: edit.clone(),
-                error: sim.max_error,
-                time: sim.motion_time,
-                history: Vec::new(),
-            });
-            stall = 0;
-        } else {
-            stall += 1;
-            if stall >= 2 {
-                break;
-            }
-        }
-        if round == cfg.iterations {
-            break;
-        }
-        let mut by_seg = vec![None; n];
-        for st in &sim.segments {
-            if let Some(slot) = by_seg.get_mut(st.segment) {
-                *slot = Some(st);
-            }
-        }
-        for (i, s) in orig.iter().enumerate() {
-            if let (Motion::Arc(_), Some(Some(st))) = (s.motion, by_seg.get(i)) {
-                edit.radius[i] += st.mean_deviation.unwrap_or(0.0);
-            }
-        }
-        for w in moves.windows(2) {
-            let (i, k) = (w[0], w[1]);
-            let (a, b) = (&orig[i], &orig[k]);
-            if !(matches!(a.motion, Motion::Linear) && matches!(b.motion, Motion::Linear)) {
-                continue;
-            }
-            let devs: Vec<f64> = [
-                by_seg[i].and_then(|s| s.half_deviation[1]),
-                by_seg[k].and_then(|s| s.half_deviation[0]),
-            ]
-            .into_iter()
-            .flatten()
-            .collect();
-            if devs.is_empty() {
-                continue;
-            }
-            let dev = devs.iter().sum::<f64>() / devs.len() as f64;
-            let left = |s: &Segment| {
-                let (dx, dy) = (s.end.x - s.start.x, s.end.y - s.start.y);
-                let l = dx.hypot(dy);
-                if l > 0.0 {
-                    [-dy / l, dx / l]
-                } else {
-                    [0.0, 0.0]
-                }
-            };
-            let (na, nb) = (left(a), left(b));
-            let (bx, by) = (na[0] + nb[0], na[1] + nb[1]);
-            let bl = bx.hypot(by);
-            if bl < 1e-9 {
-                continue;
-            }
-            let (bx, by) = (bx / bl, by / bl);
-            let cos = (bx * na[0] + by * na[1]).max(0.2);
-            edit.vertex_shift[i][0] -= dev * bx / cos;
-            edit.vertex_shift[i][1] -= dev * by / cos;
-        }
-    }
-    let mut best = best.ok_or(ToolpathError::Empty)?;
-    best.history = history;
-    Ok(best)
 }
 
 /// The joints after which a dwell may help: where a run of ≥ 3 short
@@ -264,6 +215,67 @@ pub fn dwell_candidates(orig: &[Segment], sim: &SimConfig) -> Vec<usize> {
     out
 }
 
+/// Smallest turn between consecutive cutting moves that counts as a
+/// corner for a dwell, rad (10°: CAM chains of short lines turn less).
+pub const CORNER_TURN: f64 = 10.0 * std::f64::consts::PI / 180.0;
+
+/// The joints between two cutting moves of one region where the path
+/// turns by more than [`CORNER_TURN`]: there the tool cuts the corner
+/// short, and a dwell (the NC stops at the corner) removes that error.
+pub fn sharp_corners(orig: &[Segment], rg: &Regions) -> Vec<usize> {
+    let dir = |s: &Segment, at_end: bool| {
+        let (a, b) = if at_end {
+            (1.0 - 1e-6, 1.0)
+        } else {
+            (0.0, 1e-6)
+        };
+        let (p, q) = (s.point_at(a), s.point_at(b));
+        let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+        let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        (l > 0.0).then(|| [d[0] / l, d[1] / l, d[2] / l])
+    };
+    let moves: Vec<usize> = (0..orig.len())
+        .filter(|&i| !matches!(orig[i].motion, Motion::Dwell { .. }))
+        .collect();
+    moves
+        .windows(2)
+        .filter_map(|w| {
+            let (i, k) = (w[0], w[1]);
+            if rg.of[i].is_none() || rg.of[i] != rg.of[k] {
+                return None;
+            }
+            let (u, v) = (dir(&orig[i], true)?, dir(&orig[k], false)?);
+            let c = (u[0] * v[0] + u[1] * v[1] + u[2] * v[2]).clamp(-1.0, 1.0);
+            (c.acos() > CORNER_TURN).then_some(i)
+        })
+        .collect()
+}
+
+fn validate(cfg: &ReverseConfig) -> Result<(), ToolpathError> {
+    cfg.sim.validate()?;
+    let bad = |field, message: &str| {
+        Err(ToolpathError::Config {
+            field,
+            message: message.into(),
+        })
+    };
+    if let Some(d) = cfg.dwell {
+        if !(d.is_finite() && (0.0..=10.0).contains(&d)) {
+            return bad("dwell", "expected a dwell between 0 and 10 s");
+        }
+    }
+    if cfg.iterations > 50 {
+        return bad("iterations", "expected at most 50 iterations");
+    }
+    if !(cfg.time_budget.is_finite() && (0.0..=1.0).contains(&cfg.time_budget)) {
+        return bad(
+            "timeBudget",
+            "expected a motion-time budget between 0 and 1 (0.05 = +5 %)",
+        );
+    }
+    Ok(())
+}
+
 /// Reverse-compensates `text` (qiu §4-3(2)); see the module header.
 ///
 /// # Units
@@ -281,77 +293,380 @@ pub fn dwell_candidates(orig: &[Segment], sim: &SimConfig) -> Vec<usize> {
 /// assert!(c.nc.contains("N40 G3") && c.nc.contains("(C)"));
 /// ```
 pub fn reverse_compensate(text: &str, cfg: &ReverseConfig) -> Result<Compensation, ToolpathError> {
-    cfg.sim.validate()?;
-    if let Some(d) = cfg.dwell {
-        if !(d.is_finite() && (0.0..=10.0).contains(&d)) {
-            return Err(ToolpathError::Config {
-                field: "dwell",
-                message: "expected a dwell between 0 and 10 s".into(),
-            });
-        }
-    }
-    if cfg.iterations > 50 {
-        return Err(ToolpathError::Config {
-            field: "iterations",
-            message: "expected at most 50 iterations".into(),
-        });
-    }
+    reverse_compensate_with(text, cfg, &mut |_, _| true)
+}
+
+/// As [`reverse_compensate`], reporting progress: `progress(fraction,
+/// stage)` is called between simulations; returning `false` stops the run
+/// with [`ToolpathError::Cancelled`].
+///
+/// # Errors
+/// As [`reverse_compensate`], and the cancellation.
+pub fn reverse_compensate_with(
+    text: &str,
+    cfg: &ReverseConfig,
+    progress: &mut dyn FnMut(f64, &str) -> bool,
+) -> Result<Compensation, ToolpathError> {
+    validate(cfg)?;
     let program = parse(text)?;
     let orig = &program.segments;
-    let sim_before = simulate(orig, orig, &cfg.sim)?;
-    let n = orig.len();
-    let mut best = run(orig, cfg, vec![0.0; n])?;
-    let dwell = cfg.dwell.unwrap_or(0.1);
-    let cands = if dwell > 0.0 {
-        dwell_candidates(orig, &cfg.sim)
-    } else {
-        Vec::new()
+    let mut tick = |f: f64, s: &str| {
+        if progress(f, s) {
+            Ok(())
+        } else {
+            Err(ToolpathError::Cancelled)
+        }
     };
-    if !cands.is_empty() {
-        let with = |set: &[usize]| {
-            let mut d = vec![0.0; n];
-            for &i in set {
-                d[i] = dwell;
+    tick(0.0, "simulating the original program")?;
+    let sim_before = simulate(orig, orig, &cfg.sim)?;
+    let rg = regions(&program);
+    let before_err = region_errors(&rg, &sim_before.segments);
+    tick(0.15, "correction rounds")?;
+    let plain = rounds::run(
+        orig,
+        &rg,
+        &cfg.sim,
+        cfg.iterations,
+        identity(orig, vec![0.0; orig.len()]),
+    )?;
+    let mut history = plain.history_um.clone();
+    let mut edit = plain.edit.clone();
+    let mut best = plain.error.clone();
+    let mut notes: Vec<Option<String>> = vec![None; rg.members.len()];
+    tick(0.5, "dwells")?;
+    match try_dwells(orig, &rg, cfg, &sim_before)? {
+        Dwelt::None => {}
+        Dwelt::Budget(why, rs) => {
+            for r in rs {
+                notes[r] = Some(why.clone());
             }
-            run(orig, cfg, d)
+        }
+        Dwelt::Ran(d) => {
+            history.extend(&d.history_um);
+            for (r, b) in best.iter_mut().enumerate() {
+                if d.error[r] < *b {
+                    *b = d.error[r];
+                    copy_region(&rg, r, &d.edit, &mut edit);
+                }
+            }
+        }
+    }
+    tick(0.7, "checking the written program")?;
+    let checked = check(
+        text,
+        &program,
+        &rg,
+        &before_err,
+        cfg,
+        &sim_before,
+        edit,
+        &mut tick,
+    )?;
+    tick(1.0, "done")?;
+    Ok(finish(
+        &program,
+        &rg,
+        &before_err,
+        &sim_before,
+        checked,
+        notes,
+        history,
+    ))
+}
+
+/// The dwell variant.
+enum Dwelt {
+    /// No dwell to try.
+    None,
+    /// The rounds with dwells.
+    Ran(rounds::Rounds),
+    /// Dwells would exceed the time budget: why, and the regions concerned.
+    Budget(String, Vec<usize>),
+}
+
+fn try_dwells(
+    orig: &[Segment],
+    rg: &Regions,
+    cfg: &ReverseConfig,
+    before: &Simulation,
+) -> Result<Dwelt, ToolpathError> {
+    let dwell = cfg.dwell.unwrap_or(0.1);
+    let mut cands: Vec<usize> = dwell_candidates(orig, &cfg.sim);
+    cands.extend(sharp_corners(orig, rg));
+    cands.retain(|&i| rg.of[i].is_some());
+    cands.sort_unstable();
+    cands.dedup();
+    if dwell <= 0.0 || cands.is_empty() {
+        return Ok(Dwelt::None);
+    }
+    let tmax = cfg.sim.t.per_axis().into_iter().fold(0.0, f64::max);
+    let each = dwell
+        + if cfg.sim.dwell_exact_stop {
+            cfg.sim.t_a + 5.0 * tmax
+        } else {
+            0.0
         };
-        let mut set = cands.clone();
-        let mut cur = with(&set)?;
-        for c in cands {
+    let allowed = cfg.time_budget * before.motion_time;
+    let with = |set: &[usize]| {
+        let mut d = vec![0.0; orig.len()];
+        for &i in set {
+            d[i] = dwell;
+        }
+        rounds::run(orig, rg, &cfg.sim, cfg.iterations, identity(orig, d))
+    };
+    if each > allowed {
+        let note = format!(
+            "corner dwells ({} s each) would exceed the time budget (+{} s)",
+            crate::numeric::compact(each),
+            crate::numeric::compact(allowed)
+        );
+        return Ok(Dwelt::Budget(
+            note,
+            cands.iter().filter_map(|&i| rg.of[i]).collect(),
+        ));
+    }
+    // The joints with the largest original error first, as many as the
+    // budget allows.
+    let mut seg_err = vec![0.0f64; orig.len()];
+    for st in &before.segments {
+        if let Some(e) = seg_err.get_mut(st.segment) {
+            *e = e.max(st.max_error_um);
+        }
+    }
+    let next_err = |i: usize| seg_err.get(i + 1).copied().unwrap_or(0.0);
+    cands.sort_by(|&a, &b| (seg_err[b].max(next_err(b))).total_cmp(&seg_err[a].max(next_err(a))));
+    cands.truncate((allowed / each) as usize);
+    cands.sort_unstable();
+    let mut set = cands.clone();
+    let mut cur = with(&set)?;
+    let worst = |r: &rounds::Rounds| r.error.iter().copied().fold(0.0, f64::max);
+    if set.len() * before.t.len() <= MAX_DWELL_TRIAL_SAMPLES {
+        for c in set.clone() {
             let trial_set: Vec<usize> = set.iter().copied().filter(|&x| x != c).collect();
+            if trial_set.is_empty() {
+                break;
+            }
             let trial = with(&trial_set)?;
-            if trial.error <= cur.error * 1.01 {
+            if worst(&trial) <= worst(&cur) * 1.01 {
                 set = trial_set;
                 cur = trial;
             }
         }
-        if !set.is_empty() && cur.error < best.error && cur.time <= 1.05 * sim_before.motion_time {
-            best = cur;
+    }
+    Ok(Dwelt::Ran(cur))
+}
+
+/// The written program and its check.
+struct Checked {
+    nc: String,
+    edit: Edit,
+    segments: Vec<Segment>,
+    sim: Simulation,
+    after: Vec<f64>,
+    reverted: Vec<Option<String>>,
+}
+
+fn changed(rg: &Regions, r: usize, edit: &Edit, id: &Edit) -> bool {
+    rg.members[r].iter().any(|&i| {
+        edit.radius[i] != id.radius[i]
+            || edit.vertex_shift[i] != id.vertex_shift[i]
+            || edit.dwell_after[i] != id.dwell_after[i]
+    })
+}
+
+/// Writes, parses and simulates the edit against the original path, and
+/// reverts every region whose error did not fall, until none is left.
+#[allow(clippy::too_many_arguments)]
+fn check(
+    text: &str,
+    program: &Program,
+    rg: &Regions,
+    before_err: &[f64],
+    cfg: &ReverseConfig,
+    before: &Simulation,
+    mut edit: Edit,
+    tick: &mut dyn FnMut(f64, &str) -> Result<(), ToolpathError>,
+) -> Result<Checked, ToolpathError> {
+    let orig = &program.segments;
+    let id = identity(orig, vec![0.0; orig.len()]);
+    let mut reverted: Vec<Option<String>> = vec![None; rg.members.len()];
+    let limit = before.motion_time * (1.0 + cfg.time_budget) + cfg.sim.dt;
+    for round in 0..MAX_CHECKS {
+        tick(0.7 + 0.07 * round as f64, "checking the written program")?;
+        if (0..rg.members.len()).all(|r| !changed(rg, r, &edit, &id)) {
+            break;
+        }
+        let segments = rebuild(orig, &edit);
+        let nc = write_source(text, program, &segments);
+        let Ok(written) = parse(&nc) else {
+            // A writer limit: never hand out a program that does not read back.
+            break;
+        };
+        let sim = simulate(&written.segments, orig, &cfg.sim)?;
+        let after = region_errors(rg, &sim.segments);
+        let mut bad = false;
+        let over_time = sim.motion_time > limit;
+        for r in 0..rg.members.len() {
+            if !changed(rg, r, &edit, &id) {
+                continue;
+            }
+            let has_dwell = rg.members[r].iter().any(|&i| edit.dwell_after[i] > 0.0);
+            let why = if after[r] >= before_err[r] {
+                Some(format!(
+                    "the written program's error here did not fall ({} → {} µm)",
+                    crate::numeric::compact(before_err[r] * 1e3),
+                    crate::numeric::compact(after[r] * 1e3)
+                ))
+            } else if over_time && has_dwell {
+                Some("its dwells would exceed the time budget".to_string())
+            } else {
+                None
+            };
+            if let Some(w) = why {
+                copy_region(rg, r, &id, &mut edit);
+                reverted[r] = Some(w);
+                bad = true;
+            }
+        }
+        // An unchanged region that got worse: its changed neighbours
+        // reached it (no exact stop between them); they go back.
+        for r in 0..rg.members.len() {
+            if changed(rg, r, &edit, &id) || after[r] <= before_err[r] + NEIGHBOUR_SLACK {
+                continue;
+            }
+            for q in [r.wrapping_sub(1), r + 1] {
+                if q < rg.members.len() && changed(rg, q, &edit, &id) {
+                    copy_region(rg, q, &id, &mut edit);
+                    reverted[q] = Some(format!(
+                        "it raised the error of the neighbouring region (lines {}–{}) from {} to {} µm",
+                        orig[rg.members[r][0]].line,
+                        orig[rg.members[r][rg.members[r].len() - 1]].line,
+                        crate::numeric::compact(before_err[r] * 1e3),
+                        crate::numeric::compact(after[r] * 1e3)
+                    ));
+                    bad = true;
+                }
+            }
+        }
+        let worse = sim.max_error > before.max_error;
+        if !bad && !worse && !over_time {
+            return Ok(Checked {
+                nc,
+                edit,
+                segments,
+                sim,
+                after,
+                reverted,
+            });
+        }
+        if !bad {
+            break;
         }
     }
-    let nc = write(&program, &best.segments);
-    let written = parse(&nc)?;
-    let sim_after = simulate(&written.segments, orig, &cfg.sim)?;
-    Ok(Compensation {
-        before: summary(&sim_before),
-        after: summary(&sim_after),
-        segments: changes(&program, &best),
-        dwells: best
-            .edit
-            .dwell_after
-            .iter()
-            .enumerate()
-            .filter(|(_, &d)| d > 0.0)
-            .map(|(i, &d)| DwellAt {
-                after_line: orig[i].line,
-                seconds: d,
-            })
-            .collect(),
-        history_um: best.history,
-        nc,
-        sim_before,
-        sim_after,
+    // Nothing left to change, or still not better everywhere: give the
+    // original back.
+    for (r, note) in reverted.iter_mut().enumerate() {
+        if changed(rg, r, &edit, &id) {
+            *note = Some("the program as a whole would not improve (error or time budget); the original is returned".into());
+        }
+    }
+    Ok(Checked {
+        nc: text.to_string(),
+        edit: id,
+        segments: orig.clone(),
+        sim: before.clone(),
+        after: before_err.to_vec(),
+        reverted,
     })
+}
+
+/// Why region `r` is unchanged.
+fn reason(
+    rg: &Regions,
+    r: usize,
+    orig: &[Segment],
+    err: f64,
+    dwell_note: Option<&String>,
+) -> String {
+    let (arcs, lines) = kinds(rg, r, orig);
+    if !rg.movable[r] {
+        return if arcs > 0 {
+            "its arcs touch fixed segments (subprogram, cycle or corner), so nothing may move"
+                .into()
+        } else {
+            "a single line between rapids or fixed segments: no corner to move".into()
+        };
+    }
+    let e = crate::numeric::compact(err * 1e3);
+    let what = if arcs == 0 {
+        format!("line-only region ({lines} lines): vertex shifts did not lower its error ({e} µm)")
+    } else {
+        format!("no correction round lowered its error ({e} µm)")
+    };
+    match dwell_note {
+        Some(d) => format!("{what}, and {d}"),
+        None => what,
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    program: &Program,
+    rg: &Regions,
+    before_err: &[f64],
+    sim_before: &Simulation,
+    c: Checked,
+    notes: Vec<Option<String>>,
+    history: Vec<f64>,
+) -> Compensation {
+    let orig = &program.segments;
+    let id = identity(orig, vec![0.0; orig.len()]);
+    let line = |i: usize| orig[i].line;
+    let regions = (0..rg.members.len())
+        .map(|r| {
+            let ch = changed(rg, r, &c.edit, &id);
+            let m = &rg.members[r];
+            let (arcs, lines) = kinds(rg, r, orig);
+            RegionNote {
+                first_line: m.first().map_or(0, |&i| line(i)),
+                last_line: m.last().map_or(0, |&i| line(i)),
+                arcs,
+                lines,
+                before_um: before_err[r] * 1e3,
+                after_um: c.after[r] * 1e3,
+                changed: ch,
+                reason: if ch {
+                    String::new()
+                } else {
+                    c.reverted[r]
+                        .clone()
+                        .unwrap_or_else(|| reason(rg, r, orig, before_err[r], notes[r].as_ref()))
+                },
+            }
+        })
+        .collect();
+    let dwells = c
+        .edit
+        .dwell_after
+        .iter()
+        .enumerate()
+        .filter(|(_, &d)| d > 0.0)
+        .map(|(i, &d)| DwellAt {
+            after_line: orig[i].line,
+            seconds: d,
+        })
+        .collect();
+    Compensation {
+        before: summary(sim_before),
+        after: summary(&c.sim),
+        segments: changes(program, &c.segments, &c.edit),
+        dwells,
+        regions,
+        history_um: history,
+        nc: c.nc,
+        sim_before: sim_before.clone(),
+        sim_after: c.sim,
+    }
 }
 
 fn summary(s: &Simulation) -> Summary {
@@ -361,17 +676,18 @@ fn summary(s: &Simulation) -> Summary {
     }
 }
 
-fn changes(p: &Program, best: &Run) -> Vec<SegmentChange> {
+fn changes(p: &Program, segs: &[Segment], edit: &Edit) -> Vec<SegmentChange> {
+    let mut end_of = vec![None; p.blocks.len()];
+    for x in segs {
+        if let Some(b) = x.block.filter(|&b| b < end_of.len()) {
+            end_of[b] = Some(x.end);
+        }
+    }
     p.segments
         .iter()
         .enumerate()
         .map(|(i, s)| {
-            let new_end = best
-                .segments
-                .iter()
-                .rev()
-                .find(|x| x.block == s.block && s.block.is_some())
-                .map_or(s.end, |x| x.end);
+            let new_end = s.block.and_then(|b| end_of[b]).unwrap_or(s.end);
             let (kind, r) = match s.motion {
                 Motion::Arc(a) => ("arc", a.radius),
                 Motion::Linear => ("line", 0.0),
@@ -383,11 +699,7 @@ fn changes(p: &Program, best: &Run) -> Vec<SegmentChange> {
                 line: s.line,
                 kind,
                 radius_before: r,
-                radius_after: if kind == "arc" {
-                    best.edit.radius[i]
-                } else {
-                    0.0
-                },
+                radius_after: if kind == "arc" { edit.radius[i] } else { 0.0 },
                 end_shift_um: dist(s.end.p(), new_end.p()) * 1e3,
             }
         })

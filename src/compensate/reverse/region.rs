@@ -1,0 +1,152 @@
+//! Regions of a program for the reverse compensation: the runs of cutting
+//! moves between rapids and fixed segments, judged one by one.
+//!
+//! A rapid ends in an exact stop (see [`crate::toolpath::simulate`]), so
+//! what happens before it does not reach the samples after it; a fixed
+//! segment (subprogram body, canned-cycle expansion, Fanuc corner) cannot
+//! move, so its joints are pinned. A region's error is the largest contour
+//! error of the samples nearest to its segments — the same samples the
+//! program's maximum error is taken over, so when no region's error rises
+//! the program's maximum cannot rise either.
+//!
+//! What may move (the writer edits only blocks that carry exactly one
+//! segment, and never a fixed one):
+//! - an arc's radius, unless it touches a fixed segment (a connecting
+//!   line before a fixed block would change the modes it runs in);
+//! - the vertex between two consecutive lines of one region.
+//!
+//! Units: mm.
+
+use crate::nc::program::{Motion, Program, Segment};
+use crate::toolpath::SegmentStats;
+
+/// The regions of a program.
+#[derive(Debug, Clone, Default)]
+pub struct Regions {
+    /// Region of each segment (`None`: a rapid, a dwell or a fixed segment).
+    pub of: Vec<Option<usize>>,
+    /// Segment indices of each region.
+    pub members: Vec<Vec<usize>>,
+    /// A region has something that may move.
+    pub movable: Vec<bool>,
+    /// The segment's block can be rewritten (exactly one segment, not fixed).
+    pub editable: Vec<bool>,
+    /// An arc whose radius may change.
+    pub arc_free: Vec<bool>,
+    /// Line–line joints `(i, k)` whose vertex may move.
+    pub line_joints: Vec<(usize, usize)>,
+    /// Simulation windows: segment ranges from the rapid before a group of
+    /// regions (or the program start) to the rapid after it (or the end),
+    /// both included. The tool is at rest after a rapid's exact stop, so a
+    /// window simulated alone gives its regions' samples as the whole
+    /// program does (up to the e⁻¹⁰ residual of the stop and the nearest
+    /// point being sought in the window only).
+    pub windows: Vec<std::ops::Range<usize>>,
+    /// Window of each region.
+    pub window: Vec<usize>,
+}
+
+/// Splits `program` into regions (see the module header).
+pub fn regions(program: &Program) -> Regions {
+    let segs = &program.segments;
+    let n = segs.len();
+    let mut count = vec![0usize; program.blocks.len()];
+    for s in segs {
+        if let Some(b) = s.block.filter(|&b| b < count.len()) {
+            count[b] += 1;
+        }
+    }
+    let editable: Vec<bool> = segs
+        .iter()
+        .map(|s| !s.fixed && s.block.is_some_and(|b| count.get(b) == Some(&1)))
+        .collect();
+    let mut rg = Regions {
+        of: vec![None; n],
+        editable,
+        arc_free: vec![false; n],
+        ..Regions::default()
+    };
+    let moves: Vec<usize> = (0..n)
+        .filter(|&i| !matches!(segs[i].motion, Motion::Dwell { .. }))
+        .collect();
+    let mut cur: Option<usize> = None;
+    for &i in &moves {
+        let s = &segs[i];
+        if !s.is_cutting() || s.fixed || !rg.editable[i] {
+            cur = None;
+            continue;
+        }
+        let r = *cur.get_or_insert_with(|| {
+            rg.members.push(Vec::new());
+            rg.members.len() - 1
+        });
+        rg.of[i] = Some(r);
+        rg.members[r].push(i);
+    }
+    for (w, &i) in moves.iter().enumerate() {
+        let prev = w.checked_sub(1).map(|p| moves[p]);
+        let next = moves.get(w + 1).copied();
+        let pinned = |j: Option<usize>| j.is_some_and(|j| segs[j].fixed || !rg.editable[j]);
+        if matches!(segs[i].motion, Motion::Arc(_)) && rg.of[i].is_some() {
+            rg.arc_free[i] = !pinned(prev) && !pinned(next);
+        }
+        if let Some(k) = next {
+            let lines = matches!(segs[i].motion, Motion::Linear)
+                && matches!(segs[k].motion, Motion::Linear);
+            if lines && rg.of[i].is_some() && rg.of[i] == rg.of[k] {
+                rg.line_joints.push((i, k));
+            }
+        }
+    }
+    windows(segs, &mut rg);
+    rg.movable = rg
+        .members
+        .iter()
+        .map(|m| m.iter().any(|&i| rg.arc_free[i]))
+        .collect();
+    for &(i, _) in &rg.line_joints {
+        if let Some(r) = rg.of[i] {
+            rg.movable[r] = true;
+        }
+    }
+    rg
+}
+
+/// The maximum error of each region from a simulation's per-segment
+/// statistics, mm.
+pub fn region_errors(rg: &Regions, stats: &[SegmentStats]) -> Vec<f64> {
+    let mut e = vec![0.0f64; rg.members.len()];
+    for st in stats {
+        if let Some(Some(r)) = rg.of.get(st.segment) {
+            e[*r] = e[*r].max(st.max_error_um * 1e-3);
+        }
+    }
+    e
+}
+
+/// Kinds of segment a region holds, for its note: (arcs, lines).
+pub fn kinds(rg: &Regions, r: usize, segs: &[Segment]) -> (usize, usize) {
+    let arcs = rg.members[r]
+        .iter()
+        .filter(|&&i| matches!(segs[i].motion, Motion::Arc(_)))
+        .count();
+    (arcs, rg.members[r].len() - arcs)
+}
+
+/// Fills [`Regions::windows`] and [`Regions::window`].
+fn windows(segs: &[Segment], rg: &mut Regions) {
+    let rapid = |i: usize| matches!(segs[i].motion, Motion::Rapid);
+    rg.window = vec![0; rg.members.len()];
+    for (r, m) in rg.members.iter().enumerate() {
+        let (first, last) = (m[0], m[m.len() - 1]);
+        let a = (0..first).rev().find(|&i| rapid(i)).unwrap_or(0);
+        let b = (last + 1..segs.len())
+            .find(|&i| rapid(i))
+            .map_or(segs.len(), |i| i + 1);
+        match rg.windows.last_mut() {
+            Some(w) if a + 1 < w.end => w.end = w.end.max(b),
+            _ => rg.windows.push(a..b),
+        }
+        rg.window[r] = rg.windows.len() - 1;
+    }
+}

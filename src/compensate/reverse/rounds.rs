@@ -1,0 +1,228 @@
+//! The correction rounds of the reverse compensation (qiu §4-3(2)),
+//! judged per region.
+//!
+//! One round: rebuild the edited path ([`super::geometry::rebuild`]),
+//! simulate it against the ORIGINAL path, and correct the edit with the
+//! remaining deviation:
+//! - an arc's radius grows by the mean signed radius loss `R − ρ` of the
+//!   samples nearest to it (any plane, helices included: the loss is
+//!   measured in the arc's plane);
+//! - a vertex between two lines moves by the mean contour-error vector
+//!   `near − simulated`, per axis X, Y, Z, of the samples nearest to the
+//!   half-segments on either side of it (the same model, in any plane and
+//!   in 3D: where the tool cuts inside a corner the vector points out of
+//!   it and the vertex moves out).
+//!
+//! Every region (see [`super::region`]) keeps the edit of the round in
+//! which its own maximum error was lowest; a region whose error stops
+//! falling for two rounds stops being corrected. A round simulates only
+//! the windows (rapid to rapid) that hold a region still being corrected,
+//! each alone — the cost of a round falls as regions settle; the written
+//! program is then checked against the whole original path
+//! ([`super::reverse_compensate`]). Regions are separated by
+//! rapids (which end in an exact stop) and by fixed segments, so the edit
+//! of one region barely changes another's error, and the best rounds of
+//! different regions combine.
+//!
+//! Units: mm, s.
+
+use super::geometry::{rebuild, Edit};
+use super::region::{region_errors, Regions};
+use crate::nc::program::{Motion, Segment};
+use crate::toolpath::{simulate, SegmentStats, SimConfig, ToolpathError};
+
+/// The outcome of the rounds: per region its best error and the edit that
+/// gave it.
+#[derive(Debug, Clone)]
+pub struct Rounds {
+    /// The combined edit (each region's best round).
+    pub edit: Edit,
+    /// Best maximum error per region, mm.
+    pub error: Vec<f64>,
+    /// Maximum error of the whole path per round, µm.
+    pub history_um: Vec<f64>,
+}
+
+/// The identity edit of `orig` with `dwell_after`.
+pub fn identity(orig: &[Segment], dwell_after: Vec<f64>) -> Edit {
+    Edit {
+        radius: orig
+            .iter()
+            .map(|s| match s.motion {
+                Motion::Arc(a) => a.radius,
+                _ => 0.0,
+            })
+            .collect(),
+        vertex_shift: vec![[0.0; 3]; orig.len()],
+        dwell_after,
+    }
+}
+
+/// Copies region `r`'s entries of `from` into `to`.
+pub fn copy_region(regions: &Regions, r: usize, from: &Edit, to: &mut Edit) {
+    for &i in &regions.members[r] {
+        to.radius[i] = from.radius[i];
+        to.vertex_shift[i] = from.vertex_shift[i];
+        to.dwell_after[i] = from.dwell_after[i];
+    }
+}
+
+/// Runs up to `iterations + 1` rounds from `start` (see the module header).
+///
+/// # Errors
+/// As [`simulate`].
+pub fn run(
+    orig: &[Segment],
+    regions: &Regions,
+    cfg: &SimConfig,
+    iterations: usize,
+    start: Edit,
+) -> Result<Rounds, ToolpathError> {
+    let nr = regions.members.len();
+    let mut edit = start;
+    let mut best = edit.clone();
+    let mut best_err = vec![f64::INFINITY; nr];
+    let mut stall = vec![0usize; nr];
+    let mut history = Vec::new();
+    let mut errs = vec![0.0; nr];
+    let mut live_window = vec![true; regions.windows.len()];
+    for round in 0..=iterations {
+        let stats = simulate_windows(orig, regions, cfg, &edit, &live_window)?;
+        let fresh = region_errors(regions, &stats);
+        for r in 0..nr {
+            if live_window[regions.window[r]] {
+                errs[r] = fresh[r];
+            }
+        }
+        history.push(errs.iter().copied().fold(0.0, f64::max) * 1e3);
+        let mut active = false;
+        for r in 0..nr {
+            if errs[r] < best_err[r] {
+                best_err[r] = errs[r];
+                copy_region(regions, r, &edit, &mut best);
+                stall[r] = 0;
+            } else {
+                stall[r] += 1;
+            }
+            active |= stall[r] < 2 && regions.movable[r];
+        }
+        if round == iterations || !active {
+            break;
+        }
+        live_window.iter_mut().for_each(|w| *w = false);
+        for r in 0..nr {
+            if stall[r] < 2 && regions.movable[r] {
+                live_window[regions.window[r]] = true;
+            }
+        }
+        let mut by_seg: Vec<Option<&SegmentStats>> = vec![None; orig.len()];
+        for st in &stats {
+            if let Some(slot) = by_seg.get_mut(st.segment) {
+                *slot = Some(st);
+            }
+        }
+        correct(orig, regions, &by_seg, &stall, &mut edit);
+    }
+    Ok(Rounds {
+        edit: best,
+        error: best_err,
+        history_um: history,
+    })
+}
+
+/// Simulates the windows marked `live` of the edited program, each alone
+/// against its own original segments (see [`Regions::windows`]); the
+/// statistics carry whole-program segment indices.
+///
+/// # Errors
+/// As [`simulate`].
+pub fn simulate_windows(
+    orig: &[Segment],
+    regions: &Regions,
+    cfg: &SimConfig,
+    edit: &Edit,
+    live: &[bool],
+) -> Result<Vec<SegmentStats>, ToolpathError> {
+    let mut out = Vec::new();
+    for (w, range) in regions.windows.iter().enumerate() {
+        if !live[w] {
+            continue;
+        }
+        let part = Edit {
+            radius: edit.radius[range.clone()].to_vec(),
+            vertex_shift: edit.vertex_shift[range.clone()].to_vec(),
+            dwell_after: edit.dwell_after[range.clone()].to_vec(),
+        };
+        let reference = &orig[range.clone()];
+        let segs = rebuild(reference, &part);
+        let sim = match simulate(&segs, reference, cfg) {
+            Ok(s) => s,
+            Err(ToolpathError::Empty) => continue,
+            Err(e) => return Err(e),
+        };
+        out.extend(sim.segments.into_iter().map(|mut st| {
+            st.segment += range.start;
+            st
+        }));
+    }
+    Ok(out)
+}
+
+/// One correction of `edit` from the per-segment statistics.
+fn correct(
+    orig: &[Segment],
+    regions: &Regions,
+    by_seg: &[Option<&SegmentStats>],
+    stall: &[usize],
+    edit: &mut Edit,
+) {
+    let live = |i: usize| {
+        regions.of[i].is_some_and(|r| stall[r] < 2) && regions.editable[i] && !orig[i].fixed
+    };
+    for (i, s) in orig.iter().enumerate() {
+        if let (Motion::Arc(_), Some(st)) = (s.motion, by_seg[i]) {
+            if live(i) && regions.arc_free[i] {
+                edit.radius[i] += st.mean_deviation.unwrap_or(0.0);
+            }
+        }
+    }
+    for &(i, k) in &regions.line_joints {
+        if !live(i) || !live(k) {
+            continue;
+        }
+        let v: Vec<[f64; 3]> = [
+            by_seg[i].and_then(|s| s.half_vector[1]),
+            by_seg[k].and_then(|s| s.half_vector[0]),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        if v.is_empty() {
+            continue;
+        }
+        // As for an offset polyline, a vertex moves 1/cos(φ/2) times the
+        // offset of its lines (φ the turn between them).
+        let gain = 1.0 / half_turn_cos(&orig[i], &orig[k]).max(0.2);
+        for ax in 0..3 {
+            let mean = v.iter().map(|x| x[ax]).sum::<f64>() / v.len() as f64;
+            edit.vertex_shift[i][ax] += gain * mean;
+        }
+    }
+}
+
+/// cos(φ/2) of the turn φ from line `a` to line `b`.
+fn half_turn_cos(a: &Segment, b: &Segment) -> f64 {
+    let dir = |s: &Segment| {
+        let (p, q) = (s.start.p(), s.end.p());
+        let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+        let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        if l > 0.0 {
+            [d[0] / l, d[1] / l, d[2] / l]
+        } else {
+            [0.0; 3]
+        }
+    };
+    let (u, w) = (dir(a), dir(b));
+    let c = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
+    (0.5 * (1.0 + c)).max(0.0).sqrt()
+}

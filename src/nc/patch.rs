@@ -1,0 +1,780 @@
+//! Source-preserving NC writer: gives back the program's own text with only
+//! the words that must change to reach an edited list of [`Segment`]s, so
+//! a line diff against the original shows just the edit (the compensation).
+//!
+//! What is kept, byte for byte, on every line that needs no change: the
+//! text, the comments (`( … )` and `;`, also with parentheses inside), the
+//! N numbers, the case and spacing, the line endings (LF, CRLF or CR), a
+//! byte-order mark, a trailing Ctrl-Z and a missing final newline. On a
+//! changed line only the changed numbers are replaced, in place.
+//!
+//! Readings:
+//! - units and modes are the block's own: a G20 block gets inch values, a
+//!   G91 block incremental values, a G90.1 block absolute centres, a G92
+//!   shift is subtracted; feeds are never touched;
+//! - numbers follow the program's style ([`NumStyle`]): its number of
+//!   decimals (raised to 3 in mm or 4 in inch — 1 µm, 2.5 µm — when the
+//!   program is coarser, so a compensation is not rounded away), padded or
+//!   trimmed trailing zeros, `.5` or `0.5`, `75.` or `75`;
+//! - each coordinate is written once and read back, and the next block is
+//!   computed from the read-back value, so rounding never accumulates; an
+//!   axis the edit leaves where the segment started (a full circle's end, a
+//!   helix's plane coordinates) is written with the start's own written
+//!   value, so a full circle stays a full circle in every plane;
+//! - a segment without a source block (`block: None`) becomes a new line:
+//!   a connecting `G1` just before the next source block (whose motion code
+//!   is then written on it if it relied on a modal G2/G3/G0), or a dwell
+//!   just after the previous one, in the program's dwell form (the first
+//!   `G4` of the program, else `P` in seconds with a decimal point, read as
+//!   seconds by LinuxCNC, Haas and [`DwellP::Auto`]; integer milliseconds
+//!   under [`DwellP::Milliseconds`]);
+//! - blocks with several segments (subprogram bodies, cycles, corners) and
+//!   `fixed` segments are never edited.
+//!
+//! Units: mm, mm/min inside; the text in the program's own units.
+
+use super::program::{DwellP, Modal, Motion, Program, Segment};
+use super::Block;
+
+/// Coordinate-number style of a program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NumStyle {
+    /// Decimals written.
+    pub decimals: usize,
+    /// Trailing zeros kept (`1.500`).
+    pub pad: bool,
+    /// `0.5` rather than `.5`.
+    pub lead_zero: bool,
+    /// Integers with a decimal point (`75.`).
+    pub int_point: bool,
+}
+
+/// Finest resolution written in mm programs (1 µm), decimals.
+const MIN_DECIMALS_MM: usize = 3;
+/// Finest resolution written in inch programs (0.1 thou = 2.54 µm), decimals.
+const MIN_DECIMALS_INCH: usize = 4;
+/// Position differences below this are no move, mm (below any written resolution).
+const SAME: f64 = 1e-9;
+
+impl NumStyle {
+    /// The style of the coordinate words (X Y Z I J K R) of `blocks`.
+    ///
+    /// # Examples
+    /// ```
+    /// use mtmotion::nc::patch::NumStyle;
+    /// let b = mtmotion::nc::lex("G1 X0.250 Y1.500\nX2.000").unwrap();
+    /// let s = NumStyle::of(&b, false);
+    /// assert_eq!(s.format(-0.5), "-0.500");
+    /// assert_eq!(s.format(3.0), "3.000");
+    /// let b = mtmotion::nc::lex("g1x.25y1.5\nx75.").unwrap();
+    /// let s = NumStyle::of(&b, false);
+    /// assert_eq!(s.format(-0.5), "-.5");
+    /// assert_eq!(s.format(3.0), "3.");
+    /// assert_eq!(s.format(0.12345), ".123");
+    /// ```
+    pub fn of(blocks: &[Block], inch: bool) -> Self {
+        let mut decimals = 0;
+        // Votes: (with, without) a leading zero below 1; integers with and
+        // without a point; fractions with all decimals and a trailing zero.
+        let (mut lead, mut nolead, mut point, mut nopoint) = (0usize, 0usize, 0usize, 0usize);
+        let mut fracs: Vec<(usize, bool)> = Vec::new();
+        for w in blocks.iter().flat_map(|b| b.words.iter()) {
+            if !"XYZIJKR".contains(w.letter) {
+                continue;
+            }
+            let t = w.text.trim_start_matches(['+', '-']);
+            match t.find('.') {
+                Some(p) => {
+                    let d = t.len() - p - 1;
+                    decimals = decimals.max(d);
+                    if p == 0 {
+                        nolead += 1;
+                    } else if t.starts_with("0.") {
+                        lead += 1;
+                    }
+                    if d == 0 {
+                        point += 1;
+                    } else {
+                        fracs.push((d, t.ends_with('0')));
+                    }
+                }
+                None => nopoint += 1,
+            }
+        }
+        let full = fracs.iter().filter(|(d, _)| *d == decimals).count();
+        let zeros = fracs.iter().any(|(d, z)| *d == decimals && *z);
+        let min = if inch {
+            MIN_DECIMALS_INCH
+        } else {
+            MIN_DECIMALS_MM
+        };
+        Self {
+            decimals: decimals.max(min),
+            pad: decimals >= min && zeros && 10 * full >= 9 * fracs.len(),
+            lead_zero: lead >= nolead,
+            int_point: point >= nopoint || decimals == 0 && nopoint == 0,
+        }
+    }
+
+    /// `v` in this style.
+    pub fn format(&self, v: f64) -> String {
+        let mut s = format!("{v:.*}", self.decimals);
+        if s.trim_start_matches('-')
+            .chars()
+            .all(|c| c == '0' || c == '.')
+        {
+            s = s.trim_start_matches('-').to_string();
+        }
+        if !self.pad && s.contains('.') {
+            while s.ends_with('0') {
+                s.pop();
+            }
+        }
+        if s.ends_with('.') && !self.int_point {
+            s.pop();
+        }
+        if !s.contains('.') && self.int_point {
+            s.push('.');
+        }
+        if !self.lead_zero {
+            if let Some(rest) = s.strip_prefix("0.") {
+                if !rest.is_empty() {
+                    s = format!(".{rest}");
+                }
+            } else if let Some(rest) = s.strip_prefix("-0.") {
+                s = format!("-.{rest}");
+            }
+        }
+        s
+    }
+}
+
+/// The text split into lines that keep their terminators; concatenating
+/// `head`, every `(content, end)` and `tail` gives the text back.
+struct Lines<'a> {
+    head: &'a str,
+    lines: Vec<(&'a str, &'a str)>,
+    tail: &'a str,
+}
+
+/// Splits as [`super::split_lines`] does (same line numbers).
+fn split_keep(text: &str) -> Lines<'_> {
+    let head_len = if text.starts_with('\u{feff}') { 3 } else { 0 };
+    let body_all = &text[head_len..];
+    let body = body_all.trim_end_matches(['\u{1a}', '\r', '\n']);
+    let b = body.as_bytes();
+    let mut lines = Vec::new();
+    let (mut start, mut i) = (0, 0);
+    while i < b.len() {
+        let end = match b[i] {
+            b'\n' => i + 1,
+            b'\r' if b.get(i + 1) == Some(&b'\n') => i + 2,
+            b'\r' => i + 1,
+            _ => {
+                i += 1;
+                continue;
+            }
+        };
+        lines.push((&body[start..i], &body[i..end]));
+        start = end;
+        i = end;
+    }
+    if start < body.len() || lines.is_empty() {
+        lines.push((&body[start..], ""));
+    }
+    Lines {
+        head: &text[..head_len],
+        lines,
+        tail: &body_all[body.len()..],
+    }
+}
+
+/// The line terminator of `text` (its first), LF when it has none.
+fn newline(text: &str) -> &'static str {
+    match text.find(['\r', '\n']) {
+        Some(i) if text[i..].starts_with("\r\n") => "\r\n",
+        Some(i) if text[i..].starts_with('\r') => "\r",
+        _ => "\n",
+    }
+}
+
+/// Program-wide spelling of new words and lines.
+struct Dialect {
+    mm: NumStyle,
+    inch: NumStyle,
+    lower: bool,
+    space: &'static str,
+    g_pad: bool,
+    dwell: Option<(String, char, bool)>,
+    dwell_p: DwellP,
+}
+
+impl Dialect {
+    fn of(p: &Program, raw: &[&str]) -> Self {
+        let inch_used = p.modal.iter().any(|m| m.inch);
+        let mut g_pad = false;
+        let mut dwell = None;
+        for b in &p.blocks {
+            for w in &b.words {
+                if w.letter == 'G' && w.text.len() == 2 && w.text.starts_with('0') {
+                    g_pad = true;
+                }
+            }
+            if dwell.is_none() {
+                if let Some(g) = b.words.iter().find(|w| w.letter == 'G' && w.value == 4.0) {
+                    if let Some(d) = b.words.iter().find(|w| matches!(w.letter, 'P' | 'X' | 'U')) {
+                        dwell = Some((g.text.clone(), d.letter, d.text.contains('.')));
+                    }
+                }
+            }
+        }
+        // Spacing and case from the first block with two words.
+        let (mut spaced, mut lower) = (true, false);
+        if let Some(b) = p.blocks.iter().find(|b| b.words.len() >= 2) {
+            let (w0, w1) = (&b.words[0], &b.words[1]);
+            let line: Vec<char> = raw
+                .get(b.line.saturating_sub(1))
+                .map(|s| s.chars().collect())
+                .unwrap_or_default();
+            spaced = line
+                .get(w1.column.saturating_sub(2))
+                .is_some_and(|c| c.is_whitespace());
+            lower = line
+                .get(w0.column.saturating_sub(1))
+                .is_some_and(|c| c.is_ascii_lowercase());
+        }
+        Self {
+            mm: NumStyle::of(&p.blocks, false),
+            inch: NumStyle::of(&p.blocks, inch_used),
+            lower,
+            space: if spaced { " " } else { "" },
+            g_pad,
+            dwell,
+            dwell_p: p.options.dwell_p,
+        }
+    }
+
+    fn style(&self, m: &Modal) -> &NumStyle {
+        if m.inch {
+            &self.inch
+        } else {
+            &self.mm
+        }
+    }
+
+    fn letter(&self, c: char) -> char {
+        if self.lower {
+            c.to_ascii_lowercase()
+        } else {
+            c
+        }
+    }
+
+    fn g(&self, code: u32) -> String {
+        if self.g_pad {
+            format!("{}{code:02}", self.letter('G'))
+        } else {
+            format!("{}{code}", self.letter('G'))
+        }
+    }
+
+    fn dwell_line(&self, seconds: f64) -> String {
+        let sec = NumStyle {
+            decimals: 3,
+            pad: false,
+            lead_zero: true,
+            int_point: true,
+        };
+        let (g, letter, point) = match &self.dwell {
+            Some((g, l, point)) => (format!("{}{g}", self.letter('G')), *l, *point),
+            None => (self.g(4), 'P', self.dwell_p != DwellP::Milliseconds),
+        };
+        let ms = letter == 'P'
+            && match self.dwell_p {
+                DwellP::Milliseconds => true,
+                DwellP::Seconds => false,
+                DwellP::Auto => !point,
+            };
+        let v = if ms {
+            format!("{}", (seconds * 1e3).round() as i64)
+        } else {
+            sec.format(seconds)
+        };
+        format!("{g}{}{}{v}", self.space, self.letter(letter))
+    }
+}
+
+/// A replacement of characters `at..at + len` of a line, or an insertion
+/// (`len` 0).
+#[derive(Default)]
+struct Splice {
+    at: usize,
+    len: usize,
+    text: String,
+}
+
+/// Where the number of `block.words[j]` lies in `chars` (start, length).
+fn number_span(chars: &[char], col: usize, text: &str) -> Option<(usize, usize)> {
+    let mut p = col;
+    while p < chars.len() && chars[p].is_whitespace() {
+        p += 1;
+    }
+    let n = text.chars().count();
+    let got: String = chars.get(p..p + n)?.iter().collect();
+    (got == text).then_some((p, n))
+}
+
+struct Writer<'a> {
+    p: &'a Program,
+    raw: Vec<&'a str>,
+    d: Dialect,
+    nl: &'static str,
+    /// Replacement content per line (None = unchanged).
+    content: Vec<Option<String>>,
+    before: Vec<Vec<String>>,
+    after: Vec<Vec<String>>,
+    /// The segment of each block (None when it has none or several).
+    seg_of: Vec<Option<usize>>,
+}
+
+/// Writes `text` back with `segments` in place of `program`'s (see the module header).
+///
+/// `program` must be `text` parsed; `segments` its segments edited in
+/// place (same `block`) plus new ones with `block: None`.
+///
+/// # Units
+/// Segments in mm and mm/min; the text in the program's units.
+///
+/// # Examples
+/// ```
+/// use mtmotion::nc::{patch::write_source, program::{parse, Motion}};
+/// let src = "G20 G0 X0 Y0\r\nN5 G2 X.5 Y0 R.25 F20 ; top (arc)\r\n";
+/// let p = parse(src).unwrap();
+/// let mut segs = p.segments.clone();
+/// segs[1].end.x = 0.6 * 25.4;
+/// if let Motion::Arc(a) = &mut segs[1].motion { a.radius = 0.3 * 25.4; }
+/// let out = write_source(src, &p, &segs);
+/// assert_eq!(out, "G20 G0 X0 Y0\r\nN5 G2 X.6 Y0 R.3 F20 ; top (arc)\r\n");
+/// ```
+pub fn write_source(text: &str, program: &Program, segments: &[Segment]) -> String {
+    let lines = split_keep(text);
+    let nb = lines.lines.len();
+    let mut count = vec![0usize; program.blocks.len()];
+    let mut seg_of = vec![None; program.blocks.len()];
+    for (i, s) in program.segments.iter().enumerate() {
+        if let Some(b) = s.block.filter(|&b| b < count.len()) {
+            count[b] += 1;
+            seg_of[b] = Some(i);
+        }
+    }
+    for (b, c) in count.iter().enumerate() {
+        if *c != 1 {
+            seg_of[b] = None;
+        }
+    }
+    let raw: Vec<&str> = lines.lines.iter().map(|(c, _)| *c).collect();
+    let mut w = Writer {
+        p: program,
+        d: Dialect::of(program, &raw),
+        raw,
+        nl: newline(text),
+        content: vec![None; nb],
+        before: vec![Vec::new(); nb],
+        after: vec![Vec::new(); nb],
+        seg_of,
+    };
+    w.walk(segments);
+    let mut out = String::with_capacity(text.len() + 64);
+    out.push_str(lines.head);
+    for (i, (c, end)) in lines.lines.iter().enumerate() {
+        for l in &w.before[i] {
+            out.push_str(l);
+            out.push_str(w.nl);
+        }
+        out.push_str(w.content[i].as_deref().unwrap_or(c));
+        let extra = &w.after[i];
+        if !extra.is_empty() {
+            out.push_str(if end.is_empty() { w.nl } else { end });
+            for (k, l) in extra.iter().enumerate() {
+                out.push_str(l);
+                if k + 1 < extra.len() || !end.is_empty() {
+                    out.push_str(w.nl);
+                }
+            }
+        } else {
+            out.push_str(end);
+        }
+    }
+    out.push_str(lines.tail);
+    out
+}
+
+impl Writer<'_> {
+    fn line_of(&self, block: usize) -> Option<usize> {
+        self.p
+            .blocks
+            .get(block)
+            .map(|b| b.line.saturating_sub(1))
+            .filter(|&l| l < self.content.len())
+    }
+
+    fn modal(&self, block: usize) -> Modal {
+        self.p.modal.get(block).copied().unwrap_or_default()
+    }
+
+    fn walk(&mut self, segments: &[Segment]) {
+        let mut pos = segments
+            .first()
+            .map_or(self.p.options.start.p(), |s| s.start.p());
+        let mut restore = false;
+        let mut last_line: Option<usize> = None;
+        for (k, seg) in segments.iter().enumerate() {
+            match seg.block {
+                Some(b) => {
+                    if let Some(l) = self.line_of(b) {
+                        last_line = Some(l);
+                    }
+                    if matches!(seg.motion, Motion::Dwell { .. }) {
+                        continue;
+                    }
+                    let (p, changed_mode) = self.block(b, seg, pos, std::mem::take(&mut restore));
+                    pos = p;
+                    restore = changed_mode;
+                }
+                None => {
+                    if let Motion::Dwell { seconds } = seg.motion {
+                        let at = last_line.unwrap_or(0);
+                        let l = self.d.dwell_line(seconds);
+                        if let Some(v) = self.after.get_mut(at) {
+                            v.push(l);
+                        }
+                        continue;
+                    }
+                    let next = segments[k + 1..].iter().find_map(|s| s.block);
+                    let (text, new_pos) = self.new_line(seg, pos, next);
+                    pos = new_pos;
+                    match next.and_then(|b| self.line_of(b)) {
+                        Some(l) => self.before[l].push(text),
+                        None => {
+                            let at = last_line.unwrap_or(0);
+                            self.after[at].push(text);
+                        }
+                    }
+                    restore = true;
+                }
+            }
+        }
+    }
+
+    /// A new G1 line to `seg.end` from `pos`, in the modes in force before `next`.
+    fn new_line(&self, seg: &Segment, pos: [f64; 3], next: Option<usize>) -> (String, [f64; 3]) {
+        let m = match next {
+            Some(b) if b > 0 => self.modal(b - 1),
+            Some(_) => Modal::default(),
+            None => self.p.modal.last().copied().unwrap_or_default(),
+        };
+        let mut parts = vec![self.d.g(1)];
+        let mut out = pos;
+        for (k, letter) in ['X', 'Y', 'Z'].into_iter().enumerate() {
+            if (seg.end.p()[k] - pos[k]).abs() <= SAME {
+                continue;
+            }
+            let (t, v) = self.coord(&m, seg.end.p()[k], pos[k], k);
+            if (v - pos[k]).abs() > SAME {
+                parts.push(format!("{}{t}", self.d.letter(letter)));
+                out[k] = v;
+            }
+        }
+        if m.feed.is_none_or(|f| (f - seg.feed).abs() > 1e-9) && seg.feed > 0.0 {
+            let u = if m.inch { 25.4 } else { 1.0 };
+            parts.push(format!(
+                "{}{}",
+                self.d.letter('F'),
+                NumStyle {
+                    decimals: 3,
+                    pad: false,
+                    lead_zero: true,
+                    int_point: false
+                }
+                .format(seg.feed / u)
+            ));
+        }
+        (parts.join(self.d.space), out)
+    }
+
+    /// The text of coordinate `target` (mm) on axis `k` from `pos` in mode
+    /// `m`, and the position it is read back as.
+    fn coord(&self, m: &Modal, target: f64, pos: f64, k: usize) -> (String, f64) {
+        let u = if m.inch { 25.4 } else { 1.0 };
+        let st = self.d.style(m);
+        let v = if m.incremental {
+            (target - pos) / u
+        } else {
+            (target - m.offset[k]) / u
+        };
+        let t = st.format(v);
+        let back: f64 = t.parse().unwrap_or(v);
+        let mm = if m.incremental {
+            pos + back * u
+        } else {
+            back * u + m.offset[k]
+        };
+        (t, mm)
+    }
+
+    /// Patches source block `b` to carry `seg` from `pos`; returns the
+    /// position read back and whether the modal motion now differs from
+    /// the original's (the next block must then state its own).
+    fn block(&mut self, b: usize, seg: &Segment, pos: [f64; 3], restore: bool) -> ([f64; 3], bool) {
+        let Some(oi) = self.seg_of.get(b).copied().flatten() else {
+            return (seg.end.p(), false);
+        };
+        let o = &self.p.segments[oi];
+        if o.fixed {
+            return (seg.end.p(), false);
+        }
+        let (Some(block), Some(l)) = (self.p.blocks.get(b), self.line_of(b)) else {
+            return (seg.end.p(), false);
+        };
+        let same_start = pos == o.start.p();
+        if same_start && seg.end == o.end && seg.motion == o.motion && !restore {
+            return (o.end.p(), false);
+        }
+        let m = self.modal(b);
+        let st = *self.d.style(&m);
+        let line: Vec<char> = match &self.content[l] {
+            Some(c) => c.chars().collect(),
+            None => self.p_line(l),
+        };
+        let mut splices = Vec::new();
+        let mut end = pos;
+        let e = seg.end.p();
+        let s0 = seg.start.p();
+        let mut last_col = None;
+        for (k, letter) in ['X', 'Y', 'Z'].into_iter().enumerate() {
+            // An axis the segment does not move is written as the start's
+            // written value (full circles, helix plane axes).
+            let target = if (e[k] - s0[k]).abs() <= SAME {
+                pos[k]
+            } else {
+                e[k]
+            };
+            match block.word(letter) {
+                Some(wd) => {
+                    let keep = e[k] == o.end.p()[k] && (!m.incremental || same_start);
+                    if keep {
+                        end[k] = o.end.p()[k];
+                    } else {
+                        let (t, v) = self.coord(&m, target, pos[k], k);
+                        end[k] = v;
+                        if t != wd.text {
+                            if let Some((at, len)) = number_span(&line, wd.column, &wd.text) {
+                                splices.push(Splice { at, len, text: t });
+                            }
+                        }
+                    }
+                    last_col = last_col.max(Some(wd.column));
+                }
+                None => {
+                    if (target - pos[k]).abs() > SAME {
+                        let (t, v) = self.coord(&m, target, pos[k], k);
+                        if (v - pos[k]).abs() > SAME {
+                            end[k] = v;
+                            splices.push(self.insert_word(block, &line, letter, t));
+                        }
+                    }
+                }
+            }
+        }
+        if let (Motion::Arc(a), Motion::Arc(oa)) = (seg.motion, o.motion) {
+            self.arc_words(
+                block,
+                &line,
+                &m,
+                &st,
+                (&a, &oa),
+                pos,
+                same_start,
+                &mut splices,
+            );
+        }
+        let code_word = block
+            .words
+            .iter()
+            .find(|w| w.letter == 'G' && w.value.fract() == 0.0 && (0.0..=3.0).contains(&w.value));
+        let new_code = motion_code(&seg.motion);
+        if let (Some(cw), Some(code)) = (code_word, new_code) {
+            if motion_code(&o.motion) != new_code {
+                if let Some((at, len)) = number_span(&line, cw.column, &cw.text) {
+                    let t = self.d.g(code);
+                    splices.push(Splice {
+                        at,
+                        len,
+                        text: t[1..].to_string(),
+                    });
+                }
+            }
+        }
+        if matches!(seg.motion, Motion::Linear) && matches!(o.motion, Motion::Arc(_)) {
+            for wd in block
+                .words
+                .iter()
+                .filter(|w| matches!(w.letter, 'I' | 'J' | 'K' | 'R'))
+            {
+                if let Some((at, len)) = number_span(&line, wd.column, &wd.text) {
+                    let from = wd.column - 1;
+                    splices.push(Splice {
+                        at: from,
+                        len: at + len - from,
+                        text: String::new(),
+                    });
+                }
+            }
+        }
+        let restore = restore || (code_word.is_none() && motion_code(&o.motion) != new_code);
+        if restore && code_word.is_none() {
+            if let Some(code) = new_code {
+                let at = block
+                    .words
+                    .iter()
+                    .find(|w| w.letter != 'N')
+                    .map_or(line.len(), |w| w.column - 1);
+                splices.push(Splice {
+                    at,
+                    len: 0,
+                    text: format!(
+                        "{}{}",
+                        self.d.g(code),
+                        line_space(block, &line, self.d.space)
+                    ),
+                });
+            }
+        }
+        if !splices.is_empty() {
+            self.content[l] = Some(apply(&line, splices));
+        }
+        (end, motion_code(&o.motion) != new_code)
+    }
+
+    fn p_line(&self, l: usize) -> Vec<char> {
+        self.raw
+            .get(l)
+            .map(|s| s.chars().collect())
+            .unwrap_or_default()
+    }
+
+    /// A new word after the block's last word (before its comments).
+    fn insert_word(&self, block: &Block, line: &[char], letter: char, t: String) -> Splice {
+        let at = block
+            .words
+            .iter()
+            .filter_map(|w| number_span(line, w.column, &w.text).map(|(a, n)| a + n))
+            .max()
+            .unwrap_or(0);
+        Splice {
+            at,
+            len: 0,
+            text: format!(
+                "{}{}{t}",
+                line_space(block, line, self.d.space),
+                self.d.letter(letter)
+            ),
+        }
+    }
+
+    /// The centre words of an arc: R, or I/J/K from the written start.
+    #[allow(clippy::too_many_arguments)]
+    fn arc_words(
+        &self,
+        block: &Block,
+        line: &[char],
+        m: &Modal,
+        st: &NumStyle,
+        (a, oa): (&super::program::Arc, &super::program::Arc),
+        pos: [f64; 3],
+        same_start: bool,
+        splices: &mut Vec<Splice>,
+    ) {
+        let u = if m.inch { 25.4 } else { 1.0 };
+        if let Some(wd) = block.word('R') {
+            if a.radius == oa.radius {
+                return;
+            }
+            let r = if a.sweep.abs() > std::f64::consts::PI {
+                -a.radius
+            } else {
+                a.radius
+            };
+            let t = st.format(r / u);
+            if t != wd.text {
+                if let Some((at, len)) = number_span(line, wd.column, &wd.text) {
+                    splices.push(Splice { at, len, text: t });
+                }
+            }
+            return;
+        }
+        let (pu, pv, _) = a.plane.axes();
+        for k in [pu, pv] {
+            let letter = ['I', 'J', 'K'][k];
+            let keep = a.center[k] == oa.center[k] && (m.arc_center_absolute || same_start);
+            if keep {
+                continue;
+            }
+            let v = if m.arc_center_absolute {
+                (a.center[k] - m.offset[k]) / u
+            } else {
+                (a.center[k] - pos[k]) / u
+            };
+            let t = st.format(v);
+            match block.word(letter) {
+                Some(wd) if t != wd.text => {
+                    if let Some((at, len)) = number_span(line, wd.column, &wd.text) {
+                        splices.push(Splice { at, len, text: t });
+                    }
+                }
+                Some(_) => {}
+                None if t.trim_start_matches(['-', '0', '.']).is_empty() => {}
+                None => splices.push(self.insert_word(block, line, letter, t)),
+            }
+        }
+    }
+}
+
+/// The separator between words on this line: a space when its first two
+/// words are apart, none when they touch, else the program's.
+fn line_space(block: &Block, line: &[char], default: &'static str) -> &'static str {
+    match block.words.get(1) {
+        Some(w)
+            if line
+                .get(w.column.saturating_sub(2))
+                .is_some_and(|c| c.is_whitespace()) =>
+        {
+            " "
+        }
+        Some(_) => "",
+        None => default,
+    }
+}
+
+fn motion_code(m: &Motion) -> Option<u32> {
+    match m {
+        Motion::Rapid => Some(0),
+        Motion::Linear => Some(1),
+        Motion::Arc(a) if a.sweep < 0.0 => Some(2),
+        Motion::Arc(_) => Some(3),
+        Motion::Dwell { .. } => None,
+    }
+}
+
+/// `line` with `splices` applied (right to left, so positions stay valid).
+fn apply(line: &[char], mut splices: Vec<Splice>) -> String {
+    let mut order: Vec<usize> = (0..splices.len()).collect();
+    order.sort_by_key(|&i| std::cmp::Reverse((splices[i].at, splices[i].len, i)));
+    let mut out: Vec<char> = line.to_vec();
+    for s in order.into_iter().map(|i| std::mem::take(&mut splices[i])) {
+        let at = s.at.min(out.len());
+        let end = (at + s.len).min(out.len());
+        out.splice(at..end, s.text.chars());
+    }
+    out.into_iter().collect()
+}
