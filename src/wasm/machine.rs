@@ -65,15 +65,16 @@ export interface MachinePreset {
 "#;
 
 /// The machine preset called `name`, under the loop reading `reading`
-/// when given (one of its `loopReadings`); throws an `Error` listing the
+/// when given (one of its `loopReadings`; absent or null: the preset as
+/// is, its default reading); throws an `Error` listing the
 /// known names when there is none.
 #[wasm_bindgen(js_name = machinePreset, unchecked_return_type = "MachinePreset")]
 pub fn machine_preset(
     #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "string | undefined")] reading: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "string")] reading: JsValue,
 ) -> Result<JsValue, JsError> {
     let name: &str = &string_arg(&name, "name")?;
-    if reading.is_undefined() {
+    if reading.is_undefined() || reading.is_null() {
         return to_js(&machine::preset(name)?);
     }
     let reading: &str = &string_arg(&reading, "reading")?;
