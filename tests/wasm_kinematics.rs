@@ -152,7 +152,8 @@ fn compensate_nc5_crosses_and_names_lines() {
 
 #[wasm_bindgen_test]
 fn example_errors_cross_with_the_preset_and_feed_the_cone_frustum_test() {
-    let m = mtmotion::wasm::machine::machine_preset(js("\"trunnion-ac\"")).unwrap();
+    let m =
+        mtmotion::wasm::machine::machine_preset(js("\"trunnion-ac\""), JsValue::UNDEFINED).unwrap();
     let ex = get(&m, &["exampleErrors"]);
     assert!((get(&ex, &["location", "EX0C"]).as_f64().unwrap() - 0.015).abs() < 1e-15);
     let c = get(&ex, &["backlash", "c"]).as_f64().unwrap();

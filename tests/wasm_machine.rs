@@ -14,7 +14,7 @@ fn get(v: &JsValue, path: &[&str]) -> JsValue {
 
 #[wasm_bindgen_test]
 fn machine_preset_returns_plain_objects() {
-    let m = mtmotion::wasm::machine::machine_preset("nmv5000".into()).unwrap();
+    let m = mtmotion::wasm::machine::machine_preset("nmv5000".into(), JsValue::UNDEFINED).unwrap();
     assert!(!m.is_instance_of::<js_sys::Map>());
     assert_eq!(get(&m, &["axes", "c", "torqueMax"]).as_f64(), Some(725.0));
     assert_eq!(
@@ -26,7 +26,7 @@ fn machine_preset_returns_plain_objects() {
 
 #[wasm_bindgen_test]
 fn unknown_preset_throws_error_listing_names() {
-    let err: JsValue = mtmotion::wasm::machine::machine_preset("dmu50".into())
+    let err: JsValue = mtmotion::wasm::machine::machine_preset("dmu50".into(), JsValue::UNDEFINED)
         .unwrap_err()
         .into();
     let err: js_sys::Error = err.dyn_into().expect("a JS Error");
@@ -36,10 +36,37 @@ fn unknown_preset_throws_error_listing_names() {
 
 #[wasm_bindgen_test]
 fn a_non_string_name_throws_instead_of_trapping() {
-    let err: JsValue = mtmotion::wasm::machine::machine_preset(JsValue::from_f64(3.0))
-        .unwrap_err()
-        .into();
+    let err: JsValue =
+        mtmotion::wasm::machine::machine_preset(JsValue::from_f64(3.0), JsValue::UNDEFINED)
+            .unwrap_err()
+            .into();
     let err: js_sys::Error = err.dyn_into().expect("a JS Error");
     let msg: String = err.message().into();
     assert_eq!(msg, "name: expected a string, got number");
+}
+
+#[wasm_bindgen_test]
+fn a_loop_reading_is_applied_and_an_unknown_one_is_named() {
+    let m = mtmotion::wasm::machine::machine_preset("nmv5000".into(), "kppText".into()).unwrap();
+    assert_eq!(get(&m, &["axes", "x", "kpp"]).as_f64(), Some(30.0));
+    let d = mtmotion::wasm::machine::machine_preset("nmv5000".into(), JsValue::UNDEFINED).unwrap();
+    assert_eq!(get(&d, &["axes", "x", "kpp"]).as_f64(), Some(60.0));
+    assert_eq!(
+        get(&d, &["loopReadings", "0"]).as_string().as_deref(),
+        Some("table")
+    );
+    let err: JsValue = mtmotion::wasm::machine::machine_preset("nmv5000".into(), "kpp".into())
+        .unwrap_err()
+        .into();
+    let msg: String = err.dyn_into::<js_sys::Error>().unwrap().message().into();
+    assert!(
+        msg.contains("'kpp'") && msg.contains("inertiaAtLoad"),
+        "{msg}"
+    );
+    let err: JsValue =
+        mtmotion::wasm::machine::machine_preset("nmv5000".into(), JsValue::from_f64(1.0))
+            .unwrap_err()
+            .into();
+    let msg: String = err.dyn_into::<js_sys::Error>().unwrap().message().into();
+    assert_eq!(msg, "reading: expected a string, got number");
 }

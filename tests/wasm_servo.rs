@@ -20,7 +20,10 @@ fn message(e: JsError) -> String {
 
 fn c_axis() -> JsValue {
     get(
-        &get(&machine_preset("nmv5000".into()).unwrap(), "axes"),
+        &get(
+            &machine_preset("nmv5000".into(), JsValue::UNDEFINED).unwrap(),
+            "axes",
+        ),
         "c",
     )
 }

@@ -52,6 +52,16 @@ pub enum MachineError {
         /// The known names, comma-separated.
         known: String,
     },
+    /// The preset has no loop reading of this name.
+    #[error("machine '{machine}' has no loop reading '{reading}'; known readings: {known}")]
+    UnknownReading {
+        /// The preset's name.
+        machine: String,
+        /// The reading asked for.
+        reading: String,
+        /// The known readings, comma-separated ("none" when the preset has none).
+        known: String,
+    },
     /// The machine has no kinematic chain.
     #[error("machine '{name}' has no kinematic chain (`kinematics`); use pocketnc-v2-10, table-on-table-bc or trunnion-ac, or describe its links")]
     NoChain {
@@ -89,6 +99,11 @@ pub struct Machine {
     /// the machine has no torque-limited rotary axis of the feed-vector test.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub saturation_readings: Vec<String>,
+    /// Names of the readings of the paper's loop parameters that
+    /// [`preset_with_reading`] accepts (first = default, the preset as
+    /// returned by [`preset`]); empty when the preset has none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub loop_readings: Vec<String>,
 }
 
 type Builder = fn() -> Machine;
@@ -125,6 +140,31 @@ pub fn preset(name: &str) -> Result<Machine, MachineError> {
             name: name.to_string(),
             known: names().join(", "),
         })
+}
+
+/// The preset called `name` under its loop reading `reading` (one of its
+/// `loop_readings`; see the preset's module, e.g. nmv5000's Kpp and X
+/// inertia readings).
+///
+/// # Examples
+/// ```
+/// use mtmotion::machine::{preset, preset_with_reading};
+/// let m = preset_with_reading("nmv5000", "kppText").unwrap();
+/// assert_eq!(m.axes["x"].kpp, 30.0);
+/// assert_eq!(preset_with_reading("nmv5000", "table").unwrap(), preset("nmv5000").unwrap());
+/// let e = preset_with_reading("nmv5000", "nope").unwrap_err().to_string();
+/// assert!(e.contains("'nope'") && e.contains("kppText"), "{e}");
+/// ```
+pub fn preset_with_reading(name: &str, reading: &str) -> Result<Machine, MachineError> {
+    let m = preset(name)?;
+    if m.name == "nmv5000" {
+        return nmv5000::with_loop_reading(reading.trim());
+    }
+    Err(MachineError::UnknownReading {
+        machine: m.name,
+        reading: reading.to_string(),
+        known: "none".into(),
+    })
 }
 
 /// A machine given by preset name or described in full.

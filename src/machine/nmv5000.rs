@@ -2,7 +2,8 @@
 //!
 //! Values are copied from Table 1 as printed, in SI units:
 //! - `kpp` = 60 1/s (the table; the text of §3 says the NC default was 30 —
-//!   the table is the identified model, so it is used here).
+//!   the table is the identified model, so it is used here; the text's 30
+//!   is the `kppText` loop reading below).
 //! - `kvi`: the table prints "Nms/rad" for Kvi as for Kvp, which cannot be
 //!   right for an integral gain; it is read as N·m/rad in
 //!   `τ = Kvp e + Kvi ∫e dt`, values as printed (see `servo::response`).
@@ -20,11 +21,38 @@
 //! - `torqueMax` = 725 N·m for C (§5.2, Fig. 17); the paper gives no limit
 //!   for X and Y.
 //! - `j1` = 1.70 kg·m², the lightest of the paper's three work pieces.
+//!
+//! # Loop readings ([`LOOP_READINGS`], first = default)
+//! Table 1 as printed gives X an underdamped velocity loop (Kvp/J ≈
+//! 39 rad/s below Kpp = 60 1/s) and `|G_X(jω)| > 1` (Eq. 12: the radius
+//! grows), against the paper's ΔR > 0 (§4.2). The paper leaves two things
+//! open that shape the X loop, each a named reading:
+//! - `table` (default): Table 1 as printed, J at the motor.
+//! - `kppText`: Kpp = 30 1/s on every axis, as §3 states ("the default
+//!   value of the position proportional gain K_pp was 30 in all axes").
+//! - `inertiaAtLoad`: J is the load-side equivalent of each column, turned
+//!   into motor units by the column's transformation coefficient
+//!   `r = l/2π` (Table 1): `J_motor = J·r²`, i.e. X's 4.5 read as kg
+//!   behind the 16 mm lead (2.918·10⁻⁵ kg·m² at the motor); Y and C have
+//!   `r = 1` and are unchanged. C, Kvp, Kvi stay at the motor as printed.
+//!   This goes against the printed unit kg·m² of X's J.
+//!
+//! `docs/readings.md` lists what each gives against the paper.
 
 use std::collections::BTreeMap;
 
-use super::Machine;
+use super::{Machine, MachineError};
 use crate::servo::{AxisKind, AxisParams};
+
+/// The loop readings (module header), as `machinePreset('nmv5000')
+/// .loopReadings` lists them; the first is the default.
+pub const LOOP_READINGS: [&str; 3] = ["table", "kppText", "inertiaAtLoad"];
+
+/// The position gain the text of §3 states for every axis, 1/s.
+const KPP_TEXT: f64 = 30.0;
+
+/// The position gain Table 1 prints for every axis, 1/s.
+const KPP_TABLE: f64 = 60.0;
 
 fn axis(kind: AxisKind, j: f64, c: f64, kvp: f64, kvi: f64, ts: f64, tp: f64) -> AxisParams {
     AxisParams {
@@ -32,7 +60,7 @@ fn axis(kind: AxisKind, j: f64, c: f64, kvp: f64, kvi: f64, ts: f64, tp: f64) ->
         j,
         j1: 0.0,
         c,
-        kpp: 60.0,
+        kpp: KPP_TABLE,
         kvp,
         kvi,
         kffp: 100.0,
@@ -73,5 +101,32 @@ pub fn machine() -> Machine {
             .iter()
             .map(|s| s.to_string())
             .collect(),
+        loop_readings: LOOP_READINGS.iter().map(|s| s.to_string()).collect(),
     }
+}
+
+/// The preset under the loop reading `reading` (one of
+/// [`LOOP_READINGS`]; module header).
+pub fn with_loop_reading(reading: &str) -> Result<Machine, MachineError> {
+    let mut m = machine();
+    match reading {
+        "table" => {}
+        "kppText" => m.axes.values_mut().for_each(|a| a.kpp = KPP_TEXT),
+        "inertiaAtLoad" => {
+            for a in m.axes.values_mut() {
+                if let Some(lead) = a.lead {
+                    // r = l/2π m/rad: kg on the load side → kg·m² at the motor
+                    a.j *= (lead / std::f64::consts::TAU).powi(2);
+                }
+            }
+        }
+        _ => {
+            return Err(MachineError::UnknownReading {
+                machine: m.name,
+                reading: reading.to_string(),
+                known: LOOP_READINGS.join(", "),
+            })
+        }
+    }
+    Ok(m)
 }

@@ -94,5 +94,6 @@ pub fn machine() -> Machine {
         kinematics: Some(chain()),
         example_errors: Some(super::example_errors::pocketnc_v2_10()),
         saturation_readings: Vec::new(),
+        loop_readings: Vec::new(),
     }
 }

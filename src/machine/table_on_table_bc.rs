@@ -51,5 +51,6 @@ pub fn machine() -> Machine {
         kinematics: Some(chain()),
         example_errors: Some(super::example_errors::table_on_table_bc()),
         saturation_readings: Vec::new(),
+        loop_readings: Vec::new(),
     }
 }

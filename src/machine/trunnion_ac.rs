@@ -55,5 +55,6 @@ pub fn machine() -> Machine {
         kinematics: Some(chain()),
         example_errors: Some(super::example_errors::trunnion_ac()),
         saturation_readings: Vec::new(),
+        loop_readings: Vec::new(),
     }
 }

@@ -58,18 +58,27 @@ export interface MachinePreset {
   exampleErrors?: GeometricErrors;
   /** Readings `torqueSaturation` accepts (first = default). */
   saturationReadings?: string[];
+  /** Readings of the paper's loop parameters `machinePreset(name, reading)` accepts (first = default); nmv5000: 'table' (Table 1: Kpp 60 1/s, J at the motor), 'kppText' (§3: Kpp 30 1/s on every axis), 'inertiaAtLoad' (J·(lead/2π)² at the motor: X's J read as kg behind its 16 mm lead). */
+  loopReadings?: string[];
   [extra: string]: unknown;
 }
 "#;
 
-/// The machine preset called `name`; throws an `Error` listing the known
-/// names when there is none.
+/// The machine preset called `name`, under the loop reading `reading`
+/// when given (one of its `loopReadings`; absent or null: the preset as
+/// is, its default reading); throws an `Error` listing the
+/// known names when there is none.
 #[wasm_bindgen(js_name = machinePreset, unchecked_return_type = "MachinePreset")]
 pub fn machine_preset(
     #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "string")] reading: JsValue,
 ) -> Result<JsValue, JsError> {
     let name: &str = &string_arg(&name, "name")?;
-    to_js(&machine::preset(name)?)
+    if reading.is_undefined() || reading.is_null() {
+        return to_js(&machine::preset(name)?);
+    }
+    let reading: &str = &string_arg(&reading, "reading")?;
+    to_js(&machine::preset_with_reading(name, reading)?)
 }
 
 /// The names of all machine presets.

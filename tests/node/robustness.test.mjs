@@ -15,7 +15,7 @@ const GARBAGE = [undefined, null, {}, [], 'x', NaN, -1, 1e300];
 
 // [function name, list of argument lists]
 const CASES = [
-  ['machinePreset', [[''], ['\u0000'], [null]]],
+  ['machinePreset', [[''], ['\u0000'], [null], ['nmv5000', 'nope'], ['nmv5000', null], ['nmv5000', 3], ['trunnion-ac', 'table']]],
   ['frequencyResponse', [[{}, f64(1)], [{ ...axis(), kpp: NaN }, f64(1)], [axis(), f64(NaN, -1, Infinity)], [{ ...axis(), j: 0 }, f64(1)]]],
   ['simulateAxis', [[axis(), {}], [axis(), { dt: 0, position: f64(0, 1) }], [axis(), { dt: NaN, position: f64(0) }], [axis(), { dt: 1e-3, position: f64(NaN, 1) }], [axis(), { dt: 1e-3, position: f64() }], [{ ...axis(), torqueMax: -5 }, { dt: 1e-3, position: f64(0, 1) }]]],
   ['feedVectorTest', [['nmv5000', {}], ['nmv5000', { rc: 5, rw: 8, omega: NaN, accelTime: 0.064, j1: 1.7 }], ['nmv5000', { rc: 5, rw: 8, omega: 3, accelTime: 0.064, j1: 1.7, duration: 1e9, dt: 1e-9 }], ['nope', { rc: 5 }]]],

@@ -297,16 +297,25 @@ fn suzuki(r: &mut Rows) {
     );
     // Eq. 12: |G_L(jω)| of X and Y as Table 1 is printed (X's velocity
     // loop Kvp/J ≈ 39 rad/s < Kpp = 60: underdamped, |G_X| > 1 at 2π)
+    suzuki_gains(r, &m, "");
+    suzuki_best_kffp(r, &m, "", true);
+    suzuki_loop_readings(r);
+}
+
+/// Eq. 12: `|G_X|`, `|G_Y|` at the paper's ω under machine `m`; `tag` is
+/// appended to the ids and quantities (empty for the default reading).
+fn suzuki_gains(r: &mut Rows, m: &machine::Machine, tag: &str) {
     for name in ["x", "y"] {
         let ws: Vec<f64> = [0.5, 1.0, 2.0, 3.2].iter().map(|k| k * PI).collect();
         let fr = mtmotion::servo::response::frequency_response(&m.axes[name], &ws).unwrap();
         for (k, g) in [0.5, 1.0, 2.0, 3.2].iter().zip(&fr.magnitude) {
             r.push(
-                format!("suzuki.gain.{name}.{k}pi"),
+                format!("suzuki.gain.{name}.{k}pi{}", dot(tag)),
                 SUZUKI,
                 format!(
-                    "|G_{}(jω)| at ω = {k}π (Eq. 12; < 1 means the radius shrinks)",
-                    name.to_uppercase()
+                    "|G_{}(jω)| at ω = {k}π (Eq. 12; < 1 means the radius shrinks){}",
+                    name.to_uppercase(),
+                    reading_note(tag)
                 ),
                 "< 1 (ΔR > 0, Figs. 12, 14)",
                 *g,
@@ -315,34 +324,110 @@ fn suzuki(r: &mut Rows) {
             );
         }
     }
+}
+
+fn dot(tag: &str) -> String {
+    if tag.is_empty() {
+        String::new()
+    } else {
+        format!(".{tag}")
+    }
+}
+
+fn reading_note(tag: &str) -> String {
+    if tag.is_empty() {
+        String::new()
+    } else {
+        format!(", loop reading {tag}")
+    }
+}
+
+/// Fig. 22: Best K_FFP of X and Y (and, with `after`, the α − β left).
+fn suzuki_best_kffp(r: &mut Rows, m: &machine::Machine, tag: &str, after: bool) {
     for k in [0.5, 1.0, 1.5, 2.0] {
-        let b = best_kffp(&m, &Condition::paper(k * PI), &Options::default()).unwrap();
+        let b = best_kffp(m, &Condition::paper(k * PI), &Options::default()).unwrap();
+        for (axis, v) in [("x", b.kffp.x), ("y", b.kffp.y)] {
+            r.push(
+                format!("suzuki.bestKffp.{k}pi.{axis}{}", dot(tag)),
+                SUZUKI,
+                format!(
+                    "Best K_FFP of {}, ω = {k}π rad/s (Fig. 22){}",
+                    axis.to_uppercase(),
+                    reading_note(tag)
+                ),
+                "< 100 %",
+                v,
+                "%",
+                1,
+            );
+        }
+        if after {
+            r.push(
+                format!("suzuki.bestKffp.{k}pi.after"),
+                SUZUKI,
+                format!("mean α − β after Best K_FFP, ω = {k}π rad/s (Fig. 23)"),
+                "reduced",
+                b.after.mean_angle_diff * 1e3,
+                "mrad",
+                4,
+            );
+        }
+    }
+}
+
+/// The nmv5000 loop readings (Kpp of the text, X's J at the load): what
+/// they give against the paper, beside the default `table` rows above.
+fn suzuki_loop_readings(r: &mut Rows) {
+    for tag in ["table", "kppText", "inertiaAtLoad"] {
+        let m = machine::preset_with_reading("nmv5000", tag).unwrap();
+        if tag != "table" {
+            suzuki_gains(r, &m, tag);
+            suzuki_best_kffp(r, &m, tag, false);
+        }
+        for k in [1.0, 3.2] {
+            let s = feed_vector_test(&m, &Condition::paper(k * PI))
+                .unwrap()
+                .summary;
+            r.push(
+                format!("suzuki.feedVector.{k}pi.radiusDecrease.{tag}"),
+                SUZUKI,
+                format!(
+                    "simulated radius decrease −mean ΔR (Eq. 11), ω = {k}π, loop reading {tag}"
+                ),
+                "> 0",
+                s.radius_decrease * 1e3,
+                "µm",
+                1,
+            );
+            r.push(
+                format!("suzuki.feedVector.{k}pi.halfAmplitude.{tag}"),
+                SUZUKI,
+                format!(
+                    "half amplitude of the shape error, ω = {k}π (Fig. 14), loop reading {tag}"
+                ),
+                "—",
+                s.half_amplitude * 1e3,
+                "µm",
+                0,
+            );
+        }
+        let q = SaturationQuery {
+            j1: vec![5.9 - m.axes["c"].j],
+            torque_max: 725.0,
+            accel_time: 0.064,
+            feed_at_cutting_point: 200.0,
+            dt: None,
+            reading: SaturationReading::PreControlOff,
+        };
+        let p = torque_saturation(&m, &q).unwrap()[0];
         r.push(
-            format!("suzuki.bestKffp.{k}pi.x"),
+            format!("suzuki.saturation.preControlOff.5.9.accelSat.{tag}"),
             SUZUKI,
-            format!("Best K_FFP of X, ω = {k}π rad/s (Fig. 22)"),
-            "< 100 %",
-            b.kffp.x,
-            "%",
+            format!("dω/dt at saturation, J + J1 = 5.9 kg·m², reading preControlOff, loop reading {tag}"),
+            "146.7",
+            p.accel_sat,
+            "rad/s²",
             1,
-        );
-        r.push(
-            format!("suzuki.bestKffp.{k}pi.y"),
-            SUZUKI,
-            format!("Best K_FFP of Y, ω = {k}π rad/s (Fig. 22)"),
-            "< 100 %",
-            b.kffp.y,
-            "%",
-            1,
-        );
-        r.push(
-            format!("suzuki.bestKffp.{k}pi.after"),
-            SUZUKI,
-            format!("mean α − β after Best K_FFP, ω = {k}π rad/s (Fig. 23)"),
-            "reduced",
-            b.after.mean_angle_diff * 1e3,
-            "mrad",
-            4,
         );
     }
 }
