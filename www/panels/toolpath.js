@@ -126,9 +126,9 @@ export async function mount(root, api) {
   function thinned(a) {
     const stride = Math.max(1, Math.ceil(a.length / MAX_DRAWN));
     if (stride === 1) return a;
-    const out = new Float64Array(Math.ceil(a.length / stride));
-    for (let i = 0, j = 0; i < a.length; i += stride, j++) out[j] = a[i];
-    return out;
+    const kept = new Float64Array(Math.ceil(a.length / stride));
+    for (let i = 0, j = 0; i < a.length; i += stride, j++) kept[j] = a[i];
+    return kept;
   }
   /** Path traces: commanded path and the simulated path with its error magnified by k. */
   function pathTraces(s, k, label) {
