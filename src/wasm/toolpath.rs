@@ -5,7 +5,7 @@
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
-use super::convert::{from_js, string_arg, to_js, Obj};
+use super::convert::{from_js, object, string_arg, to_js, Obj};
 use crate::compensate::reverse::{reverse_compensate, ReverseConfig};
 use crate::nc::program::{parse, parse_all, ParseOptions, Segment, Warning};
 use crate::nc::summary::{summarize, Summary};
@@ -101,7 +101,7 @@ fn parse_options(options: JsValue) -> Result<ParseOptions, JsError> {
     // serde-wasm-bindgen only reads the keys a struct names, so the core's
     // deny_unknown_fields never sees a misspelt key: check here.
     let keys: std::collections::BTreeMap<String, serde::de::IgnoredAny> =
-        from_js(options.clone(), "options")?;
+        object(options.clone(), "options")?;
     if let Some(k) = keys
         .keys()
         .find(|k| !ParseOptions::KEYS.contains(&k.as_str()))
@@ -190,7 +190,7 @@ pub fn simulate_tool_path(
     let cfg: SimConfig = if config.is_undefined() || config.is_null() {
         SimConfig::default()
     } else {
-        from_js(config, "config")?
+        object(config, "config")?
     };
     let p = parse(text)?;
     let s = crate::toolpath::simulate_program(&p, &cfg)?;
@@ -212,7 +212,7 @@ struct Eq3In {
 pub fn radius_reduction(
     #[wasm_bindgen(unchecked_param_type = "RadiusReductionInput")] input: JsValue,
 ) -> Result<f64, JsError> {
-    let i: Eq3In = from_js(input, "radiusReduction")?;
+    let i: Eq3In = object(input, "radiusReduction")?;
     Ok(eq3(i.feed, i.radius, i.t_a, i.t)?)
 }
 
@@ -237,7 +237,7 @@ pub fn reverse_compensate_js(
     let cfg: ReverseConfig = if config.is_undefined() || config.is_null() {
         ReverseConfig::default()
     } else {
-        from_js(config, "config")?
+        object(config, "config")?
     };
     let c = reverse_compensate(text, &cfg)?;
     Ok(Obj::new()
