@@ -100,3 +100,32 @@ fn s_shape_feed_must_be_writable() {
         );
     }
 }
+
+#[test]
+fn an_nc_number_of_309_digits_is_refused_not_read_as_infinity() {
+    let text = format!("G1 X1 F{}", "9".repeat(309));
+    let e = mtmotion::nc::program::parse(&text).unwrap_err();
+    assert_eq!((e.line, e.column), (1, 8));
+    assert_eq!(
+        e.message,
+        "'99999999999999999999999…' after address 'F' has 309 characters; an NC number has at most 24"
+    );
+    // Twelve digits and a point are still an NC number.
+    assert!(mtmotion::nc::program::parse("G1 X123456.789012 F100").is_ok());
+}
+
+#[test]
+fn trace_unit_factors_outside_their_range_are_refused() {
+    use mtmotion::feed_vector::trace_analysis::{analyze_trace, ColumnMap};
+    use mtmotion::feed_vector::Condition;
+    let text = "time,x,y,c\n0,8,0,0\n0.001,8,0.001,0.0573\n0.002,8,0.002,0.1146\n";
+    let map = ColumnMap {
+        time_scale: 1e300,
+        ..ColumnMap::default()
+    };
+    let e = analyze_trace(text, &Condition::paper(1.0), &map).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "condition `mapping.timeScale` = 1e300: must be a unit factor of magnitude 1e-9 to 1e6 (e.g. 0.001 for ms, 25.4 for inch)"
+    );
+}

@@ -9,7 +9,8 @@
 //! wasm stack on every call until the instance dies). The copy rejects
 //! getters/setters, class instances and nesting deeper than
 //! [`MAX_DEPTH`], and counts values against [`budget::MAX_ARGUMENT_VALUES`];
-//! a Proxy is read once, through its traps, into a plain snapshot. Only the
+//! a Proxy is read once, through its traps, into a plain snapshot; a key
+//! whose value is `undefined` is left out, as `JSON.stringify` does. Only the
 //! snapshot reaches serde-wasm-bindgen, so the conversion itself can no
 //! longer throw, and its recursion is bounded.
 
@@ -69,7 +70,7 @@ export function plainCopy(value, what, maxDepth, maxItems) {
     for (const k of Reflect.ownKeys(v)) {
       if (typeof k !== 'string') continue;
       const d = Object.getOwnPropertyDescriptor(v, k);
-      if (!d || !d.enumerable) continue;
+      if (!d || !d.enumerable || d.value === undefined) continue;
       if ('get' in d || 'set' in d) throw new Refused(`${clip(path + '.' + k)}: is a getter or setter; pass plain data`);
       Object.defineProperty(out, k, { value: copy(d.value, `${path}.${k}`, depth + 1), enumerable: true, writable: true, configurable: true });
     }
