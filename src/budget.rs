@@ -8,21 +8,26 @@
 //! microseconds, not the work it avoids.
 //!
 //! The limits are chosen so that no call needs more than about 512 MB of
-//! memory or 10 s on one core of a small laptop (measured on the project's
-//! 2-core build machine: the native and wasm builds run a servo step in
-//! about 30 ns, a tool-path sample in about 1 µs, and parse an NC line in
-//! about 10 µs). README's "Bad input" section lists them.
+//! memory or 10 s. Measured with the wasm build in Node on the project's
+//! 2-core build machine, while other builds shared it: a 2 M-sample tool
+//! path 4.3 s and 276 MiB of wasm memory, a 1 M-sample feed-vector test
+//! 4.7 s and 161 MiB, a 10 M-point travel-range sweep 2.1 s and 52 MiB, NC
+//! parsing 20–40 µs per line. README's "Bad input" section lists them.
 //!
 //! Source: none (engineering limits, not a model).
 
-/// Largest program or trace text, bytes (UTF-8). 8 MiB holds about
-/// 250,000 NC lines of 30 characters; parsing it takes about 3 s and
-/// 250 MB.
+/// Largest program or trace text, bytes (UTF-8): 8 MiB is 100,000 lines
+/// of 80 characters.
 pub const MAX_TEXT_BYTES: usize = 8 << 20;
 
-/// Most lines in one program or trace: an NC line costs about 10 µs to
-/// parse and 1 kB of segments and samples downstream.
-pub const MAX_LINES: usize = 250_000;
+/// Most lines in one program or trace: an NC line costs 20–40 µs to parse
+/// in the wasm build (100,000 lines: about 2–4 s and 80 MB).
+pub const MAX_LINES: usize = 100_000;
+
+/// Most NC blocks one program may execute, subprogram and cycle repeats
+/// included: each gives a segment of about 200 B, and the tool path
+/// downstream samples every one.
+pub const MAX_EXECUTED_BLOCKS: usize = 1_000_000;
 
 /// Most numbers in one JS argument (a config or an array), counted over
 /// its whole nesting: 8 M numbers are 64 MB in wasm memory.
@@ -49,8 +54,9 @@ pub const MAX_SWEEP_POINTS: usize = 10_000_000;
 /// one circle; a test has 2).
 pub const MAX_CIRCULAR_RUNS: usize = 64;
 
-/// Most points over all runs of one circular test.
-pub const MAX_CIRCULAR_POINTS: usize = 4_000_000;
+/// Most points over all runs of one circular test (its angle and
+/// deviation arrays are 4 M numbers, half the argument budget).
+pub const MAX_CIRCULAR_POINTS: usize = 2_000_000;
 
 /// A refused call: the estimate of its work is above the budget.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -58,8 +64,8 @@ pub const MAX_CIRCULAR_POINTS: usize = 4_000_000;
 pub struct BudgetError {
     /// What was measured, e.g. "program text".
     pub what: &'static str,
-    /// The estimate.
-    pub amount: usize,
+    /// The estimate (64-bit, so a product of sizes does not wrap on wasm32).
+    pub amount: u64,
     /// The limit.
     pub limit: usize,
     /// The unit of both, e.g. "bytes".
@@ -75,16 +81,16 @@ pub struct BudgetError {
 /// use mtmotion::budget::{check, MAX_LINES};
 /// assert!(check("program", 10, MAX_LINES, "lines", "split it").is_ok());
 /// let e = check("program", 300_000, MAX_LINES, "lines", "split it").unwrap_err();
-/// assert_eq!(e.to_string(), "program: 300000 lines, more than the limit of 250000; split it");
+/// assert_eq!(e.to_string(), "program: 300000 lines, more than the limit of 100000; split it");
 /// ```
 pub fn check(
     what: &'static str,
-    amount: usize,
+    amount: u64,
     limit: usize,
     unit: &'static str,
     advice: &'static str,
 ) -> Result<(), BudgetError> {
-    if amount <= limit {
+    if amount <= limit as u64 {
         Ok(())
     } else {
         Err(BudgetError {
@@ -111,14 +117,14 @@ pub fn check(
 pub fn check_text(what: &'static str, text: &str) -> Result<(), BudgetError> {
     check(
         what,
-        text.len(),
+        text.len() as u64,
         MAX_TEXT_BYTES,
         "bytes",
         "split the file or remove what the calculation does not need",
     )?;
     check(
         what,
-        lines(text),
+        lines(text) as u64,
         MAX_LINES,
         "lines",
         "split the file into parts and run each",

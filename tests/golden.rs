@@ -40,7 +40,13 @@ fn fnv(v: &[f64]) -> u32 {
 fn arr(v: &[f64]) -> Value {
     let m = v.len().min(33);
     let sample: Vec<f64> = (0..m)
-        .map(|k| v[if m > 1 { k * (v.len() - 1) / (m - 1) } else { 0 }])
+        .map(|k| {
+            v[if m > 1 {
+                k * (v.len() - 1) / (m - 1)
+            } else {
+                0
+            }]
+        })
         .collect();
     let max_abs = v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
     json!({ "len": v.len(), "fnv": fnv(v), "maxAbs": max_abs, "sample": sample })

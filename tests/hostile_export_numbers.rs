@@ -129,3 +129,33 @@ fn trace_unit_factors_outside_their_range_are_refused() {
         "condition `mapping.timeScale` = 1e300: must be a unit factor of magnitude 1e-9 to 1e6 (e.g. 0.001 for ms, 25.4 for inch)"
     );
 }
+
+#[test]
+fn trace_times_must_be_finite() {
+    use mtmotion::feed_vector::trace_analysis::{analyze_trace, ColumnMap};
+    use mtmotion::feed_vector::Condition;
+    let text = "time,x,y,c\n0,8,0,0\n0.001,8,0.001,0.0573\n0.002,8,0.002,0.1146\n";
+    for (map, field) in [
+        (
+            ColumnMap {
+                motion_start: Some(f64::NAN),
+                ..ColumnMap::default()
+            },
+            "motionStart",
+        ),
+        (
+            ColumnMap {
+                steady_from: Some(f64::INFINITY),
+                ..ColumnMap::default()
+            },
+            "steadyFrom",
+        ),
+    ] {
+        let e = analyze_trace(text, &Condition::paper(1.0), &map).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with(&format!("condition `mapping.{field}` = ")),
+            "{e}"
+        );
+    }
+}

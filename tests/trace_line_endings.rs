@@ -91,6 +91,6 @@ fn a_trace_over_the_budget_is_refused_before_it_is_read() {
     let e = parse_ballbar_trace(&text, ParseOptions::default()).unwrap_err();
     assert_eq!(
         e.to_string(),
-        "trace: 250002 lines, more than the limit of 250000; split the file into parts and run each"
+        "trace: 100002 lines, more than the limit of 100000; split the file into parts and run each"
     );
 }

@@ -244,10 +244,9 @@ pub fn angle_sweep(cfg: &AngleSweepConfig) -> Result<Vec<AngleSweepPoint>, Align
     cfg.locus.validate("")?;
     crate::budget::check(
         "angle sweep",
-        cfg.ranges
-            .len()
-            .saturating_mul(cfg.sections.len())
-            .saturating_mul(cfg.locus.samples),
+        (cfg.ranges.len() as u64)
+            .saturating_mul(cfg.sections.len() as u64)
+            .saturating_mul(cfg.locus.samples as u64),
         crate::budget::MAX_SWEEP_POINTS,
         "points (ranges × sections × samples per revolution)",
         "use fewer ranges, sections or samples per revolution",

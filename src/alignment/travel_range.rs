@@ -241,7 +241,7 @@ pub fn travel_range_sweep(cfg: &SweepConfig) -> Result<Vec<SweepPoint>, Alignmen
     cfg.locus.validate("")?;
     crate::budget::check(
         "travel-range sweep",
-        cfg.ranges.len().saturating_mul(cfg.locus.samples),
+        (cfg.ranges.len() as u64).saturating_mul(cfg.locus.samples as u64),
         crate::budget::MAX_SWEEP_POINTS,
         "points (ranges × samples per revolution)",
         "use fewer ranges or fewer samples per revolution",

@@ -137,14 +137,14 @@ pub fn circular_test(trace: &BallbarTrace) -> Result<CircularTest, CircularTestE
     }
     crate::budget::check(
         "circular test",
-        trace.runs.len(),
+        trace.runs.len() as u64,
         crate::budget::MAX_CIRCULAR_RUNS,
         "runs",
         "test one circle (a CCW and a CW run) at a time",
     )?;
     crate::budget::check(
         "circular test",
-        trace.runs.iter().map(|r| r.angle.len()).sum(),
+        trace.runs.iter().map(|r| r.angle.len() as u64).sum(),
         crate::budget::MAX_CIRCULAR_POINTS,
         "points",
         "thin the trace (a few thousand points per revolution are enough)",

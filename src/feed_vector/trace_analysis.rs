@@ -136,6 +136,14 @@ pub fn analyze_trace(
             ));
         }
     }
+    for (field, v) in [
+        ("mapping.motionStart", map.motion_start),
+        ("mapping.steadyFrom", map.steady_from),
+    ] {
+        if let Some(v) = v.filter(|v| !v.is_finite()) {
+            return Err(super::bad(field, v, "must be a finite time in s"));
+        }
+    }
     let table = Table::parse(text)?;
     let (tcol, t) = column(&table, &map.time, &["time", "t", "time_s"], map.time_scale)?;
     for i in 1..t.len() {

@@ -70,8 +70,9 @@ export function plainCopy(value, what, maxDepth, maxItems) {
     for (const k of Reflect.ownKeys(v)) {
       if (typeof k !== 'string') continue;
       const d = Object.getOwnPropertyDescriptor(v, k);
-      if (!d || !d.enumerable || d.value === undefined) continue;
+      if (!d || !d.enumerable) continue;
       if ('get' in d || 'set' in d) throw new Refused(`${clip(path + '.' + k)}: is a getter or setter; pass plain data`);
+      if (d.value === undefined) continue;
       Object.defineProperty(out, k, { value: copy(d.value, `${path}.${k}`, depth + 1), enumerable: true, writable: true, configurable: true });
     }
     return out;
@@ -224,14 +225,13 @@ pub fn string_arg(value: &JsValue, what: &str) -> Result<String, JsError> {
             "{what}: expected a string, got {got}"
         )));
     };
-    budget::check(
-        "text",
-        s.length() as usize,
-        budget::MAX_TEXT_BYTES,
-        "characters",
-        "split the file or remove what the calculation does not need",
-    )
-    .map_err(|e| JsError::new(&format!("{what}: {e}")))?;
+    if s.length() as usize > budget::MAX_TEXT_BYTES {
+        return Err(JsError::new(&format!(
+            "{what}: {} characters, more than the limit of {} bytes; split the file or remove what the calculation does not need",
+            s.length(),
+            budget::MAX_TEXT_BYTES
+        )));
+    }
     Ok(String::from(s))
 }
 
