@@ -107,6 +107,7 @@ test('20,000 alternating bad and good calls leave the instance healthy', () => {
   }
   const growth = wasm.memory.buffer.byteLength - before;
   GOOD.forEach((g, i) => assert.deepEqual(bits(g()), reference[i], `good call ${i} changed`));
+  console.log(`wasm memory: ${before} bytes before, growth ${growth} bytes over ${ROUNDS} rounds`);
   assert.ok(growth <= GROWTH_BOUND, `wasm memory grew by ${growth} bytes over ${ROUNDS} bad calls`);
 });
 
