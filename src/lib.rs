@@ -25,12 +25,14 @@
 //! | [`machine`] | machine presets as data, each citing its source | suzuki Table 1; thasana §II-D |
 //! | [`nc`] | NC program lexer, interpreter (G0–G3, G4, G17–G19, G90/G91, G20/G21, modal F, A/B/C) and writer | RS-274 / ISO 6983 |
 //! | [`trace`] | CSV/TSV trace import with line- and column-naming errors | — |
+//! | [`budget`] | work budgets: the most text, samples, harmonics and points one call may take | — |
 //! | [`numeric`] | shared kernels: Brent, Levenberg–Marquardt, angle wrap | Brent 1973; Marquardt 1963 |
 //! | `wasm` | the JS binding layer (wasm32 only) | — |
 
 pub mod alignment;
 pub mod ballbar;
 pub mod best_kffp;
+pub mod budget;
 pub mod compensate;
 pub mod cone_frustum;
 pub mod feed_vector;

@@ -63,6 +63,16 @@ pub enum TraceError {
         /// What it looks like, e.g. "a PNG image".
         kind: &'static str,
     },
+    /// A control character other than tab inside a line.
+    #[error("line {line}, column {column}: control character U+{code:04X} is not allowed in a trace; save it as plain text (CSV or TSV)")]
+    ControlChar {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column (characters).
+        column: usize,
+        /// The character's code point.
+        code: u32,
+    },
     /// A column index is out of range.
     #[error("column {index} does not exist; the header has {count} columns")]
     BadColumnIndex {
@@ -71,6 +81,47 @@ pub enum TraceError {
         /// Number of columns.
         count: usize,
     },
+}
+
+/// Splits text into lines as a text editor shows them: a UTF-8
+/// byte-order mark at the start is dropped, a line ends at LF, CRLF or CR
+/// alone (old Macintosh and some DNC files), and trailing Ctrl-Z
+/// characters (U+001A, the DOS end-of-file mark) are dropped.
+///
+/// # Examples
+/// ```
+/// use mtmotion::trace::split_lines;
+/// assert_eq!(split_lines("\u{feff}a\r\nb\rc\n\u{1a}"), vec!["a", "b", "c"]);
+/// assert_eq!(split_lines(""), vec![""]);
+/// ```
+pub fn split_lines(text: &str) -> Vec<&str> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let text = text.trim_end_matches(['\u{1a}', '\r', '\n']);
+    let mut out = Vec::new();
+    let bytes = text.as_bytes();
+    let mut start = 0;
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'\n' => {
+                out.push(&text[start..i]);
+                start = i + 1;
+            }
+            b'\r' => {
+                out.push(&text[start..i]);
+                if bytes.get(i + 1) == Some(&b'\n') {
+                    i += 1;
+                }
+                start = i + 1;
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    if start < text.len() || out.is_empty() {
+        out.push(&text[start..]);
+    }
+    out
 }
 
 /// A parsed table: header names and numeric columns.
@@ -120,12 +171,19 @@ impl Table {
         if let Some(kind) = binary_kind(text) {
             return Err(TraceError::NotText { kind });
         }
-        let lines: Vec<(usize, &str)> = text
-            .lines()
+        let lines: Vec<(usize, &str)> = split_lines(text)
+            .into_iter()
             .enumerate()
-            .map(|(i, l)| (i + 1, l.trim_start_matches('\u{feff}')))
-            .filter(|(_, l)| !is_comment(l))
+            .map(|(i, l)| (i + 1, l))
             .collect();
+        if let Some((line, column, code)) = lines.iter().find_map(|&(n, l)| {
+            l.chars()
+                .position(|c| c.is_control() && c != '\t')
+                .map(|k| (n, k + 1, l.chars().nth(k).map_or(0, u32::from)))
+        }) {
+            return Err(TraceError::ControlChar { line, column, code });
+        }
+        let lines: Vec<(usize, &str)> = lines.into_iter().filter(|(_, l)| !is_comment(l)).collect();
         // The header is the line just before the first all-numeric line;
         // anything above it is metadata.
         let numeric = |l: &str| {

@@ -17,6 +17,9 @@ fn num(v: &JsValue, k: &str) -> f64 {
 fn message(e: JsError) -> String {
     js_sys::Error::from(JsValue::from(e)).message().into()
 }
+fn arr(v: &[f64]) -> JsValue {
+    Float64Array::from(v).into()
+}
 fn json(s: &str) -> JsValue {
     js_sys::JSON::parse(s).unwrap()
 }
@@ -29,10 +32,10 @@ fn fit_circle_crosses_and_throws() {
             (1.0 + 50.0 * t.cos(), 2.0 + 50.0 * t.sin())
         })
         .unzip();
-    let c = fit_circle(&x, &y).unwrap();
+    let c = fit_circle(arr(&x), arr(&y)).unwrap();
     assert!((num(&c, "cx") - 1.0).abs() < 1e-9 && (num(&c, "r") - 50.0).abs() < 1e-9);
     assert!(num(&c, "rmsResidual") < 1e-9);
-    let e = message(fit_circle(&[0.0, 1.0], &[0.0, 1.0]).unwrap_err());
+    let e = message(fit_circle(arr(&[0.0, 1.0]), arr(&[0.0, 1.0])).unwrap_err());
     assert_eq!(e, "a circle needs at least 3 points, got 2");
 }
 
@@ -40,7 +43,7 @@ fn fit_circle_crosses_and_throws() {
 fn harmonics_and_sweeps_cross() {
     let th: Vec<f64> = (0..360).map(|i| (i as f64).to_radians()).collect();
     let dr: Vec<f64> = th.iter().map(|t| 0.005 * (2.0 * t).sin()).collect();
-    let h = Array::from(&harmonics(&th, &dr, 3).unwrap());
+    let h = Array::from(&harmonics(arr(&th), arr(&dr), 3.0).unwrap());
     assert_eq!(h.length(), 4);
     assert!((num(&h.get(2), "amplitude") - 0.005).abs() < 1e-12);
     let s = Array::from(&travel_range_sweep(json(r#"{"offset":{"z":0,"x":0.01},"harmonics":[{"order":2,"amplitude":0.005,"phase":0}],"ranges":[180,360],"radius":100,"samples":1000}"#)).unwrap());
@@ -113,8 +116,8 @@ fn trace_round_trip_and_circular_test() {
 
 #[wasm_bindgen_test]
 fn paper_examples_cross() {
-    let e = ballbar_example(JsValue::from_str("fig7"), None).unwrap();
+    let e = ballbar_example(JsValue::from_str("fig7"), JsValue::UNDEFINED).unwrap();
     assert_eq!(Array::from(&get(&e, "curves")).length(), 2);
-    let e = message(ballbar_example(JsValue::from_str("fig99"), None).unwrap_err());
+    let e = message(ballbar_example(JsValue::from_str("fig99"), JsValue::UNDEFINED).unwrap_err());
     assert!(e.contains("unknown example"), "{e}");
 }

@@ -33,13 +33,19 @@ fn forward_takes_degrees_and_errors() {
         js("\"trunnion-ac\""),
         js("[10, 0, 0, 0, 0, 90]"),
         JsValue::UNDEFINED,
-        None,
+        JsValue::UNDEFINED,
     )
     .unwrap();
     let pos: Vec<f64> = serde_wasm_bindgen::from_value(get(&p, &["position"])).unwrap();
     assert!((pos[1] - 10.0).abs() < 1e-12 && pos[0].abs() < 1e-12);
     let e = js(r#"{"location": {"EC0C": 0.001}}"#);
-    let p = k::forward_kinematics(js("\"trunnion-ac\""), js(r#"{"x": 10}"#), e, None).unwrap();
+    let p = k::forward_kinematics(
+        js("\"trunnion-ac\""),
+        js(r#"{"x": 10}"#),
+        e,
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
     let pos: Vec<f64> = serde_wasm_bindgen::from_value(get(&p, &["position"])).unwrap();
     assert!((pos[1] - 10.0 * 0.001f64.sin()).abs() < 1e-12);
 }
@@ -49,8 +55,13 @@ fn bulk_forward_matches_single_calls() {
     let q = [
         10.0, 20.0, 30.0, 15.0, 0.0, 40.0, -5.0, 0.0, 3.0, 60.0, 0.0, -170.0,
     ];
-    let r = k::forward_kinematics_bulk(js("\"trunnion-ac\""), &q, JsValue::UNDEFINED, Some(25.0))
-        .unwrap();
+    let r = k::forward_kinematics_bulk(
+        js("\"trunnion-ac\""),
+        Float64Array::from(&q[..]).into(),
+        JsValue::UNDEFINED,
+        JsValue::from_f64(25.0),
+    )
+    .unwrap();
     let pos = get(&r, &["position"])
         .dyn_into::<Float64Array>()
         .unwrap()
@@ -60,7 +71,7 @@ fn bulk_forward_matches_single_calls() {
         js("\"trunnion-ac\""),
         js("[-5, 0, 3, 60, 0, -170]"),
         JsValue::UNDEFINED,
-        Some(25.0),
+        JsValue::from_f64(25.0),
     )
     .unwrap();
     let p1: Vec<f64> = serde_wasm_bindgen::from_value(get(&one, &["position"])).unwrap();
@@ -68,8 +79,13 @@ fn bulk_forward_matches_single_calls() {
         assert!((pos[3 + i] - p1[i]).abs() < 1e-12);
     }
     let err = message(
-        k::forward_kinematics_bulk(js("\"trunnion-ac\""), &q[..7], JsValue::UNDEFINED, None)
-            .unwrap_err(),
+        k::forward_kinematics_bulk(
+            js("\"trunnion-ac\""),
+            Float64Array::from(&q[..7]).into(),
+            JsValue::UNDEFINED,
+            JsValue::UNDEFINED,
+        )
+        .unwrap_err(),
     );
     assert!(err.contains("6 values"), "{err}");
 }
@@ -80,10 +96,11 @@ fn inverse_returns_every_branch_in_degrees() {
         js("\"table-on-table-bc\""),
         js("[10, 20, 30, 0, 40, 30]"),
         JsValue::UNDEFINED,
-        None,
+        JsValue::UNDEFINED,
     )
     .unwrap();
-    let sols = k::inverse_kinematics(js("\"table-on-table-bc\""), pose, None).unwrap();
+    let sols =
+        k::inverse_kinematics(js("\"table-on-table-bc\""), pose, JsValue::UNDEFINED).unwrap();
     let arr: js_sys::Array = sols.dyn_into().unwrap();
     assert!(arr.length() >= 2, "C ±360° copies");
     let found = arr.iter().any(|s| {

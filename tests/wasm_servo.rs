@@ -30,7 +30,11 @@ fn c_axis() -> JsValue {
 
 #[wasm_bindgen_test]
 fn frequency_response_crosses_as_float64_arrays() {
-    let r = frequency_response(c_axis(), &[1.0, 10.0]).unwrap();
+    let r = frequency_response(
+        c_axis(),
+        js_sys::Float64Array::from(&[1.0, 10.0][..]).into(),
+    )
+    .unwrap();
     let mag = Float64Array::from(get(&r, "magnitude")).to_vec();
     let ph = Float64Array::from(get(&r, "phase")).to_vec();
     let core = mtmotion::servo::response::frequency_response(

@@ -242,6 +242,15 @@ pub struct AngleSweepPoint {
 /// ```
 pub fn angle_sweep(cfg: &AngleSweepConfig) -> Result<Vec<AngleSweepPoint>, AlignmentError> {
     cfg.locus.validate("")?;
+    crate::budget::check(
+        "angle sweep",
+        (cfg.ranges.len() as u64)
+            .saturating_mul(cfg.sections.len() as u64)
+            .saturating_mul(cfg.locus.samples as u64),
+        crate::budget::MAX_SWEEP_POINTS,
+        "points (ranges × sections × samples per revolution)",
+        "use fewer ranges, sections or samples per revolution",
+    )?;
     if cfg.sections.len() < 2 {
         return Err(bad(
             "sections",

@@ -39,6 +39,9 @@ use crate::ballbar::{fit_circle, harmonics::synthesize, FitError, Harmonic};
 /// Errors of the alignment models.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum AlignmentError {
+    /// The sweep is over its work budget ([`crate::budget`]).
+    #[error(transparent)]
+    Budget(#[from] crate::budget::BudgetError),
     /// A configuration field is out of range.
     #[error("{field}: {message}")]
     BadField {
@@ -236,6 +239,13 @@ impl Locus {
 /// ```
 pub fn travel_range_sweep(cfg: &SweepConfig) -> Result<Vec<SweepPoint>, AlignmentError> {
     cfg.locus.validate("")?;
+    crate::budget::check(
+        "travel-range sweep",
+        (cfg.ranges.len() as u64).saturating_mul(cfg.locus.samples as u64),
+        crate::budget::MAX_SWEEP_POINTS,
+        "points (ranges × samples per revolution)",
+        "use fewer ranges or fewer samples per revolution",
+    )?;
     if !(cfg.offset.z.is_finite() && cfg.offset.x.is_finite()) {
         return Err(bad("offset", "z and x must be finite numbers (mm)"));
     }

@@ -30,6 +30,9 @@ use super::{fit_circle, FitError};
 /// Errors of the circular test.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CircularTestError {
+    /// The trace is over the work budget ([`crate::budget`]).
+    #[error(transparent)]
+    Budget(#[from] crate::budget::BudgetError),
     /// The trace has no runs.
     #[error("the trace has no runs: load or generate a trace first")]
     NoRuns,
@@ -132,6 +135,20 @@ pub fn circular_test(trace: &BallbarTrace) -> Result<CircularTest, CircularTestE
     if trace.runs.is_empty() {
         return Err(CircularTestError::NoRuns);
     }
+    crate::budget::check(
+        "circular test",
+        trace.runs.len() as u64,
+        crate::budget::MAX_CIRCULAR_RUNS,
+        "runs",
+        "test one circle (a CCW and a CW run) at a time",
+    )?;
+    crate::budget::check(
+        "circular test",
+        trace.runs.iter().map(|r| r.angle.len() as u64).sum(),
+        crate::budget::MAX_CIRCULAR_POINTS,
+        "points",
+        "thin the trace (a few thousand points per revolution are enough)",
+    )?;
     let mut runs = Vec::with_capacity(trace.runs.len());
     let mut all = (Vec::new(), Vec::new());
     for (k, run) in trace.runs.iter().enumerate() {

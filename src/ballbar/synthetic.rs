@@ -148,6 +148,16 @@ fn err(field: &'static str, message: impl Into<String>) -> SyntheticError {
     }
 }
 
+/// Shortest bar, mm: 1 µm (a subnormal radius would make ω infinite).
+pub const MIN_RADIUS: f64 = 1e-3;
+/// Longest bar, mm (1 km).
+pub const MAX_RADIUS: f64 = 1e6;
+/// Highest feed, mm/min (1 km/min).
+pub const MAX_FEED: f64 = 1e6;
+/// Most harmonics of the radial error: orders above a few hundred are
+/// below any ball bar's resolution, and each costs one `sin` per sample.
+pub const MAX_HARMONICS: usize = 256;
+
 /// Generates a ball-bar trace with the configured errors.
 ///
 /// # Units
@@ -173,6 +183,17 @@ pub fn synthetic_trace(c: &SyntheticConfig) -> Result<BallbarTrace, SyntheticErr
     if c.both_directions {
         runs.push(run(c, Direction::Cw, n, &mut noise));
     }
+    // Finite inputs can still overflow (an offset of 1e308 mm): say so
+    // instead of returning Infinity or NaN.
+    if runs
+        .iter()
+        .any(|r| r.deviation.iter().any(|d| !d.is_finite()))
+    {
+        return Err(err(
+            "config",
+            "the error values are too large: the deviation overflows; use values in mm and rad",
+        ));
+    }
     Ok(BallbarTrace {
         nominal_radius: c.radius,
         feed: Some(c.feed),
@@ -184,16 +205,32 @@ pub fn synthetic_trace(c: &SyntheticConfig) -> Result<BallbarTrace, SyntheticErr
 /// (0, 360] degrees and finite error values.
 fn validate(c: &SyntheticConfig) -> Result<(), SyntheticError> {
     let pos = |v: f64| v.is_finite() && v > 0.0;
-    if !pos(c.radius) {
+    let compact = crate::numeric::compact;
+    if !(c.radius.is_finite() && (MIN_RADIUS..=MAX_RADIUS).contains(&c.radius)) {
         return Err(err(
             "radius",
-            format!("expected a bar length > 0 mm, got {}", c.radius),
+            format!(
+                "expected a bar length from 0.001 to 1e6 mm, got {}",
+                compact(c.radius)
+            ),
         ));
     }
-    if !pos(c.feed) {
+    if !(pos(c.feed) && c.feed <= MAX_FEED) {
         return Err(err(
             "feed",
-            format!("expected a feed > 0 mm/min, got {}", c.feed),
+            format!(
+                "expected a feed above 0 and at most 1e6 mm/min, got {}",
+                compact(c.feed)
+            ),
+        ));
+    }
+    if c.harmonics.len() > MAX_HARMONICS {
+        return Err(err(
+            "harmonics",
+            format!(
+                "{} harmonics; at most {MAX_HARMONICS} can matter on a ball-bar trace",
+                c.harmonics.len()
+            ),
         ));
     }
     if !(16..=10_000_000).contains(&c.samples) {

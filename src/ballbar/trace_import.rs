@@ -39,6 +39,9 @@ pub enum BallbarTraceError {
     /// The table itself is malformed (names line and column).
     #[error(transparent)]
     Table(#[from] TraceError),
+    /// The text is over a work budget ([`crate::budget`]).
+    #[error(transparent)]
+    Budget(#[from] crate::budget::BudgetError),
     /// The text is empty.
     #[error("the trace is empty: expected a header line such as 'angle_deg,deviation_um' (or 'x,y') and data rows")]
     Empty,
@@ -169,6 +172,7 @@ pub fn parse_ballbar_trace(
     text: &str,
     opts: ParseOptions,
 ) -> Result<BallbarTrace, BallbarTraceError> {
+    crate::budget::check_text("trace", text)?;
     check_options(opts)?;
     // The table's own hints name the servo columns; a ball-bar trace names its own.
     let t = Table::parse(text).map_err(|e| match e {

@@ -59,6 +59,9 @@ pub enum FeedVectorError {
     /// The trace could not be read.
     #[error(transparent)]
     Trace(#[from] TraceError),
+    /// The input is over a work budget ([`crate::budget`]).
+    #[error(transparent)]
+    Budget(#[from] crate::budget::BudgetError),
     /// A trace value is unusable at a line and column.
     #[error("line {line}, column {column} ('{name}'): {why}")]
     TraceValue {
@@ -112,8 +115,9 @@ pub struct Condition {
     pub kffp: Option<KffpSet>,
 }
 
-/// Largest number of samples a test may have.
-pub const MAX_SAMPLES: usize = 4_000_000;
+/// Largest number of samples a test may have (the work budget
+/// [`crate::budget::MAX_FEED_VECTOR_SAMPLES`]).
+pub const MAX_SAMPLES: usize = crate::budget::MAX_FEED_VECTOR_SAMPLES;
 
 fn bad(field: &'static str, value: f64, expected: &str) -> FeedVectorError {
     FeedVectorError::BadCondition {

@@ -97,6 +97,12 @@ fn column(
 /// Analyses a measured trace (the JS `analyzeFeedVectorTrace`).
 ///
 /// # Units
+/// Smallest |unit factor| of a mapping (ns → s is 1e-9).
+pub const MIN_SCALE: f64 = 1e-9;
+/// Largest |unit factor| of a mapping (km → mm is 1e6); a larger one
+/// makes times or positions overflow.
+pub const MAX_SCALE: f64 = 1e6;
+
 /// The condition as in [`Condition`]; trace units as set in `map`.
 ///
 /// # Examples
@@ -114,6 +120,7 @@ pub fn analyze_trace(
     cond: &Condition,
     map: &ColumnMap,
 ) -> Result<FeedVectorResult, FeedVectorError> {
+    crate::budget::check_text("trace", text)?;
     cond.validate()?;
     for (field, v) in [
         ("mapping.timeScale", map.time_scale),
@@ -121,8 +128,20 @@ pub fn analyze_trace(
         ("mapping.angleScale", map.angle_scale),
         ("mapping.torqueScale", map.torque_scale),
     ] {
-        if !(v.is_finite() && v != 0.0) {
-            return Err(super::bad(field, v, "must be a finite, non-zero scale"));
+        if !(v.is_finite() && (MIN_SCALE..=MAX_SCALE).contains(&v.abs())) {
+            return Err(super::bad(
+                field,
+                v,
+                "must be a unit factor of magnitude 1e-9 to 1e6 (e.g. 0.001 for ms, 25.4 for inch)",
+            ));
+        }
+    }
+    for (field, v) in [
+        ("mapping.motionStart", map.motion_start),
+        ("mapping.steadyFrom", map.steady_from),
+    ] {
+        if let Some(v) = v.filter(|v| !v.is_finite()) {
+            return Err(super::bad(field, v, "must be a finite time in s"));
         }
     }
     let table = Table::parse(text)?;

@@ -227,6 +227,17 @@ impl Model {
                 ),
             });
         }
+        if let Some(i) = q.iter().position(|v| !v.is_finite()) {
+            return Err(KinematicsError::BadInput {
+                field: format!("q[{i}]"),
+                why: format!(
+                    "axis {} of point {} is {}: must be a finite number",
+                    super::AXES[i % 6],
+                    i / 6,
+                    crate::numeric::compact(q[i])
+                ),
+            });
+        }
         let n = q.len() / 6;
         let mut pos = Vec::with_capacity(3 * n);
         let mut ori = Vec::with_capacity(3 * n);
@@ -236,6 +247,15 @@ impl Model {
             let (p, o) = self.eval(&qq);
             pos.extend_from_slice(p.as_slice());
             ori.extend_from_slice(o.as_slice());
+        }
+        if let Some(i) = pos.iter().chain(&ori).position(|v| !v.is_finite()) {
+            return Err(KinematicsError::BadInput {
+                field: "q".into(),
+                why: format!(
+                    "point {} gives a non-finite pose: the axis values are too large for the error model",
+                    (i % (3 * n)) / 3
+                ),
+            });
         }
         Ok((pos, ori))
     }

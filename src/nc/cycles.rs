@@ -40,6 +40,10 @@ use super::program::{Motion, Plane, Pose, Segment};
 /// 5114/5115; a common setting).
 pub const PECK_CLEARANCE: f64 = 0.5;
 
+/// Most pecks of one G73/G83 hole (a 1 m hole at 0.1 mm pecks): a larger
+/// count is a typo in Q or the bottom level, and each peck is 2–3 segments.
+pub const MAX_PECKS: usize = 10_000;
+
 /// An active canned cycle (modal data).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]

@@ -169,6 +169,10 @@ pub struct NcErrors {
     pub truncated: bool,
 }
 
+/// Longest number an address word may have, characters (sign and point
+/// included): controls read about 12 significant digits.
+pub const MAX_NUMBER_CHARS: usize = 24;
+
 /// How many errors a program reports at most.
 pub const MAX_ERRORS: usize = 100;
 
@@ -237,33 +241,7 @@ impl From<NcError> for NcErrors {
 /// trailing Ctrl-Z characters (U+001A, the DOS end-of-file mark some DNC
 /// senders append) after the last line are dropped.
 pub fn split_lines(text: &str) -> Vec<&str> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let text = text.trim_end_matches(['\u{1a}', '\r', '\n']);
-    let mut out = Vec::new();
-    let bytes = text.as_bytes();
-    let mut start = 0;
-    let mut i = 0;
-    while i < bytes.len() {
-        match bytes[i] {
-            b'\n' => {
-                out.push(&text[start..i]);
-                start = i + 1;
-            }
-            b'\r' => {
-                out.push(&text[start..i]);
-                if i + 1 < bytes.len() && bytes[i + 1] == b'\n' {
-                    i += 1;
-                }
-                start = i + 1;
-            }
-            _ => {}
-        }
-        i += 1;
-    }
-    if start < text.len() || out.is_empty() {
-        out.push(&text[start..]);
-    }
-    out
+    crate::trace::split_lines(text)
 }
 
 /// Lexes a whole program; the first error only (see [`lex_all`]).
@@ -291,11 +269,17 @@ pub fn lex(text: &str) -> Result<Vec<Block>, NcError> {
 
 /// Lexes a whole program and collects every line's error (one per line,
 /// up to [`MAX_ERRORS`]); a line with an error gives an empty block.
+/// A text over the budget ([`crate::budget::check_text`]) gives no blocks
+/// and one error at line 1, column 1, before any work is done.
 pub fn lex_all(text: &str) -> (Vec<Block>, NcErrors) {
     let mut errors = NcErrors {
         errors: Vec::new(),
         truncated: false,
     };
+    if let Err(e) = crate::budget::check_text("program", text) {
+        errors.push(NcError::new(1, 1, e.to_string()));
+        return (Vec::new(), errors);
+    }
     let blocks = split_lines(text)
         .into_iter()
         .enumerate()
@@ -637,9 +621,25 @@ fn lex_word(chars: &[char], i: &mut usize, line: usize) -> Result<Word, NcError>
         NcError::new(
             line,
             start + 1,
-            format!("'{text}' after address '{letter}' is not a valid number"),
+            format!(
+                "'{}' after address '{letter}' is not a valid number",
+                crate::budget::clip(&text, 24)
+            ),
         )
     })?;
+    // A control reads at most about 12 digits; a longer number is a
+    // corrupted file, and one of 309 digits would be ∞.
+    if text.len() > MAX_NUMBER_CHARS || !value.is_finite() {
+        return Err(NcError::new(
+            line,
+            start + 1,
+            format!(
+                "'{}' after address '{letter}' has {} characters; an NC number has at most {MAX_NUMBER_CHARS}",
+                crate::budget::clip(&text, 24),
+                text.chars().count()
+            ),
+        ));
+    }
     Ok(Word {
         letter,
         value,

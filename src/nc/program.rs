@@ -495,8 +495,9 @@ fn multi_axis(blocks: &[Block]) -> bool {
 }
 
 /// Blocks a program may execute (subprogram repeats included) before it
-/// is stopped as endless.
-pub const MAX_EXECUTED_BLOCKS: usize = 5_000_000;
+/// is stopped as endless (the work budget
+/// [`crate::budget::MAX_EXECUTED_BLOCKS`]).
+pub const MAX_EXECUTED_BLOCKS: usize = crate::budget::MAX_EXECUTED_BLOCKS;
 
 /// Deepest subprogram nesting (Fanuc allows 10 levels from the main
 /// program... controls differ; 10 is the common Fanuc limit).
@@ -1293,6 +1294,25 @@ fn canned_cycle(
         }
         None => 1,
     };
+    let pecks = if matches!(c.code, 730 | 830) && c.q > 0.0 {
+        ((bottom - r).abs() / c.q).ceil()
+    } else {
+        1.0
+    };
+    if pecks.is_nan() || pecks > super::cycles::MAX_PECKS as f64 {
+        let w = b.word('Q').unwrap_or(anchor);
+        return Err(err(
+            b,
+            w,
+            format!(
+                "{} pecks of Q{} mm for a {} mm deep hole; at most {} per hole: check Q, R and the bottom level",
+                crate::numeric::compact(pecks),
+                crate::numeric::compact(c.q),
+                crate::numeric::compact((bottom - r).abs()),
+                super::cycles::MAX_PECKS
+            ),
+        ));
+    }
     if c.code == 760 {
         cx.warnings.push(Warning {
  file: None,

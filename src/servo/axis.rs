@@ -259,6 +259,13 @@ impl AxisParams {
                 expected: "worm-gear pitch error applies to rotary axes only; remove it",
             });
         }
+        if self.pitch_error.len() > crate::budget::MAX_PITCH_HARMONICS {
+            return Err(ServoError::BadParameter {
+                field: "pitchError",
+                value: self.pitch_error.len() as f64,
+                expected: "at most 64 harmonics (the work budget; a worm gear shows a handful)",
+            });
+        }
         for h in &self.pitch_error {
             for (field, v) in [("pitchError.w", h.w), ("pitchError.phi", h.phi)] {
                 if !v.is_finite() {

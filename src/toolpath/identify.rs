@@ -56,26 +56,40 @@ pub enum IdentifyError {
 /// assert!((dr - 0.019873).abs() < 1e-6);
 /// ```
 pub fn radius_reduction(feed: f64, radius: f64, t_a: f64, t: f64) -> Result<f64, IdentifyError> {
-    let bad = |f: &str, m: &str| {
+    let bad = |f: &str, v: f64, m: &str| {
         Err(IdentifyError::Input {
             field: f.into(),
-            message: m.into(),
+            message: format!("{m}, got {}", crate::numeric::compact(v)),
         })
     };
-    if !(radius.is_finite() && radius > 0.0) {
-        return bad("radius", "expected a positive radius in mm");
+    if !(radius.is_finite() && (MIN_RADIUS..=MAX_RADIUS).contains(&radius)) {
+        return bad("radius", radius, "expected a radius from 0.001 to 1e6 mm");
     }
-    if !(feed.is_finite() && feed > 0.0) {
-        return bad("feed", "expected a positive feed in mm/min");
+    if !(feed.is_finite() && feed > 0.0 && feed <= MAX_FEED) {
+        return bad(
+            "feed",
+            feed,
+            "expected a feed above 0 and at most 1e6 mm/min",
+        );
     }
-    if !(t_a.is_finite() && t_a >= 0.0) {
-        return bad("tA", "expected tA ≥ 0 s");
+    if !(t_a.is_finite() && (0.0..=MAX_TIME_CONSTANT).contains(&t_a)) {
+        return bad("tA", t_a, "expected tA from 0 to 100 s");
     }
-    if !(t.is_finite() && t >= 0.0) {
-        return bad("T", "expected T ≥ 0 s");
+    if !(t.is_finite() && (0.0..=MAX_TIME_CONSTANT).contains(&t)) {
+        return bad("T", t, "expected T from 0 to 100 s");
     }
     Ok(eq3(feed / 60.0 / radius, radius, t_a, t))
 }
+
+/// Smallest circle radius Eq. 3 accepts, mm: 1 µm, below any NC's
+/// programming resolution (a subnormal radius would make ω infinite).
+pub const MIN_RADIUS: f64 = 1e-3;
+/// Largest circle radius, mm (1 km).
+pub const MAX_RADIUS: f64 = 1e6;
+/// Largest feed, mm/min (1 km/min, ten times the fastest linear drive).
+pub const MAX_FEED: f64 = 1e6;
+/// Largest acc/dec or servo time constant, s (real ones are ≤ 0.5 s).
+pub const MAX_TIME_CONSTANT: f64 = 100.0;
 
 fn sinc(x: f64) -> f64 {
     if x.abs() < 1e-4 {

@@ -127,8 +127,9 @@ pub enum ToolpathError {
     },
 }
 
-/// At most this many samples per simulation.
-pub const MAX_SAMPLES: usize = 20_000_000;
+/// At most this many samples per simulation (the work budget
+/// [`crate::budget::MAX_TOOLPATH_SAMPLES`]).
+pub const MAX_SAMPLES: usize = crate::budget::MAX_TOOLPATH_SAMPLES;
 
 impl SimConfig {
     /// Checks every field.

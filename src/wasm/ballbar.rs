@@ -3,10 +3,13 @@
 //! import, ISO 230-4 circular test, synthetic traces and the paper's
 //! examples. Thin: conversion only.
 
-use js_sys::{Array, Float64Array, Reflect};
+use js_sys::{Array, Reflect};
 use wasm_bindgen::prelude::*;
 
-use super::convert::{from_js, string_arg, to_js, Obj};
+use super::convert::{
+    count_arg, floats_arg, object, opt_number, opt_number_arg, plain, require_object, string_arg,
+    to_js, Obj,
+};
 use crate::alignment::{self, examples, AngleSweepConfig, Section, SweepConfig};
 use crate::ballbar::{self, BallbarTrace, Direction, ParseOptions, Run, SyntheticConfig};
 
@@ -82,23 +85,26 @@ export interface PaperExample {
 /// Levenberg–Marquardt); throws for < 3 or collinear points.
 #[cfg(feature = "full")]
 #[wasm_bindgen(js_name = fitCircle, unchecked_return_type = "CircleFit")]
-pub fn fit_circle(x: &[f64], y: &[f64]) -> Result<JsValue, JsError> {
-    to_js(&ballbar::fit_circle(x, y)?)
+pub fn fit_circle(
+    #[wasm_bindgen(unchecked_param_type = "Float64Array | number[]")] x: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Float64Array | number[]")] y: JsValue,
+) -> Result<JsValue, JsError> {
+    let (x, y) = (floats_arg(&x, "x")?, floats_arg(&y, "y")?);
+    to_js(&ballbar::fit_circle(&x, &y)?)
 }
 
 /// Least-squares harmonics of orders 0 … maxOrder (valid on partial ranges).
 #[cfg(feature = "full")]
 #[wasm_bindgen(js_name = harmonics, unchecked_return_type = "HarmonicComponent[]")]
 pub fn harmonics(
-    angle_rad: &[f64],
-    radial_deviation: &[f64],
-    max_order: usize,
+    #[wasm_bindgen(unchecked_param_type = "Float64Array | number[]")] angle_rad: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Float64Array | number[]")] radial_deviation: JsValue,
+    max_order: f64,
 ) -> Result<JsValue, JsError> {
-    to_js(&ballbar::fit_harmonics(
-        angle_rad,
-        radial_deviation,
-        max_order,
-    )?)
+    let angle = floats_arg(&angle_rad, "angleRad")?;
+    let dev = floats_arg(&radial_deviation, "radialDeviation")?;
+    let max_order = count_arg(max_order, "maxOrder", usize::MAX)?;
+    to_js(&ballbar::fit_harmonics(&angle, &dev, max_order)?)
 }
 
 /// takayama §2.1: centre-estimate error for each travel range.
@@ -106,7 +112,7 @@ pub fn harmonics(
 pub fn travel_range_sweep(
     #[wasm_bindgen(unchecked_param_type = "TravelRangeSweepConfig")] config: JsValue,
 ) -> Result<JsValue, JsError> {
-    let cfg: SweepConfig = from_js(config, "config")?;
+    let cfg: SweepConfig = object(config, "config")?;
     to_js(&alignment::travel_range_sweep(&cfg)?)
 }
 
@@ -116,7 +122,7 @@ pub fn travel_range_sweep(
 pub fn angle_sweep(
     #[wasm_bindgen(unchecked_param_type = "AngleSweepConfig")] config: JsValue,
 ) -> Result<JsValue, JsError> {
-    let cfg: AngleSweepConfig = from_js(config, "config")?;
+    let cfg: AngleSweepConfig = object(config, "config")?;
     to_js(&alignment::angle_sweep(&cfg)?)
 }
 
@@ -131,23 +137,12 @@ fn number(obj: &JsValue, key: &str, what: &str) -> Result<f64, JsError> {
 }
 
 fn floats(obj: &JsValue, key: &str, what: &str) -> Result<Vec<f64>, JsError> {
-    let v = get(obj, key);
-    if v.is_instance_of::<Float64Array>() || Array::is_array(&v) {
-        Ok(Float64Array::new(&v).to_vec())
-    } else {
-        Err(JsError::new(&format!(
-            "{what}.{key}: expected a Float64Array or an array of numbers"
-        )))
-    }
+    floats_arg(&get(obj, key), &format!("{what}.{key}"))
 }
 
-/// takayama §2.2: offset per section and ΔBz, ΔBx from two sections.
-#[cfg(feature = "full")]
-#[wasm_bindgen(js_name = estimateAlignment, unchecked_return_type = "AlignmentEstimate")]
-pub fn estimate_alignment(
-    #[wasm_bindgen(unchecked_param_type = "AlignmentInput")] input: JsValue,
-) -> Result<JsValue, JsError> {
-    let list = get(&input, "sections");
+/// The sections of an alignment input (a plain snapshot).
+fn sections_of(input: &JsValue) -> Result<Vec<Section>, JsError> {
+    let list = get(input, "sections");
     if !Array::is_array(&list) {
         return Err(JsError::new(
             "sections: expected an array of { y, angleDeg, deviation }",
@@ -162,7 +157,19 @@ pub fn estimate_alignment(
             deviation: floats(&s, "deviation", &what)?,
         });
     }
-    let radius = get(&input, "radius").as_f64().unwrap_or(100.0);
+    Ok(sections)
+}
+
+/// takayama §2.2: offset per section and ΔBz, ΔBx from two sections.
+#[cfg(feature = "full")]
+#[wasm_bindgen(js_name = estimateAlignment, unchecked_return_type = "AlignmentEstimate")]
+pub fn estimate_alignment(
+    #[wasm_bindgen(unchecked_param_type = "AlignmentInput")] input: JsValue,
+) -> Result<JsValue, JsError> {
+    require_object(&input, "input")?;
+    let input = plain(&input, "input")?;
+    let sections = sections_of(&input)?;
+    let radius = opt_number(&input, "radius", "input")?.unwrap_or(100.0);
     to_js(&alignment::estimate_alignment(&sections, radius)?)
 }
 
@@ -213,7 +220,7 @@ fn trace_from_js(v: &JsValue) -> Result<BallbarTrace, JsError> {
     }
     Ok(BallbarTrace {
         nominal_radius: number(v, "nominalRadius", "trace")?,
-        feed: get(v, "feed").as_f64(),
+        feed: opt_number(v, "feed", "trace")?,
         runs,
     })
 }
@@ -229,7 +236,7 @@ pub fn parse_ballbar_trace(
     let opts: ParseOptions = if options.is_undefined() || options.is_null() {
         ParseOptions::default()
     } else {
-        from_js(options, "options")?
+        object(options, "options")?
     };
     trace_to_js(&ballbar::parse_ballbar_trace(text, opts)?)
 }
@@ -239,6 +246,8 @@ pub fn parse_ballbar_trace(
 pub fn circular_test(
     #[wasm_bindgen(unchecked_param_type = "BallbarTrace")] trace: JsValue,
 ) -> Result<JsValue, JsError> {
+    require_object(&trace, "trace")?;
+    let trace = plain(&trace, "trace")?;
     to_js(&ballbar::circular_test(&trace_from_js(&trace)?)?)
 }
 
@@ -251,7 +260,7 @@ pub fn synthetic_ballbar_trace(
     let cfg: SyntheticConfig = if config.is_undefined() {
         SyntheticConfig::default()
     } else {
-        from_js(config, "config")?
+        object(config, "config")?
     };
     trace_to_js(&ballbar::synthetic_trace(&cfg)?)
 }
@@ -262,10 +271,11 @@ pub fn synthetic_ballbar_trace(
 #[wasm_bindgen(js_name = ballbarExample, unchecked_return_type = "PaperExample")]
 pub fn ballbar_example(
     #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
-    radius: Option<f64>,
+    #[wasm_bindgen(unchecked_param_type = "number | undefined")] radius: JsValue,
 ) -> Result<JsValue, JsError> {
     let name: &str = &string_arg(&name, "name")?;
-    to_js(&examples::example(name, radius.unwrap_or(100.0))?)
+    let radius = opt_number_arg(&radius, "radius")?.unwrap_or(100.0);
+    to_js(&examples::example(name, radius)?)
 }
 
 #[wasm_bindgen(typescript_custom_section)]
@@ -289,25 +299,17 @@ export interface AlignmentBand {
 pub fn estimate_alignment_band(
     #[wasm_bindgen(unchecked_param_type = "AlignmentBandInput")] input: JsValue,
 ) -> Result<JsValue, JsError> {
-    let list = get(&input, "sections");
-    if !Array::is_array(&list) {
-        return Err(JsError::new(
-            "sections: expected an array of { y, angleDeg, deviation }",
-        ));
-    }
-    let mut sections = Vec::new();
-    for (k, s) in Array::from(&list).iter().enumerate() {
-        let what = format!("sections[{k}]");
-        sections.push(Section {
-            y: number(&s, "y", &what)?,
-            angle_deg: floats(&s, "angleDeg", &what)?,
-            deviation: floats(&s, "deviation", &what)?,
-        });
-    }
+    require_object(&input, "input")?;
+    let input = plain(&input, "input")?;
+    let sections = sections_of(&input)?;
+    let max_order = match opt_number(&input, "maxOrder", "input")? {
+        Some(v) => count_arg(v, "input.maxOrder", usize::MAX)?,
+        None => 10,
+    };
     let cfg = alignment::BandConfig {
-        radius: get(&input, "radius").as_f64().unwrap_or(100.0),
-        travel_range_deg: get(&input, "travelRangeDeg").as_f64(),
-        max_order: get(&input, "maxOrder").as_f64().map_or(10, |v| v as usize),
+        radius: opt_number(&input, "radius", "input")?.unwrap_or(100.0),
+        travel_range_deg: opt_number(&input, "travelRangeDeg", "input")?,
+        max_order,
     };
     to_js(&alignment::estimate_alignment_band(&sections, &cfg)?)
 }

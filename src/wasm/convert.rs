@@ -1,8 +1,141 @@
 //! Conversions at the JS boundary.
+//!
+//! Every config and array argument is first copied into plain data by a
+//! small JavaScript helper ([`plain`], [`floats_arg`]) that wasm-bindgen
+//! calls with `catch`. Whatever user code runs while an argument is read —
+//! a throwing getter, a Proxy trap, an array-like whose `length` lies or
+//! changes — runs there, so a JS exception never unwinds through wasm
+//! frames (which would skip the restore of wasm's stack pointer and leak
+//! wasm stack on every call until the instance dies). The copy rejects
+//! getters/setters, class instances and nesting deeper than
+//! [`MAX_DEPTH`], and counts values against [`budget::MAX_ARGUMENT_VALUES`];
+//! a Proxy is read once, through its traps, into a plain snapshot; a key
+//! whose value is `undefined` is left out, as `JSON.stringify` does. Only the
+//! snapshot reaches serde-wasm-bindgen, so the conversion itself can no
+//! longer throw, and its recursion is bounded.
 
 use js_sys::{Float64Array, Object, Reflect};
 use serde::{de::DeserializeOwned, Serialize};
 use wasm_bindgen::prelude::*;
+
+use crate::budget;
+
+/// Deepest nesting of objects and arrays a config may have: the deepest
+/// real config (a machine preset with its axes and harmonics) is 5 levels.
+pub const MAX_DEPTH: u32 = 32;
+
+#[wasm_bindgen(inline_js = r#"
+const clip = (s) => (s.length > 60 ? s.slice(0, 57) + '...' : s);
+const kind = (v) => {
+  if (v === null) return 'null';
+  if (Array.isArray(v)) return 'an array';
+  if (typeof v !== 'object') return v === undefined ? 'undefined' : 'a ' + typeof v;
+  const p = Object.getPrototypeOf(v);
+  if (p === Object.prototype || p === null) return 'an object';
+  const n = p.constructor && p.constructor.name;
+  return typeof n === 'string' && n ? 'a ' + clip(n) : 'an object';
+};
+class Refused extends Error {}
+function say(e, what) {
+  if (e instanceof Refused) return new Error(e.message);
+  let m = '';
+  try { m = e instanceof Error ? String(e.message) : typeof e === 'string' ? e : typeof e; } catch { m = 'an exception'; }
+  return new Error(`${what}: reading the argument threw (${clip(m)}); pass plain data (numbers, strings, arrays, objects)`);
+}
+export function plainCopy(value, what, maxDepth, maxItems) {
+  let items = 0;
+  const copy = (v, path, depth) => {
+    if (++items > maxItems) throw new Refused(`${what}: more than ${maxItems} values; pass a smaller input`);
+    const t = typeof v;
+    if (v === null || t === 'undefined' || t === 'boolean' || t === 'number' || t === 'string') return v;
+    if (t !== 'object') throw new Refused(`${clip(path)}: expected a number, string, array or object, got a ${t}`);
+    if (depth >= maxDepth) throw new Refused(`${clip(path)}: nested deeper than ${maxDepth} levels`);
+    if (ArrayBuffer.isView(v)) {
+      if (v instanceof DataView) throw new Refused(`${clip(path)}: expected an array of numbers, got a DataView`);
+      const out = new Float64Array(v);
+      items += out.length;
+      if (items > maxItems) throw new Refused(`${what}: more than ${maxItems} values; pass a smaller input`);
+      return out;
+    }
+    if (Array.isArray(v)) {
+      const n = v.length;
+      if (!Number.isSafeInteger(n) || n < 0 || n > maxItems - items) throw new Refused(`${clip(path)}: an array of ${clip(String(n))} items; at most ${maxItems} values are accepted`);
+      const out = new Array(n);
+      for (let i = 0; i < n; i++) out[i] = copy(v[i], `${path}[${i}]`, depth + 1);
+      return out;
+    }
+    const proto = Object.getPrototypeOf(v);
+    if (proto !== Object.prototype && proto !== null) throw new Refused(`${clip(path)}: expected a plain object, got ${kind(v)}`);
+    const out = {};
+    for (const k of Reflect.ownKeys(v)) {
+      if (typeof k !== 'string') continue;
+      const d = Object.getOwnPropertyDescriptor(v, k);
+      if (!d || !d.enumerable) continue;
+      if ('get' in d || 'set' in d) throw new Refused(`${clip(path + '.' + k)}: is a getter or setter; pass plain data`);
+      if (d.value === undefined) continue;
+      Object.defineProperty(out, k, { value: copy(d.value, `${path}.${k}`, depth + 1), enumerable: true, writable: true, configurable: true });
+    }
+    return out;
+  };
+  try { return copy(value, what, 0); } catch (e) { throw say(e, what); }
+}
+export function f64Copy(value, what, maxLen) {
+  try {
+    if (ArrayBuffer.isView(value) && !(value instanceof DataView)) {
+      const out = new Float64Array(value);
+      if (out.length > maxLen) throw new Refused(`${what}: ${out.length} values; at most ${maxLen} are accepted`);
+      return out;
+    }
+    if (Array.isArray(value)) {
+      const n = value.length;
+      if (!Number.isSafeInteger(n) || n < 0 || n > maxLen) throw new Refused(`${what}: an array of ${clip(String(n))} items; at most ${maxLen} values are accepted`);
+      const out = new Float64Array(n);
+      for (let i = 0; i < n; i++) {
+        const x = value[i];
+        if (typeof x !== 'number') throw new Refused(`${what}[${i}]: expected a number, got ${kind(x)}`);
+        out[i] = x;
+      }
+      return out;
+    }
+    throw new Refused(`${what}: expected a Float64Array or an array of numbers, got ${kind(value)}`);
+  } catch (e) { throw say(e, what); }
+}
+"#)]
+extern "C" {
+    #[wasm_bindgen(catch, js_name = plainCopy)]
+    fn plain_copy(
+        value: &JsValue,
+        what: &str,
+        max_depth: u32,
+        max_items: f64,
+    ) -> Result<JsValue, JsValue>;
+    #[wasm_bindgen(catch, js_name = f64Copy)]
+    fn f64_copy(value: &JsValue, what: &str, max_len: f64) -> Result<Float64Array, JsValue>;
+}
+
+/// The message of an `Error` the copy helpers threw.
+fn message(e: JsValue) -> JsError {
+    let m = e
+        .dyn_into::<js_sys::Error>()
+        .map(|e| String::from(e.message()))
+        .unwrap_or_else(|_| "the argument could not be read".into());
+    JsError::new(&m)
+}
+
+/// A plain-data snapshot of `value` (see the module header); `what` names
+/// the argument in the error.
+pub fn plain(value: &JsValue, what: &str) -> Result<JsValue, JsError> {
+    plain_copy(value, what, MAX_DEPTH, budget::MAX_ARGUMENT_VALUES as f64).map_err(message)
+}
+
+/// A `Float64Array` or an array of numbers, copied into a `Vec`; anything
+/// else (an array-like, a non-number item, more than
+/// [`budget::MAX_ARGUMENT_VALUES`] values) is an `Error` naming `what`.
+pub fn floats_arg(value: &JsValue, what: &str) -> Result<Vec<f64>, JsError> {
+    Ok(f64_copy(value, what, budget::MAX_ARGUMENT_VALUES as f64)
+        .map_err(message)?
+        .to_vec())
+}
 
 /// Serialises a small result to a plain JS object (maps become objects,
 /// not `Map`s).
@@ -12,10 +145,17 @@ pub fn to_js<T: Serialize + ?Sized>(value: &T) -> Result<JsValue, JsError> {
         .map_err(|e| JsError::new(&format!("cannot convert the result to JS: {e}")))
 }
 
-/// Deserialises a small config; `what` names the argument in the message,
-/// e.g. `"axis"` gives `axis: missing field `kpp``.
+/// Deserialises a small config from its plain snapshot ([`plain`]); `what`
+/// names the argument in the message, e.g. `"axis"` gives
+/// `axis: missing field `kpp``.
 pub fn from_js<T: DeserializeOwned>(value: JsValue, what: &str) -> Result<T, JsError> {
-    serde_wasm_bindgen::from_value(value).map_err(|e| JsError::new(&format!("{what}: {e}")))
+    let copy = plain(&value, what)?;
+    serde_wasm_bindgen::from_value(copy).map_err(|e| {
+        JsError::new(&format!(
+            "{what}: {}",
+            budget::clip_quoted(&e.to_string(), 60)
+        ))
+    })
 }
 
 /// Builder for a result object that mixes numbers, `Float64Array`s and
@@ -75,10 +215,102 @@ impl Obj {
 /// A string argument. wasm-bindgen's own `&str` conversion traps on a
 /// non-string (memory access out of bounds), so bindings take a `JsValue`
 /// and come here: anything else is a thrown `Error` naming the argument.
+/// A string longer than [`budget::MAX_TEXT_BYTES`] is refused before it is
+/// copied into wasm memory (UTF-8 needs at least one byte per UTF-16 unit).
 pub fn string_arg(value: &JsValue, what: &str) -> Result<String, JsError> {
-    value.as_string().ok_or_else(|| {
+    let Some(s) = value.dyn_ref::<js_sys::JsString>() else {
         let got = value.js_typeof().as_string().unwrap_or_default();
         let got = if value.is_null() { "null".into() } else { got };
-        JsError::new(&format!("{what}: expected a string, got {got}"))
-    })
+        return Err(JsError::new(&format!(
+            "{what}: expected a string, got {got}"
+        )));
+    };
+    if s.length() as usize > budget::MAX_TEXT_BYTES {
+        return Err(JsError::new(&format!(
+            "{what}: {} characters, more than the limit of {} bytes; split the file or remove what the calculation does not need",
+            s.length(),
+            budget::MAX_TEXT_BYTES
+        )));
+    }
+    Ok(String::from(s))
+}
+
+/// A config argument that must be a plain object (not an array, a string
+/// or a number, which serde would otherwise read as a struct's fields in
+/// order or ignore), converted from its snapshot.
+pub fn object<T: DeserializeOwned>(value: JsValue, what: &str) -> Result<T, JsError> {
+    require_object(&value, what)?;
+    from_js(value, what)
+}
+
+/// An `Error` unless `value` is a non-array object.
+pub fn require_object(value: &JsValue, what: &str) -> Result<(), JsError> {
+    if value.is_object() && !js_sys::Array::is_array(value) && !value.is_function() {
+        return Ok(());
+    }
+    let got = if value.is_null() {
+        "null".to_string()
+    } else if js_sys::Array::is_array(value) {
+        "an array".to_string()
+    } else {
+        format!("a {}", value.js_typeof().as_string().unwrap_or_default())
+    };
+    Err(JsError::new(&format!(
+        "{what}: expected an object {{ … }}, got {got}"
+    )))
+}
+
+/// An optional number field of a plain snapshot: absent (`undefined` or
+/// `null`) gives `None`; anything but a finite number is an `Error` naming
+/// `what` (a string such as `"200"` is not read as 200, nor ignored).
+pub fn opt_number(obj: &JsValue, key: &str, what: &str) -> Result<Option<f64>, JsError> {
+    let v = Reflect::get(obj, &JsValue::from_str(key)).unwrap_or(JsValue::UNDEFINED);
+    if v.is_undefined() || v.is_null() {
+        return Ok(None);
+    }
+    match v.as_f64() {
+        Some(x) if x.is_finite() => Ok(Some(x)),
+        Some(x) => Err(JsError::new(&format!(
+            "{what}.{key}: expected a finite number, got {}",
+            crate::numeric::compact(x)
+        ))),
+        None => Err(JsError::new(&format!(
+            "{what}.{key}: expected a number, got a {}",
+            v.js_typeof().as_string().unwrap_or_default()
+        ))),
+    }
+}
+
+/// An optional number argument: `undefined`/`null` give `None`; anything
+/// but a finite number (a string, NaN, ±Infinity) is an `Error` naming
+/// `what`. wasm-bindgen's own `Option<f64>` would read `"abc"` as NaN.
+pub fn opt_number_arg(value: &JsValue, what: &str) -> Result<Option<f64>, JsError> {
+    if value.is_undefined() || value.is_null() {
+        return Ok(None);
+    }
+    match value.as_f64() {
+        Some(x) if x.is_finite() => Ok(Some(x)),
+        Some(x) => Err(JsError::new(&format!(
+            "{what}: expected a finite number, got {}",
+            crate::numeric::compact(x)
+        ))),
+        None => Err(JsError::new(&format!(
+            "{what}: expected a number, got a {}",
+            value.js_typeof().as_string().unwrap_or_default()
+        ))),
+    }
+}
+
+/// A whole count given as a JS number (wasm-bindgen's own `usize`
+/// conversion wraps 2³² + 1 to 1): an `Error` unless it is an integer in
+/// `0 ..= max`.
+pub fn count_arg(value: f64, what: &str, max: usize) -> Result<usize, JsError> {
+    if value.is_finite() && value >= 0.0 && value.fract() == 0.0 && value <= max as f64 {
+        Ok(value as usize)
+    } else {
+        Err(JsError::new(&format!(
+            "{what}: expected a whole number from 0 to {max}, got {}",
+            crate::numeric::compact(value)
+        )))
+    }
 }

@@ -8,7 +8,7 @@ use js_sys::{Array, Function};
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
-use super::convert::{from_js, string_arg, to_js, Obj};
+use super::convert::{floats_arg, from_js, object, opt_number_arg, string_arg, to_js, Obj};
 use crate::compensate::nc5::{self, s_shape};
 use crate::cone_frustum::{self, ConeFrustumConfig};
 use crate::kinematics::{self, inverse::limits_from_degrees, GeometricErrors, Model, Pose, AXES};
@@ -110,7 +110,7 @@ fn errors_of(v: JsValue) -> Result<GeometricErrors, JsError> {
     if v.is_undefined() || v.is_null() {
         Ok(GeometricErrors::default())
     } else {
-        from_js(v, "errors")
+        object(v, "errors")
     }
 }
 
@@ -130,17 +130,13 @@ pub fn forward_kinematics(
     #[wasm_bindgen(unchecked_param_type = "MachineArg")] machine: JsValue,
     #[wasm_bindgen(unchecked_param_type = "AxisValues")] q: JsValue,
     #[wasm_bindgen(unchecked_param_type = "GeometricErrors | undefined")] errors: JsValue,
-    tool_length: Option<f64>,
+    #[wasm_bindgen(unchecked_param_type = "number | undefined")] tool_length: JsValue,
 ) -> Result<JsValue, JsError> {
     let (_, chain) = machine_of(machine)?;
     let q = q_of(q, "q")?;
     let e = errors_of(errors)?;
-    to_js(&kinematics::forward(
-        &chain,
-        &q,
-        &e,
-        tool_length.unwrap_or(0.0),
-    )?)
+    let tool_length = opt_number_arg(&tool_length, "toolLength")?.unwrap_or(0.0);
+    to_js(&kinematics::forward(&chain, &q, &e, tool_length)?)
 }
 
 /// Bulk forward kinematics: `q` is a flat `Float64Array` of `n × 6` axis
@@ -149,14 +145,16 @@ pub fn forward_kinematics(
 #[wasm_bindgen(js_name = forwardKinematicsBulk, unchecked_return_type = "ToolPoses")]
 pub fn forward_kinematics_bulk(
     #[wasm_bindgen(unchecked_param_type = "MachineArg")] machine: JsValue,
-    q: &[f64],
+    #[wasm_bindgen(unchecked_param_type = "Float64Array | number[]")] q: JsValue,
     #[wasm_bindgen(unchecked_param_type = "GeometricErrors | undefined")] errors: JsValue,
-    tool_length: Option<f64>,
+    #[wasm_bindgen(unchecked_param_type = "number | undefined")] tool_length: JsValue,
 ) -> Result<JsValue, JsError> {
     let (_, chain) = machine_of(machine)?;
+    let q = floats_arg(&q, "q")?;
     let e = errors_of(errors)?;
-    let model = Model::new(&chain, &e, tool_length.unwrap_or(0.0))?;
-    let (pos, ori) = model.eval_bulk_degrees(q)?;
+    let tool_length = opt_number_arg(&tool_length, "toolLength")?.unwrap_or(0.0);
+    let model = Model::new(&chain, &e, tool_length)?;
+    let (pos, ori) = model.eval_bulk_degrees(&q)?;
     Ok(Obj::new()
         .arr("position", &pos)
         .arr("orientation", &ori)
@@ -168,10 +166,11 @@ pub fn forward_kinematics_bulk(
 pub fn inverse_kinematics(
     #[wasm_bindgen(unchecked_param_type = "MachineArg")] machine: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ToolPose")] pose: JsValue,
-    tool_length: Option<f64>,
+    #[wasm_bindgen(unchecked_param_type = "number | undefined")] tool_length: JsValue,
 ) -> Result<JsValue, JsError> {
+    let tool_length = opt_number_arg(&tool_length, "toolLength")?;
     let (m, chain) = machine_of(machine)?;
-    let pose: Pose = from_js(pose, "pose")?;
+    let pose: Pose = object(pose, "pose")?;
     let sols = kinematics::inverse(
         &chain,
         &pose,
@@ -213,7 +212,7 @@ pub fn cone_frustum_test(
     #[wasm_bindgen(unchecked_param_type = "ConeFrustumOptions")] options: JsValue,
     on_progress: Option<Function>,
 ) -> Result<JsValue, JsError> {
-    let cfg: ConeFrustumConfig = from_js(options, "options")?;
+    let cfg: ConeFrustumConfig = object(options, "options")?;
     if let Some(f) = &on_progress {
         let _ = f.call2(
             &JsValue::NULL,
@@ -300,7 +299,7 @@ pub fn compensate_nc5(
     #[wasm_bindgen(unchecked_param_type = "Nc5Options")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
-    let cfg: nc5::Nc5Config = from_js(options, "options")?;
+    let cfg: nc5::Nc5Config = object(options, "options")?;
     let r = nc5::compensate_nc5(text, &cfg)?;
     Ok(Obj::new()
         .val("nc", JsValue::from_str(&r.nc))
@@ -322,6 +321,6 @@ pub fn compensate_nc5(
 pub fn s_shape_test_piece(
     #[wasm_bindgen(unchecked_param_type = "SShapeOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
-    let o: s_shape::SShapeOptions = from_js(options, "options")?;
+    let o: s_shape::SShapeOptions = object(options, "options")?;
     to_js(&s_shape::s_shape(&o)?)
 }

@@ -3,10 +3,10 @@
 //! `feedVectorTest`, `analyzeFeedVectorTrace`, `bestKffp`,
 //! `torqueSaturation`. Thin: convert, call the core, convert back.
 
-use js_sys::{Float64Array, Reflect};
+use js_sys::Reflect;
 use wasm_bindgen::prelude::*;
 
-use super::convert::{from_js, string_arg, to_js, Obj};
+use super::convert::{floats_arg, object, plain, require_object, string_arg, to_js, Obj};
 use crate::best_kffp::{self, saturation};
 use crate::feed_vector::{self, trace_analysis, Condition, FeedVectorResult};
 use crate::machine::{self, Machine};
@@ -76,7 +76,7 @@ export interface IdentifiedAxis {
 fn machine_arg(value: JsValue) -> Result<Machine, JsError> {
     match value.as_string() {
         Some(name) => Ok(machine::preset(&name)?),
-        None => from_js(value, "machine"),
+        None => object(value, "machine"),
     }
 }
 
@@ -85,10 +85,11 @@ fn machine_arg(value: JsValue) -> Result<Machine, JsError> {
 #[wasm_bindgen(js_name = frequencyResponse, unchecked_return_type = "FrequencyResponse")]
 pub fn frequency_response(
     #[wasm_bindgen(unchecked_param_type = "AxisParams")] axis: JsValue,
-    omegas: &[f64],
+    #[wasm_bindgen(unchecked_param_type = "Float64Array | number[]")] omegas: JsValue,
 ) -> Result<JsValue, JsError> {
-    let axis: AxisParams = from_js(axis, "axis")?;
-    let r = response::frequency_response(&axis, omegas)?;
+    let axis: AxisParams = object(axis, "axis")?;
+    let omegas = floats_arg(&omegas, "omegas")?;
+    let r = response::frequency_response(&axis, &omegas)?;
     Ok(Obj::new()
         .arr("magnitude", &r.magnitude)
         .arr("phase", &r.phase)
@@ -102,22 +103,15 @@ pub fn simulate_axis(
     #[wasm_bindgen(unchecked_param_type = "AxisParams")] axis: JsValue,
     #[wasm_bindgen(unchecked_param_type = "SimulateInput")] input: JsValue,
 ) -> Result<JsValue, JsError> {
-    let axis: AxisParams = from_js(axis, "axis")?;
+    let axis: AxisParams = object(axis, "axis")?;
+    require_object(&input, "input")?;
+    let input = plain(&input, "input")?;
     let dt = Reflect::get(&input, &JsValue::from_str("dt"))
         .ok()
         .and_then(|v| v.as_f64())
         .ok_or_else(|| JsError::new("input.dt: expected the time step in s (a number)"))?;
-    let position = Reflect::get(&input, &JsValue::from_str("position"))
-        .ok()
-        .filter(|v| v.is_instance_of::<Float64Array>() || js_sys::Array::is_array(v))
-        .ok_or_else(|| {
-            JsError::new("input.position: expected a Float64Array of command samples")
-        })?;
-    let command: Vec<f64> = if position.is_instance_of::<Float64Array>() {
-        Float64Array::from(position).to_vec()
-    } else {
-        from_js(position, "input.position")?
-    };
+    let position = Reflect::get(&input, &JsValue::from_str("position")).unwrap_or_default();
+    let command = floats_arg(&position, "input.position")?;
     let r = simulate::simulate_axis(&axis, dt, &command)?;
     Ok(Obj::new()
         .arr("position", &r.position)
@@ -160,7 +154,7 @@ pub fn feed_vector_test(
     #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
 ) -> Result<JsValue, JsError> {
     let m = machine_arg(machine)?;
-    let cond: Condition = from_js(condition, "condition")?;
+    let cond: Condition = object(condition, "condition")?;
     result_js(
         &feed_vector::feed_vector_test(&m, &cond).map_err(|e| JsError::new(&e.user_message()))?,
     )
@@ -175,11 +169,11 @@ pub fn analyze_feed_vector_trace(
     #[wasm_bindgen(unchecked_optional_param_type = "TraceMapping")] mapping: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
-    let cond: Condition = from_js(condition, "condition")?;
+    let cond: Condition = object(condition, "condition")?;
     let map: trace_analysis::ColumnMap = if mapping.is_undefined() || mapping.is_null() {
         trace_analysis::ColumnMap::default()
     } else {
-        from_js(mapping, "mapping")?
+        object(mapping, "mapping")?
     };
     result_js(
         &trace_analysis::analyze_trace(text, &cond, &map)
@@ -196,11 +190,11 @@ pub fn best_kffp(
     #[wasm_bindgen(unchecked_optional_param_type = "BestKffpOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let m = machine_arg(machine)?;
-    let cond: Condition = from_js(condition, "condition")?;
+    let cond: Condition = object(condition, "condition")?;
     let opts: best_kffp::Options = if options.is_undefined() || options.is_null() {
         best_kffp::Options::default()
     } else {
-        from_js(options, "options")?
+        object(options, "options")?
     };
     to_js(
         &best_kffp::best_kffp(&m, &cond, &opts).map_err(|e| match e {
@@ -217,7 +211,7 @@ pub fn torque_saturation(
     #[wasm_bindgen(unchecked_param_type = "SaturationQuery")] query: JsValue,
 ) -> Result<JsValue, JsError> {
     let m = machine_arg(machine)?;
-    let q: saturation::SaturationQuery = from_js(query, "query")?;
+    let q: saturation::SaturationQuery = object(query, "query")?;
     to_js(&saturation::torque_saturation(&m, &q)?)
 }
 
@@ -226,18 +220,19 @@ pub fn torque_saturation(
 /// trace (commanded table angle and error, rad), by Fourier analysis.
 #[wasm_bindgen(js_name = identifyPitchError, unchecked_return_type = "PitchIdentification")]
 pub fn identify_pitch_error(
-    angle: &[f64],
-    error: &[f64],
+    #[wasm_bindgen(unchecked_param_type = "Float64Array | number[]")] angle: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Float64Array | number[]")] error: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "PitchIdentifyOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let o: crate::servo::pitch_identify::PitchIdentifyOptions =
         if options.is_undefined() || options.is_null() {
             Default::default()
         } else {
-            from_js(options, "options")?
+            object(options, "options")?
         };
+    let (angle, error) = (floats_arg(&angle, "angle")?, floats_arg(&error, "error")?);
     to_js(&crate::servo::pitch_identify::identify_pitch_error(
-        angle, error, &o,
+        &angle, &error, &o,
     )?)
 }
 
@@ -249,8 +244,8 @@ pub fn identify_axis(
     #[wasm_bindgen(unchecked_param_type = "AxisParams")] initial: JsValue,
     #[wasm_bindgen(unchecked_param_type = "MeasuredTrace")] trace: JsValue,
 ) -> Result<JsValue, JsError> {
-    let a: AxisParams = from_js(initial, "initial")?;
-    let t: crate::servo::identify::MeasuredTrace = from_js(trace, "trace")?;
+    let a: AxisParams = object(initial, "initial")?;
+    let t: crate::servo::identify::MeasuredTrace = object(trace, "trace")?;
     to_js(&crate::servo::identify::identify_axis(&a, &t)?)
 }
 
@@ -269,6 +264,7 @@ pub fn trace_columns(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
+    crate::budget::check_text("trace", text)?;
     let table = crate::trace::Table::parse(text)?;
     let out = js_sys::Array::new();
     for n in &table.names {

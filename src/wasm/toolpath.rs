@@ -5,7 +5,7 @@
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
-use super::convert::{from_js, string_arg, to_js, Obj};
+use super::convert::{from_js, object, plain, string_arg, to_js, Obj};
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
 use crate::nc::files::{main_file, parse_files, NcFile};
 use crate::nc::program::{ParseOptions, Segment, Warning};
@@ -121,6 +121,8 @@ fn take_files(options: JsValue) -> Result<(Vec<NcFile>, JsValue), JsError> {
     if !options.is_object() {
         return Ok((Vec::new(), options));
     }
+    // Plain data first (no getter or Proxy runs while the key is read).
+    let options = plain(&options, "options")?;
     let key = JsValue::from_str("files");
     let files = js_sys::Reflect::get(&options, &key).unwrap_or(JsValue::UNDEFINED);
     if files.is_undefined() {
@@ -151,7 +153,7 @@ fn parse_options(options: JsValue) -> Result<ParseOptions, JsError> {
     // serde-wasm-bindgen only reads the keys a struct names, so the core's
     // deny_unknown_fields never sees a misspelt key: check here.
     let keys: std::collections::BTreeMap<String, serde::de::IgnoredAny> =
-        from_js(options.clone(), "options")?;
+        object(options.clone(), "options")?;
     if let Some(k) = keys
         .keys()
         .find(|k| !ParseOptions::KEYS.contains(&k.as_str()))
@@ -242,7 +244,7 @@ pub fn simulate_tool_path(
     let cfg: SimConfig = if config.is_undefined() || config.is_null() {
         SimConfig::default()
     } else {
-        from_js(config, "config")?
+        object(config, "config")?
     };
     let p = parse_files(text, &files, &ParseOptions::default())
         .map_err(|e| JsError::new(&e.first().to_string()))?;
@@ -265,7 +267,7 @@ struct Eq3In {
 pub fn radius_reduction(
     #[wasm_bindgen(unchecked_param_type = "RadiusReductionInput")] input: JsValue,
 ) -> Result<f64, JsError> {
-    let i: Eq3In = from_js(input, "radiusReduction")?;
+    let i: Eq3In = object(input, "radiusReduction")?;
     Ok(eq3(i.feed, i.radius, i.t_a, i.t)?)
 }
 
@@ -298,7 +300,7 @@ pub fn reverse_compensate_js(
     let cfg: ReverseConfig = if config.is_undefined() || config.is_null() {
         ReverseConfig::default()
     } else {
-        from_js(config, "config")?
+        object(config, "config")?
     };
     let mut progress = |f: f64, stage: &str| match &on_progress {
         Some(cb) => cb

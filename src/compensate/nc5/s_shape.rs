@@ -77,6 +77,13 @@ pub struct SShape {
     pub nc: String,
 }
 
+/// Lowest feed of the program, mm/min: it is written with 4 decimals.
+pub const MIN_FEED: f64 = 1e-3;
+/// Highest feed, mm/min (1 km/min).
+pub const MAX_FEED: f64 = 1e6;
+/// Largest |origin| or tool length, mm (100 m: beyond any machine).
+pub const MAX_LENGTH: f64 = 1e5;
+
 /// Builds the S part and its program.
 ///
 /// # Units
@@ -99,11 +106,32 @@ pub fn s_shape(o: &SShapeOptions) -> Result<SShape, KinematicsError> {
             why: "must be in (0, 2]".into(),
         });
     }
-    if !(o.feed.is_finite() && o.feed > 0.0) {
+    // The program writes F with 4 decimals: a feed below 0.001 would read
+    // "F0." and one of 1e308 would be written with 309 digits.
+    if !(o.feed.is_finite() && (MIN_FEED..=MAX_FEED).contains(&o.feed)) {
         return Err(KinematicsError::BadInput {
             field: "feed".into(),
-            why: "must be > 0 mm/min".into(),
+            why: format!(
+                "must be from 0.001 to 1e6 mm/min, got {}",
+                crate::numeric::compact(o.feed)
+            ),
         });
+    }
+    for (field, v) in [
+        ("toolLength", o.tool_length),
+        ("origin[0]", o.origin[0]),
+        ("origin[1]", o.origin[1]),
+        ("origin[2]", o.origin[2]),
+    ] {
+        if !(v.is_finite() && v.abs() <= MAX_LENGTH) {
+            return Err(KinematicsError::BadInput {
+                field: field.into(),
+                why: format!(
+                    "must be a length within ±1e5 mm, got {}",
+                    crate::numeric::compact(v)
+                ),
+            });
+        }
     }
     let (machine, chain) = o.machine.resolve().map_err(|e| KinematicsError::BadInput {
         field: "machine".into(),

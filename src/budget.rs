@@ -1,0 +1,226 @@
+//! Work budgets: the most work one call may do, in one place.
+//!
+//! Every entry point estimates its work from its input (text bytes and
+//! lines, samples × series, harmonics, ranges × samples, runs × points)
+//! *before* it starts, and refuses above a budget with a [`BudgetError`]
+//! that names the quantity, the estimate, the limit and what to change.
+//! The estimate is arithmetic on the input's sizes, so a refusal costs
+//! microseconds, not the work it avoids.
+//!
+//! The limits are chosen so that no call needs more than about 512 MB of
+//! memory or 10 s. Measured with the wasm build in Node on the project's
+//! 2-core build machine, while other builds shared it: a 2 M-sample tool
+//! path 4.3 s and 276 MiB of wasm memory, a 1 M-sample feed-vector test
+//! 4.7 s and 161 MiB, a 10 M-point travel-range sweep 2.1 s and 52 MiB, NC
+//! parsing 20–40 µs per line. README's "Bad input" section lists them.
+//!
+//! Source: none (engineering limits, not a model).
+
+/// Largest program or trace text, bytes (UTF-8): 8 MiB is 100,000 lines
+/// of 80 characters.
+pub const MAX_TEXT_BYTES: usize = 8 << 20;
+
+/// Most lines in one program or trace: an NC line costs 20–40 µs to parse
+/// in the wasm build (100,000 lines: about 2–4 s and 80 MB).
+pub const MAX_LINES: usize = 100_000;
+
+/// Most NC blocks one program may execute, subprogram and cycle repeats
+/// included: each gives a segment of about 200 B, and the tool path
+/// downstream samples every one.
+pub const MAX_EXECUTED_BLOCKS: usize = 1_000_000;
+
+/// Most numbers in one JS argument (a config or an array), counted over
+/// its whole nesting: 8 M numbers are 64 MB in wasm memory.
+pub const MAX_ARGUMENT_VALUES: usize = 8_000_000;
+
+/// Most samples of one tool-path simulation: it keeps 17 series of f64
+/// per sample (136 B), so 2 M samples are about 272 MB in wasm memory and
+/// as much again as JS arrays.
+pub const MAX_TOOLPATH_SAMPLES: usize = 2_000_000;
+
+/// Most samples of one constant-feed-speed-vector test: it keeps 15
+/// series plus the three axis simulations (about 300 B per sample).
+pub const MAX_FEED_VECTOR_SAMPLES: usize = 1_000_000;
+
+/// Most worm-gear pitch-error harmonics on one axis: kato's gear shows 4;
+/// each harmonic costs one `sin` per simulation step.
+pub const MAX_PITCH_HARMONICS: usize = 64;
+
+/// Most (travel ranges × samples per revolution) of one travel-range or
+/// angle sweep: each sample enters one least-squares fit.
+pub const MAX_SWEEP_POINTS: usize = 10_000_000;
+
+/// Most runs in one ISO 230-4 circular test (a run is one direction of
+/// one circle; a test has 2).
+pub const MAX_CIRCULAR_RUNS: usize = 64;
+
+/// Most points over all runs of one circular test (its angle and
+/// deviation arrays are 4 M numbers, half the argument budget).
+pub const MAX_CIRCULAR_POINTS: usize = 2_000_000;
+
+/// A refused call: the estimate of its work is above the budget.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{what}: {amount} {unit}, more than the limit of {limit}; {advice}")]
+pub struct BudgetError {
+    /// What was measured, e.g. "program text".
+    pub what: &'static str,
+    /// The estimate (64-bit, so a product of sizes does not wrap on wasm32).
+    pub amount: u64,
+    /// The limit.
+    pub limit: usize,
+    /// The unit of both, e.g. "bytes".
+    pub unit: &'static str,
+    /// What to change, e.g. "split the program".
+    pub advice: &'static str,
+}
+
+/// `Ok` when `amount ≤ limit`, else the [`BudgetError`].
+///
+/// # Examples
+/// ```
+/// use mtmotion::budget::{check, MAX_LINES};
+/// assert!(check("program", 10, MAX_LINES, "lines", "split it").is_ok());
+/// let e = check("program", 300_000, MAX_LINES, "lines", "split it").unwrap_err();
+/// assert_eq!(e.to_string(), "program: 300000 lines, more than the limit of 100000; split it");
+/// ```
+pub fn check(
+    what: &'static str,
+    amount: u64,
+    limit: usize,
+    unit: &'static str,
+    advice: &'static str,
+) -> Result<(), BudgetError> {
+    if amount <= limit as u64 {
+        Ok(())
+    } else {
+        Err(BudgetError {
+            what,
+            amount,
+            limit,
+            unit,
+            advice,
+        })
+    }
+}
+
+/// Checks a text's size in bytes, then its lines (LF, CRLF or CR alone; a
+/// last line without an end counts). The bytes are checked first, so the
+/// line count is one pass over at most [`MAX_TEXT_BYTES`].
+///
+/// # Examples
+/// ```
+/// use mtmotion::budget::{check_text, lines};
+/// assert!(check_text("trace", "a,b\n1,2\n").is_ok());
+/// assert_eq!(lines("a\r\nb\rc"), 3);
+/// assert!(check_text("trace", &"\r".repeat(300_000)).is_err());
+/// ```
+pub fn check_text(what: &'static str, text: &str) -> Result<(), BudgetError> {
+    check(
+        what,
+        text.len() as u64,
+        MAX_TEXT_BYTES,
+        "bytes",
+        "split the file or remove what the calculation does not need",
+    )?;
+    check(
+        what,
+        lines(text) as u64,
+        MAX_LINES,
+        "lines",
+        "split the file into parts and run each",
+    )
+}
+
+/// Number of lines of `text` (LF, CRLF or CR alone end a line).
+pub fn lines(text: &str) -> usize {
+    let bytes = text.as_bytes();
+    let ends = bytes
+        .iter()
+        .enumerate()
+        .filter(|&(i, &b)| b == b'\n' || (b == b'\r' && bytes.get(i + 1) != Some(&b'\n')))
+        .count();
+    ends + usize::from(!matches!(bytes.last(), None | Some(b'\n' | b'\r')))
+}
+
+/// Clips user text echoed in an error message to at most `max` characters
+/// (an ellipsis marks the cut), so a message never repeats a huge input.
+///
+/// # Examples
+/// ```
+/// use mtmotion::budget::clip;
+/// assert_eq!(clip("abc", 80), "abc");
+/// assert_eq!(clip(&"x".repeat(100), 10).chars().count(), 10);
+/// ```
+pub fn clip(text: &str, max: usize) -> String {
+    if text.chars().count() <= max {
+        return text.to_string();
+    }
+    let mut s: String = text.chars().take(max.saturating_sub(1)).collect();
+    s.push('…');
+    s
+}
+
+/// Clips every quoted run (`"…"` or `'…'`) of a message to at most `max`
+/// characters: parsers quote the user's text, and a message must not
+/// repeat a 50 MB input.
+///
+/// # Examples
+/// ```
+/// use mtmotion::budget::clip_quoted;
+/// let m = format!("invalid value: string \"{}\", expected a number", "9".repeat(500));
+/// assert!(clip_quoted(&m, 20).len() < 80);
+/// assert_eq!(clip_quoted("unknown key 'ab'", 20), "unknown key 'ab'");
+/// ```
+pub fn clip_quoted(message: &str, max: usize) -> String {
+    let mut out = String::with_capacity(message.len().min(4 * max + 200));
+    let mut quote: Option<char> = None;
+    let mut inside = 0usize;
+    for c in message.chars() {
+        match quote {
+            Some(q) if c == q => {
+                quote = None;
+                out.push(c);
+            }
+            Some(_) => {
+                inside += 1;
+                if inside < max {
+                    out.push(c);
+                } else if inside == max {
+                    out.push('…');
+                }
+            }
+            None => {
+                if c == '"' || c == '\'' {
+                    quote = Some(c);
+                    inside = 0;
+                }
+                out.push(c);
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_limits_count_every_line_ending() {
+        let ok = "G1 X1\n".repeat(MAX_LINES);
+        assert!(check_text("p", &ok).is_ok());
+        for end in ["\n", "\r\n", "\r"] {
+            let long = format!("G1{end}").repeat(MAX_LINES + 1);
+            let e = check_text("p", &long).unwrap_err();
+            assert_eq!(e.unit, "lines", "{end:?}");
+        }
+        let big = "x".repeat(MAX_TEXT_BYTES + 1);
+        assert_eq!(check_text("p", &big).unwrap_err().unit, "bytes");
+    }
+
+    #[test]
+    fn clip_keeps_short_text_and_cuts_long_text() {
+        assert_eq!(clip("αβγ", 3), "αβγ");
+        assert_eq!(clip("αβγδ", 3), "αβ…");
+    }
+}
