@@ -16,7 +16,7 @@
 use super::macro_expr::{
     is_okuma_word, okuma_message, show, tokenize, Cursor, Expr, Tok, Token, VarRef,
 };
-use super::{Block, NcError, Word};
+use super::{Block, NcError, Word, O_WORDS};
 
 /// A macro line: the statement and the source text (written back as is).
 #[derive(Debug, Clone, PartialEq)]
@@ -149,24 +149,6 @@ pub enum Stmt {
 
 /// Fanuc Macro B statement keywords that make a line a macro line.
 const STMT_WORDS: [&str; 6] = ["IF", "WHILE", "GOTO", "END", "DO", "THEN"];
-/// o-word keywords (after an `O` label).
-const O_KEYWORDS: [&str; 15] = [
-    "SUB",
-    "ENDSUB",
-    "CALL",
-    "IF",
-    "ELSEIF",
-    "ELSE",
-    "ENDIF",
-    "WHILE",
-    "ENDWHILE",
-    "DO",
-    "REPEAT",
-    "ENDREPEAT",
-    "RETURN",
-    "BREAK",
-    "CONTINUE",
-];
 
 /// True when `src` holds macro code: a `#` or `[` outside comments, a
 /// Macro B statement keyword, or an o-word (`o100 sub`, `o<x> call`).
@@ -185,7 +167,7 @@ pub fn is_macro_line(src: &str) -> bool {
     code.iter().enumerate().any(|(i, t)| match t {
         Tok::Hash | Tok::Named(_) | Tok::Open => true,
         Tok::Word(w) if STMT_WORDS.contains(&w.as_str()) => true,
-        Tok::Word(w) if O_KEYWORDS.contains(&w.as_str()) && i >= 1 => {
+        Tok::Word(w) if O_WORDS.contains(&w.as_str()) && i >= 1 => {
             let numbered = i >= 2
                 && matches!(code[i - 2], Tok::Word(o) if o == "O")
                 && matches!(code[i - 1], Tok::Num(..));

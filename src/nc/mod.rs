@@ -302,8 +302,8 @@ const MACRO_B: [&str; 26] = [
     "IF", "GOTO", "THEN", "WHILE", "DO", "END", "EQ", "NE", "GT", "GE", "LT", "LE", "AND", "OR",
     "XOR", "SIN", "COS", "TAN", "ATAN", "SQRT", "ABS", "ROUND", "FIX", "FUP", "BIN", "BCD",
 ];
-/// LinuxCNC o-word keywords.
-const O_WORDS: [&str; 15] = [
+/// LinuxCNC o-word keywords (the lexer's and the macro reader's).
+pub(crate) const O_WORDS: [&str; 15] = [
     "SUB",
     "ENDSUB",
     "CALL",

@@ -1,7 +1,7 @@
 //! Regions of a program for the reverse compensation: the runs of cutting
 //! moves between rapids and fixed segments, judged one by one.
 //!
-//! A rapid ends in an exact stop (see [`crate::toolpath::simulate`]), so
+//! A rapid ends in an exact stop (see [`crate::toolpath::simulate()`]), so
 //! what happens before it does not reach the samples after it; a fixed
 //! segment (subprogram body, canned-cycle expansion, Fanuc corner) cannot
 //! move, so its joints are pinned. A region's error is the largest contour

@@ -70,7 +70,7 @@ pub fn copy_region(regions: &Regions, r: usize, from: &Edit, to: &mut Edit) {
 /// Runs up to `iterations + 1` rounds from `start` (see the module header).
 ///
 /// # Errors
-/// As [`simulate`].
+/// As [`simulate()`].
 pub fn run(
     orig: &[Segment],
     regions: &Regions,
@@ -135,7 +135,7 @@ pub fn run(
 /// statistics carry whole-program segment indices.
 ///
 /// # Errors
-/// As [`simulate`].
+/// As [`simulate()`].
 pub fn simulate_windows(
     orig: &[Segment],
     regions: &Regions,
