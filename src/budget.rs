@@ -29,6 +29,14 @@ pub const MAX_LINES: usize = 100_000;
 /// downstream samples every one.
 pub const MAX_EXECUTED_BLOCKS: usize = 1_000_000;
 
+/// Loop iterations (backward jumps: END, endwhile, GOTO back) a macro
+/// program may make before it is stopped as endless. A quarter of
+/// [`MAX_EXECUTED_BLOCKS`], so that a loop (at least its head and its end
+/// are blocks) meets this limit, which names the loop's line, before the
+/// executed-block limit; far above a real part program (a 1,000-hole
+/// pattern with 100 passes).
+pub const MAX_LOOP_ITERATIONS: usize = MAX_EXECUTED_BLOCKS / 4;
+
 /// Most numbers in one JS argument (a config or an array), counted over
 /// its whole nesting: 8 M numbers are 64 MB in wasm memory.
 pub const MAX_ARGUMENT_VALUES: usize = 8_000_000;

@@ -29,10 +29,7 @@ use super::macro_vars::Variables;
 use super::program::{Modal, Warning};
 use super::{Block, NcError, NcErrors, Word};
 
-/// Loop iterations (backward jumps) a program may make before it is
-/// stopped as endless: a million is far above any real part program
-/// (a 1,000-hole pattern with 100 passes) and runs in well under a second.
-pub const MAX_LOOP_ITERATIONS: usize = 1_000_000;
+pub use crate::budget::MAX_LOOP_ITERATIONS;
 
 /// Deepest o-call / G65 nesting (Fanuc allows 4 levels of G65, LinuxCNC
 /// more; 30 catches runaway recursion with a clear message).

@@ -312,7 +312,7 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
                 b.line,
                 1,
                 format!(
-                    "more than {MAX_EXECUTED_BLOCKS} blocks executed: the subprogram calls and repeats look endless; check the M98 repeat counts and M99 returns"
+                    "more than {MAX_EXECUTED_BLOCKS} blocks executed: the subprogram calls, repeats or loops look endless; check the M98 repeat counts, the M99 returns and the loop conditions"
                 ),
             ));
             break;
