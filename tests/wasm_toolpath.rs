@@ -114,7 +114,10 @@ fn bad_input_throws_the_core_message() {
     assert!(message(e).starts_with("dt: expected a sampling interval"));
     let e =
         tp::radius_reduction(cfg(r#"{"feed":2000,"radius":-1,"tA":0.04,"T":0.01}"#)).unwrap_err();
-    assert_eq!(message(e), "radius: expected a positive radius in mm");
+    assert_eq!(
+        message(e),
+        "radius: expected a radius from 0.001 to 1e6 mm, got -1"
+    );
     let e = tp::identify_acc_dec(cfg(r#"[{"feed":2000,"radius":10,"radiusLoss":0.01},{"feed":4000,"radius":20,"radiusLoss":0.01}]"#)).unwrap_err();
     assert!(message(e).contains("same angular velocity"));
     let e = tp::toolpath_example(JsValue::from_str("spiral")).unwrap_err();
