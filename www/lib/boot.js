@@ -65,17 +65,20 @@ export function linkValueProblem(e, raw) {
 // A pasted program (a panel's id'd textarea) travels in the link, deflated
 // and base64url-coded, when it fits (LINK_TEXT_LIMIT); otherwise the link
 // says so and the page asks for the program to be loaded again.
+/** Longest text worth compressing for a link (characters). */
+const LINK_PACK_MAX = 2_000_000;
 const textsOf = (tab) => /** @type {NodeListOf<HTMLTextAreaElement>} */ (document.querySelectorAll(`#panel-${tab} textarea[id]`));
 
 async function addTexts(tab, q) {
   for (const t of textsOf(tab)) {
-    const packed = t.value ? await packText(t.value) : null;
+    // Megabytes never fit a link; do not compress them on every change.
+    const packed = t.value && t.value.length <= LINK_PACK_MAX ? await packText(t.value) : null;
     if (packed && packed.length <= LINK_TEXT_LIMIT) q.set(`${t.id}.z`, packed);
     else if (t.value) q.set(`${t.id}.z`, 'too-large');
   }
   for (const [key, drop] of linkedDrops) {
     if (!key.startsWith(`${tab}-`) || !drop.file) continue;
-    const packed = await packText(`${drop.file.name}\n${drop.file.text}`);
+    const packed = drop.file.text.length <= LINK_PACK_MAX ? await packText(`${drop.file.name}\n${drop.file.text}`) : null;
     q.set(`${key}.z`, packed && packed.length <= LINK_TEXT_LIMIT ? packed : `too-large:${drop.file.name.slice(0, 80)}`);
   }
   if (activeTab() === tab) history.replaceState(null, '', `#${q}`);

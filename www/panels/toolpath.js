@@ -74,7 +74,30 @@ export async function mount(root, api) {
     options: [['arcs', 'Fig. 2-like path, B–D as 43 arcs'], ['lines', 'Fig. 2-like path, B–D as 83 lines']],
     onChange: (v) => { files.clear(); nc.value = examples[v]; fileName = `example-${v}.nc`; programChanged(); checkProgram(); },
   });
-  const files = programFiles(api, { onMain: (text, name) => { nc.value = text; fileName = name; programChanged(); checkProgram(); } });
+  // A program of megabytes is checked by the core before it goes into the
+  // text area (a text area of 50 MB freezes the page while it lays out):
+  // one the core refuses (its text budget) is named with the error instead.
+  const LARGE_TEXT = 1_000_000;
+  const takeProgram = async (text, name) => {
+    if (text.length > LARGE_TEXT) {
+      let problem = null;
+      try {
+        const c = await api.call('checkNc', [text, files.options()]);
+        if (c.errors.length && c.errors[0].line <= 1) problem = c.errors[0].message;
+      } catch (e) {
+        problem = e instanceof Error ? e.message : String(e);
+      }
+      if (problem) {
+        showError(check, new Error(`${name} was not loaded: ${problem}`));
+        return;
+      }
+    }
+    nc.value = text;
+    fileName = name;
+    programChanged();
+    checkProgram();
+  };
+  const files = programFiles(api, { onMain: takeProgram });
   const drop = dropZone({ label: 'Drop an NC program (with its subprogram files, if any) here, or click to choose', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', multiple: true, onFiles: files.take, id: 'toolpath-file' });
   const tA = numberField({ label: 'tA (acc/dec)', value: 40, unit: 'ms', step: 1, min: 0, id: 'toolpath-ta' });
   const tx = numberField({ label: 'T X', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-tx' });
