@@ -37,33 +37,38 @@ async function worstDelay(page, work) {
   });
 }
 
-export default async function (page, check) {
-  // ---- ball bar
-  await page.click('[data-tab="ballbar"]');
-  const trace = bigFile('huge-trace.csv', 'angle_deg,deviation_um\n', '123.456789,0.123456789\n', MB50);
-  const bbInput = await page.$('#panel-ballbar .drop input[type=file]:not([multiple])');
-  const bbDelay = await worstDelay(page, async () => {
-    await bbInput.setInputFiles(trace);
-    await page.waitForSelector('#ballbar-results .error-box', { timeout: 60_000 });
+/** Drops `file` on the tab's drop zone and checks the page answered and
+ * showed the core's budget error in `errorSelector`. */
+async function dropHuge(page, check, { tab, input, file, errorSelector, what }) {
+  await page.click(`[data-tab="${tab}"]`);
+  const handle = await page.$(input);
+  const delay = await worstDelay(page, async () => {
+    await handle.setInputFiles(file);
+    await page.waitForSelector(errorSelector, { timeout: 60_000 });
   });
-  const bbMsg = await page.textContent('#ballbar-results .error-box');
-  check(bbDelay < 200, `the page should answer within 200 ms while a 50 MB trace is refused; worst delay ${bbDelay.toFixed(0)} ms`);
-  check(/more than the limit|too large|at most/i.test(bbMsg) && bbMsg.length < 400, `the 50 MB trace should get the core's budget error in words: "${bbMsg.slice(0, 300)}"`);
+  const msg = await page.textContent(errorSelector);
+  check(delay < 200, `the page should answer within 200 ms while a 50 MB ${what} is refused; worst delay ${delay.toFixed(0)} ms`);
+  check(/more than the limit|too large|at most/i.test(msg) && msg.length < 400, `the 50 MB ${what} should get the core's budget error in words: "${msg.slice(0, 300)}"`);
+}
+
+export default async function (page, check) {
+  await dropHuge(page, check, {
+    tab: 'ballbar',
+    input: '#panel-ballbar .drop input[type=file]:not([multiple])',
+    file: bigFile('huge-trace.csv', 'angle_deg,deviation_um\n', '123.456789,0.123456789\n', MB50),
+    errorSelector: '#ballbar-results .error-box',
+    what: 'trace',
+  });
   // The page still works: the synthetic trace analyses.
   await page.selectOption('#ballbar-source', 'synthetic');
   await page.click('#ballbar-run');
   await page.waitForSelector('#ballbar-centre-x', { timeout: 60_000 });
-  check(true, 'the ball-bar panel analyses again after the huge file');
 
-  // ---- tool path
-  await page.click('[data-tab="toolpath"]');
-  const nc = bigFile('huge-program.nc', 'G21 G90\n', 'G01 X12.3456 Y65.4321 F1000\n', MB50);
-  const tpInput = await page.$('#panel-toolpath .drop input[type=file]');
-  const tpDelay = await worstDelay(page, async () => {
-    await tpInput.setInputFiles(nc);
-    await page.waitForSelector('#panel-toolpath .error-box', { timeout: 60_000 });
+  await dropHuge(page, check, {
+    tab: 'toolpath',
+    input: '#panel-toolpath .drop input[type=file]',
+    file: bigFile('huge-program.nc', 'G21 G90\n', 'G01 X12.3456 Y65.4321 F1000\n', MB50),
+    errorSelector: '#panel-toolpath .error-box',
+    what: 'program',
   });
-  const tpMsg = await page.textContent('#panel-toolpath .error-box');
-  check(tpDelay < 200, `the page should answer within 200 ms while a 50 MB program is refused; worst delay ${tpDelay.toFixed(0)} ms`);
-  check(/more than the limit|too large|at most/i.test(tpMsg) && tpMsg.length < 400, `the 50 MB program should get the core's budget error in words: "${tpMsg.slice(0, 300)}"`);
 }
