@@ -265,20 +265,7 @@ pub fn require_object(value: &JsValue, what: &str) -> Result<(), JsError> {
 /// `what` (a string such as `"200"` is not read as 200, nor ignored).
 pub fn opt_number(obj: &JsValue, key: &str, what: &str) -> Result<Option<f64>, JsError> {
     let v = Reflect::get(obj, &JsValue::from_str(key)).unwrap_or(JsValue::UNDEFINED);
-    if v.is_undefined() || v.is_null() {
-        return Ok(None);
-    }
-    match v.as_f64() {
-        Some(x) if x.is_finite() => Ok(Some(x)),
-        Some(x) => Err(JsError::new(&format!(
-            "{what}.{key}: expected a finite number, got {}",
-            crate::numeric::compact(x)
-        ))),
-        None => Err(JsError::new(&format!(
-            "{what}.{key}: expected a number, got a {}",
-            v.js_typeof().as_string().unwrap_or_default()
-        ))),
-    }
+    opt_number_arg(&v, &format!("{what}.{key}"))
 }
 
 /// An optional number argument: `undefined`/`null` give `None`; anything

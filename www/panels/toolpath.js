@@ -33,10 +33,12 @@ export async function mount(root, api) {
     h('a', { href: '#', class: 'nc-line', 'data-line': w.line, onclick: (e) => { e.preventDefault(); selectLine(w.line); } }, `line ${w.line}, column ${w.column}`),
     `: ${w.message}`);
   let checkSeq = 0;
-  async function checkProgram() {
+  /** Checks the program in the text area; `known` is a check of that same
+   * text already made (a large dropped file is checked before it is shown). */
+  async function checkProgram(known) {
     const seq = ++checkSeq;
     try {
-      const c = await api.call('checkNc', [nc.value, files.options()]);
+      const c = known ?? (await api.call('checkNc', [nc.value, files.options()]));
       if (seq !== checkSeq) return;
       if (c.errors.length) {
         check.replaceChildren(
@@ -66,7 +68,7 @@ export async function mount(root, api) {
     }
   }
   let checkTimer = 0;
-  nc.addEventListener('input', () => { clearTimeout(checkTimer); checkTimer = setTimeout(checkProgram, 400); });
+  nc.addEventListener('input', () => { clearTimeout(checkTimer); checkTimer = setTimeout(() => checkProgram(), 400); });
   nc.value = examples.arcs;
   let fileName = 'program.nc';
   const example = selectField({
@@ -79,11 +81,12 @@ export async function mount(root, api) {
   // one the core refuses (its text budget) is named with the error instead.
   const LARGE_TEXT = 1_000_000;
   const takeProgram = async (text, name) => {
+    let known;
     if (text.length > LARGE_TEXT) {
       let problem = null;
       try {
-        const c = await api.call('checkNc', [text, files.options()]);
-        if (c.errors.length && c.errors[0].line <= 1) problem = c.errors[0].message;
+        known = await api.call('checkNc', [text, files.options()]);
+        if (known.errors.length && known.errors[0].line <= 1) problem = known.errors[0].message;
       } catch (e) {
         problem = e instanceof Error ? e.message : String(e);
       }
@@ -95,7 +98,7 @@ export async function mount(root, api) {
     nc.value = text;
     fileName = name;
     programChanged();
-    checkProgram();
+    checkProgram(known);
   };
   const files = programFiles(api, { onMain: takeProgram });
   const drop = dropZone({ label: 'Drop an NC program (with its subprogram files, if any) here, or click to choose', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', multiple: true, onFiles: files.take, id: 'toolpath-file' });
