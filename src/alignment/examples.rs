@@ -27,7 +27,7 @@ use crate::ballbar::Harmonic;
 const UM: f64 = 1e-3;
 
 /// The names of the built-in examples.
-pub const NAMES: [&str; 5] = ["fig6", "fig7", "fig8", "fig12", "fig7-phased"];
+pub const NAMES: [&str; 6] = ["fig6", "fig7", "fig8", "fig12", "fig7-phased", "fig11"];
 
 /// Harmonic phases φ₂, φ₃, φ₅ (degrees, `A sin(nθ + φ)`) under which the
 /// ball-bar reading gives the paper's Fig. 7 numbers (§4.1.2) to within
@@ -38,6 +38,17 @@ pub const NAMES: [&str; 5] = ["fig6", "fig7", "fig8", "fig12", "fig7-phased"];
 /// the best cell) minimising the largest distance to the four quoted
 /// numbers; they are a reading, not a value the paper states.
 pub const FIG7_PHASES_DEG: [f64; 3] = [26.0, 25.0, 200.0];
+
+/// Fig. 10's amplitudes that the text quotes (§4.1.4): order 2 at 1.3 µm
+/// and order 3 at 2.7 µm. Orders 4–10 and every phase are in the figure
+/// only, which the text lacks.
+pub const FIG10_AMPLITUDES_UM: [(u32, f64); 2] = [(2, 1.3), (3, 2.7)];
+
+/// Phases φ₂, φ₃ (degrees) under which orders 2 and 3 at Fig. 10's
+/// amplitudes bias the centre most at every one of 90°, 150° and 180°
+/// (a 10° grid over both phases; `fig11` checks it is the largest): the
+/// most those two orders can explain of Fig. 11.
+pub const FIG11_WORST_PHASES_DEG: [f64; 2] = [270.0, 270.0];
 
 /// A value the paper's text quotes, for the side-by-side table.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -165,6 +176,7 @@ pub fn example(name: &str, radius: f64) -> Result<Example, AlignmentError> {
             fig7(&mut ex, "Fig. 7 phased", fig7_phased_harmonics(), radius)?;
         }
         "fig8" => fig8(&mut ex, radius)?,
+        "fig11" => fig11(&mut ex, radius)?,
         "fig12" => fig12(&mut ex, radius)?,
         _ => {
             return Err(AlignmentError::BadField {
@@ -279,6 +291,47 @@ fn fig8(ex: &mut Example, radius: f64) -> Result<(), AlignmentError> {
     Ok(())
 }
 
+/// Orders 2 and 3 at Fig. 10's amplitudes with phases φ₂, φ₃ (degrees).
+pub fn fig10_harmonics(phases_deg: [f64; 2]) -> Vec<Harmonic> {
+    FIG10_AMPLITUDES_UM
+        .iter()
+        .zip(phases_deg)
+        .map(|(&(n, a), p)| Harmonic {
+            phase: p.to_radians(),
+            ..h(n, a)
+        })
+        .collect()
+}
+
+/// Fig. 11 (the measured DBB5 trace, §4.1.4) from what the text quotes:
+/// orders 2 and 3 at 1.3 and 2.7 µm, with the phases that bias most. The
+/// paper's 20 / 15 / 11 µm at 90° / 150° / 180° also hold orders 4–10,
+/// which the text does not give; the rows show how much of each the two
+/// quoted orders can explain at most.
+fn fig11(ex: &mut Example, radius: f64) -> Result<(), AlignmentError> {
+    ex.description = "Fig. 11 from the text's Fig. 10 amplitudes only: orders 2/3 at 1.3/2.7 µm, phases 270°/270° (under the ball-bar reading the most bias they can give); orders 4–10 are in the figure, not in the text".into();
+    let mut ranges = fig7_ranges();
+    ranges.push(150.0);
+    ranges.sort_by(f64::total_cmp);
+    let c = sweep(
+        o(0.0, 10.0),
+        ranges,
+        locus(fig10_harmonics(FIG11_WORST_PHASES_DEG), radius),
+    )?;
+    for (w, paper) in [(90.0, "about 20"), (150.0, "about 15"), (180.0, "about 11")] {
+        let p = c.points.iter().find(|q| q.range_deg == w);
+        let r = p.map_or(f64::NAN, |q| q.error_z.hypot(q.error_x) / UM);
+        ex.paper.push(pv(
+            "Fig. 11, |estimated offset error|, orders 2–3 only, phases 270°/270°",
+            w,
+            paper,
+            r,
+        ));
+    }
+    ex.curves.push(c);
+    Ok(())
+}
+
 /// Fig. 12: the angle error from two sections.
 fn fig12(ex: &mut Example, radius: f64) -> Result<(), AlignmentError> {
     ex.description = "Fig. 12: angle error 10 µm/350 mm in Z with a 10 µm Z offset (Table 1 read as Y = 0, ±350 mm), harmonics 2/3/5 at 5/3/2.5 µm".into();
@@ -341,6 +394,32 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("fig6, fig7"));
+    }
+
+    #[test]
+    fn fig11_phases_are_the_worst_and_orders_2_3_cannot_give_the_paper_at_180() {
+        // Independent of the constant: a 30° grid over both phases never
+        // biases more than FIG11_WORST_PHASES_DEG at 90°, 150° or 180°.
+        let bias = |ph: [f64; 2], w: f64| {
+            let c = sweep(o(0.0, 10.0), vec![w], locus(fig10_harmonics(ph), 100.0)).unwrap();
+            c.points[0].error_z.hypot(c.points[0].error_x) / UM
+        };
+        for w in [90.0, 150.0, 180.0] {
+            let worst = bias(FIG11_WORST_PHASES_DEG, w);
+            for i in 0..12 {
+                for j in 0..12 {
+                    let b = bias([30.0 * f64::from(i), 30.0 * f64::from(j)], w);
+                    assert!(b <= worst + 1e-9, "{w}°: ({i}, {j}) gives {b} > {worst}");
+                }
+            }
+        }
+        // The finding: at most 21.3 / 11.2 / 6.7 µm against the paper's
+        // 20 / 15 / 11, so orders 4–10 carry a third or more at 150°–180°.
+        let e = example("fig11", 100.0).unwrap();
+        let ours: Vec<f64> = e.paper.iter().map(|p| p.ours).collect();
+        assert!((ours[0] - 21.28).abs() < 0.05, "{ours:?}");
+        assert!((ours[1] - 11.22).abs() < 0.05, "{ours:?}");
+        assert!((ours[2] - 6.72).abs() < 0.05, "{ours:?}");
     }
 
     #[test]

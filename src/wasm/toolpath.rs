@@ -8,9 +8,9 @@ use wasm_bindgen::prelude::*;
 use super::convert::{from_js, object, plain, string_arg, to_js, Obj};
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
 use crate::nc::files::{main_file, parse_files, NcFile};
-use crate::nc::program::{ParseOptions, Segment, Warning};
+use crate::nc::program::{ParseOptions, Program, Segment, Warning};
 use crate::nc::summary::{summarize, Summary};
-use crate::nc::NcError;
+use crate::nc::{NcError, NcErrors};
 use crate::toolpath::identify::{
     identify_acc_dec as identify, radius_reduction as eq3, CircleLoss,
 };
@@ -103,16 +103,22 @@ pub fn parse_nc(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "NcParseOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
-    let text: &str = &string_arg(&text, "text")?;
-    let (files, options) = take_files(options)?;
-    let opts = parse_options(options)?;
-    let p = parse_files(text, &files, &opts).map_err(|e| JsError::new(&e.to_string()))?;
+    let p = parse_args(&text, options)?.map_err(|e| JsError::new(&e.to_string()))?;
     let rapid_feed = SimConfig::default().rapid_feed;
     to_js(&Parsed {
         segments: &p.segments,
         warnings: &p.warnings,
         summary: summarize(&p, rapid_feed),
     })
+}
+
+/// Reads `parseNc`/`checkNc`'s arguments and parses: an `Err` for a bad
+/// argument, `Ok(Err(_))` for the program's own errors.
+fn parse_args(text: &JsValue, options: JsValue) -> Result<Result<Program, NcErrors>, JsError> {
+    let text: &str = &string_arg(text, "text")?;
+    let (files, options) = take_files(options)?;
+    let opts = parse_options(options)?;
+    Ok(parse_files(text, &files, &opts))
 }
 
 /// Splits the optional `files` key off an options object: the extra files
@@ -183,10 +189,7 @@ pub fn check_nc(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "NcParseOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
-    let text: &str = &string_arg(&text, "text")?;
-    let (files, options) = take_files(options)?;
-    let opts = parse_options(options)?;
-    match parse_files(text, &files, &opts) {
+    match parse_args(&text, options)? {
         Ok(p) => to_js(&Checked {
             errors: &[],
             truncated: false,

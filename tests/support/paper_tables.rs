@@ -570,7 +570,7 @@ fn qiu(r: &mut Rows) {
 
 fn takayama(r: &mut Rows) {
     for (radius, reading) in [(100.0, "ballBar"), (0.0, "dbb5")] {
-        for name in ["fig6", "fig7", "fig7-phased", "fig8", "fig12"] {
+        for name in ["fig6", "fig7", "fig7-phased", "fig8", "fig11", "fig12"] {
             let e = ballbar_example(name, radius).unwrap();
             for (i, p) in e.paper.iter().enumerate() {
                 r.push(

@@ -190,7 +190,7 @@ export async function mount(root, api) {
   }
 
   // ---- paper examples -----------------------------------------------------
-  const exName = selectField({ label: 'Paper figure', id: 'ballbar-example', value: 'fig7', options: [['fig6', 'Fig. 6: single harmonics, 180°'], ['fig7', 'Fig. 7: travel range 90…360°'], ['fig8', 'Fig. 8: four offset positions'], ['fig12', 'Fig. 12: angle error 10 µm/350 mm'], ['fig7-phased', 'Fig. 7 with phases 26°/25°/200° (reproduces X and Z)']] });
+  const exName = selectField({ label: 'Paper figure', id: 'ballbar-example', value: 'fig7', options: [['fig6', 'Fig. 6: single harmonics, 180°'], ['fig7', 'Fig. 7: travel range 90…360°'], ['fig8', 'Fig. 8: four offset positions'], ['fig12', 'Fig. 12: angle error 10 µm/350 mm'], ['fig7-phased', 'Fig. 7 with phases 26°/25°/200° (reproduces X and Z)'], ['fig11', 'Fig. 11: measured trace, orders 2–3 only']] });
   const exReading = selectField({ label: 'Reading', id: 'ballbar-example-reading', value: '100', options: [['100', 'Ball bar, 100 mm (default)'], ['0', 'DBB5 centre ball (radius 0)']] });
   const exOut = h('div', { id: 'ballbar-example-results' });
   const exUi = runState(exOut);
@@ -334,6 +334,7 @@ export async function mount(root, api) {
         fig7: 'Why Z = 0: with all phases 0 the ball-bar locus is symmetric about Z. “Fig. 7 with phases” reproduces X and Z within 0.3 µm.',
         'fig7-phased': 'Why these phases (26°, 25°, 200°): a grid search for the paper’s four numbers; the paper itself says “all phases 0°”, which cannot give its Z.',
         fig8: 'Why every offset gives the same value: the ball-bar reading is translation invariant; DBB5 (radius 0) depends on the offset.',
+        fig11: 'Why below the paper at 150° and 180°: the text quotes only orders 2 and 3 (1.3 and 2.7 µm) of the measured trace; with the phases that bias most they give 21 / 11 / 7 µm. The rest of the paper’s 15 and 11 µm comes from orders 4–10, which are in Fig. 10 only.',
         fig12: 'Why ≈ 0 with the ball bar: a motion error common to both sections cancels in the angle estimate; DBB5 gives the paper’s order for ΔBz only.',
       }[ex.name];
       exOut.replaceChildren(h('p', {}, ex.description), paper, ...(why ? [h('p', { class: 'note' }, why)] : []), chartEl);
