@@ -39,6 +39,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use crate::kinematics::{Chain, GeometricErrors};
+use crate::servo::transmission::DriveErrors;
 use crate::servo::AxisParams;
 
 /// Errors of the preset registry.
@@ -90,10 +91,14 @@ pub struct Machine {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kinematics: Option<Chain>,
     /// Illustrative geometric errors for the page's "Load example errors"
-    /// (typical ISO 230-7 location errors and worm-gear backlash, see
-    /// [`example_errors`]); not measured values of this machine.
+    /// (typical ISO 230-7 location errors, see [`example_errors`]); not
+    /// measured values of this machine.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub example_errors: Option<GeometricErrors>,
+    /// Illustrative drive errors to go with them (worm-gear backlash, see
+    /// [`example_errors`]); not measured values of this machine.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub example_drives: Option<DriveErrors>,
     /// Names of the readings `torqueSaturation` accepts for this machine
     /// (first = default; see [`crate::best_kffp::saturation`]); empty when
     /// the machine has no torque-limited rotary axis of the feed-vector test.

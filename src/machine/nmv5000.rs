@@ -95,6 +95,7 @@ pub fn machine() -> Machine {
         limits: BTreeMap::new(),
         kinematics: None,
         example_errors: None,
+        example_drives: None,
         // The readings of best_kffp::saturation (data here: the preset may not
         // import the study above it; a test there checks the two agree).
         saturation_readings: ["preControlOff", "presetKffp", "inertiaOnly"]

@@ -105,6 +105,7 @@ fn kato(r: &mut Rows) {
                     radius: None,
                     centre: None,
                     errors: GeometricErrors::default(),
+                    drives: Default::default(),
                     ideal_servo: true,
                     tool_length: 0.0,
                     points: 360,
