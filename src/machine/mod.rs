@@ -5,6 +5,7 @@
 
 pub mod example_errors;
 mod nmv5000;
+pub mod paper_sweep;
 mod pocketnc_v2_10;
 mod table_on_table_bc;
 mod trunnion_ac;
@@ -99,6 +100,10 @@ pub struct Machine {
     /// [`example_errors`]); not measured values of this machine.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub example_drives: Option<DriveErrors>,
+    /// The conditions a paper ran on this machine and the values it quotes
+    /// (see [`paper_sweep`]); absent when no paper tests the preset so.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paper_sweep: Option<paper_sweep::PaperSweep>,
     /// Names of the readings `torqueSaturation` accepts for this machine
     /// (first = default; see [`crate::best_kffp::saturation`]); empty when
     /// the machine has no torque-limited rotary axis of the feed-vector test.

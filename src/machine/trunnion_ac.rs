@@ -56,6 +56,7 @@ pub fn machine() -> Machine {
         kinematics: Some(chain()),
         example_errors: Some(example.0),
         example_drives: Some(example.1),
+        paper_sweep: None,
         saturation_readings: Vec::new(),
         loop_readings: Vec::new(),
     }

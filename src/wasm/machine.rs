@@ -52,6 +52,18 @@ export interface DriveErrors {
   /** Worm-gear pitch error per rotary axis (kato Eq. 1). */
   pitchError?: Record<string, WormHarmonic[]>;
 }
+/** A saturation point as a paper quotes it. */
+export interface PaperSaturationPoint {
+  /** [kg·m²] J + J1 */ jTotal: number; /** [rad/s²] dω/dt */ accelSat: number; /** [rad/s] */ omegaSat: number;
+  /** [mm] smallest R_C at feedAtCuttingPoint */ rcMin: number;
+}
+/** The conditions a paper ran on a preset (suzuki §3 on nmv5000) and the saturation points it quotes. */
+export interface PaperSweep {
+  source: string; /** [mm] R_C */ rc: number; /** [mm] R_W */ rw: number;
+  /** [rad/s] ω of the sweep */ omega: number[]; /** [kg·m²] loads J1 on C */ j1: number[];
+  /** [s] acc/dec time */ accelTime: number; /** [mm/min] F_C */ feedAtCuttingPoint: number;
+  saturation: PaperSaturationPoint[];
+}
 export interface MachinePreset {
   name: string; description: string; source: string;
   axes: Record<string, AxisParams>;
@@ -61,6 +73,8 @@ export interface MachinePreset {
   exampleErrors?: GeometricErrors;
   /** Illustrative worm-gear backlash for the page (not measured). */
   exampleDrives?: DriveErrors;
+  /** The paper's test conditions on this machine, if a paper tests it so. */
+  paperSweep?: PaperSweep;
   /** Readings `torqueSaturation` accepts (first = default). */
   saturationReadings?: string[];
   /** Readings of the paper's loop parameters `machinePreset(name, reading)` accepts (first = default); nmv5000: 'table' (Table 1: Kpp 60 1/s, J at the motor), 'kppText' (§3: Kpp 30 1/s on every axis), 'inertiaAtLoad' (J·(lead/2π)² at the motor: X's J read as kg behind its 16 mm lead). */
