@@ -51,13 +51,14 @@ mod native {
             radius: None,
             centre: Some([60.0, 40.0, 20.0]),
             errors: GeometricErrors::default(),
+            drives: Default::default(),
             ideal_servo: false,
             tool_length: 0.0,
             points: 3600,
             clockwise: false,
             lead_in_deg: 0.0,
         };
-        cfg.errors.backlash.insert("c".into(), 1.745e-4);
+        cfg.drives.backlash.insert("c".into(), 1.745e-4);
         let mut g = c.benchmark_group("cone_frustum");
         g.sample_size(10);
         g.bench_function("cone_frustum_3600_servo", |b| {

@@ -15,8 +15,8 @@ import { join, basename } from 'node:path';
 
 export const LAYERS = [
   ['trace', 'budget', 'numeric'],
-  ['servo', 'nc', 'ballbar'],
-  ['kinematics', 'toolpath', 'alignment'],
+  ['servo', 'nc', 'ballbar', 'kinematics'],
+  ['toolpath', 'alignment'],
   ['machine'],
   ['feed_vector', 'cone_frustum', 'compensate'],
   ['best_kffp'],

@@ -21,6 +21,7 @@ fn rms_tilt(machine: &str, tilt: &str, theta: f64, beta: f64, method: Method) ->
         radius: None,
         centre: None,
         errors: GeometricErrors::default(),
+        drives: Default::default(),
         ideal_servo: true,
         tool_length: 0.0,
         points: 360,

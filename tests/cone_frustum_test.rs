@@ -24,6 +24,7 @@ fn cfg(machine: &str, theta: f64, beta: f64, method: Method) -> ConeFrustumConfi
         radius: None,
         centre: Some([60.0, 40.0, 20.0]),
         errors: GeometricErrors::default(),
+        drives: Default::default(),
         ideal_servo: true,
         tool_length: 0.0,
         points: 720,
@@ -66,7 +67,7 @@ fn c_backlash_steps_at_c_reversals() {
     // back and forth and reverses twice per revolution.
     let b = 1.745e-4; // 0.01° of backlash
     let mut c = cfg("trunnion-ac", 15.0, 30.0, Method::Perpendicular);
-    c.errors.backlash.insert("c".into(), b);
+    c.drives.backlash.insert("c".into(), b);
     let r = cone_frustum_test(&c).unwrap();
     let cs = r.axes.iter().find(|s| s.axis == "c").unwrap();
     let rev = reversals(&cs.command);
@@ -102,7 +103,7 @@ fn c_backlash_steps_at_c_reversals() {
     }
     // Without backlash the same run reads zero.
     let mut c0 = c.clone();
-    c0.errors = GeometricErrors::default();
+    c0.drives = Default::default();
     let r0 = cone_frustum_test(&c0).unwrap();
     assert!(r0.deviation.iter().all(|d| d.abs() < 1e-9));
 }
@@ -114,7 +115,7 @@ fn c_backlash_with_servo_models() {
     c.ideal_servo = false;
     c.lead_in_deg = 90.0;
     let base = cone_frustum_test(&c).unwrap();
-    c.errors.backlash.insert("c".into(), b);
+    c.drives.backlash.insert("c".into(), b);
     let r = cone_frustum_test(&c).unwrap();
     let cs = r.axes.iter().find(|s| s.axis == "c").unwrap();
     let sc = &r
@@ -235,4 +236,40 @@ fn an_impossible_continuous_path_is_an_error() {
         e.contains("jump") || e.contains("outside its limits"),
         "{e}"
     );
+}
+
+/// Drive errors are checked against the machine and named by their key;
+/// a key in either case reaches its axis; the geometric `errors` no longer
+/// take backlash (it moved to `drives`).
+#[test]
+fn drive_errors_are_checked_and_named() {
+    let msg = |c: &ConeFrustumConfig| cone_frustum_test(c).unwrap_err().to_string();
+    let mut c = cfg("trunnion-ac", 15.0, 30.0, Method::Perpendicular);
+    c.drives.backlash.insert("b".into(), 1e-4);
+    let e = msg(&c);
+    assert!(
+        e.contains("drives: `backlash.b`") && e.contains("no B axis"),
+        "{e}"
+    );
+    let mut c = cfg("trunnion-ac", 15.0, 30.0, Method::Perpendicular);
+    c.drives.backlash.insert("c".into(), -1e-4);
+    assert!(msg(&c).contains("`backlash.c` must be a finite width ≥ 0"));
+    let mut c = cfg("trunnion-ac", 15.0, 30.0, Method::Perpendicular);
+    c.drives.pitch_error.insert("x".into(), Vec::new());
+    assert!(msg(&c).contains("`pitchError.x` expected a rotary axis letter"));
+    // "C" and "c" are the same axis
+    let mut upper = cfg("trunnion-ac", 15.0, 30.0, Method::Perpendicular);
+    upper.drives.backlash.insert("C".into(), 1.745e-4);
+    let mut lower = upper.clone();
+    lower.drives.backlash = [("c".to_string(), 1.745e-4)].into();
+    assert_eq!(
+        cone_frustum_test(&upper).unwrap().deviation,
+        cone_frustum_test(&lower).unwrap().deviation
+    );
+    let old = r#"{"machine":"trunnion-ac","halfApexDeg":15,"inclinationDeg":30,"feed":1000,
+        "errors":{"backlash":{"c":1e-4}}}"#;
+    let e = serde_json::from_str::<ConeFrustumConfig>(old)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("unknown field `backlash`"), "{e}");
 }

@@ -111,7 +111,7 @@ fn torque_saturation_needs_an_acc_dec_time_and_a_sane_step() {
     let m = preset("nmv5000").unwrap();
     let q = |accel_time: f64, dt: Option<f64>| SaturationQuery {
         j1: vec![1.7],
-        torque_max: 725.0,
+        torque_max: Some(725.0),
         accel_time,
         feed_at_cutting_point: 200.0,
         dt,

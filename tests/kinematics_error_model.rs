@@ -56,8 +56,7 @@ fn zero_errors_change_nothing() {
         let chain = machine::preset(name).unwrap().kinematics.unwrap();
         let q = q_for(name);
         let nominal = forward(&chain, &q, &GeometricErrors::default(), 30.0).unwrap();
-        let mut zero = all_errors(name, 0.0);
-        zero.backlash.insert("x".into(), 0.0);
+        let zero = all_errors(name, 0.0);
         let same = forward(&chain, &q, &zero, 30.0).unwrap();
         assert_eq!(nominal, same, "{name}");
         let lin = first_order(&chain, &q, &zero, 30.0).unwrap();

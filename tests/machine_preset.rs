@@ -1,5 +1,6 @@
-//! The `nmv5000` preset carries suzuki-best-kffp Table 1 in SI units, and
-//! serialises to the JS contract (camelCase, `kind`, `torqueMax`, `lead`).
+//! The `nmv5000` preset carries suzuki-best-kffp Table 1 in SI units and
+//! the paper's test conditions (`paperSweep`), and serialises to the JS
+//! contract (camelCase, `kind`, `torqueMax`, `lead`).
 
 use mtmotion::machine;
 use mtmotion::servo::AxisKind;
@@ -44,4 +45,55 @@ fn preset_serialises_to_the_js_contract() {
     ] {
         assert!(c[f].is_number(), "field {f} missing: {c}");
     }
+}
+
+/// The paper's test conditions (suzuki §3) and quoted saturation points
+/// (§5.2, Figs. 17, 20, 21) are preset data, consistent with the preset:
+/// each quoted J + J1 is the C axis' J plus a sweep load, and each quoted
+/// R_C is F_C/ω at the quoted ω, within one unit of the last printed digit
+/// (the paper prints 4.2 + 4.77 = 8.97 as 8.9, and 0.36 for 200/60/9.39 =
+/// 0.355).
+#[test]
+fn nmv5000_carries_the_papers_sweep() {
+    let m = machine::preset("nmv5000").unwrap();
+    let s = m
+        .paper_sweep
+        .as_ref()
+        .expect("nmv5000 has the paper's sweep");
+    assert_eq!((s.rc, s.rw, s.accel_time), (5.0, 8.0, 0.064));
+    assert_eq!(s.feed_at_cutting_point, 200.0);
+    assert_eq!(s.j1, [1.70, 3.24, 4.77]);
+    let pi = std::f64::consts::PI;
+    let want: Vec<f64> = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0]
+        .iter()
+        .map(|k| k * pi)
+        .collect();
+    assert_eq!(s.omega, want);
+    let quoted: Vec<_> = s
+        .saturation
+        .iter()
+        .map(|p| (p.j_total, p.accel_sat, p.omega_sat, p.rc_min))
+        .collect();
+    assert_eq!(
+        quoted,
+        [
+            (5.9, 146.7, 9.39, 0.36),
+            (7.4, 118.5, 7.58, 0.44),
+            (8.9, 91.1, 5.83, 0.57)
+        ]
+    );
+    // within one unit of the last printed digit: J + J1 to 0.1 kg·m² (8.97
+    // prints as 8.9), R_C to 0.01 mm
+    for (p, j1) in s.saturation.iter().zip(&s.j1) {
+        assert!((p.j_total - (m.axes["c"].j + j1)).abs() < 0.1);
+        let rc = s.feed_at_cutting_point / 60.0 / p.omega_sat;
+        assert!((p.rc_min - rc).abs() <= 0.01, "{rc} vs {}", p.rc_min);
+    }
+    let v = serde_json::to_value(&m).unwrap();
+    assert_eq!(v["paperSweep"]["feedAtCuttingPoint"], 200.0);
+    assert_eq!(v["paperSweep"]["saturation"][0]["accelSat"], 146.7);
+    assert!(machine::preset("trunnion-ac")
+        .unwrap()
+        .paper_sweep
+        .is_none());
 }

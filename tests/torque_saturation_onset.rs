@@ -17,7 +17,7 @@ fn onset_is_consistent_with_the_feed_vector_test() {
     let j1 = vec![1.70, 3.24, 4.77];
     let q = SaturationQuery {
         j1: j1.clone(),
-        torque_max: 725.0,
+        torque_max: Some(725.0),
         accel_time: 0.064,
         feed_at_cutting_point: 200.0,
         dt: None,
@@ -52,7 +52,7 @@ fn bad_query_is_named() {
     let m = machine::preset("nmv5000").unwrap();
     let q = SaturationQuery {
         j1: vec![1.7],
-        torque_max: 725.0,
+        torque_max: Some(725.0),
         accel_time: 0.064,
         feed_at_cutting_point: 0.0,
         dt: None,
@@ -83,7 +83,7 @@ const PAPER_J: [f64; 3] = [5.9, 7.4, 8.9];
 fn query(reading: SaturationReading) -> SaturationQuery {
     SaturationQuery {
         j1: PAPER_J.iter().map(|j| j - 4.2).collect(),
-        torque_max: 725.0,
+        torque_max: Some(725.0),
         accel_time: 0.064,
         feed_at_cutting_point: 200.0,
         dt: None,
@@ -171,4 +171,23 @@ fn inertia_only_reading_is_tau_over_j() {
     for ((a, b), c) in pre.iter().zip(&pts).zip(&off) {
         assert!(a.omega_sat < b.omega_sat && b.omega_sat < c.omega_sat);
     }
+}
+
+/// Without `torqueMax` the query takes the machine's C limit (725 N·m on
+/// the preset); a machine without one is refused in words, naming the field.
+#[test]
+fn the_torque_limit_comes_from_the_machine() {
+    let mut m = machine::preset("nmv5000").unwrap();
+    let given = torque_saturation(&m, &query(SaturationReading::PreControlOff)).unwrap();
+    let q = SaturationQuery {
+        torque_max: None,
+        ..query(SaturationReading::PreControlOff)
+    };
+    assert_eq!(torque_saturation(&m, &q).unwrap(), given);
+    m.axes.get_mut("c").unwrap().torque_max = None;
+    let e = torque_saturation(&m, &q).unwrap_err().to_string();
+    assert!(
+        e.contains("torqueMax") && e.contains("no torque limit"),
+        "{e}"
+    );
 }

@@ -173,12 +173,14 @@ fn example_errors_cross_with_the_preset_and_feed_the_cone_frustum_test() {
         mtmotion::wasm::machine::machine_preset(js("\"trunnion-ac\""), JsValue::UNDEFINED).unwrap();
     let ex = get(&m, &["exampleErrors"]);
     assert!((get(&ex, &["location", "EX0C"]).as_f64().unwrap() - 0.015).abs() < 1e-15);
-    let c = get(&ex, &["backlash", "c"]).as_f64().unwrap();
+    let drives = get(&m, &["exampleDrives"]);
+    let c = get(&drives, &["backlash", "c"]).as_f64().unwrap();
     assert!((c - 0.01_f64.to_radians()).abs() < 1e-15);
     let opts = js(
         r#"{"machine":"trunnion-ac","halfApexDeg":45,"inclinationDeg":10,"feed":1000,"centre":[60,40,20],"idealServo":true,"points":360}"#,
     );
     Reflect::set(&opts, &JsValue::from_str("errors"), &ex).unwrap();
+    Reflect::set(&opts, &JsValue::from_str("drives"), &drives).unwrap();
     let r = k::cone_frustum_test(opts, None).unwrap();
     let max = get(&r, &["maxDeviation"]).as_f64().unwrap();
     let min = get(&r, &["minDeviation"]).as_f64().unwrap();

@@ -22,6 +22,15 @@ fn machine_preset_returns_plain_objects() {
         Some("linear")
     );
     assert_eq!(get(&m, &["axes", "x", "lead"]).as_f64(), Some(0.016));
+    // the paper's sweep crosses as data the page reads
+    let sweep = get(&m, &["paperSweep"]);
+    assert!(!sweep.is_instance_of::<js_sys::Map>());
+    assert_eq!(get(&sweep, &["feedAtCuttingPoint"]).as_f64(), Some(200.0));
+    assert_eq!(get(&sweep, &["j1", "2"]).as_f64(), Some(4.77));
+    assert_eq!(
+        get(&sweep, &["saturation", "0", "accelSat"]).as_f64(),
+        Some(146.7)
+    );
 }
 
 #[wasm_bindgen_test]

@@ -40,6 +40,9 @@ pub enum BestKffpError {
     /// The feed-vector test failed.
     #[error(transparent)]
     FeedVector(#[from] FeedVectorError),
+    /// The saturation query has no torque limit to saturate at.
+    #[error("`torqueMax`: the machine's C axis has no torque limit (axes.c.torqueMax) and the query gives none; give the C axis' torque limit in N·m")]
+    NoTorqueLimit,
     /// No K_FFP in the search range zeroes α − β.
     #[error("axis {axis}: no K_FFP in [{k_min} %, {k_max} %] gives the phase lag {target} rad of the rotary axis; widen options.kMin/kMax or change the C axis K_FFP")]
     NoRoot {

@@ -47,8 +47,9 @@ use crate::machine::Machine;
 pub struct SaturationQuery {
     /// Load inertias J1 to evaluate, kg·m².
     pub j1: Vec<f64>,
-    /// C torque limit, N·m.
-    pub torque_max: f64,
+    /// C torque limit, N·m; absent: the machine's (`axes.c.torqueMax`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub torque_max: Option<f64>,
     /// Acc/dec time, s.
     pub accel_time: f64,
     /// Feed speed at the cutting point F_C, mm/min.
@@ -103,7 +104,7 @@ pub struct SaturationPoint {
 /// ```
 /// use mtmotion::best_kffp::saturation::{torque_saturation, SaturationQuery};
 /// let m = mtmotion::machine::preset("nmv5000").unwrap();
-/// let q = SaturationQuery { j1: vec![1.70], torque_max: 725.0, accel_time: 0.064,
+/// let q = SaturationQuery { j1: vec![1.70], torque_max: None, accel_time: 0.064,
 ///                           feed_at_cutting_point: 200.0, dt: None,
 ///                           reading: Default::default() };
 /// let p = torque_saturation(&m, &q).unwrap()[0];
@@ -111,14 +112,22 @@ pub struct SaturationPoint {
 /// assert!((p.rc_min * p.omega_sat - 200.0 / 60.0).abs() < 1e-12);
 /// // a lagging loop (K_FFP = 0) saturates above the naive 725/5.9 rad/s²
 /// assert!(p.accel_sat > 725.0 / 5.9);
+/// // the limit is the preset's C torqueMax (725 N·m) unless the query gives one
+/// let half = SaturationQuery { torque_max: Some(362.5), ..q.clone() };
+/// let h = torque_saturation(&m, &half).unwrap()[0];
+/// assert!((h.omega_sat - p.omega_sat / 2.0).abs() < 1e-9 * p.omega_sat);
 /// ```
 pub fn torque_saturation(
     machine: &Machine,
     q: &SaturationQuery,
 ) -> Result<Vec<SaturationPoint>, BestKffpError> {
     check_query(q)?;
+    let torque_max = q
+        .torque_max
+        .or_else(|| machine.axes.get("c").and_then(|c| c.torque_max))
+        .ok_or(BestKffpError::NoTorqueLimit)?;
     q.j1.iter()
-        .map(|&j1| saturation_point(machine, q, j1))
+        .map(|&j1| saturation_point(machine, q, torque_max, j1))
         .collect()
 }
 
@@ -151,10 +160,12 @@ fn check_query(q: &SaturationQuery) -> Result<(), BestKffpError> {
     Ok(())
 }
 
-/// The saturation point of the C axis with load inertia `j1` (kg·m²).
+/// The saturation point of the C axis with load inertia `j1` (kg·m²) and
+/// torque limit `torque_max` (N·m).
 fn saturation_point(
     machine: &Machine,
     q: &SaturationQuery,
+    torque_max: f64,
     j1: f64,
 ) -> Result<SaturationPoint, BestKffpError> {
     let omega_ref = 1.0;
@@ -164,7 +175,7 @@ fn saturation_point(
         omega: omega_ref,
         accel_time: q.accel_time,
         j1,
-        torque_max: Some(q.torque_max),
+        torque_max: Some(torque_max),
         duration: None,
         dt: q.dt,
         kffp: None,
@@ -189,14 +200,14 @@ fn saturation_point(
     }
     if q.reading == SaturationReading::InertiaOnly {
         let j = axes[2].inertia();
-        let accel_sat = q.torque_max / j;
+        let accel_sat = torque_max / j;
         let omega_sat = accel_sat * t_acc;
         return Ok(SaturationPoint {
             j_total: j,
             accel_sat,
             omega_sat,
             rc_min: q.feed_at_cutting_point / 60.0 / omega_sat,
-            torque_per_omega: q.torque_max / omega_sat,
+            torque_per_omega: torque_max / omega_sat,
         });
     }
     if q.reading == SaturationReading::PreControlOff {
@@ -220,7 +231,7 @@ fn saturation_point(
     let r = feed_vector::run_axis("c", &axes[2], dt, &cmd, n)?;
     let peak = r.torque.iter().fold(0.0_f64, |m, t| m.max(t.abs()));
     let per_omega = peak / omega_ref;
-    let omega_sat = q.torque_max / per_omega;
+    let omega_sat = torque_max / per_omega;
     let accel_sat = omega_sat / t_acc;
     Ok(SaturationPoint {
         j_total: axes[2].inertia(),

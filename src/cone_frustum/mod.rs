@@ -41,6 +41,9 @@ pub enum ConeFrustumError {
     /// The chain or errors are invalid, or the path is unreachable.
     #[error("cone-frustum test: {0}")]
     Kinematics(#[from] crate::kinematics::KinematicsError),
+    /// The drive errors (backlash, pitch error) are invalid.
+    #[error("cone-frustum test: {0}")]
+    Drives(crate::servo::ServoError),
     /// The path leaves an axis' travel.
     #[error("cone-frustum test: the path needs {axis} = {value:.3} at {angle_deg:.1}°, outside its limits [{min}, {max}] (mm or degrees); move `centre` or change the angles")]
     OutOfLimits {

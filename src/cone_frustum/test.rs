@@ -30,6 +30,7 @@ use super::{drive, sensitivity, ConeFrustumError};
 use crate::kinematics::inverse::limits_from_degrees;
 use crate::kinematics::{Chain, GeometricErrors, Model, Pose, AXES};
 use crate::machine::{Machine, MachineRef};
+use crate::servo::transmission::DriveErrors;
 use crate::servo::{AxisKind, AxisParams};
 
 fn perpendicular() -> Method {
@@ -72,6 +73,9 @@ pub struct ConeFrustumConfig {
     /// Geometric errors (mm, rad).
     #[serde(default)]
     pub errors: GeometricErrors,
+    /// Drive errors: backlash and worm-gear pitch error per axis (mm, rad).
+    #[serde(default)]
+    pub drives: DriveErrors,
     /// The axes follow the command exactly (transmission errors remain).
     #[serde(default)]
     pub ideal_servo: bool,
@@ -183,12 +187,16 @@ fn placeholder_axis(kind: AxisKind) -> AxisParams {
 ///     machine: MachineRef::Name("trunnion-ac".into()), half_apex_deg: 45.0,
 ///     inclination_deg: 10.0, method: Method::Perpendicular, bar_length: 100.0,
 ///     feed: 1000.0, radius: None, centre: Some([0.0, 50.0, 0.0]), errors: GeometricErrors::default(),
+///     drives: Default::default(),
 ///     ideal_servo: true, tool_length: 0.0, points: 360, clockwise: false, lead_in_deg: 0.0 };
 /// let r = cone_frustum_test(&cfg).unwrap();
 /// assert!(r.deviation.iter().all(|d| d.abs() < 1e-9)); // ideal machine, ideal servo
 /// ```
 pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, ConeFrustumError> {
     let (machine, chain) = cfg.machine.resolve()?;
+    cfg.drives
+        .validate(&chain.axes())
+        .map_err(ConeFrustumError::Drives)?;
     let geo = geometry(cfg)?;
     let radius = geo.circle_radius();
     let duration = TAU * radius / (cfg.feed / 60.0);
@@ -369,7 +377,7 @@ fn commands(
 }
 
 /// Each present axis' drive (servo model, or ideal) following its command,
-/// with the configuration's backlash and pitch error: the actual axis
+/// with the configuration's drive errors (backlash, pitch error): the actual axis
 /// positions of every sample and the per-axis series of the measured part.
 fn drive_axes(
     cfg: &ConeFrustumConfig,
@@ -387,7 +395,7 @@ fn drive_axes(
         } else {
             AxisKind::Rotary
         };
-        let mut params = match machine.axes.get(letter) {
+        let params = match machine.axes.get(letter) {
             Some(p) => p.clone(),
             None if cfg.ideal_servo => placeholder_axis(kind),
             None => {
@@ -397,12 +405,7 @@ fn drive_axes(
                 })
             }
         };
-        if let Some(b) = cfg.errors.backlash.get(letter) {
-            params.backlash = *b;
-        }
-        if let Some(h) = cfg.errors.pitch_error.get(letter) {
-            params.pitch_error = h.clone();
-        }
+        let params = cfg.drives.applied_to(letter, params);
         let cmd: Vec<f64> = q_cmd.iter().map(|q| q[k]).collect();
         let act = if cfg.ideal_servo {
             drive::ideal(&params, &cmd)

@@ -16,9 +16,9 @@
 //!   positioning) for C. A single number is a constant.
 //! - `tool`: the six parameters of `E_ST` of thasana Eq. 8 (tool deflection
 //!   in the tool frame, `[δx, δy, δz, εx, εy, εz]`).
-//! - `backlash` (mm or rad per axis) and `pitchError` (worm-gear harmonics,
-//!   kato Eq. 1) depend on the motion history; they do not enter the static
-//!   forward kinematics but the drive models of the cone-frustum test.
+//!
+//! Backlash and worm-gear pitch error are the drives' errors
+//! (`servo::transmission::DriveErrors`), not part of this model.
 //!
 //! Reading chosen: a location error of an axis acts as `E·J(q)·E⁻¹` around
 //! its joint `J` (the axis line is displaced and tilted, the parts it
@@ -35,7 +35,6 @@ use serde::{Deserialize, Serialize};
 use super::chain::{Chain, AXES};
 use super::htm::Six;
 use super::KinematicsError;
-use crate::servo::WormHarmonic;
 
 /// A constant or a polynomial `c0 + c1·q + c2·q² …`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -70,12 +69,6 @@ pub struct GeometricErrors {
     /// `E_ST` of Eq. 8, `[δx, δy, δz, εx, εy, εz]` in the tool frame.
     #[serde(default)]
     pub tool: Six,
-    /// Backlash per axis letter (full width; mm or rad).
-    #[serde(default)]
-    pub backlash: BTreeMap<String, f64>,
-    /// Worm-gear pitch-error harmonics per rotary axis (kato Eq. 1).
-    #[serde(default)]
-    pub pitch_error: BTreeMap<String, Vec<WormHarmonic>>,
 }
 
 /// One parsed error symbol: error direction `d` (0..6 = x,y,z,a,b,c) of
@@ -178,8 +171,6 @@ impl GeometricErrors {
                 .values()
                 .all(|c| c.to_vec().iter().all(|v| *v == 0.0))
             && self.tool.iter().all(|v| *v == 0.0)
-            && self.backlash.values().all(|v| *v == 0.0)
-            && self.pitch_error.values().all(|v| v.is_empty())
     }
 
     /// Resolves the symbols against `chain`: per axis (index into
@@ -229,46 +220,7 @@ impl GeometricErrors {
         for (i, v) in self.tool.iter().enumerate() {
             finite(&format!("tool[{i}]"), *v)?;
         }
-        self.check_drive_errors(&present)?;
         Ok(out)
-    }
-
-    /// Backlash widths ≥ 0 on axes the machine has, pitch errors on its
-    /// rotary axes with finite harmonics.
-    fn check_drive_errors(&self, present: &[&str]) -> Result<(), KinematicsError> {
-        for (key, v) in &self.backlash {
-            let axis = Chain::axis_index(&key.to_ascii_lowercase()).ok_or_else(|| {
-                KinematicsError::BadError {
-                    key: format!("backlash.{key}"),
-                    why: "expected an axis letter x, y, z, a, b or c".into(),
-                }
-            })?;
-            check_axis(present, &format!("backlash.{key}"), axis)?;
-            if !(v.is_finite() && *v >= 0.0) {
-                return Err(KinematicsError::BadError {
-                    key: format!("backlash.{key}"),
-                    why: "must be a finite width ≥ 0 (mm for linear, rad for rotary axes)".into(),
-                });
-            }
-        }
-        for (key, hs) in &self.pitch_error {
-            let axis = Chain::axis_index(&key.to_ascii_lowercase())
-                .filter(|a| *a >= 3)
-                .ok_or_else(|| KinematicsError::BadError {
-                    key: format!("pitchError.{key}"),
-                    why: "expected a rotary axis letter a, b or c".into(),
-                })?;
-            check_axis(present, &format!("pitchError.{key}"), axis)?;
-            for (i, h) in hs.iter().enumerate() {
-                if !(h.w.is_finite() && h.n.is_finite() && h.phi.is_finite()) {
-                    return Err(KinematicsError::BadError {
-                        key: format!("pitchError.{key}[{i}]"),
-                        why: "w, n and phi must be finite numbers".into(),
-                    });
-                }
-            }
-        }
-        Ok(())
     }
 }
 

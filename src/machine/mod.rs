@@ -5,6 +5,7 @@
 
 pub mod example_errors;
 mod nmv5000;
+pub mod paper_sweep;
 mod pocketnc_v2_10;
 mod table_on_table_bc;
 mod trunnion_ac;
@@ -39,6 +40,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use crate::kinematics::{Chain, GeometricErrors};
+use crate::servo::transmission::DriveErrors;
 use crate::servo::AxisParams;
 
 /// Errors of the preset registry.
@@ -90,10 +92,18 @@ pub struct Machine {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kinematics: Option<Chain>,
     /// Illustrative geometric errors for the page's "Load example errors"
-    /// (typical ISO 230-7 location errors and worm-gear backlash, see
-    /// [`example_errors`]); not measured values of this machine.
+    /// (typical ISO 230-7 location errors, see [`example_errors`]); not
+    /// measured values of this machine.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub example_errors: Option<GeometricErrors>,
+    /// Illustrative drive errors to go with them (worm-gear backlash, see
+    /// [`example_errors`]); not measured values of this machine.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub example_drives: Option<DriveErrors>,
+    /// The conditions a paper ran on this machine and the values it quotes
+    /// (see [`paper_sweep`]); absent when no paper tests the preset so.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paper_sweep: Option<paper_sweep::PaperSweep>,
     /// Names of the readings `torqueSaturation` accepts for this machine
     /// (first = default; see [`crate::best_kffp::saturation`]); empty when
     /// the machine has no torque-limited rotary axis of the feed-vector test.

@@ -41,6 +41,7 @@
 
 use std::collections::BTreeMap;
 
+use super::paper_sweep::{PaperSaturationPoint, PaperSweep};
 use super::{Machine, MachineError};
 use crate::servo::{AxisKind, AxisParams};
 
@@ -95,6 +96,8 @@ pub fn machine() -> Machine {
         limits: BTreeMap::new(),
         kinematics: None,
         example_errors: None,
+        example_drives: None,
+        paper_sweep: Some(paper_sweep()),
         // The readings of best_kffp::saturation (data here: the preset may not
         // import the study above it; a test there checks the two agree).
         saturation_readings: ["preControlOff", "presetKffp", "inertiaOnly"]
@@ -102,6 +105,39 @@ pub fn machine() -> Machine {
             .map(|s| s.to_string())
             .collect(),
         loop_readings: LOOP_READINGS.iter().map(|s| s.to_string()).collect(),
+    }
+}
+
+/// The paper's sweep (§3): R_C = 5 mm, R_W = 8 mm, ω = 0.5π … 4π rad/s,
+/// J1 = 1.70, 3.24, 4.77 kg·m²; acc/dec 0.064 s (Figs. 12, 24:
+/// dω/dt = ω/0.064 s); the required F_C = 200 mm/min (§2, Fig. 5); the
+/// saturation points of §5.2 (dω/dt from Fig. 17, ω from Fig. 20, R_C at
+/// F_C = 200 mm/min from Fig. 21).
+fn paper_sweep() -> PaperSweep {
+    let pi = std::f64::consts::PI;
+    let point = |j_total, accel_sat, omega_sat, rc_min| PaperSaturationPoint {
+        j_total,
+        accel_sat,
+        omega_sat,
+        rc_min,
+    };
+    PaperSweep {
+        source: "suzuki-best-kffp §3 (conditions); §5.2, Figs. 17, 20, 21 (saturation points)"
+            .into(),
+        rc: 5.0,
+        rw: 8.0,
+        omega: [0.5, 1.0, 1.5, 2.0, 3.0, 4.0]
+            .iter()
+            .map(|k| k * pi)
+            .collect(),
+        j1: vec![1.70, 3.24, 4.77],
+        accel_time: 0.064,
+        feed_at_cutting_point: 200.0,
+        saturation: vec![
+            point(5.9, 146.7, 9.39, 0.36),
+            point(7.4, 118.5, 7.58, 0.44),
+            point(8.9, 91.1, 5.83, 0.57),
+        ],
     }
 }
 

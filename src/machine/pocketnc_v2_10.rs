@@ -79,6 +79,7 @@ pub fn chain() -> Chain {
 
 /// The preset.
 pub fn machine() -> Machine {
+    let example = super::example_errors::pocketnc_v2_10();
     Machine {
         name: "pocketnc-v2-10".into(),
         description: "Pocket NC V2-10 mini 5-axis mill: B table on an A trunnion, Y under the work, X and Z in the head".into(),
@@ -92,7 +93,9 @@ pub fn machine() -> Machine {
             ("b".into(), [-360.0, 360.0]),
         ]),
         kinematics: Some(chain()),
-        example_errors: Some(super::example_errors::pocketnc_v2_10()),
+        example_errors: Some(example.0),
+        example_drives: Some(example.1),
+        paper_sweep: None,
         saturation_readings: Vec::new(),
         loop_readings: Vec::new(),
     }

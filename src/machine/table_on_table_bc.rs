@@ -30,6 +30,7 @@ pub fn chain() -> Chain {
 
 /// The preset.
 pub fn machine() -> Machine {
+    let example = super::example_errors::table_on_table_bc();
     let base = super::nmv5000::machine();
     let mut axes = base.axes.clone();
     if let (Some(y), Some(c)) = (base.axes.get("y"), base.axes.get("c")) {
@@ -49,7 +50,9 @@ pub fn machine() -> Machine {
             ("c".into(), [-360.0, 360.0]),
         ]),
         kinematics: Some(chain()),
-        example_errors: Some(super::example_errors::table_on_table_bc()),
+        example_errors: Some(example.0),
+        example_drives: Some(example.1),
+        paper_sweep: None,
         saturation_readings: Vec::new(),
         loop_readings: Vec::new(),
     }

@@ -12,7 +12,7 @@
 //! A −30…120°, C ±360°) are illustrative. The feed drives copy suzuki
 //! Table 1 (linear axes: X; rotary axes: C) and are marked as such in
 //! `source`; worm-gear ratio, backlash and pitch error are set per test
-//! through `errors.backlash` / `errors.pitchError`.
+//! through `drives.backlash` / `drives.pitchError`.
 
 use std::collections::BTreeMap;
 
@@ -30,6 +30,7 @@ pub fn chain() -> Chain {
 
 /// The preset.
 pub fn machine() -> Machine {
+    let example = super::example_errors::trunnion_ac();
     let base = super::nmv5000::machine();
     let mut axes = BTreeMap::new();
     if let (Some(x), Some(c)) = (base.axes.get("x"), base.axes.get("c")) {
@@ -53,7 +54,9 @@ pub fn machine() -> Machine {
             ("c".into(), [-360.0, 360.0]),
         ]),
         kinematics: Some(chain()),
-        example_errors: Some(super::example_errors::trunnion_ac()),
+        example_errors: Some(example.0),
+        example_drives: Some(example.1),
+        paper_sweep: None,
         saturation_readings: Vec::new(),
         loop_readings: Vec::new(),
     }

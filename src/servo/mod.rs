@@ -45,6 +45,14 @@ pub enum ServoError {
         /// What is wrong and what was expected.
         why: &'static str,
     },
+    /// A drive error (backlash, pitch error) of a machine is invalid.
+    #[error("drives: `{key}` {why}")]
+    BadDriveError {
+        /// Path of the offending key, e.g. `backlash.q`.
+        key: String,
+        /// What was expected.
+        why: String,
+    },
     /// A required parameter is missing for this kind of axis.
     #[error("axis parameter `{field}` is required: {why}")]
     MissingParameter {

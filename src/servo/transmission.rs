@@ -38,11 +38,20 @@
 //! This file is the only implementation of the mechanism: the ideal drive of
 //! the cone-frustum test (`cone_frustum::drive::ideal`) uses it too.
 //!
+//! [`DriveErrors`] are a machine's backlash and pitch errors per axis
+//! letter, as a test sets them on top of each axis' own parameters (the
+//! cone-frustum test's `drives`); they belong to the drives, not to the
+//! geometric error model, which never sees them.
+//!
 //! # Units
 //! Motor angle in rad; nominal and table positions in mm (linear) or rad
 //! (rotary); `s_m` in motor rad per mm or per rad.
 
-use super::{AxisKind, AxisParams, PitchReading, ServoError};
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use super::{AxisKind, AxisParams, PitchReading, ServoError, WormHarmonic};
 
 /// The nominal scale `s_m`: motor rad per table unit (mm or rad).
 ///
@@ -177,6 +186,134 @@ impl Transmission {
     /// Whether the mechanism is the identity (no pitch error, no backlash).
     pub fn is_rigid(&self) -> bool {
         self.harmonics.is_empty() && self.half_gap == 0.0
+    }
+}
+
+/// Axis letters in the order of the machine axes; `a`, `b`, `c` are rotary.
+const AXIS_LETTERS: [&str; 6] = ["x", "y", "z", "a", "b", "c"];
+
+/// A machine's drive errors per axis letter (kato Eq. 1, Fig. 2): backlash
+/// and worm-gear pitch error. They depend on the motion history, so they
+/// act through each axis' [`Transmission`], not through the static
+/// geometry. Keys are axis letters (`x` … `c`, either case).
+///
+/// # Units
+/// Backlash (full width) in mm on a linear axis, rad on a rotary one;
+/// pitch-error harmonics as [`WormHarmonic`].
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
+pub struct DriveErrors {
+    /// Backlash per axis letter (full width; mm or rad).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub backlash: BTreeMap<String, f64>,
+    /// Worm-gear pitch-error harmonics per rotary axis (kato Eq. 1).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub pitch_error: BTreeMap<String, Vec<WormHarmonic>>,
+}
+
+impl DriveErrors {
+    /// True when nothing is set.
+    pub fn is_zero(&self) -> bool {
+        self.backlash.values().all(|v| *v == 0.0) && self.pitch_error.values().all(|v| v.is_empty())
+    }
+
+    /// Checks the keys and values against the axes the machine has
+    /// (`present`, lower-case letters): backlash widths ≥ 0 on those axes,
+    /// pitch errors on its rotary axes with finite harmonics. Errors name
+    /// the key, e.g. `backlash.q`.
+    ///
+    /// # Examples
+    /// ```
+    /// use mtmotion::servo::transmission::DriveErrors;
+    /// let mut d = DriveErrors::default();
+    /// d.backlash.insert("c".into(), 1e-4);
+    /// assert!(d.validate(&["x", "y", "z", "a", "c"]).is_ok());
+    /// d.backlash.insert("b".into(), 1e-4);
+    /// let e = d.validate(&["x", "y", "z", "a", "c"]).unwrap_err().to_string();
+    /// assert!(e.contains("backlash.b") && e.contains("no B axis"), "{e}");
+    /// ```
+    pub fn validate(&self, present: &[&str]) -> Result<(), ServoError> {
+        for (key, v) in &self.backlash {
+            let field = format!("backlash.{key}");
+            let axis = letter_index(key)
+                .ok_or_else(|| bad(&field, "expected an axis letter x, y, z, a, b or c"))?;
+            check_axis(present, &field, axis)?;
+            if !(v.is_finite() && *v >= 0.0) {
+                return Err(bad(
+                    &field,
+                    "must be a finite width ≥ 0 (mm for linear, rad for rotary axes)",
+                ));
+            }
+        }
+        for (key, hs) in &self.pitch_error {
+            let field = format!("pitchError.{key}");
+            let axis = letter_index(key)
+                .filter(|a| *a >= 3)
+                .ok_or_else(|| bad(&field, "expected a rotary axis letter a, b or c"))?;
+            check_axis(present, &field, axis)?;
+            for (i, h) in hs.iter().enumerate() {
+                if !(h.w.is_finite() && h.n.is_finite() && h.phi.is_finite()) {
+                    return Err(bad(
+                        &format!("{field}[{i}]"),
+                        "w, n and phi must be finite numbers",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// `params` of the axis `letter` with this set's backlash and pitch
+    /// error in place of its own, where the set gives them (keys in either
+    /// case).
+    ///
+    /// # Examples
+    /// ```
+    /// use mtmotion::servo::transmission::DriveErrors;
+    /// let c = mtmotion::machine::preset("nmv5000").unwrap().axes["c"].clone();
+    /// let mut d = DriveErrors::default();
+    /// d.backlash.insert("C".into(), 2e-4);
+    /// assert_eq!(d.applied_to("c", c.clone()).backlash, 2e-4);
+    /// assert_eq!(d.applied_to("x", c).backlash, 0.0);
+    /// ```
+    pub fn applied_to(&self, letter: &str, mut params: AxisParams) -> AxisParams {
+        let mine = |k: &String| k.eq_ignore_ascii_case(letter);
+        if let Some((_, b)) = self.backlash.iter().find(|(k, _)| mine(k)) {
+            params.backlash = *b;
+        }
+        if let Some((_, h)) = self.pitch_error.iter().find(|(k, _)| mine(k)) {
+            params.pitch_error = h.clone();
+        }
+        params
+    }
+}
+
+/// Index of an axis letter (either case) in `x y z a b c`.
+fn letter_index(key: &str) -> Option<usize> {
+    let key = key.to_ascii_lowercase();
+    AXIS_LETTERS.iter().position(|a| *a == key)
+}
+
+fn bad(key: &str, why: &str) -> ServoError {
+    ServoError::BadDriveError {
+        key: key.to_string(),
+        why: why.to_string(),
+    }
+}
+
+/// A drive error on an axis the machine does not have is refused, naming the key.
+fn check_axis(present: &[&str], key: &str, axis: usize) -> Result<(), ServoError> {
+    if present.contains(&AXIS_LETTERS[axis]) {
+        Ok(())
+    } else {
+        Err(bad(
+            key,
+            &format!(
+                "this machine has no {} axis (axes: {})",
+                AXIS_LETTERS[axis].to_uppercase(),
+                present.join(", ")
+            ),
+        ))
     }
 }
 

@@ -28,6 +28,7 @@ export interface ConeFrustumOptions {
   machine: MachineArg; halfApexDeg: number; inclinationDeg: number;
   method?: 'perpendicular' | 'parallel'; /** [mm] */ barLength?: number; /** [mm/min] of the spindle ball */ feed: number;
   /** [mm] spindle-ball circle */ radius?: number; /** [mm] table ball */ centre?: [number, number, number]; errors?: GeometricErrors;
+  /** backlash and worm-gear pitch error per axis */ drives?: DriveErrors;
   idealServo?: boolean; /** [mm] */ toolLength?: number; /** [-] samples per revolution */ points?: number; clockwise?: boolean; leadInDeg?: number;
 }
 export interface ConeFrustumResult {

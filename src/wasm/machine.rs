@@ -5,9 +5,9 @@ use wasm_bindgen::prelude::*;
 use super::convert::{string_arg, to_js};
 use crate::machine;
 
-// GeometricErrors is declared here rather than with the kinematics bindings:
-// MachinePreset uses it, and the embed module (built without kinematics)
-// must declare it too.
+// GeometricErrors and DriveErrors are declared here rather than with the
+// kinematics bindings: MachinePreset uses them, and the embed module (built
+// without kinematics) must declare them too.
 #[wasm_bindgen(typescript_custom_section)]
 const TS: &str = r#"
 export interface WormHarmonic {
@@ -36,7 +36,7 @@ export interface AxisParams {
   /** [N·m] kato Fig. 2: Coulomb friction F at the motor. */ friction?: number;
   /** [N·m] kato Fig. 2: load torque G at the motor. */ gravity?: number;
 }
-/** A machine's geometric and drive errors (ISO 230 symbols; mm, rad). */
+/** A machine's geometric errors (ISO 230 symbols; mm, rad). */
 export interface GeometricErrors {
   /** [mm or rad] ISO 230 location errors, e.g. { EX0C: 0.01 (mm), EB0C: 2e-5 (rad), EC0Y: 1e-5 }. */
   location?: Record<string, number>;
@@ -44,18 +44,37 @@ export interface GeometricErrors {
   component?: Record<string, number | number[]>;
   /** [mm, rad] E_ST of thasana Eq. 8: [dx, dy, dz] in mm, [ex, ey, ez] in rad, in the tool frame. */
   tool?: number[];
-  /** [mm or rad] Full backlash width per axis. */
+}
+/** A machine's drive errors per axis letter (servo::transmission; kato Eq. 1, Fig. 2). */
+export interface DriveErrors {
+  /** [mm or rad] Full backlash width per axis: mm on a linear axis, rad on a rotary one. */
   backlash?: Record<string, number>;
   /** Worm-gear pitch error per rotary axis (kato Eq. 1). */
   pitchError?: Record<string, WormHarmonic[]>;
+}
+/** A saturation point as a paper quotes it. */
+export interface PaperSaturationPoint {
+  /** [kg·m²] J + J1 */ jTotal: number; /** [rad/s²] dω/dt */ accelSat: number; /** [rad/s] */ omegaSat: number;
+  /** [mm] smallest R_C at feedAtCuttingPoint */ rcMin: number;
+}
+/** The conditions a paper ran on a preset (suzuki §3 on nmv5000) and the saturation points it quotes. */
+export interface PaperSweep {
+  source: string; /** [mm] R_C */ rc: number; /** [mm] R_W */ rw: number;
+  /** [rad/s] ω of the sweep */ omega: number[]; /** [kg·m²] loads J1 on C */ j1: number[];
+  /** [s] acc/dec time */ accelTime: number; /** [mm/min] F_C */ feedAtCuttingPoint: number;
+  saturation: PaperSaturationPoint[];
 }
 export interface MachinePreset {
   name: string; description: string; source: string;
   axes: Record<string, AxisParams>;
   /** [mm or deg] Travel limits: mm for linear axes, degrees for rotary axes. */
   limits?: Record<string, [number, number]>;
-  /** Illustrative ISO 230-7 location errors and backlash for the page (not measured). */
+  /** Illustrative ISO 230-7 location errors for the page (not measured). */
   exampleErrors?: GeometricErrors;
+  /** Illustrative worm-gear backlash for the page (not measured). */
+  exampleDrives?: DriveErrors;
+  /** The paper's test conditions on this machine, if a paper tests it so. */
+  paperSweep?: PaperSweep;
   /** Readings `torqueSaturation` accepts (first = default). */
   saturationReadings?: string[];
   /** Readings of the paper's loop parameters `machinePreset(name, reading)` accepts (first = default); nmv5000: 'table' (Table 1: Kpp 60 1/s, J at the motor), 'kppText' (§3: Kpp 30 1/s on every axis), 'inertiaAtLoad' (J·(lead/2π)² at the motor: X's J read as kg behind its 16 mm lead). */

@@ -50,7 +50,7 @@ export interface BestKffpResult {
   kffp: KffpSet; before: FeedVectorSummary; after: FeedVectorSummary; method: 'analytic' | 'simulated';
   /** [rad] α_th of C (Eq. 17) */ alphaTh: number; /** [rad] α_th − β_th of X (Eq. 19) */ residualX: number; /** [rad] */ residualY: number;
 }
-export interface SaturationQuery { /** [kg·m²] */ j1: number[]; /** [N·m] */ torqueMax: number; /** [s] */ accelTime: number; /** [mm/min] */ feedAtCuttingPoint: number; /** [s] */ dt?: number;
+export interface SaturationQuery { /** [kg·m²] */ j1: number[]; /** [N·m] C torque limit; absent: the machine's axes.c.torqueMax */ torqueMax?: number; /** [s] */ accelTime: number; /** [mm/min] */ feedAtCuttingPoint: number; /** [s] */ dt?: number;
   /** How the paper's saturation point is read; names in `machinePreset('nmv5000').saturationReadings` (default 'preControlOff'). */
   reading?: 'preControlOff' | 'presetKffp' | 'inertiaOnly' }
 export interface SaturationPoint {

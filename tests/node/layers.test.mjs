@@ -32,6 +32,11 @@ test('a planted kinematics -> machine import is an upward import and a cycle', (
   assert.ok(problems.some((p) => /import cycle: .*kinematics.*machine|import cycle: .*machine.*kinematics/.test(p)), problems.join('\n'));
 });
 
+test('a planted kinematics -> servo import is sideways: drive errors are the drive\'s', () => {
+  const problems = planted('kinematics/errors.rs', 'use crate::servo::WormHarmonic;');
+  assert.ok(problems.some((p) => p.includes('kinematics/errors.rs') && p.includes('sideways') && p.includes("'servo'")), problems.join('\n'));
+});
+
 test('a planted sideways import (compensate -> cone_frustum) fails', () => {
   const problems = planted('compensate/mod.rs', 'use crate::cone_frustum::ConeFrustumConfig;');
   assert.ok(problems.some((p) => p.includes('sideways') && p.includes("'cone_frustum'")), problems.join('\n'));

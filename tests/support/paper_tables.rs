@@ -105,6 +105,7 @@ fn kato(r: &mut Rows) {
                     radius: None,
                     centre: None,
                     errors: GeometricErrors::default(),
+                    drives: Default::default(),
                     ideal_servo: true,
                     tool_length: 0.0,
                     points: 360,
@@ -146,7 +147,7 @@ fn suzuki(r: &mut Rows) {
     ] {
         let q = SaturationQuery {
             j1: paper_j.iter().map(|j| j - m.axes["c"].j).collect(),
-            torque_max: 725.0,
+            torque_max: Some(725.0),
             accel_time: 0.064,
             feed_at_cutting_point: 200.0,
             dt: None,
@@ -278,7 +279,7 @@ fn suzuki(r: &mut Rows) {
         &m,
         &SaturationQuery {
             j1: vec![1.7],
-            torque_max: 725.0,
+            torque_max: Some(725.0),
             accel_time: 0.0,
             feed_at_cutting_point: 200.0,
             dt: None,
@@ -413,7 +414,7 @@ fn suzuki_loop_readings(r: &mut Rows) {
         }
         let q = SaturationQuery {
             j1: vec![5.9 - m.axes["c"].j],
-            torque_max: 725.0,
+            torque_max: Some(725.0),
             accel_time: 0.064,
             feed_at_cutting_point: 200.0,
             dt: None,

@@ -68,23 +68,26 @@ export async function mount(root, api) {
   function loadExample() {
     const ex = preset?.exampleErrors;
     if (!ex) return;
+    const drives = preset.exampleDrives;
     for (const [k, inp] of Object.entries(errInputs)) {
-      const v = k.startsWith('backlash.') ? ex.backlash?.[k.slice(9)] : ex.location?.[k];
+      const v = k.startsWith('backlash.') ? drives?.backlash?.[k.slice(9)] : ex.location?.[k];
       inp.value = String(v ?? 0);
     }
     runCone();
   }
 
-  function errors() {
-    const e = { location: {}, backlash: {} };
+  // The table's geometric errors (ISO 230 location errors: kinematics) and
+  // drive errors (backlash: the drives), sent apart as the core keeps them.
+  function tableValues(isDrive) {
+    const values = {};
     for (const [k, inp] of Object.entries(errInputs)) {
       const v = Number(inp.value);
-      if (!v) continue;
-      if (k.startsWith('backlash.')) e.backlash[k.slice(9)] = v;
-      else e.location[k] = v;
+      if (v && k.startsWith('backlash.') === isDrive) values[isDrive ? k.slice(9) : k] = v;
     }
-    return e;
+    return values;
   }
+  const errors = () => ({ location: tableValues(false) });
+  const drives = () => ({ backlash: tableValues(true) });
 
   // --- cone-frustum test -------------------------------------------------
   const incl = selectField({ label: 'Inclination β', options: [['10', '10°'], ['30', '30°']], value: '10', id: 'kinematics-inclination' });
@@ -109,7 +112,7 @@ export async function mount(root, api) {
         results.push(await api.call('coneFrustumTest', [{
           machine: machineSel.value, halfApexDeg: theta, inclinationDeg: Number(incl.value), method,
           barLength: bar.value, feed: feed.value, centre: [cx.value, cy.value, cz.value],
-          errors: errors(), idealServo: ideal.checked, points: 1440,
+          errors: errors(), drives: drives(), idealServo: ideal.checked, points: 1440,
         }]));
       }
       progress.done();
@@ -226,7 +229,7 @@ export async function mount(root, api) {
 
   root.replaceChildren(
     h('div', { class: 'card' }, h('h3', {}, 'Machine and geometric errors'), machineSel.el,
-      exampleBtn, h('small', {}, ' illustrative ISO 230-7 location errors and worm-gear backlash (not measured), then runs the cone-frustum test'),
+      exampleBtn, h('small', {}, ' illustrative ISO 230-7 location errors and worm-gear backlash (not measured), then runs the cone-frustum test; the compensation uses the location errors'),
       errBox),
     h('div', { class: 'card' }, h('h3', {}, 'ISO 10791-6 cone-frustum ball-bar test'),
       incl.el, feed.el, bar.el, cx.el, cy.el, cz.el,

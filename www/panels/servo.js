@@ -10,8 +10,6 @@ const FIELDS = [
   ['j', 'J', 'kg·m²'], ['c', 'C', 'N·m·s/rad'], ['kpp', 'Kpp', '1/s'], ['kvp', 'Kvp', 'N·m·s/rad'], ['kvi', 'Kvi', 'N·m/rad'],
   ['kffp', 'K_FFP', '%'], ['ts', 'Ts', 's'], ['ta', 'Ta', 's'], ['tp', 'Tp', 's'], ['torqueMax', 'torque max', 'N·m'], ['lead', 'lead', 'm'],
 ];
-const PAPER_OMEGAS = [0.5, 1, 1.5, 2, 3, 4].map((k) => k * Math.PI);
-const PAPER_J1 = [1.7, 3.24, 4.77];
 
 /**
  * @param {HTMLElement} root
@@ -20,6 +18,10 @@ const PAPER_J1 = [1.7, 3.24, 4.77];
 export async function mount(root, api) {
   const machine = await api.call('machinePreset', ['nmv5000']);
   const axes = Object.keys(machine.axes);
+  // The paper's conditions and quoted values are the preset's data (Rust:
+  // machine::paper_sweep), not the page's.
+  const paper = machine.paperSweep;
+  if (!paper) throw new Error(`machine preset '${machine.name}' has no paperSweep: the servo panel needs the paper's test conditions`);
 
   // ---- parameter table (editable) ----
   const inputs = {};
@@ -46,17 +48,17 @@ export async function mount(root, api) {
   // ---- condition ----
   // The J+J1 labels follow the C axis' J as edited in the table.
   const j1Label = (v) => `${v} kg·m² (J+J1 = ${fmt(Number(inputs['c.j'].value) + v, 2)})`;
-  const j1 = selectField({ label: 'J1 (load on C)', id: 'servo-j1', value: '1.7', options: PAPER_J1.map((v) => [String(v), j1Label(v)]) });
+  const j1 = selectField({ label: 'J1 (load on C)', id: 'servo-j1', value: String(paper.j1[0]), options: paper.j1.map((v) => [String(v), j1Label(v)]) });
   inputs['c.j'].addEventListener('input', () => {
-    for (const [i, o] of [...j1.input.options].entries()) o.textContent = j1Label(PAPER_J1[i]);
+    for (const [i, o] of [...j1.input.options].entries()) o.textContent = j1Label(paper.j1[i]);
   });
   const mode = selectField({ label: 'speed given as', id: 'servo-mode', value: 'omega', options: [['omega', 'ω [rad/s]'], ['feed', 'F_C [mm/min] with R_C']] });
   const omega = numberField({ label: 'ω', unit: 'rad/s', value: Math.PI.toFixed(6), id: 'servo-omega' });
-  const feed = numberField({ label: 'F_C', unit: 'mm/min', value: 200, id: 'servo-feed' });
-  const rc = numberField({ label: 'R_C', unit: 'mm', value: 5, id: 'servo-rc' });
-  const rw = numberField({ label: 'R_W', unit: 'mm', value: 8, id: 'servo-rw' });
+  const feed = numberField({ label: 'F_C', unit: 'mm/min', value: paper.feedAtCuttingPoint, id: 'servo-feed' });
+  const rc = numberField({ label: 'R_C', unit: 'mm', value: paper.rc, id: 'servo-rc' });
+  const rw = numberField({ label: 'R_W', unit: 'mm', value: paper.rw, id: 'servo-rw' });
   const freqUnit = selectField({ label: 'Bode frequency axis', id: 'servo-bode-unit', value: 'rad', options: [['rad', 'ω [rad/s]'], ['hz', 'f [Hz]']], onChange: () => last?.before && draw() });
-  const accel = numberField({ label: 'accel time', unit: 's', value: 0.064, id: 'servo-accel' });
+  const accel = numberField({ label: 'accel time', unit: 's', value: paper.accelTime, id: 'servo-accel' });
   const dt = numberField({ label: 'time step', unit: 's', value: 0.001, id: 'servo-dt' });
   const condition = (over = {}) => {
     const w = mode.value === 'omega' ? omega.value : feed.value / 60 / rc.value;
@@ -174,17 +176,19 @@ export async function mount(root, api) {
   const sweep = async () => {
     const m = currentMachine();
     const rows = [];
-    const data = PAPER_J1.map(() => ({ before: [], after: [], half: [], kx: [], ky: [] }));
+    const data = paper.j1.map(() => ({ before: [], after: [], half: [], kx: [], ky: [] }));
     let done = 0;
     sweepUi.start();
     try {
-      // J + J1 per load as the core sums it (the C axis' J as edited).
-      const sat = await api.call('torqueSaturation', [m, { j1: PAPER_J1, torqueMax: m.axes.c.torqueMax ?? 725, accelTime: 0.064, feedAtCuttingPoint: 200, dt: dt.value }]);
+      // J + J1 per load as the core sums it (the C axis' J as edited); the
+      // torque limit is the machine's C torqueMax (the core names it if absent).
+      const { rc: rcP, rw: rwP, accelTime, feedAtCuttingPoint } = paper;
+      const sat = await api.call('torqueSaturation', [m, { j1: paper.j1, accelTime, feedAtCuttingPoint, dt: dt.value }]);
       // One bestKffp per (J1, ω) on all cores (lib/pool.js), in order.
-      const args = PAPER_J1.flatMap((jv) => PAPER_OMEGAS.map((w) => [m, { rc: 5, rw: 8, omega: w, accelTime: 0.064, j1: jv, dt: dt.value }]));
+      const args = paper.j1.flatMap((jv) => paper.omega.map((w) => [m, { rc: rcP, rw: rwP, omega: w, accelTime, j1: jv, dt: dt.value }]));
       const results = await mapCalls(api, 'bestKffp', args, { onProgress: (d, n) => progress.set(d / n, `${d} of ${n} points`) });
-      for (const ji of PAPER_J1.keys()) {
-        for (const w of PAPER_OMEGAS) {
+      for (const ji of paper.j1.keys()) {
+        for (const w of paper.omega) {
           const r = results[done];
           data[ji].before.push(r.before.meanAngleDiff * 1e3);
           data[ji].after.push(r.after.meanAngleDiff * 1e3);
@@ -197,23 +201,24 @@ export async function mount(root, api) {
       const els = [h('div'), h('div'), h('div')];
       const t = table(['J+J1 [kg·m²]', 'ω', 'α−β [mrad]', 'half ampl. [µm]', 'saturated', 'method', 'Best K_FFP X [%]', 'Best K_FFP Y [%]', 'α−β after [mrad]', 'half ampl. after [µm]'], rows);
       t.querySelector('table').id = 'servo-sweep-table';
-      // paper / ours / why: suzuki §5.2 quotes these three points (J + J1 = 5.9, 7.4, 8.9 kg·m²).
-      const paperSat = [[146.7, 0.36], [118.5, 0.44], [91.1, 0.57]];
-      const satTable = table(['J+J1 [kg·m²]', 'accelSat paper / ours [rad/s²]', 'ωsat [rad/s]', 'R_C min paper / ours at 200 mm/min [mm]'], sat.map((p, i) => [fmt(p.jTotal, 2), `${paperSat[i][0]} / ${fmt(p.accelSat, 1)}`, fmt(p.omegaSat, 3), `${paperSat[i][1]} / ${fmt(p.rcMin, 3)}`]));
-      satTable.append(h('p', { class: 'note' }, "Why: reading 'preControlOff' (commanded acceleration ω/0.064 s, C loop with K_FFP = 0; the paper does not state Fig. 17's K_FFP). The paper's three points scatter ±4.7 % in ω·J, so no reading matches all three within 2 %; see docs/readings.md."));
+      // paper / ours / why: the points suzuki §5.2 quotes, from the preset (paperSweep.saturation).
+      // as the paper prints them
+      const quoted = (i, key) => String(paper.saturation[i]?.[key] ?? '—');
+      const satTable = table(['J+J1 [kg·m²]', 'accelSat paper / ours [rad/s²]', 'ωsat paper / ours [rad/s]', `R_C min paper / ours at ${feedAtCuttingPoint} mm/min [mm]`], sat.map((p, i) => [fmt(p.jTotal, 2), `${quoted(i, 'accelSat')} / ${fmt(p.accelSat, 1)}`, `${quoted(i, 'omegaSat')} / ${fmt(p.omegaSat, 3)}`, `${quoted(i, 'rcMin')} / ${fmt(p.rcMin, 3)}`]));
+      satTable.append(h('p', { class: 'note' }, `Why: reading 'preControlOff' (commanded acceleration ω/${accelTime} s, C loop with K_FFP = 0; the paper does not state Fig. 17's K_FFP). The paper's three points scatter ±4.7 % in ω·J, so no reading matches all three within 2 %; see docs/readings.md.`));
       satTable.querySelector('table').id = 'servo-saturation-table';
       sweepBox.replaceChildren(...els, t, h('h4', {}, 'Torque-saturation limits (Figs. 17, 21)'), satTable);
       sweepUi.ok();
       const series = sat.map((p) => ({ label: `J+J1 = ${fmt(p.jTotal, 2)}` }));
-      lineChart(els[0], { title: 'Mean α − β with K_FFP set (Figs. 15, 20)', xLabel: 'ω [rad/s]', yLabel: 'mrad', series, data: [PAPER_OMEGAS, ...data.map((d) => d.before)] });
-      lineChart(els[1], { title: 'Half amplitude of the shape error (Fig. 14)', xLabel: 'ω [rad/s]', yLabel: 'µm', series, data: [PAPER_OMEGAS, ...data.map((d) => d.half)] });
+      lineChart(els[0], { title: 'Mean α − β with K_FFP set (Figs. 15, 20)', xLabel: 'ω [rad/s]', yLabel: 'mrad', series, data: [paper.omega, ...data.map((d) => d.before)] });
+      lineChart(els[1], { title: 'Half amplitude of the shape error (Fig. 14)', xLabel: 'ω [rad/s]', yLabel: 'µm', series, data: [paper.omega, ...data.map((d) => d.half)] });
       const rcs = Float64Array.from({ length: 200 }, (_, i) => 0.1 + (i * 5.9) / 199);
       lineChart(els[2], {
         title: 'R_C – ω_R map with the saturation ω per load (Figs. 5, 21)', xLabel: 'R_C [mm]', yLabel: 'ω_R [rad/s]',
         series: [100, 200, 400].map((f) => ({ label: `F_C = ${f} mm/min` })),
         data: [rcs, ...[100, 200, 400].map((f) => rcs.map((r) => f / 60 / r))],
         scales: { x: { time: false }, y: { range: [0, 20] } },
-        hLines: sat.map((p, i) => ({ y: p.omegaSat, label: `saturation, J+J1 = ${fmt(p.jTotal, 2)} (R_C min ${fmt(p.rcMin, 2)} mm at 200 mm/min)`, color: ['#b3261e', '#d9480f', '#862e9c'][i % 3] })),
+        hLines: sat.map((p, i) => ({ y: p.omegaSat, label: `saturation, J+J1 = ${fmt(p.jTotal, 2)} (R_C min ${fmt(p.rcMin, 2)} mm at ${feedAtCuttingPoint} mm/min)`, color: ['#b3261e', '#d9480f', '#862e9c'][i % 3] })),
       });
     } catch (e) {
       progress.done();
@@ -301,7 +306,8 @@ export async function mount(root, api) {
         h('button', { id: 'servo-json', onclick: json }, 'Download JSON')),
       status, out, charts),
     h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ link: 'servo-trace', label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace }), traceInfo, mapBox, traceBox),
-    h('div', { class: 'card' }, h('h3', {}, "The paper's sweep: R_C = 5 mm, R_W = 8 mm, ω = 0.5π … 4π rad/s, J1 = 1.70, 3.24, 4.77 kg·m² (Figs. 14, 15, 20, 21, 22)"),
+    h('div', { class: 'card' }, h('h3', {}, `The paper's sweep: R_C = ${paper.rc} mm, R_W = ${paper.rw} mm, ω = ${paper.omega.map((w) => `${+(w / Math.PI).toFixed(3)}π`).join(', ')} rad/s, J1 = ${paper.j1.map((v) => v.toFixed(2)).join(', ')} kg·m² (Figs. 14, 15, 20, 21, 22)`),
+      h('p', { class: 'unit' }, `Source: ${paper.source}.`),
       h('button', { id: 'servo-sweep', onclick: sweep }, 'Run the sweep'), progress.el, sweepBox),
   );
 }

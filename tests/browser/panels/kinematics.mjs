@@ -2,7 +2,7 @@
 // cone-frustum test (analytic: no error, no deviation), and compensating the
 // S-shape program on a Monte-Carlo Pocket NC cuts the error std by ≥ 80 %
 // (thasana: 80.73 %). "Load example errors" fills the preset's illustrative
-// errors and re-runs: the shown largest bar deviation must exceed 1 µm and
+// errors (location errors and backlash, sent as `errors` and `drives`) and re-runs: the shown largest bar deviation must exceed 1 µm and
 // equal the JS API's for the same inputs, computed in a fresh instance (in
 // the page when served over http; in Node from pkg/ for the file:// page,
 // where browsers block module imports).
@@ -13,8 +13,8 @@ const COMBOS = [[15, 'perpendicular'], [15, 'parallel'], [45, 'perpendicular'], 
 
 /** Largest |bar deviation| (mm) of the panel's four runs, from the JS API. */
 function worstOf(mt, machine, inputs) {
-  const errors = mt.machinePreset(machine).exampleErrors;
-  const runs = COMBOS.map(([theta, method]) => mt.coneFrustumTest({ machine, halfApexDeg: theta, method, errors, ...inputs }));
+  const { exampleErrors: errors, exampleDrives: drives } = mt.machinePreset(machine);
+  const runs = COMBOS.map(([theta, method]) => mt.coneFrustumTest({ machine, halfApexDeg: theta, method, errors, drives, ...inputs }));
   return Math.max(...runs.map((r) => Math.max(Math.abs(r.minDeviation), Math.abs(r.maxDeviation))));
 }
 
@@ -23,8 +23,8 @@ async function expectedWorst(page, machine, inputs) {
     return page.evaluate(async ([machine, inputs, combos]) => {
       const mt = await import('./pkg/mtmotion.js');
       await mt.default({ module_or_path: new URL('./pkg/mtmotion_bg.wasm', location.href) });
-      const errors = mt.machinePreset(machine).exampleErrors;
-      const runs = combos.map(([theta, method]) => mt.coneFrustumTest({ machine, halfApexDeg: theta, method, errors, ...inputs }));
+      const { exampleErrors: errors, exampleDrives: drives } = mt.machinePreset(machine);
+      const runs = combos.map(([theta, method]) => mt.coneFrustumTest({ machine, halfApexDeg: theta, method, errors, drives, ...inputs }));
       return Math.max(...runs.map((r) => Math.max(Math.abs(r.minDeviation), Math.abs(r.maxDeviation))));
     }, [machine, inputs, COMBOS]);
   }
