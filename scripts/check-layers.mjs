@@ -14,7 +14,7 @@ import { readdirSync, readFileSync, statSync } from 'node:fs';
 import { join, basename } from 'node:path';
 
 export const LAYERS = [
-  ['trace', 'budget', 'numeric'],
+  ['trace', 'budget', 'numeric', 'axes'],
   ['servo', 'nc', 'ballbar', 'kinematics'],
   ['toolpath', 'alignment'],
   ['machine'],

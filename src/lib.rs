@@ -30,6 +30,7 @@
 //! | `wasm` | the JS binding layer (wasm32 only) | — |
 
 pub mod alignment;
+pub mod axes;
 pub mod ballbar;
 pub mod best_kffp;
 pub mod budget;

@@ -113,6 +113,21 @@ pub struct Series {
     pub name: String,
     /// Values along the path (mm/mm or mm/rad).
     pub values: Vec<f64>,
+    /// Root mean square of `values` over the path (same unit): how much
+    /// the bar sees of this axis or error on average.
+    pub rms: f64,
+}
+
+impl Series {
+    /// A series with its RMS.
+    pub fn new(name: String, values: Vec<f64>) -> Self {
+        let rms = if values.is_empty() {
+            0.0
+        } else {
+            (values.iter().map(|v| v * v).sum::<f64>() / values.len() as f64).sqrt()
+        };
+        Self { name, values, rms }
+    }
 }
 
 /// The result.
@@ -228,16 +243,13 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
         axis_sensitivity: present
             .iter()
             .zip(r.axis_sens)
-            .map(|(k, v)| Series {
-                name: AXES[*k].to_string(),
-                values: v,
-            })
+            .map(|(k, v)| Series::new(AXES[*k].to_string(), v))
             .collect(),
         error_sensitivity: r
             .symbols
             .into_iter()
             .zip(r.err_sens)
-            .map(|(s, v)| Series { name: s, values: v })
+            .map(|(s, v)| Series::new(s, v))
             .collect(),
         bar_length: geo.bar_length,
         radius,

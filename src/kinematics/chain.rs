@@ -89,7 +89,7 @@ pub struct Chain {
 }
 
 /// Axis letters in the order of the joint vector `q`.
-pub const AXES: [&str; 6] = ["x", "y", "z", "a", "b", "c"];
+pub use crate::axes::AXES;
 
 impl Chain {
     /// The joints in chain order: `(link index, joint)`.

@@ -32,7 +32,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::chain::{Chain, AXES};
+use super::chain::Chain;
 use super::htm::Six;
 use super::KinematicsError;
 
@@ -77,7 +77,7 @@ pub struct GeometricErrors {
 pub struct Symbol {
     /// Direction of the error: 0..3 translation x, y, z; 3..6 rotation.
     pub d: usize,
-    /// The axis it belongs to, index into [`AXES`].
+    /// The axis it belongs to, index into [`crate::axes::AXES`].
     pub axis: usize,
     /// Location (`true`) or component error.
     pub location: bool,
@@ -174,7 +174,7 @@ impl GeometricErrors {
     }
 
     /// Resolves the symbols against `chain`: per axis (index into
-    /// [`AXES`]) the errors that enter its link. Errors name the offending
+    /// [`crate::axes::AXES`]) the errors that enter its link. Errors name the offending
     /// key.
     pub fn resolve(&self, chain: &Chain) -> Result<[AxisErrors; 6], KinematicsError> {
         let mut out: [AxisErrors; 6] = Default::default();
@@ -226,18 +226,10 @@ impl GeometricErrors {
 
 /// An error on an axis the machine does not have is refused, naming the key.
 fn check_axis(present: &[&str], key: &str, axis: usize) -> Result<(), KinematicsError> {
-    if present.contains(&AXES[axis]) {
-        Ok(())
-    } else {
-        Err(KinematicsError::BadError {
-            key: key.to_string(),
-            why: format!(
-                "this machine has no {} axis (axes: {})",
-                AXES[axis].to_uppercase(),
-                present.join(", ")
-            ),
-        })
-    }
+    crate::axes::require(present, axis).map_err(|why| KinematicsError::BadError {
+        key: key.to_string(),
+        why,
+    })
 }
 
 /// An error value must be a finite number.

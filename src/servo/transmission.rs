@@ -189,9 +189,6 @@ impl Transmission {
     }
 }
 
-/// Axis letters in the order of the machine axes; `a`, `b`, `c` are rotary.
-const AXIS_LETTERS: [&str; 6] = ["x", "y", "z", "a", "b", "c"];
-
 /// A machine's drive errors per axis letter (kato Eq. 1, Fig. 2): backlash
 /// and worm-gear pitch error. They depend on the motion history, so they
 /// act through each axis' [`Transmission`], not through the static
@@ -235,7 +232,7 @@ impl DriveErrors {
     pub fn validate(&self, present: &[&str]) -> Result<(), ServoError> {
         for (key, v) in &self.backlash {
             let field = format!("backlash.{key}");
-            let axis = letter_index(key)
+            let axis = crate::axes::index(key)
                 .ok_or_else(|| bad(&field, "expected an axis letter x, y, z, a, b or c"))?;
             check_axis(present, &field, axis)?;
             if !(v.is_finite() && *v >= 0.0) {
@@ -247,7 +244,7 @@ impl DriveErrors {
         }
         for (key, hs) in &self.pitch_error {
             let field = format!("pitchError.{key}");
-            let axis = letter_index(key)
+            let axis = crate::axes::index(key)
                 .filter(|a| *a >= 3)
                 .ok_or_else(|| bad(&field, "expected a rotary axis letter a, b or c"))?;
             check_axis(present, &field, axis)?;
@@ -288,12 +285,6 @@ impl DriveErrors {
     }
 }
 
-/// Index of an axis letter (either case) in `x y z a b c`.
-fn letter_index(key: &str) -> Option<usize> {
-    let key = key.to_ascii_lowercase();
-    AXIS_LETTERS.iter().position(|a| *a == key)
-}
-
 fn bad(key: &str, why: &str) -> ServoError {
     ServoError::BadDriveError {
         key: key.to_string(),
@@ -303,18 +294,7 @@ fn bad(key: &str, why: &str) -> ServoError {
 
 /// A drive error on an axis the machine does not have is refused, naming the key.
 fn check_axis(present: &[&str], key: &str, axis: usize) -> Result<(), ServoError> {
-    if present.contains(&AXIS_LETTERS[axis]) {
-        Ok(())
-    } else {
-        Err(bad(
-            key,
-            &format!(
-                "this machine has no {} axis (axes: {})",
-                AXIS_LETTERS[axis].to_uppercase(),
-                present.join(", ")
-            ),
-        ))
-    }
+    crate::axes::require(present, axis).map_err(|why| bad(key, &why))
 }
 
 #[cfg(test)]

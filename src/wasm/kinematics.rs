@@ -35,7 +35,7 @@ export interface ConeFrustumResult {
   /** [deg] path angle */ angle: Float64Array; /** [s] */ time: Float64Array; /** [mm] change of bar length */ deviation: Float64Array;
   /** [mm] nominal spindle-ball path */ path: { x: Float64Array; y: Float64Array; z: Float64Array };
   /** [mm or deg] per-axis command and actual position */ axes: Record<string, { command: Float64Array; actual: Float64Array }>;
-  /** [mm/mm or mm/rad] sensitivity of the bar to each axis and each location error */ sensitivity: { axes: Record<string, Float64Array>; errors: Record<string, Float64Array> };
+  /** [mm/mm or mm/rad] sensitivity of the bar to each axis and each location error */ sensitivity: { axes: Record<string, Float64Array>; errors: Record<string, Float64Array>; /** [mm/mm or mm/rad] RMS of each error's series over the path */ errorsRms: Record<string, number> };
   /** [mm] */ barLength: number; /** [mm] */ radius: number; /** [s] */ duration: number; /** [mm] */ maxDeviation: number; /** [mm] */ minDeviation: number;
 }
 export interface Nc5Stats { meanMm: number[]; stdMm: number[]; meanRad: number[]; stdRad: number[] }
@@ -258,6 +258,13 @@ pub fn cone_frustum_test(
                     .iter()
                     .map(|s| (s.name.clone(), s.values.clone())),
             ),
+        )
+        .val(
+            "errorsRms",
+            r.error_sensitivity
+                .iter()
+                .fold(Obj::new(), |o, s| o.num(&s.name, s.rms))
+                .build(),
         )
         .build();
     Ok(Obj::new()

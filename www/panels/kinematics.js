@@ -4,11 +4,6 @@
 import { h, numberField, selectField, table, downloadText, toCsv, progressBar, showError, fmt, runState } from '../lib/ui.js';
 import { lineChart, xyChart, xyzChart, polarChart, barChart } from '../lib/plot.js';
 
-const MACHINES = [
-  ['trunnion-ac', 'trunnion-ac — A–C tilting rotary table (kato)'],
-  ['table-on-table-bc', 'table-on-table-bc — B–C like the NMV5000'],
-  ['pocketnc-v2-10', 'pocketnc-v2-10 — Pocket NC V2-10 (thasana Eq. 8)'],
-];
 // Cone-frustum centre per machine (workpiece frame, mm) at which the four
 // runs (15°/45° × perpendicular/parallel) at β = 10° and 30° with a 100 mm
 // bar stay inside the machine's travel (checked with the core's
@@ -23,7 +18,10 @@ const CONE_CENTRE = { 'trunnion-ac': [60, 40, 20], 'table-on-table-bc': [60, 40,
  */
 export async function mount(root, api) {
   const out = h('div', {});
-  const machineSel = selectField({ label: 'Machine', options: MACHINES, value: 'trunnion-ac', id: 'kinematics-machine', onChange: () => loadMachine() });
+  // The machines with a kinematic chain, as the core lists them.
+  const presets = await Promise.all((await api.call('machines')).map((n) => api.call('machinePreset', [n])));
+  const machineOptions = presets.filter((p) => p.kinematics).map((p) => [p.name, `${p.name} — ${p.description}`]);
+  const machineSel = selectField({ label: 'Machine', options: machineOptions, value: 'trunnion-ac', id: 'kinematics-machine', onChange: () => loadMachine() });
   const errBox = h('div', { id: 'kinematics-errors' });
   let errInputs = {};
   let preset = null;
@@ -153,7 +151,7 @@ export async function mount(root, api) {
     const axNames = Object.keys(r0.sensitivity.axes);
     lineChart(sens, { title: 'Sensitivity of the bar to each axis (45° perpendicular): mm/mm (linear), mm/rad (rotary)', xLabel: 'angle [°]', yLabel: 'sensitivity', series: axNames.map((a) => ({ label: a.toUpperCase() })), data: [r0.angle, ...axNames.map((a) => r0.sensitivity.axes[a])] });
     const errNames = Object.keys(r0.sensitivity.errors);
-    barChart(sensBar, { title: 'RMS sensitivity to each location error along the path (45° perpendicular)', labels: errNames, values: errNames.map((k) => Math.sqrt(r0.sensitivity.errors[k].reduce((s, v) => s + v * v, 0) / r0.sensitivity.errors[k].length)), yLabel: 'mm per mm or rad' });
+    barChart(sensBar, { title: 'RMS sensitivity to each location error along the path (45° perpendicular)', labels: errNames, values: errNames.map((k) => r0.sensitivity.errorsRms[k]), yLabel: 'mm per mm or rad' });
   }
 
   // --- NC compensation -----------------------------------------------------
