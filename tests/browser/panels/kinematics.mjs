@@ -61,4 +61,18 @@ export default async function (page, check) {
   await page.waitForSelector('#kinematics-nc-out:not(.stale) #kinematics-nc-reduction', { timeout: 120_000 });
   const red = parseFloat(await page.textContent('#kinematics-nc-reduction'));
   check(red >= 80, `compensation should cut the std by ≥ 80 %, shows ${red} %`);
+  // Several Monte-Carlo runs (on the study pool where there is one): the
+  // first run is the single run above (same seed), and each run gets a bar.
+  await page.fill('#kinematics-mc-runs', '3');
+  await page.click('#kinematics-nc-run');
+  await page.waitForSelector('#kinematics-nc-out:not(.stale) #kinematics-mc-runs-chart canvas', { timeout: 120_000 });
+  const first = parseFloat(await page.textContent('#kinematics-nc-reduction'));
+  check(first === red, `the first of 3 runs should repeat the single run's ${red} %, shows ${first} %`);
+  check((await page.$$('#kinematics-mc-download')).length === 1, 'the runs can be downloaded as CSV');
+  await page.fill('#kinematics-mc-runs', '0');
+  await page.click('#kinematics-nc-run');
+  await page.waitForSelector('#kinematics-nc-out .error-box');
+  const err = await page.textContent('#kinematics-nc-out .error-box');
+  check(/whole number from 1 to 1000/.test(err), `0 runs should be refused in words, shows: ${err}`);
+  await page.fill('#kinematics-mc-runs', '1');
 }
