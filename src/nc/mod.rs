@@ -16,13 +16,17 @@
 //! segments; [`writer`] writes segments back as NC text.
 
 pub mod arc;
+mod block;
 pub mod corner;
 pub mod cycles;
 pub mod files;
+mod gcodes;
 pub mod macro_exec;
 pub mod macro_expr;
 pub mod macro_line;
 pub mod macro_vars;
+mod moves;
+mod non_modal;
 pub mod patch;
 pub mod program;
 pub mod segment;
