@@ -29,6 +29,7 @@ mod moves;
 mod non_modal;
 pub mod patch;
 pub mod program;
+mod run;
 pub mod segment;
 pub mod summary;
 pub mod writer;
