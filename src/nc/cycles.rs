@@ -34,6 +34,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::moves::target;
 use super::program::{err, Ctx, Modal, Warning};
 use super::segment::{Motion, Plane, Pose, Segment, AXES};
 use super::{Block, NcError, Word};
@@ -227,13 +228,10 @@ pub(super) fn canned_cycle(
             "G76 fine boring: the tool shift at the bottom (direction set by a machine parameter) is not simulated",
         ));
     }
+    let plane_words: Vec<&Word> = [wu, wv].into_iter().flatten().collect();
     for _ in 0..holes.repeats {
-        let coord = |w: Option<&Word>, k: usize| match w {
-            None => st.pos.get(k),
-            Some(w) if st.incremental => st.pos.get(k) + w.value * scale,
-            Some(w) => w.value * scale + st.offset[k],
-        };
-        let (pu, pv) = (coord(wu, u), coord(wv, v));
+        let at = target(st, &plane_words, scale);
+        let (pu, pv) = (at.get(u), at.get(v));
         let segs = hole(
             &c,
             st.plane,

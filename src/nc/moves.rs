@@ -63,7 +63,32 @@ pub(super) fn move_block(
     let end = target(st, &axis_words, scale);
     let feed = move_feed(b, st, mode, first)?;
     let motion = move_motion(b, st, mode, first, start, end, scale)?;
-    match corner_word(b, mode, chamfer_c, scale)? {
+    let corner = corner_word(b, mode, chamfer_c, scale)?;
+    corner_or_centre_warning(b, cx, mode, corner, centre_words.first().copied());
+    st.pos = end;
+    cx.segments.push(Segment {
+        block: Some(cx.bi),
+        line: b.line,
+        motion,
+        start,
+        end,
+        feed,
+        fixed: false,
+    });
+    Ok(())
+}
+
+/// Queues the block's corner word for [`super::corner`] (at the segment
+/// about to be pushed); without one, warns that a centre word (`centre`,
+/// the first I/J/K/R) means nothing on a G0 or G1.
+fn corner_or_centre_warning(
+    b: &Block,
+    cx: &mut Ctx,
+    mode: MotionCode,
+    corner: Option<(&Word, CornerKind)>,
+    centre: Option<&Word>,
+) {
+    match corner {
         Some((w, kind)) => cx.corners.push(Corner {
             segment: cx.segments.len(),
             kind,
@@ -71,7 +96,7 @@ pub(super) fn move_block(
             column: w.column,
         }),
         None => {
-            if let Some(w) = centre_words.first() {
+            if let Some(w) = centre {
                 if matches!(mode, MotionCode::Rapid | MotionCode::Linear) {
                     cx.warnings.push(Warning::at(
                         b.line,
@@ -87,17 +112,6 @@ pub(super) fn move_block(
             }
         }
     }
-    st.pos = end;
-    cx.segments.push(Segment {
-        block: Some(cx.bi),
-        line: b.line,
-        motion,
-        start,
-        end,
-        feed,
-        fixed: false,
-    });
-    Ok(())
 }
 
 /// The feed of a move in `mode`, mm/min: 0 for a rapid, the modal feed
