@@ -49,9 +49,13 @@ pub(super) struct Run<'a> {
 
 /// An active subprogram or macro call.
 struct Frame {
+    /// Index of the block to return to.
     ret: usize,
+    /// Index of the called program's `O` block.
     start: usize,
+    /// Runs of the called program still to go, this one included.
     left: u32,
+    /// The called program's O number.
     number: u32,
     /// A G65 call: its own local variables, dropped at M99.
     locals: bool,
@@ -59,8 +63,11 @@ struct Frame {
 
 /// What the interpreter loop does after a macro step.
 enum Flow {
+    /// Run this block (evaluated words; true when they were computed).
     Run(Block, bool),
+    /// Go on with the next block (the program counter is set).
     Next,
+    /// Stop the run.
     Stop,
 }
 
@@ -390,10 +397,13 @@ fn left_file(
     }
 }
 
+/// The block calls a macro (G65).
 fn has_g65(b: &Block) -> bool {
     b.words.iter().any(|w| w.letter == 'G' && w.value == 65.0)
 }
 
+/// The program needs the macro interpreter: macro statements, o-words or
+/// G65 calls.
 pub(super) fn needs_macros(blocks: &[Block]) -> bool {
     has_macros(blocks) || blocks.iter().any(has_g65)
 }
