@@ -48,6 +48,33 @@ pub fn apply_corners(segments: &mut Vec<Segment>, corners: &[Corner]) -> Result<
     }
 }
 
+/// The difference `x − y`.
+fn sub(x: [f64; 3], y: [f64; 3]) -> [f64; 3] {
+    [x[0] - y[0], x[1] - y[1], x[2] - y[2]]
+}
+
+/// The Euclidean length of `x`.
+fn norm(x: [f64; 3]) -> f64 {
+    (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
+}
+
+/// The geometry of one corner: where the first line now ends and the
+/// second starts, the unit directions of both lines and the turning angle.
+struct CornerCut {
+    /// Start of the corner (on the first line), mm.
+    p1: [f64; 3],
+    /// End of the corner (on the second line), mm.
+    p2: [f64; 3],
+    /// Unit direction of the first line.
+    u1: [f64; 3],
+    /// Unit direction of the second line.
+    u2: [f64; 3],
+    /// Turning angle between the lines, rad.
+    phi: f64,
+}
+
+/// Makes corner `c` on `segments[c.segment]` and the G01 after it: both
+/// lines shortened, the chamfer or arc inserted between them.
 fn apply(segments: &mut Vec<Segment>, c: &Corner) -> Result<(), NcError> {
     let e = |m: &str| NcError::new(c.line, c.column, m);
     let i = c.segment;
@@ -66,9 +93,41 @@ fn apply(segments: &mut Vec<Segment>, c: &Corner) -> Result<(), NcError> {
     }
     let plane = plane_of(&cur, &next)
         .ok_or_else(|| e("corner rounding/chamfer needs both lines in one plane (G17/G18/G19)"))?;
+    let cut = cut(c, &cur, &next)?;
+    let mut e1 = cur.end;
+    let mut s2 = next.start;
+    for k in 0..3 {
+        e1.set(k, cut.p1[k]);
+        s2.set(k, cut.p2[k]);
+    }
+    let motion = match c.kind {
+        CornerKind::Chamfer(_) => Motion::Linear,
+        CornerKind::Round(r) => Motion::Arc(rounding(&cut, r, plane)),
+    };
+    segments[i].end = e1;
+    segments[i].fixed = true;
+    segments[i + 1].start = s2;
+    let inserted = Segment {
+        block: cur.block,
+        line: cur.line,
+        motion,
+        start: e1,
+        end: s2,
+        feed: cur.feed,
+        fixed: true,
+    };
+    segments.insert(i + 1, inserted);
+    Ok(())
+}
+
+/// Where corner `c` cuts the lines `cur` and `next`: `d` from the virtual
+/// corner along each (the chamfer C, or R·tan(φ/2) for a rounding).
+///
+/// # Errors
+/// Zero-length or collinear lines, a corner that does not fit on a line.
+fn cut(c: &Corner, cur: &Segment, next: &Segment) -> Result<CornerCut, NcError> {
+    let e = |m: &str| NcError::new(c.line, c.column, m);
     let (a, p, b) = (cur.start.p(), cur.end.p(), next.end.p());
-    let sub = |x: [f64; 3], y: [f64; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
-    let norm = |x: [f64; 3]| (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
     let (d1, d2) = (sub(p, a), sub(b, p));
     let (l1, l2) = (norm(d1), norm(d2));
     if l1 < 1e-9 || l2 < 1e-9 {
@@ -94,47 +153,35 @@ fn apply(segments: &mut Vec<Segment>, c: &Corner) -> Result<(), NcError> {
     }
     let p1 = [p[0] - u1[0] * d, p[1] - u1[1] * d, p[2] - u1[2] * d];
     let p2 = [p[0] + u2[0] * d, p[1] + u2[1] * d, p[2] + u2[2] * d];
-    let mut e1 = cur.end;
-    let mut s2 = next.start;
-    for k in 0..3 {
-        e1.set(k, p1[k]);
-        s2.set(k, p2[k]);
+    Ok(CornerCut {
+        p1,
+        p2,
+        u1,
+        u2,
+        phi,
+    })
+}
+
+/// The rounding arc of radius `r` (mm) tangent to both lines at the cut's
+/// ends, in `plane`, turning the way the lines turn.
+fn rounding(cut: &CornerCut, r: f64, plane: Plane) -> Arc {
+    let (u1, u2) = (cut.u1, cut.u2);
+    let (u, v, _) = plane.axes();
+    let turn = u1[u] * u2[v] - u1[v] * u2[u];
+    // Centre: from p1, perpendicular to u1 toward the turn.
+    let (nu, nv) = if turn > 0.0 {
+        (-u1[v], u1[u])
+    } else {
+        (u1[v], -u1[u])
+    };
+    let mut center = cut.p1;
+    center[u] += nu * r;
+    center[v] += nv * r;
+    Arc {
+        center,
+        radius: r,
+        plane,
+        sweep: if turn > 0.0 { cut.phi } else { -cut.phi },
+        r_form: true,
     }
-    let motion = match c.kind {
-        CornerKind::Chamfer(_) => Motion::Linear,
-        CornerKind::Round(r) => {
-            let (u, v, _) = plane.axes();
-            let turn = u1[u] * u2[v] - u1[v] * u2[u];
-            // Centre: from p1, perpendicular to u1 toward the turn.
-            let (nu, nv) = if turn > 0.0 {
-                (-u1[v], u1[u])
-            } else {
-                (u1[v], -u1[u])
-            };
-            let mut center = p1;
-            center[u] += nu * r;
-            center[v] += nv * r;
-            Motion::Arc(Arc {
-                center,
-                radius: r,
-                plane,
-                sweep: if turn > 0.0 { phi } else { -phi },
-                r_form: true,
-            })
-        }
-    };
-    segments[i].end = e1;
-    segments[i].fixed = true;
-    segments[i + 1].start = s2;
-    let inserted = Segment {
-        block: cur.block,
-        line: cur.line,
-        motion,
-        start: e1,
-        end: s2,
-        feed: cur.feed,
-        fixed: true,
-    };
-    segments.insert(i + 1, inserted);
-    Ok(())
 }

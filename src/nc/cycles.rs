@@ -34,7 +34,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::program::{Motion, Plane, Pose, Segment};
+use super::moves::target;
+use super::program::{err, Ctx, Modal, Warning};
+use super::segment::{Motion, Plane, Pose, Segment, AXES};
+use super::{Block, NcError, Word};
 
 /// Retract/approach clearance of G73 and G83 pecks, mm (Fanuc parameters
 /// 5114/5115; a common setting).
@@ -80,77 +83,324 @@ pub fn hole(
     line: usize,
 ) -> Vec<Segment> {
     let (u, v, n) = plane.axes();
-    let mut out = Vec::new();
-    let mut cur = pos;
-    let go = |out: &mut Vec<Segment>, cur: &mut Pose, motion: Motion, target: Pose, f: f64| {
-        if (0..3).all(|k| (target.get(k) - cur.get(k)).abs() < 1e-12) {
-            return;
-        }
-        out.push(Segment {
-            block: Some(block),
-            line,
-            motion,
-            start: *cur,
-            end: target,
-            feed: f,
-            fixed: true,
-        });
-        *cur = target;
+    let mut path = HolePath {
+        out: Vec::new(),
+        cur: pos,
+        n,
+        block,
+        line,
     };
-    let lv = |out: &mut Vec<Segment>, cur: &mut Pose, motion: Motion, level: f64, f: f64| {
-        let mut t = *cur;
-        t.set(n, level);
-        go(out, cur, motion, t, f);
-    };
-    let mut over = cur;
+    let mut over = pos;
     over.set(u, pu);
     over.set(v, pv);
-    go(&mut out, &mut cur, Motion::Rapid, over, 0.0);
-    lv(&mut out, &mut cur, Motion::Rapid, r, 0.0);
-    let dir = if bottom < r { -1.0 } else { 1.0 };
-    let dwell = |out: &mut Vec<Segment>, cur: Pose| {
-        if c.dwell > 0.0 {
-            out.push(Segment {
-                block: Some(block),
-                line,
-                motion: Motion::Dwell { seconds: c.dwell },
-                start: cur,
-                end: cur,
-                feed: 0.0,
-                fixed: true,
-            });
-        }
-    };
-    let depth_total = (bottom - r).abs();
+    path.go(Motion::Rapid, over, 0.0);
+    path.level(Motion::Rapid, r, 0.0);
     match c.code {
-        730 | 830 => {
-            let mut done = 0.0;
-            while done < depth_total - 1e-12 {
-                let next = (done + c.q).min(depth_total);
-                if done > 0.0 {
-                    if c.code == 830 {
-                        lv(&mut out, &mut cur, Motion::Rapid, r, 0.0);
-                    }
-                    let back = (done - PECK_CLEARANCE).max(0.0);
-                    lv(&mut out, &mut cur, Motion::Rapid, r + dir * back, 0.0);
-                }
-                lv(&mut out, &mut cur, Motion::Linear, r + dir * next, feed);
-                done = next;
-            }
-        }
-        _ => lv(&mut out, &mut cur, Motion::Linear, bottom, feed),
+        730 | 830 => path.peck(c, r, bottom, feed),
+        _ => path.level(Motion::Linear, bottom, feed),
     }
-    match c.code {
-        820 | 760 | 890 | 840 | 740 => dwell(&mut out, cur),
-        _ => {}
+    if matches!(c.code, 820 | 760 | 890 | 840 | 740) {
+        path.dwell(c.dwell);
     }
     let level = if g99 { r } else { c.initial };
-    match c.code {
-        840 | 740 | 850 | 890 => {
-            lv(&mut out, &mut cur, Motion::Linear, r, feed);
-            lv(&mut out, &mut cur, Motion::Rapid, level, 0.0);
-        }
-        _ => lv(&mut out, &mut cur, Motion::Rapid, level, 0.0),
+    if matches!(c.code, 840 | 740 | 850 | 890) {
+        path.level(Motion::Linear, r, feed);
     }
-    out
+    path.level(Motion::Rapid, level, 0.0);
+    path.out
+}
+
+/// The segments of one hole as they are built, and the tool pose after
+/// them.
+struct HolePath {
+    out: Vec<Segment>,
+    cur: Pose,
+    /// Index of the drilling axis.
+    n: usize,
+    block: usize,
+    line: usize,
+}
+
+impl HolePath {
+    /// A `fixed` segment of this hole's block.
+    fn segment(&self, motion: Motion, start: Pose, end: Pose, feed: f64) -> Segment {
+        Segment {
+            block: Some(self.block),
+            line: self.line,
+            motion,
+            start,
+            end,
+            feed,
+            fixed: true,
+        }
+    }
+
+    /// A move to `target` (none when it is already there within 1e-12 mm).
+    fn go(&mut self, motion: Motion, target: Pose, feed: f64) {
+        if (0..3).all(|k| (target.get(k) - self.cur.get(k)).abs() < 1e-12) {
+            return;
+        }
+        self.out.push(self.segment(motion, self.cur, target, feed));
+        self.cur = target;
+    }
+
+    /// A move along the drilling axis to `level`.
+    fn level(&mut self, motion: Motion, level: f64, feed: f64) {
+        let mut t = self.cur;
+        t.set(self.n, level);
+        self.go(motion, t, feed);
+    }
+
+    /// A dwell of `seconds` (none when zero).
+    fn dwell(&mut self, seconds: f64) {
+        if seconds > 0.0 {
+            let s = self.segment(Motion::Dwell { seconds }, self.cur, self.cur, 0.0);
+            self.out.push(s);
+        }
+    }
+
+    /// G73/G83 pecks from R to the bottom by Q: between pecks G83 rapids
+    /// out to R, both rapid back to [`PECK_CLEARANCE`] above the last depth.
+    fn peck(&mut self, c: &Cycle, r: f64, bottom: f64, feed: f64) {
+        let dir = if bottom < r { -1.0 } else { 1.0 };
+        let depth_total = (bottom - r).abs();
+        let mut done = 0.0;
+        while done < depth_total - 1e-12 {
+            let next = (done + c.q).min(depth_total);
+            if done > 0.0 {
+                if c.code == 830 {
+                    self.level(Motion::Rapid, r, 0.0);
+                }
+                let back = (done - PECK_CLEARANCE).max(0.0);
+                self.level(Motion::Rapid, r + dir * back, 0.0);
+            }
+            self.level(Motion::Linear, r + dir * next, feed);
+            done = next;
+        }
+    }
+}
+
+/// The levels, feed and repeat count of a cycle block's holes.
+struct Holes {
+    /// R level, mm.
+    r: f64,
+    /// Bottom, mm.
+    bottom: f64,
+    /// Feed, mm/min.
+    feed: f64,
+    /// K/L repeat count.
+    repeats: usize,
+}
+
+/// One block in canned-cycle mode: update the cycle data, drill the holes
+/// (a block without a plane-axis, drilling-axis, R or cycle word drills
+/// none).
+///
+/// # Errors
+/// An axis outside the cycle's plane, a bottom before any R level, a
+/// negative dwell, missing levels, peck depth or feed, a bad repeat count,
+/// too many pecks.
+pub(super) fn canned_cycle(
+    b: &Block,
+    st: &mut Modal,
+    cx: &mut Ctx,
+    cycle_word: Option<&Word>,
+    scale: f64,
+) -> Result<(), NcError> {
+    let Some(mut c) = st.cycle else {
+        return Ok(());
+    };
+    let (u, v, n) = st.plane.axes();
+    let (wu, wv) = (b.word(AXES[u]), b.word(AXES[v]));
+    let (wn, wr) = (b.word(AXES[n]), b.word('R'));
+    let Some(anchor) = cycle_word.or(wu).or(wv).or(wn).or(wr) else {
+        return Ok(());
+    };
+    check_cycle_axes(b, st, cx)?;
+    read_levels(b, st, &mut c, wr, wn, scale)?;
+    read_q_and_p(b, &mut c, cx, scale)?;
+    st.cycle = Some(c);
+    let holes = hole_data(b, st, &c, anchor)?;
+    if c.code == 760 {
+        cx.warnings.push(Warning::at(
+            b.line,
+            anchor.column,
+            "G76 fine boring: the tool shift at the bottom (direction set by a machine parameter) is not simulated",
+        ));
+    }
+    let plane_words: Vec<&Word> = [wu, wv].into_iter().flatten().collect();
+    for _ in 0..holes.repeats {
+        let at = target(st, &plane_words, scale);
+        let (pu, pv) = (at.get(u), at.get(v));
+        let segs = hole(
+            &c,
+            st.plane,
+            st.pos,
+            pu,
+            pv,
+            holes.r,
+            holes.bottom,
+            st.cycle_return_r,
+            holes.feed,
+            cx.bi,
+            b.line,
+        );
+        if let Some(last) = segs.last() {
+            st.pos = last.end;
+        }
+        cx.segments.extend(segs);
+    }
+    Ok(())
+}
+
+/// Only the plane axes and the drilling axis may be on a cycle block.
+fn check_cycle_axes(b: &Block, st: &Modal, cx: &Ctx) -> Result<(), NcError> {
+    let (u, v, n) = st.plane.axes();
+    let (lu, lv, ln) = (AXES[u], AXES[v], AXES[n]);
+    match b.words.iter().find(|w| {
+        AXES.contains(&w.letter)
+            && ![lu, lv, ln].contains(&w.letter)
+            && (w.letter != 'C' || cx.opt.c_axis)
+    }) {
+        Some(w) => Err(err(
+            b,
+            w,
+            format!("{}{} in a canned-cycle block: only the plane axes {lu}/{lv} and the drilling axis {ln} are allowed", w.letter, w.text),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The R level (`wr`) and the bottom (`wn`, the drilling-axis word) as
+/// absolute levels: under G91 R is from the initial level and the bottom
+/// from R; under G90 both are shifted by the G92 offset.
+fn read_levels(
+    b: &Block,
+    st: &Modal,
+    c: &mut Cycle,
+    wr: Option<&Word>,
+    wn: Option<&Word>,
+    scale: f64,
+) -> Result<(), NcError> {
+    let (_, _, n) = st.plane.axes();
+    if let Some(r) = wr {
+        c.r = Some(if st.incremental {
+            c.initial + r.value * scale
+        } else {
+            r.value * scale + st.offset[n]
+        });
+    }
+    if let Some(z) = wn {
+        let Some(r) = c.r else {
+            return Err(err(
+                b,
+                z,
+                "canned cycle: the R level must be given before or with the bottom",
+            ));
+        };
+        c.bottom = Some(if st.incremental {
+            r + z.value * scale
+        } else {
+            z.value * scale + st.offset[n]
+        });
+    }
+    Ok(())
+}
+
+/// The peck depth Q (mm, sign ignored) and the dwell P (read as a G4 P).
+fn read_q_and_p(b: &Block, c: &mut Cycle, cx: &Ctx, scale: f64) -> Result<(), NcError> {
+    if let Some(q) = b.word('Q') {
+        c.q = q.value.abs() * scale;
+    }
+    if let Some(p) = b.word('P') {
+        c.dwell = cx.opt.dwell_p.seconds(p).0;
+        if c.dwell.is_nan() || c.dwell < 0.0 {
+            return Err(err(b, p, "canned-cycle dwell P must be zero or positive"));
+        }
+    }
+    Ok(())
+}
+
+/// The levels, feed and repeat count of the block's holes, once the cycle
+/// data is complete.
+///
+/// # Errors
+/// No R level or bottom, a peck cycle without Q, no feed, a repeat count
+/// that is not a whole number from 0 to 9999, more than [`MAX_PECKS`]
+/// pecks.
+fn hole_data(b: &Block, st: &Modal, c: &Cycle, anchor: &Word) -> Result<Holes, NcError> {
+    let code = format!("G{}", c.code as f64 / 10.0);
+    let (_, _, n) = st.plane.axes();
+    let ln = AXES[n];
+    let (Some(r), Some(bottom)) = (c.r, c.bottom) else {
+        return Err(err(
+            b,
+            anchor,
+            format!("{code} needs the R level (R) and the bottom ({ln}) before its first hole"),
+        ));
+    };
+    let peck = matches!(c.code, 730 | 830);
+    if peck && c.q <= 0.0 {
+        return Err(err(
+            b,
+            anchor,
+            format!("{code} (peck drilling) needs a peck depth Q greater than 0"),
+        ));
+    }
+    let feed = match st.feed {
+        Some(f) if f > 0.0 => f,
+        _ => {
+            return Err(err(
+                b,
+                anchor,
+                format!(
+                    "{code} without a feed; expected an F word (mm/min) on this or an earlier block"
+                ),
+            ))
+        }
+    };
+    let repeats = repeat_count(b)?;
+    let pecks = if peck && c.q > 0.0 {
+        ((bottom - r).abs() / c.q).ceil()
+    } else {
+        1.0
+    };
+    if pecks.is_nan() || pecks > MAX_PECKS as f64 {
+        let w = b.word('Q').unwrap_or(anchor);
+        return Err(err(
+            b,
+            w,
+            format!(
+                "{} pecks of Q{} mm for a {} mm deep hole; at most {} per hole: check Q, R and the bottom level",
+                crate::numeric::compact(pecks),
+                crate::numeric::compact(c.q),
+                crate::numeric::compact((bottom - r).abs()),
+                MAX_PECKS
+            ),
+        ));
+    }
+    Ok(Holes {
+        r,
+        bottom,
+        feed,
+        repeats,
+    })
+}
+
+/// The K (or L) repeat count of a cycle block, 1 without one.
+fn repeat_count(b: &Block) -> Result<usize, NcError> {
+    match b.word('K').or(b.word('L')) {
+        Some(k) if k.value >= 0.0 && k.value.fract() == 0.0 && k.value <= 9999.0 => {
+            Ok(k.value as usize)
+        }
+        Some(k) => Err(err(
+            b,
+            k,
+            format!(
+                "repeat count {}{} must be a whole number from 0 to 9999",
+                k.letter, k.text
+            ),
+        )),
+        None => Ok(1),
+    }
 }

@@ -761,6 +761,14 @@ fn close_fanuc(
     }
 }
 
+/// Indexes o-word block `i` (`label`, keyword `kw`, at column `col`):
+/// opens a sub/if/do/while/repeat, links an elseif/else/endif to the
+/// branch before it, pairs an end keyword with its opener, links a
+/// break/continue to its loop.
+///
+/// # Errors
+/// A subroutine defined twice, a break/continue outside a loop of its
+/// label, an end keyword that closes nothing open (blocks must nest).
 fn index_o(
     idx: &mut Index,
     stack: &mut Vec<Open>,
@@ -811,26 +819,16 @@ fn index_o(
         OKw::EndSub if top_is(stack, &[OKw::Sub]) => pair(idx, stack, i),
         OKw::EndWhile if top_is(stack, &[OKw::While]) => pair(idx, stack, i),
         OKw::EndRepeat if top_is(stack, &[OKw::Repeat]) => pair(idx, stack, i),
-        OKw::Break | OKw::Continue => {
-            let head = stack.iter().rev().find(|o| {
-                o.label.as_ref() == Some(label)
-                    && matches!(o.kw, OKw::While | OKw::Do | OKw::Repeat)
-            });
-            match head {
-                Some(o) => {
-                    idx.enclosing.insert(i, o.at);
-                    Ok(())
-                }
-                None => Err(NcError::new(
-                    line,
-                    col,
-                    format!(
-                        "{label} {}: no enclosing {label} while/do/repeat loop",
-                        kw_name(kw)
-                    ),
-                )),
-            }
-        }
+        OKw::Break | OKw::Continue => enclosing_loop(idx, stack, i, label).ok_or_else(|| {
+            NcError::new(
+                line,
+                col,
+                format!(
+                    "{label} {}: no enclosing {label} while/do/repeat loop",
+                    kw_name(kw)
+                ),
+            )
+        }),
         OKw::Return | OKw::Call => Ok(()),
         _ => Err(NcError::new(
             line,
@@ -841,6 +839,16 @@ fn index_o(
             ),
         )),
     }
+}
+
+/// Links an o-word `break`/`continue` (block `i`) to the innermost open
+/// while/do/repeat loop of the same label; `None` when there is none.
+fn enclosing_loop(idx: &mut Index, stack: &[Open], i: usize, label: &OLabel) -> Option<()> {
+    let head = stack.iter().rev().find(|o| {
+        o.label.as_ref() == Some(label) && matches!(o.kw, OKw::While | OKw::Do | OKw::Repeat)
+    })?;
+    idx.enclosing.insert(i, head.at);
+    Some(())
 }
 
 fn pair(idx: &mut Index, stack: &mut Vec<Open>, i: usize) -> Result<(), NcError> {

@@ -16,15 +16,20 @@
 //! segments; [`writer`] writes segments back as NC text.
 
 pub mod arc;
+mod block;
 pub mod corner;
 pub mod cycles;
 pub mod files;
+mod gcodes;
 pub mod macro_exec;
 pub mod macro_expr;
 pub mod macro_line;
 pub mod macro_vars;
+mod moves;
+mod non_modal;
 pub mod patch;
 pub mod program;
+mod run;
 pub mod segment;
 pub mod summary;
 pub mod writer;
@@ -351,13 +356,7 @@ pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
             ),
         ));
     }
-    let mut i = 0;
-    let skip_ws = |i: &mut usize| {
-        while *i < chars.len() && chars[*i].is_whitespace() {
-            *i += 1;
-        }
-    };
-    skip_ws(&mut i);
+    let mut i = skip_ws(&chars, 0);
     if i < chars.len() && chars[i] == '%' {
         block.percent = true;
         i += 1;
@@ -365,177 +364,232 @@ pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
         block.block_delete = true;
         i += 1;
     }
-    skip_ws(&mut i);
+    i = skip_ws(&chars, i);
     if i < chars.len() && chars[i] == ':' {
-        let col = i + 1;
-        i += 1;
-        let start = i;
-        while i < chars.len() && chars[i].is_ascii_digit() {
-            i += 1;
-        }
-        let text: String = chars[start..i].iter().collect();
-        let value = text.parse().map_err(|_| {
-            NcError::new(
-                line,
-                col,
-                "':' starts a program number; expected digits such as ':0097'",
-            )
-        })?;
-        block.words.push(Word {
-            letter: 'O',
-            value,
-            text,
-            column: col,
-        });
+        lex_colon_number(&chars, &mut i, line, &mut block)?;
     }
     while i < chars.len() {
-        let c = chars[i];
-        let col = i + 1;
-        if c.is_whitespace() {
-            i += 1;
-        } else if c == '(' {
-            let mut depth = 0usize;
-            let mut j = i;
-            while j < chars.len() {
-                match chars[j] {
-                    '(' => depth += 1,
-                    ')' => {
-                        depth -= 1;
-                        if depth == 0 {
-                            break;
-                        }
-                    }
-                    _ => {}
-                }
-                j += 1;
-            }
-            if j >= chars.len() {
-                return Err(NcError::new(
-                    line,
-                    col,
-                    "comment opened with '(' is not closed with ')'",
-                ));
-            }
-            block.comments.push(
-                chars[i + 1..j]
-                    .iter()
-                    .collect::<String>()
-                    .trim()
-                    .to_string(),
-            );
-            i = j + 1;
-        } else if c == ')' {
-            return Err(NcError::new(
-                line,
-                col,
-                "')' without an opening '('; expected a comment as '( … )'",
-            ));
-        } else if c == ';' {
-            block
-                .comments
-                .push(chars[i + 1..].iter().collect::<String>().trim().to_string());
+        if !lex_item(&chars, &mut i, line, &mut block)? {
             break;
-        } else if c == ',' {
-            let letter = chars.get(i + 1).map(|c| c.to_ascii_uppercase());
-            if !matches!(letter, Some('R' | 'C')) {
-                return Err(NcError::new(
-                    line,
-                    col,
-                    "',' must start a corner word ',R' (rounding) or ',C' (chamfer)",
-                ));
-            }
-            i += 1;
-            let w = lex_word(&chars, &mut i, line)?;
-            block.comma_words.push(Word { column: col, ..w });
-        } else if c.is_ascii_alphabetic() {
-            let mut j = i;
-            while j < chars.len() && chars[j].is_ascii_alphabetic() {
-                j += 1;
-            }
-            let run: String = chars[i..j].iter().collect::<String>().to_ascii_uppercase();
-            if run.len() > 1 {
-                return Err(keyword_error(&run, line, col, &block));
-            }
-            if run == "O" && chars.get(i + 1) == Some(&'<') {
-                let close = chars[i + 2..]
-                    .iter()
-                    .position(|&c| c == '>')
-                    .ok_or_else(|| {
-                        NcError::new(line, col, "named program 'O<' is not closed with '>'")
-                    })?;
-                let name: String = chars[i + 2..i + 2 + close].iter().collect();
-                i += close + 3;
-                block.program_name = Some(name);
-                let mut k = i;
-                while k < chars.len() && chars[k].is_whitespace() {
-                    k += 1;
-                }
-                let mut e = k;
-                while e < chars.len() && chars[e].is_ascii_alphabetic() {
-                    e += 1;
-                }
-                if e > k {
-                    let kw: String = chars[k..e].iter().collect::<String>().to_ascii_uppercase();
-                    return Err(keyword_error(&kw, line, k + 1, &block));
-                }
-                continue;
-            }
-            let w = lex_word(&chars, &mut i, line)?;
-            if w.letter == 'O' {
-                let mut k = i;
-                while k < chars.len() && chars[k].is_whitespace() {
-                    k += 1;
-                }
-                if k < chars.len() && chars[k].is_ascii_alphabetic() {
-                    let mut e = k;
-                    while e < chars.len() && chars[e].is_ascii_alphabetic() {
-                        e += 1;
-                    }
-                    let kw: String = chars[k..e].iter().collect::<String>().to_ascii_uppercase();
-                    if O_WORDS.contains(&kw.as_str()) {
-                        block.words.push(w);
-                        return Err(keyword_error(&kw, line, k + 1, &block));
-                    }
-                }
-            }
-            block.words.push(w);
-        } else if c == '#' || c == '[' {
-            return Err(NcError::new(
-                line,
-                col,
-                format!(
-                    "macro {} ('{c}') is not supported yet; expand the macro in the post-processor (the simulator reads plain word-address programs)",
-                    if c == '#' { "variable" } else { "expression" }
-                ),
-            ));
-        } else if c.is_ascii_digit() || c == '.' || c == '-' || c == '+' {
-            return Err(NcError::new(
-                line,
-                col,
-                format!("number '{c}…' has no address letter; expected a word such as X{c}"),
-            ));
-        } else if c == '%' {
-            i += 1;
-        } else if c == '@' || c == '^' {
-            return Err(NcError::new(
-                line,
-                col,
-                format!(
-                    "'{c}' is a LinuxCNC polar coordinate (@ radius, ^ angle), not supported yet; write the end point as X/Y"
-                ),
-            ));
-        } else {
-            return Err(NcError::new(
-                line,
-                col,
-                format!(
-                    "unexpected character '{c}' (U+{:04X}); expected an address word, '(' or ';'",
-                    c as u32
-                ),
-            ));
         }
     }
     Ok(block)
+}
+
+/// The index of the first non-whitespace character at or after `i`.
+fn skip_ws(chars: &[char], mut i: usize) -> usize {
+    while i < chars.len() && chars[i].is_whitespace() {
+        i += 1;
+    }
+    i
+}
+
+/// The end of the run of ASCII letters starting at `i`.
+fn letters_end(chars: &[char], mut i: usize) -> usize {
+    while i < chars.len() && chars[i].is_ascii_alphabetic() {
+        i += 1;
+    }
+    i
+}
+
+/// The letters after `i` (whitespace skipped), upper-cased, with the
+/// index of their first letter; `None` when no letter follows.
+fn keyword_after(chars: &[char], i: usize) -> Option<(usize, String)> {
+    let k = skip_ws(chars, i);
+    let e = letters_end(chars, k);
+    (e > k).then(|| {
+        (
+            k,
+            chars[k..e].iter().collect::<String>().to_ascii_uppercase(),
+        )
+    })
+}
+
+/// A Fanuc `:0097` program number at `chars[*i]` (the colon), read as the
+/// word `O0097`.
+fn lex_colon_number(
+    chars: &[char],
+    i: &mut usize,
+    line: usize,
+    block: &mut Block,
+) -> Result<(), NcError> {
+    let col = *i + 1;
+    *i += 1;
+    let start = *i;
+    while *i < chars.len() && chars[*i].is_ascii_digit() {
+        *i += 1;
+    }
+    let text: String = chars[start..*i].iter().collect();
+    let value = text.parse().map_err(|_| {
+        NcError::new(
+            line,
+            col,
+            "':' starts a program number; expected digits such as ':0097'",
+        )
+    })?;
+    block.words.push(Word {
+        letter: 'O',
+        value,
+        text,
+        column: col,
+    });
+    Ok(())
+}
+
+/// Lexes what starts at `chars[*i]`: whitespace, a comment, a corner word
+/// or an address word, and advances `*i` past it. False after a `;`
+/// comment (the rest of the line).
+fn lex_item(
+    chars: &[char],
+    i: &mut usize,
+    line: usize,
+    block: &mut Block,
+) -> Result<bool, NcError> {
+    let c = chars[*i];
+    let col = *i + 1;
+    if c.is_whitespace() || c == '%' {
+        *i += 1;
+    } else if c == '(' {
+        lex_comment(chars, i, line, block)?;
+    } else if c == ')' {
+        return Err(NcError::new(
+            line,
+            col,
+            "')' without an opening '('; expected a comment as '( … )'",
+        ));
+    } else if c == ';' {
+        block.comments.push(
+            chars[*i + 1..]
+                .iter()
+                .collect::<String>()
+                .trim()
+                .to_string(),
+        );
+        return Ok(false);
+    } else if c == ',' {
+        let letter = chars.get(*i + 1).map(|c| c.to_ascii_uppercase());
+        if !matches!(letter, Some('R' | 'C')) {
+            return Err(NcError::new(
+                line,
+                col,
+                "',' must start a corner word ',R' (rounding) or ',C' (chamfer)",
+            ));
+        }
+        *i += 1;
+        let w = lex_word(chars, i, line)?;
+        block.comma_words.push(Word { column: col, ..w });
+    } else if c.is_ascii_alphabetic() {
+        lex_address(chars, i, line, block)?;
+    } else {
+        return Err(stray_char_error(c, line, col));
+    }
+    Ok(true)
+}
+
+/// A `( … )` comment at `chars[*i]`, nested parentheses included; `*i`
+/// moves past its `)`.
+fn lex_comment(
+    chars: &[char],
+    i: &mut usize,
+    line: usize,
+    block: &mut Block,
+) -> Result<(), NcError> {
+    let mut depth = 0usize;
+    let mut j = *i;
+    while j < chars.len() {
+        match chars[j] {
+            '(' => depth += 1,
+            ')' => {
+                depth -= 1;
+                if depth == 0 {
+                    break;
+                }
+            }
+            _ => {}
+        }
+        j += 1;
+    }
+    if j >= chars.len() {
+        return Err(NcError::new(
+            line,
+            *i + 1,
+            "comment opened with '(' is not closed with ')'",
+        ));
+    }
+    block.comments.push(
+        chars[*i + 1..j]
+            .iter()
+            .collect::<String>()
+            .trim()
+            .to_string(),
+    );
+    *i = j + 1;
+    Ok(())
+}
+
+/// An address word at `chars[*i]` (a letter), or a named program
+/// `O<NAME>`. A run of several letters (a keyword) is an error, and so is
+/// a LinuxCNC o-word keyword after an `O` number or name.
+fn lex_address(
+    chars: &[char],
+    i: &mut usize,
+    line: usize,
+    block: &mut Block,
+) -> Result<(), NcError> {
+    let col = *i + 1;
+    let j = letters_end(chars, *i);
+    let run: String = chars[*i..j].iter().collect::<String>().to_ascii_uppercase();
+    if run.len() > 1 {
+        return Err(keyword_error(&run, line, col, block));
+    }
+    if run == "O" && chars.get(*i + 1) == Some(&'<') {
+        let close = chars[*i + 2..]
+            .iter()
+            .position(|&c| c == '>')
+            .ok_or_else(|| NcError::new(line, col, "named program 'O<' is not closed with '>'"))?;
+        let name: String = chars[*i + 2..*i + 2 + close].iter().collect();
+        *i += close + 3;
+        block.program_name = Some(name);
+        if let Some((k, kw)) = keyword_after(chars, *i) {
+            return Err(keyword_error(&kw, line, k + 1, block));
+        }
+        return Ok(());
+    }
+    let w = lex_word(chars, i, line)?;
+    if w.letter == 'O' {
+        if let Some((k, kw)) = keyword_after(chars, *i) {
+            if O_WORDS.contains(&kw.as_str()) {
+                block.words.push(w);
+                return Err(keyword_error(&kw, line, k + 1, block));
+            }
+        }
+    }
+    block.words.push(w);
+    Ok(())
+}
+
+/// The error for a character that cannot start anything here: a macro
+/// `#`/`[`, a number without a letter, a LinuxCNC polar `@`/`^`, or any
+/// other character.
+fn stray_char_error(c: char, line: usize, col: usize) -> NcError {
+    let msg = if c == '#' || c == '[' {
+        format!(
+            "macro {} ('{c}') is not supported yet; expand the macro in the post-processor (the simulator reads plain word-address programs)",
+            if c == '#' { "variable" } else { "expression" }
+        )
+    } else if c.is_ascii_digit() || c == '.' || c == '-' || c == '+' {
+        format!("number '{c}…' has no address letter; expected a word such as X{c}")
+    } else if c == '@' || c == '^' {
+        format!(
+            "'{c}' is a LinuxCNC polar coordinate (@ radius, ^ angle), not supported yet; write the end point as X/Y"
+        )
+    } else {
+        format!(
+            "unexpected character '{c}' (U+{:04X}); expected an address word, '(' or ';'",
+            c as u32
+        )
+    };
+    NcError::new(line, col, msg)
 }
 
 fn keyword_error(run: &str, line: usize, col: usize, block: &Block) -> NcError {

@@ -13,7 +13,7 @@
 
 use serde::Serialize;
 
-use super::program::{Motion, Program};
+use super::program::{Arc, Motion, Program, Segment, Warning};
 
 /// Warnings of one kind.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -103,77 +103,148 @@ pub fn warning_kind(message: &str) -> String {
 /// assert!((s.motion_time - t).abs() < 1e-12);
 /// ```
 pub fn summarize(p: &Program, rapid_feed: f64) -> Summary {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    let mut grow = |q: [f64; 3]| {
-        for k in 0..3 {
-            lo[k] = lo[k].min(q[k]);
-            hi[k] = hi[k].max(q[k]);
-        }
-    };
-    let (mut total, mut cutting, mut time) = (0.0, 0.0, 0.0);
-    let (mut arcs, mut lines, mut rapids, mut dwells) = (0, 0, 0, 0);
-    let mut planes: Vec<String> = Vec::new();
+    let mut t = Tally::new();
     for s in &p.segments {
+        t.add(s, rapid_feed);
+    }
+    let has_box = t.lo[0].is_finite();
+    Summary {
+        bbox_min: has_box.then_some(t.lo),
+        bbox_max: has_box.then_some(t.hi),
+        total_length: t.total,
+        cutting_length: t.cutting,
+        arcs: t.arcs,
+        lines: t.lines,
+        rapids: t.rapids,
+        dwells: t.dwells,
+        units: units(p).into(),
+        planes: t.planes,
+        motion_time: t.time,
+        rapid_feed,
+        warnings: group_warnings(&p.warnings),
+    }
+}
+
+/// The sums over a program's segments, in order.
+struct Tally {
+    /// Lower corner of the XYZ bounding box, mm (∞ while empty).
+    lo: [f64; 3],
+    /// Upper corner, mm (−∞ while empty).
+    hi: [f64; 3],
+    /// XYZ length of all moves, mm.
+    total: f64,
+    /// XYZ length of cutting moves, mm.
+    cutting: f64,
+    /// Motion time, s.
+    time: f64,
+    arcs: usize,
+    lines: usize,
+    rapids: usize,
+    dwells: usize,
+    /// Arc planes, in order of first use.
+    planes: Vec<String>,
+}
+
+impl Tally {
+    fn new() -> Self {
+        Self {
+            lo: [f64::INFINITY; 3],
+            hi: [f64::NEG_INFINITY; 3],
+            total: 0.0,
+            cutting: 0.0,
+            time: 0.0,
+            arcs: 0,
+            lines: 0,
+            rapids: 0,
+            dwells: 0,
+            planes: Vec::new(),
+        }
+    }
+
+    /// Widens the bounding box to hold `q`.
+    fn grow(&mut self, q: [f64; 3]) {
+        for (k, &x) in q.iter().enumerate() {
+            self.lo[k] = self.lo[k].min(x);
+            self.hi[k] = self.hi[k].max(x);
+        }
+    }
+
+    /// Counts segment `s` (`rapid_feed`: mm/min).
+    fn add(&mut self, s: &Segment, rapid_feed: f64) {
         let len = s.length();
         match s.motion {
             Motion::Dwell { seconds } => {
-                dwells += 1;
-                time += seconds;
-                continue;
+                self.dwells += 1;
+                self.time += seconds;
+                return;
             }
             Motion::Rapid => {
-                rapids += 1;
+                self.rapids += 1;
                 if rapid_feed > 0.0 {
-                    time += len / rapid_feed * 60.0;
+                    self.time += len / rapid_feed * 60.0;
                 }
             }
-            Motion::Linear => lines += 1,
+            Motion::Linear => self.lines += 1,
             Motion::Arc(a) => {
-                arcs += 1;
+                self.arcs += 1;
                 let name = format!("{:?}", a.plane);
-                if !planes.contains(&name) {
-                    planes.push(name);
+                if !self.planes.contains(&name) {
+                    self.planes.push(name);
                 }
-                let (u, v, _) = a.plane.axes();
-                let p0 = s.start.p();
-                let a0 = (p0[v] - a.center[v]).atan2(p0[u] - a.center[u]);
-                for q in 0..4 {
-                    let ang = q as f64 * std::f64::consts::FRAC_PI_2;
-                    // Is `ang` inside the sweep from a0?
-                    let rel = if a.sweep >= 0.0 {
-                        (ang - a0).rem_euclid(std::f64::consts::TAU)
-                    } else {
-                        (a0 - ang).rem_euclid(std::f64::consts::TAU)
-                    };
-                    if rel <= a.sweep.abs() {
-                        let mut pt = p0;
-                        pt[u] = a.center[u] + a.radius * ang.cos();
-                        pt[v] = a.center[v] + a.radius * ang.sin();
-                        grow(pt);
-                    }
-                }
+                self.arc_extremes(s, &a);
             }
         }
         if !matches!(s.motion, Motion::Rapid) {
-            cutting += len;
+            self.cutting += len;
             if s.feed > 0.0 {
-                time += len / s.feed * 60.0;
+                self.time += len / s.feed * 60.0;
             }
         }
-        total += len;
-        grow(s.start.p());
-        grow(s.end.p());
+        self.total += len;
+        self.grow(s.start.p());
+        self.grow(s.end.p());
     }
+
+    /// Widens the box to the arc's axis-extreme points (centre ± r along
+    /// each plane axis) that its sweep passes.
+    fn arc_extremes(&mut self, s: &Segment, a: &Arc) {
+        let (u, v, _) = a.plane.axes();
+        let p0 = s.start.p();
+        let a0 = (p0[v] - a.center[v]).atan2(p0[u] - a.center[u]);
+        for q in 0..4 {
+            let ang = q as f64 * std::f64::consts::FRAC_PI_2;
+            // Is `ang` inside the sweep from a0?
+            let rel = if a.sweep >= 0.0 {
+                (ang - a0).rem_euclid(std::f64::consts::TAU)
+            } else {
+                (a0 - ang).rem_euclid(std::f64::consts::TAU)
+            };
+            if rel <= a.sweep.abs() {
+                let mut pt = p0;
+                pt[u] = a.center[u] + a.radius * ang.cos();
+                pt[v] = a.center[v] + a.radius * ang.sin();
+                self.grow(pt);
+            }
+        }
+    }
+}
+
+/// The units the program was written in: "mm", "inch" or "mm and inch".
+fn units(p: &Program) -> &'static str {
     let any_inch = p.modal.iter().any(|m| m.inch);
     let any_mm = p.modal.iter().any(|m| !m.inch);
-    let units = match (any_mm, any_inch) {
+    match (any_mm, any_inch) {
         (true, true) => "mm and inch",
         (false, true) => "inch",
         _ => "mm",
-    };
+    }
+}
+
+/// The warnings grouped by kind ([`warning_kind`]), in order of first
+/// appearance.
+fn group_warnings(warnings: &[Warning]) -> Vec<WarningGroup> {
     let mut groups: Vec<WarningGroup> = Vec::new();
-    for (i, w) in p.warnings.iter().enumerate() {
+    for (i, w) in warnings.iter().enumerate() {
         let kind = warning_kind(&w.message);
         match groups.iter_mut().find(|g| g.kind == kind) {
             Some(g) => {
@@ -189,20 +260,5 @@ pub fn summarize(p: &Program, rapid_feed: f64) -> Summary {
             }),
         }
     }
-    let has_box = lo[0].is_finite();
-    Summary {
-        bbox_min: has_box.then_some(lo),
-        bbox_max: has_box.then_some(hi),
-        total_length: total,
-        cutting_length: cutting,
-        arcs,
-        lines,
-        rapids,
-        dwells,
-        units: units.into(),
-        planes,
-        motion_time: time,
-        rapid_feed,
-        warnings: groups,
-    }
+    groups
 }

@@ -1,0 +1,259 @@
+//! One block's interpretation, in the order a FANUC-style control reads it:
+//! the G codes by group ([`super::gcodes`]), the M codes that end the
+//! program, the F word and the words the motion model ignores, then what
+//! the block does: G10 data setting (nothing), a G4 dwell, a canned-cycle
+//! block ([`super::cycles`]), a non-modal move ([`super::non_modal`]) or a
+//! move ([`super::moves`]). The readings are those of the interpreter's
+//! header ([`super::program`]).
+//!
+//! Units: mm, s, feed in mm/min (inch words scaled by 25.4).
+
+use super::cycles::{canned_cycle, Cycle};
+use super::gcodes::{code10, read_g_words, GWords};
+use super::moves::move_block;
+use super::non_modal::non_modal_move;
+use super::program::{err, Ctx, Modal, Warning, MAX_PLAUSIBLE_FEED};
+use super::segment::{Motion, Segment};
+use super::{Block, NcError, Word};
+
+/// Millimetres per inch.
+const INCH: f64 = 25.4;
+
+/// The factor from the program's length unit to mm (G20: 25.4).
+pub(super) fn length_scale(st: &Modal) -> f64 {
+    if st.inch {
+        INCH
+    } else {
+        1.0
+    }
+}
+
+/// Interprets block `b` on the modal state `st`, adding its segments,
+/// corners and warnings to `cx`.
+///
+/// # Errors
+/// The block's first error, naming its column (an `E` word's error contains
+/// "this looks like": the caller stops the program there).
+pub(super) fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcError> {
+    reject_extruder(b)?;
+    let gw = read_g_words(b, st, cx.warnings)?;
+    read_m_words(b, st)?;
+    let scale = length_scale(st);
+    read_other_words(b, st, &gw, cx.warnings)?;
+    if gw.is_g10() {
+        if let Some((w, _)) = gw.non_modal {
+            cx.warnings.push(Warning::at(
+                b.line,
+                w.column,
+                "G10 sets offset/tool data and does not move; its words were not run as a move",
+            ));
+        }
+        return Ok(());
+    }
+    if let Some(dw) = gw.dwell {
+        return dwell(b, st, cx, dw, &gw);
+    }
+    set_motion_or_cycle(b, st, &gw)?;
+    if st.cycle.is_some() && gw.non_modal.is_none() {
+        return canned_cycle(b, st, cx, gw.cycle.map(|(w, _)| w), scale);
+    }
+    if let Some((w, g)) = gw.non_modal {
+        return non_modal_move(b, st, cx, w, g, &axis_words(b, cx), scale);
+    }
+    move_block(b, st, cx, scale)
+}
+
+/// The axis words of `b` (X Y Z A B, and C when it is an axis).
+pub(super) fn axis_words<'a>(b: &'a Block, cx: &Ctx) -> Vec<&'a Word> {
+    b.words
+        .iter()
+        .filter(|w| super::segment::AXES.contains(&w.letter) && (w.letter != 'C' || cx.opt.c_axis))
+        .collect()
+}
+
+/// An `E` word stops the program: it drives a 3D printer's extruder.
+fn reject_extruder(b: &Block) -> Result<(), NcError> {
+    match b.word('E') {
+        Some(e) => Err(err(
+            b,
+            e,
+            format!(
+                "E{}: this looks like a 3D-printer program (E words drive the extruder); mtmotion reads milling programs only",
+                e.text
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// M2/M30 end the program; M97 (a local call by N number) is refused.
+fn read_m_words(b: &Block, st: &mut Modal) -> Result<(), NcError> {
+    for w in b.words.iter().filter(|w| w.letter == 'M') {
+        match code10(w) {
+            20 | 300 => st.ended = true,
+            970 => {
+                return Err(err(
+                    b,
+                    w,
+                    "M97 (local subprogram call by N number) is not supported yet; use M98 with an O-numbered subprogram",
+                ))
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Reads the F word into `st` and warns about every word the motion model
+/// does not use (a word some code of the block gives a meaning is silent).
+fn read_other_words(
+    b: &Block,
+    st: &mut Modal,
+    gw: &GWords,
+    warnings: &mut Vec<Warning>,
+) -> Result<(), NcError> {
+    let g10 = gw.is_g10();
+    let m98 = b.words.iter().any(|w| w.letter == 'M' && w.value == 98.0);
+    for w in &b.words {
+        let ignored = match w.letter {
+            'F' => {
+                read_feed(b, w, st, warnings)?;
+                continue;
+            }
+            'G' | 'N' | 'O' | 'X' | 'Y' | 'Z' | 'A' | 'B' | 'I' | 'J' | 'K' | 'R' => continue,
+            'C' => continue,
+            'P' | 'U' if gw.dwell.is_some() => continue,
+            'L' | 'P' if g10 => continue,
+            'P' | 'L' if m98 => continue,
+            'M' if matches!(code10(w), 20 | 300 | 980 | 990) => continue,
+            'L' | 'P' | 'Q' if st.cycle.is_some() || gw.cycle.is_some() => continue,
+            'M' | 'S' | 'T' | 'H' | 'D' => format!(
+                "{}{} does not affect the motion model and was ignored",
+                w.letter, w.text
+            ),
+            _ => format!("unknown word {}{} was ignored", w.letter, w.text),
+        };
+        warnings.push(Warning::at(b.line, w.column, ignored));
+    }
+    Ok(())
+}
+
+/// The F word: the modal feed in mm/min (inch/min scaled under G20); a
+/// negative feed is an error, an implausibly high one a warning.
+fn read_feed(
+    b: &Block,
+    w: &Word,
+    st: &mut Modal,
+    warnings: &mut Vec<Warning>,
+) -> Result<(), NcError> {
+    if w.value < 0.0 {
+        return Err(err(
+            b,
+            w,
+            format!(
+                "negative feed F{}; expected a positive feed in mm/min",
+                w.text
+            ),
+        ));
+    }
+    let f = w.value * length_scale(st);
+    if f > MAX_PLAUSIBLE_FEED {
+        warnings.push(Warning::at(
+            b.line,
+            w.column,
+            format!(
+                "F{} {} = {:.0} mm/min is implausible for a milling feed (above {} mm/min); check the units (G20/G21) and the F word",
+                w.text,
+                if st.inch { "inch/min" } else { "mm/min" },
+                f,
+                MAX_PLAUSIBLE_FEED
+            ),
+        ));
+    }
+    st.feed = Some(f);
+    Ok(())
+}
+
+/// G4 dwell: `X`/`U` in seconds or `P` per [`super::program::DwellP`]; one
+/// dwell segment at the current pose.
+fn dwell(b: &Block, st: &Modal, cx: &mut Ctx, dw: &Word, gw: &GWords) -> Result<(), NcError> {
+    if gw.motion.is_some() {
+        return Err(err(
+            b,
+            dw,
+            "G4 dwell together with a motion code; expected the dwell in its own block",
+        ));
+    }
+    let (w, seconds) = if let Some(w) = b.word('X').or(b.word('U')) {
+        (w, w.value)
+    } else if let Some(w) = b.word('P') {
+        let (seconds, ms) = cx.opt.dwell_p.seconds(w);
+        if cx.opt.dwell_p == super::program::DwellP::Auto && ms {
+            cx.warnings.push(Warning::at(
+                b.line,
+                w.column,
+                format!(
+                    "G4 P{} read as {} ms (Fanuc: P without a decimal point is milliseconds); LinuxCNC and Grbl read it as {} s — set dwellP to 'seconds' for those controls",
+                    w.text, w.text, w.text
+                ),
+            ));
+        }
+        (w, seconds)
+    } else {
+        return Err(err(
+            b,
+            dw,
+            "G4 dwell without a time; expected X (seconds) or P",
+        ));
+    };
+    if seconds < 0.0 || !seconds.is_finite() {
+        return Err(err(b, w, "dwell time must be zero or positive"));
+    }
+    cx.segments.push(Segment {
+        block: Some(cx.bi),
+        line: b.line,
+        motion: Motion::Dwell { seconds },
+        start: st.pos,
+        end: st.pos,
+        feed: 0.0,
+        fixed: false,
+    });
+    Ok(())
+}
+
+/// A motion code sets the motion mode and cancels the canned cycle (a
+/// cycle code beside it is an error); a cycle code starts the cycle mode at
+/// the current drilling-axis level or changes the active cycle's code.
+fn set_motion_or_cycle(b: &Block, st: &mut Modal, gw: &GWords) -> Result<(), NcError> {
+    if let Some((_, m)) = gw.motion {
+        st.motion = Some(m);
+        st.cycle = None;
+        if let Some((w, _)) = gw.cycle {
+            return Err(err(
+                b,
+                w,
+                format!(
+                    "G{} together with a motion code G0–G3 (which cancels canned cycles)",
+                    w.text
+                ),
+            ));
+        }
+    }
+    if let Some((_, g)) = gw.cycle {
+        match st.cycle.as_mut() {
+            Some(c) => c.code = g,
+            None => {
+                let (_, _, n) = st.plane.axes();
+                st.cycle = Some(Cycle {
+                    code: g,
+                    initial: st.pos.get(n),
+                    r: None,
+                    bottom: None,
+                    q: 0.0,
+                    dwell: 0.0,
+                })
+            }
+        }
+    }
+    Ok(())
+}

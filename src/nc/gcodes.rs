@@ -1,0 +1,217 @@
+//! The G codes of one block sorted by group (ISO 6983 / RS-274, FANUC
+//! modal groups): the motion code (G0–G3), the G4 dwell, the modal codes
+//! that set the plane, the units, the distance mode, the arc-centre mode and
+//! the canned-cycle return level, the non-modal codes (G10, G28, G30, G53,
+//! the G92 family), the canned-cycle codes, and the codes that are refused
+//! (not simulated, and they would change the path) or warned about and
+//! ignored. The readings are those of the interpreter's header
+//! ([`super::program`]).
+//!
+//! A G code is handled as its value ×10, rounded (G91.1 → 911).
+
+use super::program::{err, Modal, Warning};
+use super::segment::{MotionCode, Plane};
+use super::{Block, NcError, Word};
+
+/// The G words of one block that the rest of its interpretation needs.
+#[derive(Default)]
+pub(super) struct GWords<'a> {
+    /// The motion code G0–G3, if any.
+    pub motion: Option<(&'a Word, MotionCode)>,
+    /// The G4 dwell word, if any.
+    pub dwell: Option<&'a Word>,
+    /// The non-modal code (G10, G28, G30, G53, G92, G92.1–G92.3) and its
+    /// code ×10.
+    pub non_modal: Option<(&'a Word, i64)>,
+    /// The canned-cycle code (G73–G89) and its code ×10.
+    pub cycle: Option<(&'a Word, i64)>,
+}
+
+impl GWords<'_> {
+    /// G10 data setting: the block does not move.
+    pub fn is_g10(&self) -> bool {
+        matches!(self.non_modal, Some((_, 100)))
+    }
+}
+
+/// A word's value ×10, rounded: the integer form of a G or M code.
+pub(super) fn code10(w: &Word) -> i64 {
+    (w.value * 10.0).round() as i64
+}
+
+/// Reads every G word of `b` in order: modal codes update `st` at once,
+/// ignored codes are warned about, and the motion, dwell, non-modal and
+/// cycle words are returned for the rest of the block.
+///
+/// # Errors
+/// Two codes of one group in the block, or a refused code (see
+/// [`refused`]).
+pub(super) fn read_g_words<'a>(
+    b: &'a Block,
+    st: &mut Modal,
+    warnings: &mut Vec<Warning>,
+) -> Result<GWords<'a>, NcError> {
+    let mut gw = GWords::default();
+    for w in b.words.iter().filter(|w| w.letter == 'G') {
+        let g = code10(w);
+        if let Some(m) = motion_code(g) {
+            only_one(
+                &mut gw.motion,
+                b,
+                w,
+                m,
+                "motion codes",
+                "; expected one of G0, G1, G2, G3",
+            )?;
+        } else if g == 40 {
+            gw.dwell = Some(w);
+        } else if !set_modal(st, g) {
+            grouped_or_other(b, w, g, &mut gw, warnings)?;
+        }
+    }
+    Ok(gw)
+}
+
+/// The motion code of G0, G1, G2 or G3 (code ×10).
+fn motion_code(g: i64) -> Option<MotionCode> {
+    match g {
+        0 => Some(MotionCode::Rapid),
+        10 => Some(MotionCode::Linear),
+        20 => Some(MotionCode::Cw),
+        30 => Some(MotionCode::Ccw),
+        _ => None,
+    }
+}
+
+/// Stores the group's word in `slot`, or fails naming both words when the
+/// group already has one in this block.
+fn only_one<'a, T>(
+    slot: &mut Option<(&'a Word, T)>,
+    b: &Block,
+    w: &'a Word,
+    value: T,
+    group: &str,
+    hint: &str,
+) -> Result<(), NcError> {
+    if let Some((prev, _)) = slot {
+        return Err(err(
+            b,
+            w,
+            format!(
+                "two {group} in one block (G{} and G{}){hint}",
+                prev.text, w.text
+            ),
+        ));
+    }
+    *slot = Some((w, value));
+    Ok(())
+}
+
+/// Applies a modal code that only sets state: plane (G17–G19), units
+/// (G20/G21), distance mode (G90/G91), arc-centre mode (G90.1/G91.1), cycle
+/// cancel (G80) and cycle return level (G98/G99). False for any other code.
+fn set_modal(st: &mut Modal, g: i64) -> bool {
+    match g {
+        170 => st.plane = Plane::XY,
+        180 => st.plane = Plane::ZX,
+        190 => st.plane = Plane::YZ,
+        200 => st.inch = true,
+        210 => st.inch = false,
+        900 => st.incremental = false,
+        910 => st.incremental = true,
+        901 => st.arc_center_absolute = true,
+        911 => st.arc_center_absolute = false,
+        800 => st.cycle = None,
+        980 => st.cycle_return_r = false,
+        990 => st.cycle_return_r = true,
+        _ => return false,
+    }
+    true
+}
+
+/// A G code that is neither motion, dwell nor a plain modal code: a
+/// non-modal or canned-cycle code is kept in `gw`; a refused code is an
+/// error; anything else is ignored, with a warning unless it is harmless.
+fn grouped_or_other<'a>(
+    b: &Block,
+    w: &'a Word,
+    g: i64,
+    gw: &mut GWords<'a>,
+    warnings: &mut Vec<Warning>,
+) -> Result<(), NcError> {
+    match g {
+        280 | 300 | 530 | 100 | 920 | 921 | 922 | 923 => {
+            only_one(&mut gw.non_modal, b, w, g, "non-modal codes", "")
+        }
+        730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 890 => {
+            only_one(&mut gw.cycle, b, w, g, "canned cycles", "")
+        }
+        _ => {
+            if let Some(e) = refused(b, w, g) {
+                return Err(e);
+            }
+            if let Some(m) = warned(w, g) {
+                warnings.push(Warning::at(b.line, w.column, m));
+            }
+            Ok(())
+        }
+    }
+}
+
+/// The error for a code that is not simulated and would change the path:
+/// splines, threading, the cycles without a model (G74.1, G80.1–G89.9 other
+/// than the modelled ones, G87, G88), inverse-time and per-revolution feed,
+/// Okuma `G15 H`, modal macro calls. `None` for any other code.
+fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
+    let msg = match g {
+        50..=52 => format!(
+            "G{}: spline interpolation is not simulated; post the program with lines and arcs (G1/G2/G3)",
+            w.text
+        ),
+        330 | 331 | 332 | 741 | 801..=899 => format!(
+            "G{}: {} is not simulated yet; post the program with the cycle expanded into G0/G1 moves",
+            w.text,
+            match g {
+                330..=332 => "spindle-synchronised threading/tapping",
+                870 => "back boring (its shift direction is a machine parameter)",
+                880 => "a cycle with a manual retract",
+                _ => "this canned cycle",
+            }
+        ),
+        930 | 950 | 951 => format!(
+            "G{}: {} changes the meaning of F and is not simulated; expected G94 (feed per minute)",
+            w.text,
+            if g == 930 { "inverse-time feed" } else { "feed per revolution" }
+        ),
+        150 if b.word('H').is_some() => super::macro_expr::okuma_message("G15 H"),
+        660 | 661 => format!(
+            "G{}: modal macro calls are not supported; call the macro with G65 at each position",
+            w.text
+        ),
+        _ => return None,
+    };
+    Some(err(b, w, msg))
+}
+
+/// The warning for an ignored code: work offsets (G54–G59, G54.1), cutter
+/// radius compensation (G41/G42), tool length compensation (G43, G44,
+/// G43.1, G43.4) and any code not modelled. `None` for the codes that do
+/// not affect the path (G40, G49, G94, G15, G69, G61–G64).
+fn warned(w: &Word, g: i64) -> Option<String> {
+    Some(match g {
+        540..=590 => format!(
+            "work offset G{}: its offset values are unknown here, so the program frame is kept (all work offsets coincide)",
+            w.text
+        ),
+        400 | 490 | 940 | 150 | 690 | 610..=649 => return None,
+        410 | 420 => format!(
+            "G{}: cutter radius compensation is not simulated; the simulated path is the programmed path (the tool centre follows the written contour)",
+            w.text
+        ),
+        430 | 440 | 431 | 434 => format!(
+            "G{}: tool length compensation is ignored (Z is the programmed Z)",
+            w.text
+        ),
+        _ => format!("G{} is not modelled and was ignored", w.text),
+    })
+}

@@ -1,0 +1,283 @@
+//! The move of one block in the active motion mode (G0–G3): its end point
+//! (G90/G91, the G92 shift, the inch scale), its feed, its motion (a line,
+//! or an arc with I/J/K or R centres, G90.1 absolute centres converted),
+//! and the Fanuc corner word it carries (`,R`/`,C`, or a plain `R`/`C` on
+//! G01; applied later by [`super::corner`]). The readings are those of the
+//! interpreter's header ([`super::program`]).
+//!
+//! Units: mm, degrees for A/B/C, feed in mm/min.
+
+use super::arc::arc;
+use super::block::axis_words;
+use super::program::{err, Corner, CornerKind, Ctx, Modal, Warning};
+use super::segment::{Motion, MotionCode, Plane, Pose, Segment, AXES};
+use super::{Block, NcError, Word};
+
+/// The move of block `b`: one segment from the current pose to the end of
+/// its axis words, and its corner word if any. A block without axis or
+/// centre words does nothing.
+///
+/// # Errors
+/// Axis words before any motion mode, a cutting move without a feed, an
+/// arc error ([`arc`]), a chamfer `C` where it cannot be one, a misplaced
+/// or doubled corner word.
+pub(super) fn move_block(
+    b: &Block,
+    st: &mut Modal,
+    cx: &mut Ctx,
+    scale: f64,
+) -> Result<(), NcError> {
+    let axis_words = axis_words(b, cx);
+    let chamfer_c = if cx.opt.c_axis { None } else { b.word('C') };
+    let centre_words: Vec<&Word> = b
+        .words
+        .iter()
+        .filter(|w| matches!(w.letter, 'I' | 'J' | 'K' | 'R'))
+        .collect();
+    if axis_words.is_empty() && centre_words.is_empty() {
+        return match chamfer_c {
+            Some(c) => Err(err(
+                b,
+                c,
+                format!(
+                    "C{} without a move: this machine has no C axis (set cAxis: true if it has one); a Fanuc chamfer C belongs on a G01 block with an end point",
+                    c.text
+                ),
+            )),
+            None => Ok(()),
+        };
+    }
+    let first = axis_words
+        .first()
+        .or(centre_words.first())
+        .copied()
+        .ok_or_else(|| NcError::new(b.line, 1, "internal: empty move"))?;
+    let Some(mode) = st.motion else {
+        return Err(err(
+            b,
+            first,
+            "axis words but no motion mode has been programmed; expected G0, G1, G2 or G3 first",
+        ));
+    };
+    let start = st.pos;
+    let end = target(st, &axis_words, scale);
+    let feed = move_feed(b, st, mode, first)?;
+    let motion = move_motion(b, st, mode, first, start, end, scale)?;
+    let corner = corner_word(b, mode, chamfer_c, scale)?;
+    corner_or_centre_warning(b, cx, mode, corner, centre_words.first().copied());
+    st.pos = end;
+    cx.segments.push(Segment {
+        block: Some(cx.bi),
+        line: b.line,
+        motion,
+        start,
+        end,
+        feed,
+        fixed: false,
+    });
+    Ok(())
+}
+
+/// Queues the block's corner word for [`super::corner`] (at the segment
+/// about to be pushed); without one, warns that a centre word (`centre`,
+/// the first I/J/K/R) means nothing on a G0 or G1.
+fn corner_or_centre_warning(
+    b: &Block,
+    cx: &mut Ctx,
+    mode: MotionCode,
+    corner: Option<(&Word, CornerKind)>,
+    centre: Option<&Word>,
+) {
+    match corner {
+        Some((w, kind)) => cx.corners.push(Corner {
+            segment: cx.segments.len(),
+            kind,
+            line: b.line,
+            column: w.column,
+        }),
+        None => {
+            if let Some(w) = centre {
+                if matches!(mode, MotionCode::Rapid | MotionCode::Linear) {
+                    cx.warnings.push(Warning::at(
+                        b.line,
+                        w.column,
+                        format!(
+                            "{}{} has no meaning on a G{} move and was ignored",
+                            w.letter,
+                            w.text,
+                            mode.code()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+}
+
+/// The feed of a move in `mode`, mm/min: 0 for a rapid, the modal feed
+/// (which must be positive) for a cutting move.
+fn move_feed(b: &Block, st: &Modal, mode: MotionCode, first: &Word) -> Result<f64, NcError> {
+    match mode {
+        MotionCode::Rapid => Ok(0.0),
+        _ => match st.feed {
+            Some(f) if f > 0.0 => Ok(f),
+            Some(_) => {
+                let fw = b.word('F').unwrap_or(first);
+                Err(err(
+                    b,
+                    fw,
+                    "feed is zero on a cutting move; expected F greater than 0 (mm/min)",
+                ))
+            }
+            None => Err(err(
+                b,
+                first,
+                "cutting move without a feed; expected an F word (mm/min) on this or an earlier block",
+            )),
+        },
+    }
+}
+
+/// The motion from `start` to `end` in `mode`: a rapid, a line, or the arc
+/// of the block's centre words (I/J/K made incremental first under G90.1).
+fn move_motion(
+    b: &Block,
+    st: &Modal,
+    mode: MotionCode,
+    first: &Word,
+    start: Pose,
+    end: Pose,
+    scale: f64,
+) -> Result<Motion, NcError> {
+    Ok(match mode {
+        MotionCode::Rapid => Motion::Rapid,
+        MotionCode::Linear => Motion::Linear,
+        MotionCode::Cw | MotionCode::Ccw => {
+            let abs_block;
+            let blk = if st.arc_center_absolute {
+                abs_block = absolute_centre_block(b, st.plane, start, scale, &st.offset);
+                &abs_block
+            } else {
+                b
+            };
+            Motion::Arc(arc(
+                blk,
+                first,
+                st.plane,
+                mode == MotionCode::Cw,
+                start,
+                end,
+                scale,
+            )?)
+        }
+    })
+}
+
+/// The block's Fanuc corner word: `,R`/`,C`, a plain `C` that is a
+/// chamfer (`chamfer_c`: the machine has no C axis), or a plain `R` on a
+/// G01; its size in mm.
+///
+/// # Errors
+/// A chamfer `C` or a corner word on a move other than G01, or two corner
+/// words in the block.
+fn corner_word<'a>(
+    b: &'a Block,
+    mode: MotionCode,
+    chamfer_c: Option<&'a Word>,
+    scale: f64,
+) -> Result<Option<(&'a Word, CornerKind)>, NcError> {
+    if let Some(c) = chamfer_c {
+        if mode != MotionCode::Linear {
+            return Err(err(
+                b,
+                c,
+                format!(
+                    "C{} on a G{} move: this machine has no C axis (set cAxis: true if it has one); a Fanuc chamfer C belongs on a G01 block",
+                    c.text,
+                    mode.code()
+                ),
+            ));
+        }
+    }
+    let plain_r = b.word('R').filter(|_| mode == MotionCode::Linear);
+    let mut corner: Option<(&Word, CornerKind)> = None;
+    for w in b.comma_words.iter().chain(chamfer_c).chain(plain_r) {
+        if corner.is_some() {
+            return Err(err(
+                b,
+                w,
+                "two corner words (R/C) in one block; expected one",
+            ));
+        }
+        let v = w.value * scale;
+        let kind = if w.letter == 'R' {
+            CornerKind::Round(v)
+        } else {
+            CornerKind::Chamfer(v)
+        };
+        corner = Some((w, kind));
+    }
+    if let Some((w, _)) = corner {
+        if mode != MotionCode::Linear {
+            return Err(err(
+                b,
+                w,
+                format!(
+                    "corner word ,{}{} on a G{} move; corner rounding and chamfer belong on G01",
+                    w.letter,
+                    w.text,
+                    mode.code()
+                ),
+            ));
+        }
+    }
+    Ok(corner)
+}
+
+/// The end pose of a move with `axis_words` from `st` (G90/G91, G92 shift,
+/// inch scale).
+pub(super) fn target(st: &Modal, axis_words: &[&Word], scale: f64) -> Pose {
+    let mut end = st.pos;
+    for w in axis_words {
+        let (i, v) = axis_value(w, scale);
+        end.set(
+            i,
+            if st.incremental {
+                end.get(i) + v
+            } else {
+                v + st.offset[i]
+            },
+        );
+    }
+    end
+}
+
+/// The pose index of an axis word and its value in mm (X/Y/Z, scaled by
+/// the inch factor `scale`) or degrees (A/B/C, never scaled).
+pub(super) fn axis_value(w: &Word, scale: f64) -> (usize, f64) {
+    let i = AXES.iter().position(|&c| c == w.letter).unwrap_or(0);
+    (i, if i < 3 { w.value * scale } else { w.value })
+}
+
+/// A copy of `b` whose I/J/K are made incremental from `start` (G90.1
+/// absolute arc centres).
+fn absolute_centre_block(
+    b: &Block,
+    plane: Plane,
+    start: Pose,
+    scale: f64,
+    off: &[f64; 6],
+) -> Block {
+    let _ = plane;
+    let mut c = b.clone();
+    for w in c.words.iter_mut() {
+        let i = match w.letter {
+            'I' => 0,
+            'J' => 1,
+            'K' => 2,
+            _ => continue,
+        };
+        w.value = (w.value * scale + off[i] - start.get(i)) / scale;
+    }
+    c
+}

@@ -1,0 +1,542 @@
+//! The interpreter's run over a program's blocks (FANUC-style execution
+//! order): the program counter; the program end (M2/M30, the end of the
+//! main file) and the blocks after it; block delete; the executed-block
+//! budget; macro steps (Fanuc Macro B, LinuxCNC o-words, G65 calls with
+//! their own local variables); subprogram calls `M98 P… (L…/K…)` and
+//! returns `M99` with repeat counts and nesting up to
+//! [`super::program::MAX_NESTING`] levels. After the last block it gives
+//! every block its modal state, marks the segments of blocks run more than
+//! once `fixed`, and applies the Fanuc corners ([`super::corner`]). The
+//! readings are those of the interpreter's header ([`super::program`]).
+
+use std::collections::HashMap;
+
+use super::block::interpret_block;
+use super::macro_exec::{has_macros, Macros, Step};
+use super::program::{
+    err, Corner, Ctx, Modal, ParseOptions, Program, Segment, Warning, MAX_EXECUTED_BLOCKS,
+    MAX_NESTING,
+};
+use super::{Block, NcError, NcErrors, Word};
+
+/// The state of one run over a program's blocks.
+pub(super) struct Run<'a> {
+    /// Options, the C axis resolved.
+    opt: &'a ParseOptions,
+    /// The modal state now.
+    st: Modal,
+    segments: Vec<Segment>,
+    warnings: Vec<Warning>,
+    errors: NcErrors,
+    corners: Vec<Corner>,
+    /// Modal state after each block (`None`: not run yet).
+    modal: Vec<Option<Modal>>,
+    /// The blocks after the program end have been warned about.
+    after_end_warned: bool,
+    /// O-number → index of its `O` block.
+    subs: HashMap<u32, usize>,
+    /// Active subprogram and macro calls, innermost last.
+    stack: Vec<Frame>,
+    /// Blocks executed so far (repeats counted).
+    executed: usize,
+    /// Index of the next block to run.
+    pub pc: usize,
+    /// The macro interpreter, when the program holds macro code.
+    mac: Option<Macros>,
+    /// How often each block was run.
+    runs: Vec<u32>,
+}
+
+/// An active subprogram or macro call.
+struct Frame {
+    /// Index of the block to return to.
+    ret: usize,
+    /// Index of the called program's `O` block.
+    start: usize,
+    /// Runs of the called program still to go, this one included.
+    left: u32,
+    /// The called program's O number.
+    number: u32,
+    /// A G65 call: its own local variables, dropped at M99.
+    locals: bool,
+}
+
+/// What the interpreter loop does after a macro step.
+enum Flow {
+    /// Run this block (evaluated words; true when they were computed).
+    Run(Block, bool),
+    /// Go on with the next block (the program counter is set).
+    Next,
+    /// Stop the run.
+    Stop,
+}
+
+impl<'a> Run<'a> {
+    /// A run at the first block of `blocks`, from `opt.start`.
+    ///
+    /// # Errors
+    /// The macro code's structure errors ([`Macros::new`]).
+    pub fn new(blocks: &[Block], opt: &'a ParseOptions) -> Result<Self, NcErrors> {
+        Ok(Self {
+            opt,
+            st: Modal {
+                pos: opt.start,
+                ..Modal::default()
+            },
+            segments: Vec::new(),
+            warnings: Vec::new(),
+            errors: NcErrors {
+                errors: Vec::new(),
+                truncated: false,
+            },
+            corners: Vec::new(),
+            modal: vec![None; blocks.len()],
+            after_end_warned: false,
+            subs: subprogram_index(blocks),
+            stack: Vec::new(),
+            executed: 0,
+            pc: 0,
+            mac: if needs_macros(blocks) {
+                Some(Macros::new(blocks)?)
+            } else {
+                None
+            },
+            runs: vec![0u32; blocks.len()],
+        })
+    }
+
+    /// Runs the block at the program counter and moves the counter on
+    /// (past it, or to a call's target or return point). False when the
+    /// run stops here.
+    pub fn step(&mut self, blocks: &[Block]) -> bool {
+        let bi = self.pc;
+        let b = &blocks[bi];
+        self.pc += 1;
+        if let Some(e) = left_file(blocks, b, &self.stack, self.mac.as_ref()) {
+            if let Some(e) = e {
+                self.errors.push(e);
+            }
+            return false;
+        }
+        if self.st.ended {
+            self.after_end(b, bi);
+            return true;
+        }
+        if let Some(e) = self.entry_error(b, bi) {
+            self.errors.push(e);
+            return false;
+        }
+        if b.block_delete && self.opt.skip_block_delete {
+            self.warnings.push(Warning::at(
+                b.line,
+                1,
+                "block delete '/': this block is skipped (set skipBlockDelete: false to run it)",
+            ));
+            self.modal[bi] = Some(self.st);
+            return true;
+        }
+        self.runs[bi] = self.runs[bi].saturating_add(1);
+        let evaluated;
+        let mut computed = false;
+        let b = match self.macro_step(blocks, bi) {
+            None => b,
+            Some(Flow::Run(nb, c)) => {
+                evaluated = nb;
+                computed = c;
+                &evaluated
+            }
+            Some(Flow::Next) => {
+                self.modal[bi] = Some(self.st);
+                return true;
+            }
+            Some(Flow::Stop) => return false,
+        };
+        if !self.run_block(b, bi, computed) {
+            return false;
+        }
+        self.modal[bi] = Some(self.st);
+        self.call_or_return(b);
+        if self.st.ended {
+            self.stack.clear();
+        }
+        true
+    }
+
+    /// A block after M2/M30: not run; the first non-empty one (other than
+    /// a program number or `%`) is warned about.
+    fn after_end(&mut self, b: &Block, bi: usize) {
+        if !self.after_end_warned && !b.is_empty() && !b.percent {
+            self.after_end_warned = true;
+            if b.word('O').is_none() && b.program_name.is_none() {
+                self.warnings.push(Warning::at(
+                    b.line,
+                    1,
+                    "blocks after the program end (M2/M30) are not run",
+                ));
+            }
+        }
+        self.modal[bi].get_or_insert(self.st);
+    }
+
+    /// Counts the block against the executed-block budget; the error that
+    /// stops the run when the budget is spent or a subprogram runs into the
+    /// next program's `O` block without M99.
+    fn entry_error(&mut self, b: &Block, bi: usize) -> Option<NcError> {
+        self.executed += 1;
+        if self.executed > MAX_EXECUTED_BLOCKS {
+            return Some(NcError::new(
+                b.line,
+                1,
+                format!(
+                    "more than {MAX_EXECUTED_BLOCKS} blocks executed: the subprogram calls, repeats or loops look endless; check the M98 repeat counts, the M99 returns and the loop conditions"
+                ),
+            ));
+        }
+        let (f, o) = (
+            self.stack.last()?,
+            b.words.first().filter(|w| w.letter == 'O')?,
+        );
+        (bi != f.start).then(|| {
+            err(
+                b,
+                o,
+                format!(
+                    "subprogram O{} reaches the next program O{} without an M99; expected M99 at the end of each subprogram",
+                    f.number, o.text
+                ),
+            )
+        })
+    }
+
+    /// The macro interpreter's step on a macro or G65 block (`None` for any
+    /// other block: it runs as written).
+    fn macro_step(&mut self, blocks: &[Block], bi: usize) -> Option<Flow> {
+        let b = &blocks[bi];
+        let m = self
+            .mac
+            .as_mut()
+            .filter(|_| b.macro_line.is_some() || has_g65(b))?;
+        let r = m.step(blocks, bi, &mut self.pc, &self.st, &mut self.warnings);
+        Some(macro_flow(
+            r,
+            m,
+            &self.subs,
+            &mut self.stack,
+            &mut self.pc,
+            &mut self.errors,
+        ))
+    }
+
+    /// Interprets block `b` (index `bi`; `computed`: its words came from
+    /// macro expressions); its segments are `fixed` inside a call or when
+    /// computed. False when its error stops the program.
+    fn run_block(&mut self, b: &Block, bi: usize, computed: bool) -> bool {
+        let before = self.segments.len();
+        let mut ctx = Ctx {
+            bi,
+            opt: self.opt,
+            warnings: &mut self.warnings,
+            segments: &mut self.segments,
+            corners: &mut self.corners,
+        };
+        if let Err(e) = interpret_block(b, &mut self.st, &mut ctx) {
+            let stop = e.message.contains("this looks like");
+            self.errors.push(e);
+            if stop {
+                return false;
+            }
+        }
+        if !self.stack.is_empty() || computed || self.mac.as_ref().is_some_and(|m| m.depth() > 0) {
+            for s in &mut self.segments[before..] {
+                s.fixed = true;
+            }
+        }
+        true
+    }
+
+    /// M98 calls a subprogram, M99 returns from one (or repeats it).
+    fn call_or_return(&mut self, b: &Block) {
+        let m = |v: f64| b.words.iter().find(|w| w.letter == 'M' && w.value == v);
+        if let Some(w) = m(98.0) {
+            match call(b, w, &self.subs, self.stack.len()) {
+                Ok((start, number, times)) => {
+                    if times > 0 {
+                        self.stack.push(Frame {
+                            ret: self.pc,
+                            start,
+                            left: times,
+                            number,
+                            locals: false,
+                        });
+                        self.pc = start;
+                    }
+                }
+                Err(e) => self.errors.push(e),
+            }
+        } else if let Some(w) = m(99.0) {
+            self.m99(b, w);
+        }
+    }
+
+    /// M99: the next repeat of the subprogram, or the return to the caller
+    /// (a G65 call's locals dropped); in the main program it ends the run.
+    fn m99(&mut self, b: &Block, w: &Word) {
+        if b.word('P').is_some() {
+            self.errors.push(err(
+                b,
+                w,
+                "M99 P (return to a sequence number) is not supported yet",
+            ));
+        } else if let Some(f) = self.stack.last_mut() {
+            if f.left > 1 {
+                f.left -= 1;
+                self.pc = f.start;
+            } else {
+                self.pc = f.ret;
+                if f.locals {
+                    if let Some(m) = self.mac.as_mut() {
+                        m.vars.pop_level();
+                    }
+                }
+                self.stack.pop();
+            }
+        } else {
+            self.warnings.push(Warning::at(
+                b.line,
+                w.column,
+                "M99 in the main program repeats it endlessly on the control; it is simulated once",
+            ));
+            self.st.ended = true;
+        }
+    }
+
+    /// The program after the run: a call left open is an error; every
+    /// block gets a modal state (a block not run keeps the one before it);
+    /// the segments of blocks run more than once are `fixed`; the corners
+    /// are applied.
+    ///
+    /// # Errors
+    /// Every error of the run, in the order found.
+    pub fn finish(self, blocks: Vec<Block>) -> Result<Program, NcErrors> {
+        let Run {
+            opt,
+            mut segments,
+            warnings,
+            mut errors,
+            corners,
+            modal,
+            stack,
+            runs,
+            ..
+        } = self;
+        if let (Some(f), true) = (stack.last(), errors.is_empty()) {
+            errors.push(NcError::new(
+                blocks.last().map_or(1, |b| b.line),
+                1,
+                format!("subprogram O{} ends without M99", f.number),
+            ));
+        }
+        let mut last = Modal {
+            pos: opt.start,
+            ..Modal::default()
+        };
+        let modal: Vec<Modal> = modal
+            .into_iter()
+            .map(|m| {
+                if let Some(m) = m {
+                    last = m;
+                }
+                last
+            })
+            .collect();
+        for s in &mut segments {
+            if s.block
+                .is_some_and(|bi| runs.get(bi).is_some_and(|&n| n > 1))
+            {
+                s.fixed = true;
+            }
+        }
+        if let Err(es) = super::corner::apply_corners(&mut segments, &corners) {
+            for e in es {
+                errors.push(e);
+            }
+        }
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        Ok(Program {
+            blocks,
+            modal,
+            segments,
+            warnings,
+            options: *opt,
+        })
+    }
+}
+
+/// The run reaching a block of another file: the end of the main program
+/// (`Some(None)`) when no call is active, or an error when a called
+/// subprogram runs past the end of its file without M99.
+fn left_file(
+    blocks: &[Block],
+    b: &Block,
+    stack: &[Frame],
+    mac: Option<&Macros>,
+) -> Option<Option<NcError>> {
+    match stack.last() {
+        Some(f) if blocks[f.start].file != b.file => Some(Some(NcError::new(
+            blocks[f.start].line,
+            1,
+            format!(
+                "subprogram O{} runs to the end of its file without M99; expected M99 at its end",
+                f.number
+            ),
+        ))),
+        None if b.file != 0 && mac.is_none_or(|m| m.depth() == 0) => Some(None),
+        _ => None,
+    }
+}
+
+/// The block calls a macro (G65).
+fn has_g65(b: &Block) -> bool {
+    b.words.iter().any(|w| w.letter == 'G' && w.value == 65.0)
+}
+
+/// The program needs the macro interpreter: macro statements, o-words or
+/// G65 calls.
+pub(super) fn needs_macros(blocks: &[Block]) -> bool {
+    has_macros(blocks) || blocks.iter().any(has_g65)
+}
+
+/// Applies a macro step's outcome: a G65 call pushes a frame with its own
+/// locals; an error is recorded (and stops the run after an alarm or the
+/// loop budget).
+fn macro_flow(
+    r: Result<Step, NcError>,
+    m: &mut Macros,
+    subs: &std::collections::HashMap<u32, usize>,
+    stack: &mut Vec<Frame>,
+    pc: &mut usize,
+    errors: &mut NcErrors,
+) -> Flow {
+    let call = match r {
+        Ok(Step::Run(b, computed)) => return Flow::Run(b, computed),
+        Ok(Step::Done) => return Flow::Next,
+        Err(e) => {
+            errors.push(e);
+            return if m.stop { Flow::Stop } else { Flow::Next };
+        }
+        Ok(Step::Call {
+            number,
+            times,
+            args,
+            p,
+        }) => (number, times, args, p),
+    };
+    let (number, times, args, p) = call;
+    if stack.len() + m.depth() >= MAX_NESTING {
+        errors.push(NcError::new(
+            m.vars.line,
+            p.column,
+            format!(
+                "G65 P{}: macro calls nested deeper than {MAX_NESTING} levels",
+                p.text
+            ),
+        ));
+        m.stop = true;
+        return Flow::Stop;
+    }
+    let Some(&start) = subs.get(&number) else {
+        errors.push(NcError::new(
+            m.vars.line,
+            p.column,
+            format!("G65 P{}: macro program O{number:04} is not in this program; paste it (O{number:04} … M99) after M30, or drop its file together with the program", p.text),
+        ));
+        return Flow::Next;
+    };
+    m.vars.push_level(&args);
+    stack.push(Frame {
+        ret: *pc,
+        start,
+        left: times,
+        number,
+        locals: true,
+    });
+    *pc = start;
+    Flow::Next
+}
+
+/// O-number → index of its `O` block.
+fn subprogram_index(blocks: &[Block]) -> std::collections::HashMap<u32, usize> {
+    let mut m = std::collections::HashMap::new();
+    for (i, b) in blocks.iter().enumerate() {
+        if let Some(o) = b.words.first().filter(|w| w.letter == 'O') {
+            if o.value >= 0.0 && o.value.fract() == 0.0 {
+                m.entry(o.value as u32).or_insert(i);
+            }
+        }
+    }
+    m
+}
+
+/// The target of `M98 P… (L…/K…)`: Fanuc `P` with more than four digits
+/// holds the repeat count before the four-digit program number
+/// (`P30010` = O0010 three times); `L` or `K` gives the count otherwise.
+fn call(
+    b: &Block,
+    m98: &Word,
+    subs: &std::collections::HashMap<u32, usize>,
+    depth: usize,
+) -> Result<(usize, u32, u32), NcError> {
+    let Some(p) = b.word('P') else {
+        return Err(err(b, m98, "M98 without P; expected M98 P<program number>"));
+    };
+    if p.value < 0.0 || p.value.fract() != 0.0 {
+        return Err(err(
+            b,
+            p,
+            format!("M98 P{}: expected a whole program number", p.text),
+        ));
+    }
+    let digits = p.text.trim_start_matches('+');
+    let (mut times, number) = if digits.len() > 4 {
+        let (rep, num) = digits.split_at(digits.len() - 4);
+        (
+            rep.parse::<u32>().unwrap_or(1).max(1),
+            num.parse::<u32>().unwrap_or(0),
+        )
+    } else {
+        (1, p.value as u32)
+    };
+    if let Some(l) = b.word('L').or(b.word('K')) {
+        if l.value < 0.0 || l.value.fract() != 0.0 || l.value > 9999.0 {
+            return Err(err(
+                b,
+                l,
+                format!(
+                    "repeat count {}{}: expected a whole number from 0 to 9999",
+                    l.letter, l.text
+                ),
+            ));
+        }
+        times = l.value as u32;
+    }
+    if depth >= MAX_NESTING {
+        return Err(err(
+            b,
+            m98,
+            format!("subprogram nesting deeper than {MAX_NESTING} levels"),
+        ));
+    }
+    let start = subs.get(&number).copied().ok_or_else(|| {
+        err(
+            b,
+            p,
+            format!(
+                "M98 P{}: subprogram O{number:04} is not in this program; paste the subprogram (O{number:04} … M99) after M30, or drop its file together with the program",
+                p.text
+            ),
+        )
+    })?;
+    Ok((start, number, times))
+}
