@@ -1,4 +1,4 @@
-//! Issue 15 regressions: every silent misread of real shop-floor programs
+//! Regressions of real shop-floor programs: every silent misread of real shop-floor programs
 //! now has its fixed reading or a warning/error naming the line, and a
 //! program reports all of its errors. Expected values come from the codes'
 //! written definitions (Fanuc/LinuxCNC manuals) and plain geometry, not

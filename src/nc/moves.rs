@@ -10,7 +10,7 @@
 use super::arc::arc;
 use super::block::axis_words;
 use super::program::{err, Corner, CornerKind, Ctx, Modal, Warning};
-use super::segment::{Motion, MotionCode, Plane, Pose, Segment, AXES};
+use super::segment::{Motion, MotionCode, Pose, Segment, AXES};
 use super::{Block, NcError, Word};
 
 /// The move of block `b`: one segment from the current pose to the end of
@@ -155,7 +155,7 @@ fn move_motion(
         MotionCode::Cw | MotionCode::Ccw => {
             let abs_block;
             let blk = if st.arc_center_absolute {
-                abs_block = absolute_centre_block(b, st.plane, start, scale, &st.offset);
+                abs_block = absolute_centre_block(b, start, scale, &st.offset);
                 &abs_block
             } else {
                 b
@@ -261,14 +261,7 @@ pub(super) fn axis_value(w: &Word, scale: f64) -> (usize, f64) {
 
 /// A copy of `b` whose I/J/K are made incremental from `start` (G90.1
 /// absolute arc centres).
-fn absolute_centre_block(
-    b: &Block,
-    plane: Plane,
-    start: Pose,
-    scale: f64,
-    off: &[f64; 6],
-) -> Block {
-    let _ = plane;
+fn absolute_centre_block(b: &Block, start: Pose, scale: f64, off: &[f64; 6]) -> Block {
     let mut c = b.clone();
     for w in c.words.iter_mut() {
         let i = match w.letter {

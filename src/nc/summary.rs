@@ -1,4 +1,4 @@
-//! The summary a user checks first (issue 15, item 9): bounding box, path
+//! The summary a user checks first, before simulating: bounding box, path
 //! length, counts of arcs, lines, rapids and dwells, units and planes used,
 //! an estimated motion time, and the warnings grouped by kind.
 //!

@@ -9,7 +9,7 @@
 //   to the first frame painted after the result element appeared (measured
 //   in the page with performance.now()), median of `runs` clicks after one
 //   warm-up click, and the first (cold) click.
-// Targets (issue 12): < 100 ms per action except reverse compensation and
+// Targets (docs/performance.md): < 100 ms per action except reverse compensation and
 // Monte-Carlo (and the long studies that show progress); TTI < 1 s served,
 // < 1.5 s from file://.
 import { existsSync } from 'node:fs';

@@ -17,7 +17,7 @@ export async function mount(root, api) {
     lines: await api.call('toolpathExample', ['lines']),
   };
   const nc = h('textarea', { id: 'toolpath-nc', rows: 14, spellcheck: false, style: 'width:100%;font-family:monospace' });
-  // Program check (issue 15): errors or warnings next to the text, each a
+  // Program check: errors or warnings next to the text, each a
   // link that selects its line; the summary the user checks first.
   const check = h('div', { id: 'toolpath-check', 'aria-live': 'polite', style: 'max-height:330px;overflow:auto;font-size:90%' });
   function selectLine(line) {

@@ -1,4 +1,4 @@
-// Tool-path panel, program check (issue 15): a program with two errors
+// Tool-path panel, program check : a program with two errors
 // lists both next to the text, each naming its line; clicking one selects
 // that line in the text. A valid program shows the summary (here one
 // 10 mm line at F600 → 1 s) and its warnings grouped by kind.

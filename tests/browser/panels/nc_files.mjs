@@ -1,4 +1,4 @@
-// Tool-path panel, several files (issue 15): dropping a subprogram file
+// Tool-path panel, several files : dropping a subprogram file
 // together with its main program (in either order) loads the program that
 // ends with M30 as the main one, names it, and the check reads the
 // subprogram from the other file (O2000 moves 5 mm at F100 → 3 s; main 10 mm
