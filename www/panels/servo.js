@@ -2,7 +2,7 @@
 // core in the worker, draws and offers downloads; every number is computed
 // in Rust (feedVectorTest, bestKffp, torqueSaturation, frequencyResponse,
 // analyzeFeedVectorTrace).
-import { h, table, fmt, numberField, selectField, downloadText, toCsv, dropZone, progressBar, runState } from '../lib/ui.js';
+import { h, table, fmt, numberField, selectField, downloadText, toCsv, dropZone, progressBar, runState, showError } from '../lib/ui.js';
 import { lineChart } from '../lib/plot.js';
 import { mapCalls } from '../lib/pool.js';
 
@@ -33,6 +33,27 @@ export async function mount(root, api) {
   };
   const paramTable = table(['parameter', 'unit', ...axes.map((a) => a.toUpperCase())], FIELDS.map(([f, label, unit]) => [label, unit, ...axes.map((a) => cell(a, f))]));
   paramTable.querySelector('table').id = 'servo-preset-table';
+  // The paper's loop readings (machinePreset(name, reading)): choosing one
+  // refills the table with that reading's values.
+  const readings = machine.loopReadings ?? [];
+  const READING_TEXT = { table: 'Table 1 as printed', kppText: 'K_pp = 30 1/s as the text says', inertiaAtLoad: 'X inertia on the load side of the screw' };
+  const readingSel = selectField({
+    label: 'Loop reading', id: 'servo-loop-reading', value: readings[0], options: readings.map((r) => [r, `${r} — ${READING_TEXT[r] ?? r}`]),
+    onChange: async (r) => {
+      try {
+        const m = await api.call('machinePreset', [machine.name, r]);
+        for (const a of axes) {
+          for (const [f] of FIELDS) {
+            const v = m.axes[a][f];
+            inputs[`${a}.${f}`].value = v === undefined ? '' : String(v);
+          }
+        }
+        inputs['c.j'].dispatchEvent(new Event('input'));
+      } catch (e) {
+        showError(out, e);
+      }
+    },
+  });
   const currentMachine = () => {
     const m = structuredClone(machine);
     for (const a of axes) {
@@ -297,7 +318,7 @@ export async function mount(root, api) {
   };
 
   root.replaceChildren(
-    h('div', { class: 'card' }, h('h3', {}, `Preset ${machine.name}`), h('p', {}, machine.description), h('p', { class: 'lead' }, `Source: ${machine.source}. Edit any value; the C torque limit is ${machine.axes.c.torqueMax} N·m.`), paramTable),
+    h('div', { class: 'card' }, h('h3', {}, `Preset ${machine.name}`), h('p', {}, machine.description), h('p', { class: 'lead' }, `Source: ${machine.source}. Edit any value; the C torque limit is ${machine.axes.c.torqueMax} N·m.`), ...(readings.length > 1 ? [readingSel.el, h('p', { class: 'note' }, 'The paper leaves open how to read Table 1 for the X loop; only the load-side X inertia gives its ΔR > 0 on X (docs/readings.md).')] : []), paramTable),
     h('div', { class: 'card' }, h('h3', {}, 'Constant-feed-speed-vector test (§2.3, §3)'), h('div', { class: 'row' }, j1.el, mode.el, omega.el, feed.el, rc.el, rw.el, accel.el, dt.el, freqUnit.el),
       h('div', { class: 'row' },
         h('button', { id: 'servo-run', dataset: { run: '' }, onclick: () => run(false) }, 'Simulate'),
