@@ -157,6 +157,78 @@ fn is_comment(line: &str) -> bool {
     t.is_empty() || t.starts_with('#') || t.starts_with("//")
 }
 
+/// The first control character other than tab in the numbered `lines`, as
+/// an error naming its line and 1-based character column.
+fn control_char(lines: &[(usize, &str)]) -> Option<TraceError> {
+    lines.iter().find_map(|&(n, l)| {
+        l.chars()
+            .position(|c| c.is_control() && c != '\t')
+            .map(|k| TraceError::ControlChar {
+                line: n,
+                column: k + 1,
+                code: l.chars().nth(k).map_or(0, u32::from),
+            })
+    })
+}
+
+/// Index in `lines` (numbered, comments dropped) of the header: the line
+/// just before the first all-numeric line; anything above it is metadata.
+/// Errors when the first line is data, when no line is, or when there is
+/// no line at all.
+fn header_index(lines: &[(usize, &str)]) -> Result<usize, TraceError> {
+    let numeric = |l: &str| {
+        detect(l).is_some_and(|d| split(l, d).iter().all(|f| f.parse::<f64>().is_ok()))
+            || l.trim().parse::<f64>().is_ok()
+    };
+    match lines.iter().position(|(_, l)| numeric(l)) {
+        Some(0) => Err(TraceError::NoHeader { line: lines[0].0 }),
+        Some(k) => Ok(k - 1),
+        None => match lines.last() {
+            Some((n, _)) => Err(TraceError::NoData { line: *n }),
+            None => Err(TraceError::Empty),
+        },
+    }
+}
+
+/// Reads data row `l` (source line `n`) split at `delimiter` into
+/// `columns`, one finite number per header name in `names`; a trailing
+/// delimiter's empty extra field is tolerated.
+fn read_row(
+    n: usize,
+    l: &str,
+    delimiter: char,
+    names: &[String],
+    columns: &mut [Vec<f64>],
+) -> Result<(), TraceError> {
+    let fields = split(l, delimiter);
+    let fields = match fields.split_last() {
+        Some((last, rest)) if last.is_empty() && rest.len() == names.len() => rest,
+        _ => &fields[..],
+    };
+    if fields.len() != names.len() {
+        return Err(TraceError::FieldCount {
+            line: n,
+            found: fields.len(),
+            expected: names.len(),
+        });
+    }
+    for (k, f) in fields.iter().enumerate() {
+        let text = f.trim_matches('"');
+        let v: f64 = text
+            .parse()
+            .ok()
+            .filter(|v: &f64| v.is_finite())
+            .ok_or_else(|| TraceError::BadNumber {
+                line: n,
+                column: k + 1,
+                name: names[k].clone(),
+                text: text.to_string(),
+            })?;
+        columns[k].push(v);
+    }
+    Ok(())
+}
+
 impl Table {
     /// Parses delimited text with a header row.
     ///
@@ -176,67 +248,23 @@ impl Table {
             .enumerate()
             .map(|(i, l)| (i + 1, l))
             .collect();
-        if let Some((line, column, code)) = lines.iter().find_map(|&(n, l)| {
-            l.chars()
-                .position(|c| c.is_control() && c != '\t')
-                .map(|k| (n, k + 1, l.chars().nth(k).map_or(0, u32::from)))
-        }) {
-            return Err(TraceError::ControlChar { line, column, code });
+        if let Some(e) = control_char(&lines) {
+            return Err(e);
         }
         let lines: Vec<(usize, &str)> = lines.into_iter().filter(|(_, l)| !is_comment(l)).collect();
-        // The header is the line just before the first all-numeric line;
-        // anything above it is metadata.
-        let numeric = |l: &str| {
-            detect(l).is_some_and(|d| split(l, d).iter().all(|f| f.parse::<f64>().is_ok()))
-                || l.trim().parse::<f64>().is_ok()
-        };
-        let first_data = lines.iter().position(|(_, l)| numeric(l));
-        let (h, header_line, header) = match first_data {
-            Some(0) => return Err(TraceError::NoHeader { line: lines[0].0 }),
-            Some(k) => (k - 1, lines[k - 1].0, lines[k - 1].1),
-            None => match lines.last() {
-                Some((n, _)) => return Err(TraceError::NoData { line: *n }),
-                None => return Err(TraceError::Empty),
-            },
-        };
+        let h = header_index(&lines)?;
+        let (header_line, header) = lines[h];
         let delimiter = detect(lines[h + 1].1)
             .or_else(|| detect(header))
             .unwrap_or(',');
-        let lines = lines.into_iter().skip(h + 1);
         let names: Vec<String> = split(header, delimiter)
             .into_iter()
             .map(|s| s.trim_matches('"').trim().to_string())
             .collect();
         let mut columns = vec![Vec::new(); names.len()];
         let mut row_lines = Vec::new();
-        for (n, l) in lines {
-            let fields = split(l, delimiter);
-            // A trailing delimiter gives one empty extra field: tolerate it.
-            let fields = match fields.split_last() {
-                Some((last, rest)) if last.is_empty() && rest.len() == names.len() => rest,
-                _ => &fields[..],
-            };
-            if fields.len() != names.len() {
-                return Err(TraceError::FieldCount {
-                    line: n,
-                    found: fields.len(),
-                    expected: names.len(),
-                });
-            }
-            for (k, f) in fields.iter().enumerate() {
-                let text = f.trim_matches('"');
-                let v: f64 = text
-                    .parse()
-                    .ok()
-                    .filter(|v: &f64| v.is_finite())
-                    .ok_or_else(|| TraceError::BadNumber {
-                        line: n,
-                        column: k + 1,
-                        name: names[k].clone(),
-                        text: text.to_string(),
-                    })?;
-                columns[k].push(v);
-            }
+        for (n, l) in lines.into_iter().skip(h + 1) {
+            read_row(n, l, delimiter, &names, &mut columns)?;
             row_lines.push(n);
         }
         if row_lines.is_empty() {

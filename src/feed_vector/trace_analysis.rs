@@ -94,15 +94,15 @@ fn column(
     Ok((index, values))
 }
 
-/// Analyses a measured trace (the JS `analyzeFeedVectorTrace`).
-///
-/// # Units
 /// Smallest |unit factor| of a mapping (ns → s is 1e-9).
 pub const MIN_SCALE: f64 = 1e-9;
 /// Largest |unit factor| of a mapping (km → mm is 1e6); a larger one
 /// makes times or positions overflow.
 pub const MAX_SCALE: f64 = 1e6;
 
+/// Analyses a measured trace (the JS `analyzeFeedVectorTrace`).
+///
+/// # Units
 /// The condition as in [`Condition`]; trace units as set in `map`.
 ///
 /// # Examples
@@ -122,43 +122,9 @@ pub fn analyze_trace(
 ) -> Result<FeedVectorResult, FeedVectorError> {
     crate::budget::check_text("trace", text)?;
     cond.validate()?;
-    for (field, v) in [
-        ("mapping.timeScale", map.time_scale),
-        ("mapping.linearScale", map.linear_scale),
-        ("mapping.angleScale", map.angle_scale),
-        ("mapping.torqueScale", map.torque_scale),
-    ] {
-        if !(v.is_finite() && (MIN_SCALE..=MAX_SCALE).contains(&v.abs())) {
-            return Err(super::bad(
-                field,
-                v,
-                "must be a unit factor of magnitude 1e-9 to 1e6 (e.g. 0.001 for ms, 25.4 for inch)",
-            ));
-        }
-    }
-    for (field, v) in [
-        ("mapping.motionStart", map.motion_start),
-        ("mapping.steadyFrom", map.steady_from),
-    ] {
-        if let Some(v) = v.filter(|v| !v.is_finite()) {
-            return Err(super::bad(field, v, "must be a finite time in s"));
-        }
-    }
+    validate_map(map)?;
     let table = Table::parse(text)?;
-    let (tcol, t) = column(&table, &map.time, &["time", "t", "time_s"], map.time_scale)?;
-    for i in 1..t.len() {
-        if t[i] <= t[i - 1] {
-            return Err(FeedVectorError::TraceValue {
-                line: table.lines.get(i).copied().unwrap_or(0),
-                column: tcol + 1,
-                name: table.names.get(tcol).cloned().unwrap_or_default(),
-                why: format!(
-                    "time {} does not increase after {} on the line before; sort the trace or pick the right time column",
-                    t[i], t[i - 1]
-                ),
-            });
-        }
-    }
+    let t = time_column(&table, map)?;
     let (_, mut x) = column(&table, &map.x, &["x", "pos_x", "x_pos"], map.linear_scale)?;
     let (_, y) = column(&table, &map.y, &["y", "pos_y", "y_pos"], map.linear_scale)?;
     let (_, c) = column(&table, &map.c, &["c", "pos_c", "c_pos"], map.angle_scale)?;
@@ -198,4 +164,50 @@ pub fn analyze_trace(
     let t_ss = map.steady_from.unwrap_or(cond.accel_time + 0.4);
     let summary = summarize(&series, cond.omega, t_ss, saturated);
     Ok(FeedVectorResult { series, summary })
+}
+
+/// Checks the mapping's unit factors and times.
+fn validate_map(map: &ColumnMap) -> Result<(), FeedVectorError> {
+    for (field, v) in [
+        ("mapping.timeScale", map.time_scale),
+        ("mapping.linearScale", map.linear_scale),
+        ("mapping.angleScale", map.angle_scale),
+        ("mapping.torqueScale", map.torque_scale),
+    ] {
+        if !(v.is_finite() && (MIN_SCALE..=MAX_SCALE).contains(&v.abs())) {
+            return Err(super::bad(
+                field,
+                v,
+                "must be a unit factor of magnitude 1e-9 to 1e6 (e.g. 0.001 for ms, 25.4 for inch)",
+            ));
+        }
+    }
+    for (field, v) in [
+        ("mapping.motionStart", map.motion_start),
+        ("mapping.steadyFrom", map.steady_from),
+    ] {
+        if let Some(v) = v.filter(|v| !v.is_finite()) {
+            return Err(super::bad(field, v, "must be a finite time in s"));
+        }
+    }
+    Ok(())
+}
+
+/// The time column in s, which must increase strictly from row to row.
+fn time_column(table: &Table, map: &ColumnMap) -> Result<Vec<f64>, FeedVectorError> {
+    let (tcol, t) = column(table, &map.time, &["time", "t", "time_s"], map.time_scale)?;
+    for i in 1..t.len() {
+        if t[i] <= t[i - 1] {
+            return Err(FeedVectorError::TraceValue {
+                line: table.lines.get(i).copied().unwrap_or(0),
+                column: tcol + 1,
+                name: table.names.get(tcol).cloned().unwrap_or_default(),
+                why: format!(
+                    "time {} does not increase after {} on the line before; sort the trace or pick the right time column",
+                    t[i], t[i - 1]
+                ),
+            });
+        }
+    }
+    Ok(t)
 }

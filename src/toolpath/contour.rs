@@ -48,22 +48,33 @@ pub struct Element {
 
 #[derive(Debug, Clone, Copy)]
 enum Geo {
-    Line {
-        p0: [f64; 3],
-        d: [f64; 3],
-        l2: f64,
-    },
-    Arc {
-        c: [f64; 3],
-        r: f64,
-        sc0: (f64, f64),
-        sweep: f64,
-        axes: (usize, usize, usize),
-        n0: f64,
-        dn: f64,
-        p0: [f64; 3],
-        p1: [f64; 3],
-    },
+    Line(LineGeo),
+    Arc(ArcGeo),
+}
+
+/// A line from `p0` along `d` (`l2 = |d|²`), mm.
+#[derive(Debug, Clone, Copy)]
+struct LineGeo {
+    p0: [f64; 3],
+    d: [f64; 3],
+    l2: f64,
+}
+
+/// An arc (or helix) about `c` of radius `r` in the plane of `axes`
+/// `(u, v, normal)`, from the angle whose `(sin, cos)` is `sc0` over
+/// `sweep` rad, rising `dn` from `n0` along the normal; `p0`, `p1` are the
+/// programmed end points. mm, rad.
+#[derive(Debug, Clone, Copy)]
+struct ArcGeo {
+    c: [f64; 3],
+    r: f64,
+    sc0: (f64, f64),
+    sweep: f64,
+    axes: (usize, usize, usize),
+    n0: f64,
+    dn: f64,
+    p0: [f64; 3],
+    p1: [f64; 3],
 }
 
 /// The nearest point found for one sample.
@@ -106,11 +117,11 @@ fn d3(a: [f64; 3], b: [f64; 3]) -> f64 {
 /// rounding.
 fn bounding_sphere(geo: &Geo) -> ([f64; 3], f64) {
     let (m, rad) = match *geo {
-        Geo::Line { p0, d, l2 } => (
+        Geo::Line(LineGeo { p0, d, l2 }) => (
             [p0[0] + 0.5 * d[0], p0[1] + 0.5 * d[1], p0[2] + 0.5 * d[2]],
             0.5 * l2.sqrt(),
         ),
-        Geo::Arc {
+        Geo::Arc(ArcGeo {
             c,
             r,
             sc0: (s0, c0),
@@ -120,7 +131,7 @@ fn bounding_sphere(geo: &Geo) -> ([f64; 3], f64) {
             dn,
             p0,
             p1,
-        } => {
+        }) => {
             let half = 0.5 * sweep.abs();
             // Direction of the arc's midpoint: the start direction turned
             // by half the sweep.
@@ -156,7 +167,7 @@ impl Path {
             let geo = match seg.motion {
                 Motion::Arc(a) => {
                     let (u, v, n) = a.plane.axes();
-                    Geo::Arc {
+                    Geo::Arc(ArcGeo {
                         c: a.center,
                         r: a.radius,
                         sc0: (p0[v] - a.center[v]).atan2(p0[u] - a.center[u]).sin_cos(),
@@ -166,16 +177,16 @@ impl Path {
                         dn: p1[n] - p0[n],
                         p0,
                         p1,
-                    }
+                    })
                 }
                 Motion::Dwell { .. } => continue,
                 _ => {
                     let d = [p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]];
-                    Geo::Line {
+                    Geo::Line(LineGeo {
                         p0,
                         d,
                         l2: d[0] * d[0] + d[1] * d[1] + d[2] * d[2],
-                    }
+                    })
                 }
             };
             elements.push(Element {
@@ -212,86 +223,91 @@ impl Path {
     pub fn nearest_on(&self, i: usize, q: [f64; 3], hint: f64) -> Nearest {
         let e = &self.elements[i];
         match e.geo {
-            Geo::Line { p0, d, l2 } => {
-                let w = [q[0] - p0[0], q[1] - p0[1], q[2] - p0[2]];
-                let f = ((w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / l2).clamp(0.0, 1.0);
-                let pt = [p0[0] + d[0] * f, p0[1] + d[1] * f, p0[2] + d[2] * f];
-                let normal = if f > 0.0 && f < 1.0 {
-                    let l = l2.sqrt();
-                    (d[0] * w[1] - d[1] * w[0]) / l
-                } else {
-                    f64::NAN
-                };
+            Geo::Line(ref line) => line.nearest(i, e, q),
+            Geo::Arc(ref arc) => arc.nearest(i, e, q, hint),
+        }
+    }
+}
+
+impl LineGeo {
+    /// Nearest point to `q` on this line, element `i` of the path: the
+    /// clamped projection.
+    #[inline]
+    fn nearest(&self, i: usize, e: &Element, q: [f64; 3]) -> Nearest {
+        let (p0, d, l2) = (&self.p0, &self.d, self.l2);
+        let w = [q[0] - p0[0], q[1] - p0[1], q[2] - p0[2]];
+        let f = ((w[0] * d[0] + w[1] * d[1] + w[2] * d[2]) / l2).clamp(0.0, 1.0);
+        let pt = [p0[0] + d[0] * f, p0[1] + d[1] * f, p0[2] + d[2] * f];
+        let normal = if f > 0.0 && f < 1.0 {
+            let l = l2.sqrt();
+            (d[0] * w[1] - d[1] * w[0]) / l
+        } else {
+            f64::NAN
+        };
+        Nearest {
+            element: i,
+            dist: d3(q, pt),
+            point: pt,
+            normal,
+            s: e.s0 + f * e.len,
+        }
+    }
+}
+
+impl ArcGeo {
+    /// Nearest point to `q` on this arc, element `i` of the path: radial
+    /// inside the swept sector, else the nearer end point. `hint` as in
+    /// [`Path::nearest_on`].
+    #[inline]
+    fn nearest(&self, i: usize, e: &Element, q: [f64; 3], hint: f64) -> Nearest {
+        let (c, r, sweep) = (&self.c, self.r, self.sweep);
+        let (u, v, n) = self.axes;
+        let (x, y) = (q[u] - c[u], q[v] - c[v]);
+        let rho = (x * x + y * y).sqrt();
+        // Angle of q from the start, in the sweep's direction.
+        let (s0, c0) = self.sc0;
+        let mut phi = (c0 * y - s0 * x).atan2(c0 * x + s0 * y);
+        if sweep < 0.0 {
+            phi = -phi;
+        }
+        if phi < 0.0 {
+            phi += std::f64::consts::TAU;
+        }
+        let mut f = phi / sweep.abs();
+        if sweep.abs() >= std::f64::consts::TAU - 1e-9 && f > 0.75 && hint < e.s0 + 0.25 * e.len {
+            f = 0.0;
+        }
+        if f <= 1.0 && rho > 0.0 {
+            let mut pt = [0.0; 3];
+            pt[u] = c[u] + r * x / rho;
+            pt[v] = c[v] + r * y / rho;
+            // `if` rather than `f64::min`, which is a call in wasm.
+            let g = phi / sweep.abs();
+            pt[n] = self.n0 + self.dn * if g > 1.0 { 1.0 } else { g };
+            Nearest {
+                element: i,
+                dist: d3(q, pt),
+                point: pt,
+                normal: r - rho,
+                s: e.s0 + f * e.len,
+            }
+        } else {
+            let (da, db) = (d3(q, self.p0), d3(q, self.p1));
+            if da <= db {
                 Nearest {
                     element: i,
-                    dist: d3(q, pt),
-                    point: pt,
-                    normal,
-                    s: e.s0 + f * e.len,
+                    dist: da,
+                    point: self.p0,
+                    normal: f64::NAN,
+                    s: e.s0,
                 }
-            }
-            Geo::Arc {
-                c,
-                r,
-                sc0,
-                sweep,
-                axes: (u, v, n),
-                n0,
-                dn,
-                p0,
-                p1,
-            } => {
-                let (x, y) = (q[u] - c[u], q[v] - c[v]);
-                let rho = (x * x + y * y).sqrt();
-                // Angle of q from the start, in the sweep's direction.
-                let (s0, c0) = sc0;
-                let mut phi = (c0 * y - s0 * x).atan2(c0 * x + s0 * y);
-                if sweep < 0.0 {
-                    phi = -phi;
-                }
-                if phi < 0.0 {
-                    phi += std::f64::consts::TAU;
-                }
-                let mut f = phi / sweep.abs();
-                if sweep.abs() >= std::f64::consts::TAU - 1e-9
-                    && f > 0.75
-                    && hint < e.s0 + 0.25 * e.len
-                {
-                    f = 0.0;
-                }
-                if f <= 1.0 && rho > 0.0 {
-                    let mut pt = [0.0; 3];
-                    pt[u] = c[u] + r * x / rho;
-                    pt[v] = c[v] + r * y / rho;
-                    // `if` rather than `f64::min`, which is a call in wasm.
-                    let g = phi / sweep.abs();
-                    pt[n] = n0 + dn * if g > 1.0 { 1.0 } else { g };
-                    Nearest {
-                        element: i,
-                        dist: d3(q, pt),
-                        point: pt,
-                        normal: r - rho,
-                        s: e.s0 + f * e.len,
-                    }
-                } else {
-                    let (da, db) = (d3(q, p0), d3(q, p1));
-                    if da <= db {
-                        Nearest {
-                            element: i,
-                            dist: da,
-                            point: p0,
-                            normal: f64::NAN,
-                            s: e.s0,
-                        }
-                    } else {
-                        Nearest {
-                            element: i,
-                            dist: db,
-                            point: p1,
-                            normal: f64::NAN,
-                            s: e.s0 + e.len,
-                        }
-                    }
+            } else {
+                Nearest {
+                    element: i,
+                    dist: db,
+                    point: self.p1,
+                    normal: f64::NAN,
+                    s: e.s0 + e.len,
                 }
             }
         }
@@ -444,10 +460,10 @@ mod tests {
             for j in 0..=2000 {
                 let a = j as f64 / 2000.0;
                 let pt = match e.geo {
-                    Geo::Line { p0, d, .. } => {
+                    Geo::Line(LineGeo { p0, d, .. }) => {
                         [p0[0] + a * d[0], p0[1] + a * d[1], p0[2] + a * d[2]]
                     }
-                    Geo::Arc {
+                    Geo::Arc(ArcGeo {
                         c,
                         r,
                         sc0: (s0, c0),
@@ -456,7 +472,7 @@ mod tests {
                         n0,
                         dn,
                         ..
-                    } => {
+                    }) => {
                         let th = s0.atan2(c0) + a * sweep;
                         let mut pt = [0.0; 3];
                         pt[u] = c[u] + r * th.cos();
@@ -470,7 +486,7 @@ mod tests {
             assert!(far <= rad, "element {i}: {far} > {rad}");
             // Tight: within the helix's half rise (0 when planar) + 1 µm.
             let rise = match e.geo {
-                Geo::Arc { dn, .. } => 0.5 * dn.abs(),
+                Geo::Arc(ArcGeo { dn, .. }) => 0.5 * dn.abs(),
                 _ => 0.0,
             };
             assert!(rad - far <= rise + 1e-6, "element {i}: {rad} vs {far}");

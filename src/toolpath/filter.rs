@@ -93,20 +93,7 @@ impl Lag1 {
 /// assert!((f.sim[0][2000] - 10.0).abs() < 1e-9);
 /// ```
 pub fn filter(tl: &Timeline, t_a: f64, t: [f64; 3], dt: f64, n: usize) -> Filtered {
-    let mut out = Filtered {
-        t: Vec::with_capacity(n),
-        ..Filtered::default()
-    };
-    for ax in 0..3 {
-        for v in [
-            &mut out.cmd[ax],
-            &mut out.vel_cmd[ax],
-            &mut out.sim[ax],
-            &mut out.vel_sim[ax],
-        ] {
-            v.reserve_exact(n);
-        }
-    }
+    let mut out = Filtered::with_capacity(n);
     let lags = [
         Lag1::new(t[0], dt),
         Lag1::new(t[1], dt),
@@ -116,17 +103,7 @@ pub fn filter(tl: &Timeline, t_a: f64, t: [f64; 3], dt: f64, n: usize) -> Filter
     let mut now = Sampler::new(tl, dt, 0.0);
     let mut back = Sampler::new(tl, dt, t_a);
     let inv_ta = if t_a > 0.0 { 1.0 / t_a } else { 0.0 };
-    // When tA is a whole number m of samples (to within 1e-15 relative),
-    // the value at t − tA is the one computed m samples earlier: keep the
-    // last m positions and integrals in a ring instead of evaluating the
-    // timeline twice per sample.
-    let m = (t_a / dt).round();
-    let mut ring: Vec<([f64; 3], [f64; 3])> =
-        if t_a > 0.0 && (1.0..1e6).contains(&m) && (m * dt - t_a).abs() <= 1e-15 * t_a {
-            vec![(o, [0.0; 3]); m as usize]
-        } else {
-            Vec::new()
-        };
+    let mut ring = delay_ring(o, t_a, dt);
     let mut slot = 0usize;
     let mut y = o;
     let mut u_prev = o;
@@ -174,4 +151,41 @@ pub fn filter(tl: &Timeline, t_a: f64, t: [f64; 3], dt: f64, n: usize) -> Filter
         u_prev = u;
     }
     out
+}
+
+impl Filtered {
+    /// Empty series with room for `n` samples each.
+    fn with_capacity(n: usize) -> Self {
+        let mut out = Filtered {
+            t: Vec::with_capacity(n),
+            ..Filtered::default()
+        };
+        for ax in 0..3 {
+            for v in [
+                &mut out.cmd[ax],
+                &mut out.vel_cmd[ax],
+                &mut out.sim[ax],
+                &mut out.vel_sim[ax],
+            ] {
+                v.reserve_exact(n);
+            }
+        }
+        out
+    }
+}
+
+/// The ring of `(position, Q)` that gives Eq. 1's moving average its far
+/// end, the command at t − tA, without evaluating the timeline twice per
+/// sample: when `t_a` is a whole number m of samples `dt` (to within 1e-15
+/// relative) the value at t − tA is the one computed m samples earlier, so
+/// the last m are kept, starting as the tool standing at `origin` (Q = 0).
+/// Empty otherwise (and without a moving average); the caller then
+/// evaluates the timeline at t − tA.
+fn delay_ring(origin: [f64; 3], t_a: f64, dt: f64) -> Vec<([f64; 3], [f64; 3])> {
+    let m = (t_a / dt).round();
+    if t_a > 0.0 && (1.0..1e6).contains(&m) && (m * dt - t_a).abs() <= 1e-15 * t_a {
+        vec![(origin, [0.0; 3]); m as usize]
+    } else {
+        Vec::new()
+    }
 }

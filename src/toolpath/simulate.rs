@@ -20,8 +20,8 @@
 
 use serde::Serialize;
 
-use super::contour::{Path, Tracker};
-use super::filter::filter;
+use super::contour::{Element, Nearest, Path, Tracker};
+use super::filter::{filter, Filtered};
 use super::timeline::Timeline;
 use super::{SimConfig, ToolpathError, MAX_SAMPLES};
 use crate::nc::program::{parse, Motion, Program, Segment};
@@ -125,22 +125,60 @@ pub fn simulate(
 ) -> Result<Simulation, ToolpathError> {
     cfg.validate()?;
     let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
+    let tl = timeline(command, cfg, tmax);
+    let path = Path::new(reference);
+    if path.elements.is_empty() || tl.items.is_empty() {
+        return Err(ToolpathError::Empty);
+    }
+    let n = sample_count(&tl, cfg, tmax)?;
+    let f = filter(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt, n);
+    let tr = track(&path, &f, n);
+    let end = reference.last().map_or(tl.origin, |s| s.end.p());
+    let motion_time = settling_time(&f.sim, end, n, cfg.dt);
+    let segments = path
+        .elements
+        .iter()
+        .zip(&tr.acc)
+        .map(|(el, a)| a.stats(el, &reference[el.segment]))
+        .collect();
+    Ok(Simulation {
+        max_error_time: f.t.get(tr.max_k).copied().unwrap_or(0.0),
+        max_error_line: reference[path.elements[tr.max_el].segment].line,
+        t: f.t,
+        cmd: f.cmd,
+        sim: f.sim,
+        near: tr.near,
+        vel_cmd: f.vel_cmd,
+        vel_sim: f.vel_sim,
+        error: tr.error,
+        max_error: tr.max_error,
+        motion_time,
+        nominal_time: tl.end_time,
+        segments,
+    })
+}
+
+/// The timed command: a G0 ends in an exact stop of `tA + 10·max T`, and
+/// with `dwellExactStop` a G4 first waits `tA + 5·max T` (see the module
+/// header). `tmax` is the largest axis lag, s.
+fn timeline(command: &[Segment], cfg: &SimConfig, tmax: f64) -> Timeline {
     let dwell_stop = if cfg.dwell_exact_stop {
         cfg.t_a + 5.0 * tmax
     } else {
         0.0
     };
-    let tl = Timeline::with_stops(
+    Timeline::with_stops(
         command,
         cfg.rapid_feed,
         cfg.feed_override,
         cfg.t_a + 10.0 * tmax,
         dwell_stop,
-    );
-    let path = Path::new(reference);
-    if path.elements.is_empty() || tl.items.is_empty() {
-        return Err(ToolpathError::Empty);
-    }
+    )
+}
+
+/// Number of samples at `dt` until `tA + 12·max T` after the last command
+/// ends, or [`ToolpathError::TooLong`] past [`MAX_SAMPLES`].
+fn sample_count(tl: &Timeline, cfg: &SimConfig, tmax: f64) -> Result<usize, ToolpathError> {
     let t_end = tl.end_time + cfg.t_a + 12.0 * tmax + cfg.dt;
     let n_f = (t_end / cfg.dt).ceil() + 1.0;
     if n_f > MAX_SAMPLES as f64 {
@@ -149,9 +187,26 @@ pub fn simulate(
             limit: MAX_SAMPLES,
         });
     }
-    let n = n_f as usize;
-    let f = filter(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt, n);
+    Ok(n_f as usize)
+}
 
+/// The contour error of every sample and its statistics per element.
+struct Tracked {
+    /// Contour error per sample, mm.
+    error: Vec<f64>,
+    /// Nearest reference-path point X/Y/Z per sample, mm.
+    near: [Vec<f64>; 3],
+    /// Running statistics per element of the reference path.
+    acc: Vec<Acc>,
+    /// Largest contour error on cutting moves, mm, its sample and element.
+    max_error: f64,
+    max_k: usize,
+    max_el: usize,
+}
+
+/// Measures the first `n` simulated samples of `f` against `path`: the
+/// nearest point of each, followed along the path by a [`Tracker`].
+fn track(path: &Path, f: &Filtered, n: usize) -> Tracked {
     let mut tracker = Tracker::default();
     let mut error = Vec::with_capacity(n);
     let mut near: [Vec<f64>; 3] = [
@@ -159,8 +214,7 @@ pub fn simulate(
         Vec::with_capacity(n),
         Vec::with_capacity(n),
     ];
-    let ne = path.elements.len();
-    let mut acc = vec![Acc::default(); ne];
+    let mut acc = vec![Acc::default(); path.elements.len()];
     let (mut max_error, mut max_k, mut max_el) = (0.0f64, 0usize, 0usize);
     let (sx, sy, sz) = (&f.sim[0][..n], &f.sim[1][..n], &f.sim[2][..n]);
     let (cx, cy, cz) = (&f.cmd[0][..n], &f.cmd[1][..n], &f.cmd[2][..n]);
@@ -169,7 +223,7 @@ pub fn simulate(
         // The commanded point: on the reference path when the reference is
         // the command, close to it otherwise (reverse compensation).
         let lag = ((cx[k] - q[0]).powi(2) + (cy[k] - q[1]).powi(2) + (cz[k] - q[2]).powi(2)).sqrt();
-        let Some(nr) = tracker.nearest_within(&path, q, lag) else {
+        let Some(nr) = tracker.nearest_within(path, q, lag) else {
             break;
         };
         error.push(nr.dist);
@@ -180,86 +234,85 @@ pub fn simulate(
         let (Some(a), Some(el)) = (acc.get_mut(e), path.elements.get(e)) else {
             continue;
         };
-        a.samples += 1;
-        let hv = usize::from(nr.s - el.s0 > 0.5 * el.len);
-        for ax in 0..3 {
-            a.vec[hv][ax] += nr.point[ax] - q[ax];
-        }
-        a.vec[hv][3] += 1.0;
-        if nr.dist > a.max_error {
-            a.max_error = nr.dist;
-        }
-        if nr.normal.is_finite() {
-            a.sum_dev += nr.normal;
-            a.n_dev += 1;
-            let h = usize::from(nr.s - el.s0 > 0.5 * el.len);
-            a.half[2 * h] += nr.normal;
-            a.half[2 * h + 1] += 1.0;
-        }
+        a.add(el, &nr, q);
         if !el.rapid && nr.dist > max_error {
             max_error = nr.dist;
             max_k = k;
             max_el = e;
         }
     }
-    let end = reference.last().map_or(tl.origin, |s| s.end.p());
-    let mut motion_time = 0.0;
+    Tracked {
+        error,
+        near,
+        acc,
+        max_error,
+        max_k,
+        max_el,
+    }
+}
+
+/// The motion time: the end of the last of the first `n` samples of `sim`
+/// farther than 1 µm from `end`, s (0 when every sample is within it).
+fn settling_time(sim: &[Vec<f64>; 3], end: [f64; 3], n: usize, dt: f64) -> f64 {
     for k in (0..n).rev() {
-        let d = ((f.sim[0][k] - end[0]).powi(2)
-            + (f.sim[1][k] - end[1]).powi(2)
-            + (f.sim[2][k] - end[2]).powi(2))
+        let d = ((sim[0][k] - end[0]).powi(2)
+            + (sim[1][k] - end[1]).powi(2)
+            + (sim[2][k] - end[2]).powi(2))
         .sqrt();
         if d > 1e-3 {
-            motion_time = (k + 1) as f64 * cfg.dt;
-            break;
+            return (k + 1) as f64 * dt;
         }
     }
-    let segments = path
-        .elements
-        .iter()
-        .enumerate()
-        .map(|(i, el)| {
-            let seg = &reference[el.segment];
-            let (kind, radius) = match seg.motion {
-                Motion::Arc(a) => ("arc", a.radius),
-                Motion::Rapid => ("rapid", 0.0),
-                _ => ("line", 0.0),
-            };
-            SegmentStats {
-                segment: el.segment,
-                line: seg.line,
-                kind,
-                length: el.len,
-                radius,
-                max_error_um: acc[i].max_error * 1e3,
-                mean_deviation: (acc[i].n_dev > 0).then(|| acc[i].sum_dev / acc[i].n_dev as f64),
-                half_deviation: [0, 1].map(|h| {
-                    let half = &acc[i].half;
-                    (half[2 * h + 1] > 0.0).then(|| half[2 * h] / half[2 * h + 1])
-                }),
-                half_vector: [0, 1].map(|h| {
-                    let v = &acc[i].vec[h];
-                    (v[3] > 0.0).then(|| [v[0] / v[3], v[1] / v[3], v[2] / v[3]])
-                }),
-                samples: acc[i].samples,
-            }
-        })
-        .collect();
-    Ok(Simulation {
-        max_error_time: f.t.get(max_k).copied().unwrap_or(0.0),
-        max_error_line: reference[path.elements[max_el].segment].line,
-        t: f.t,
-        cmd: f.cmd,
-        sim: f.sim,
-        near,
-        vel_cmd: f.vel_cmd,
-        vel_sim: f.vel_sim,
-        error,
-        max_error,
-        motion_time,
-        nominal_time: tl.end_time,
-        segments,
-    })
+    0.0
+}
+
+impl Acc {
+    /// Adds the sample `q` whose nearest point `nr` lies on element `el`.
+    #[inline]
+    fn add(&mut self, el: &Element, nr: &Nearest, q: [f64; 3]) {
+        self.samples += 1;
+        let h = usize::from(nr.s - el.s0 > 0.5 * el.len);
+        for ax in 0..3 {
+            self.vec[h][ax] += nr.point[ax] - q[ax];
+        }
+        self.vec[h][3] += 1.0;
+        if nr.dist > self.max_error {
+            self.max_error = nr.dist;
+        }
+        if nr.normal.is_finite() {
+            self.sum_dev += nr.normal;
+            self.n_dev += 1;
+            self.half[2 * h] += nr.normal;
+            self.half[2 * h + 1] += 1.0;
+        }
+    }
+
+    /// The statistics of element `el`, whose reference segment is `seg`.
+    fn stats(&self, el: &Element, seg: &Segment) -> SegmentStats {
+        let (kind, radius) = match seg.motion {
+            Motion::Arc(a) => ("arc", a.radius),
+            Motion::Rapid => ("rapid", 0.0),
+            _ => ("line", 0.0),
+        };
+        SegmentStats {
+            segment: el.segment,
+            line: seg.line,
+            kind,
+            length: el.len,
+            radius,
+            max_error_um: self.max_error * 1e3,
+            mean_deviation: (self.n_dev > 0).then(|| self.sum_dev / self.n_dev as f64),
+            half_deviation: [0, 1].map(|h| {
+                let half = &self.half;
+                (half[2 * h + 1] > 0.0).then(|| half[2 * h] / half[2 * h + 1])
+            }),
+            half_vector: [0, 1].map(|h| {
+                let v = &self.vec[h];
+                (v[3] > 0.0).then(|| [v[0] / v[3], v[1] / v[3], v[2] / v[3]])
+            }),
+            samples: self.samples,
+        }
+    }
 }
 
 /// Simulates a parsed program against itself.

@@ -111,87 +111,54 @@ impl Timeline {
         dwell_stop: f64,
     ) -> Self {
         let origin = segments.first().map_or([0.0; 3], |s| s.start.p());
-        let mut items = Vec::with_capacity(segments.len());
-        let mut t = 0.0;
+        let mut tl = Self {
+            items: Vec::with_capacity(segments.len()),
+            origin,
+            end_time: 0.0,
+            max_speed: 0.0,
+        };
         let mut q = [0.0; 3];
-        let mut max_speed: f64 = 0.0;
         for (i, s) in segments.iter().enumerate() {
-            let p0 = s.start.p();
-            let p1 = s.end.p();
-            let (tau, geo) = match s.motion {
-                Motion::Dwell { seconds } => (seconds + dwell_stop, Geo::Still),
-                m => {
-                    let len = s.length();
-                    let feed = match m {
-                        Motion::Rapid => rapid_feed,
-                        _ => s.feed * feed_override,
-                    } / 60.0;
-                    if len <= 0.0 || feed <= 0.0 {
-                        continue;
-                    }
-                    max_speed = max_speed.max(feed);
-                    let tau = len / feed;
-                    let geo = match m {
-                        Motion::Arc(a) => {
-                            let axes = a.plane.axes();
-                            let (u, v, n) = axes;
-                            Geo::Arc {
-                                c: a.center,
-                                r: a.radius,
-                                th0: (p0[v] - a.center[v]).atan2(p0[u] - a.center[u]),
-                                w: a.sweep / tau,
-                                axes,
-                                vn: (p1[n] - p0[n]) / tau,
-                                sc0: (p0[v] - a.center[v]).atan2(p0[u] - a.center[u]).sin_cos(),
-                            }
-                        }
-                        _ => Geo::Line {
-                            v: [
-                                (p1[0] - p0[0]) / tau,
-                                (p1[1] - p0[1]) / tau,
-                                (p1[2] - p0[2]) / tau,
-                            ],
-                        },
-                    };
-                    (tau, geo)
-                }
+            let Some((tau, geo, speed)) = timed(s, rapid_feed, feed_override, dwell_stop) else {
+                continue;
             };
+            tl.max_speed = tl.max_speed.max(speed);
             if tau <= 0.0 {
                 continue;
             }
-            let item = Item {
-                segment: i,
-                t0: t,
-                tau,
-                p0,
-                p1,
-                q0: q,
-                geo,
-            };
-            q = item.local_integral(tau, origin, q);
-            t += tau;
-            items.push(item);
+            let (p0, p1) = (s.start.p(), s.end.p());
+            q = tl.push(i, tau, p0, p1, geo, q);
             if matches!(s.motion, Motion::Rapid) && rapid_stop > 0.0 {
-                let stop = Item {
-                    segment: i,
-                    t0: t,
-                    tau: rapid_stop,
-                    p0: p1,
-                    p1,
-                    q0: q,
-                    geo: Geo::Still,
-                };
-                q = stop.local_integral(rapid_stop, origin, q);
-                t += rapid_stop;
-                items.push(stop);
+                q = tl.push(i, rapid_stop, p1, p1, Geo::Still, q);
             }
         }
-        Self {
-            items,
-            origin,
-            end_time: t,
-            max_speed,
-        }
+        tl
+    }
+
+    /// Appends an item of segment `segment` lasting `tau` s from `p0` to
+    /// `p1` at the current end time, with `Q = q` at its start; returns `Q`
+    /// at its end.
+    fn push(
+        &mut self,
+        segment: usize,
+        tau: f64,
+        p0: [f64; 3],
+        p1: [f64; 3],
+        geo: Geo,
+        q: [f64; 3],
+    ) -> [f64; 3] {
+        let item = Item {
+            segment,
+            t0: self.end_time,
+            tau,
+            p0,
+            p1,
+            q0: q,
+            geo,
+        };
+        self.end_time += tau;
+        self.items.push(item);
+        item.local_integral(tau, self.origin, q)
     }
 
     /// The item in force at `t`, starting the search at `hint` (updated).
@@ -259,6 +226,61 @@ impl Timeline {
                     ]
                 }
                 None => [0.0; 3],
+            },
+        }
+    }
+}
+
+/// Duration (s), geometry and path speed (mm/s; 0 for a dwell) of segment
+/// `s` at its feed × `feed_override`, a rapid at `rapid_feed` (mm/min), a
+/// dwell waiting `dwell_stop` s before its own time. `None` for a move of no
+/// length or no feed.
+fn timed(
+    s: &Segment,
+    rapid_feed: f64,
+    feed_override: f64,
+    dwell_stop: f64,
+) -> Option<(f64, Geo, f64)> {
+    let m = match s.motion {
+        Motion::Dwell { seconds } => return Some((seconds + dwell_stop, Geo::Still, 0.0)),
+        m => m,
+    };
+    let len = s.length();
+    let feed = match m {
+        Motion::Rapid => rapid_feed,
+        _ => s.feed * feed_override,
+    } / 60.0;
+    if len <= 0.0 || feed <= 0.0 {
+        return None;
+    }
+    let tau = len / feed;
+    Some((tau, Geo::moving(m, s.start.p(), s.end.p(), tau), feed))
+}
+
+impl Geo {
+    /// The geometry of motion `m` from `p0` to `p1` run in `tau` s: an arc
+    /// at constant angular rate, anything else a line at constant velocity.
+    fn moving(m: Motion, p0: [f64; 3], p1: [f64; 3], tau: f64) -> Self {
+        match m {
+            Motion::Arc(a) => {
+                let axes = a.plane.axes();
+                let (u, v, n) = axes;
+                Geo::Arc {
+                    c: a.center,
+                    r: a.radius,
+                    th0: (p0[v] - a.center[v]).atan2(p0[u] - a.center[u]),
+                    w: a.sweep / tau,
+                    axes,
+                    vn: (p1[n] - p0[n]) / tau,
+                    sc0: (p0[v] - a.center[v]).atan2(p0[u] - a.center[u]).sin_cos(),
+                }
+            }
+            _ => Geo::Line {
+                v: [
+                    (p1[0] - p0[0]) / tau,
+                    (p1[1] - p0[1]) / tau,
+                    (p1[2] - p0[2]) / tau,
+                ],
             },
         }
     }

@@ -20,7 +20,7 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use crate::kinematics::inverse::limits_from_degrees;
-use crate::kinematics::{inverse, q_to_degrees, KinematicsError, Pose};
+use crate::kinematics::{inverse, q_to_degrees, KinematicsError, Pose, Solution};
 use crate::machine::MachineRef;
 use crate::nc::writer::fmt_num;
 
@@ -100,6 +100,44 @@ pub const MAX_LENGTH: f64 = 1e5;
 /// assert_eq!(s.nc.lines().filter(|l| l.starts_with("G1") || l.starts_with("G0 X")).count(), 64);
 /// ```
 pub fn s_shape(o: &SShapeOptions) -> Result<SShape, KinematicsError> {
+    validate(o)?;
+    let (machine, chain) = o.machine.resolve().map_err(|e| KinematicsError::BadInput {
+        field: "machine".into(),
+        why: e.to_string(),
+    })?;
+    let (points, axes) = targets(o);
+    let limits = limits_from_degrees(&machine.limits);
+    let present = chain.axes();
+    let mut nc =
+        String::from("%\n(ISO 10791-7 S-shape, 64 evaluation points, mtmotion)\nG90 G21 G17\n");
+    let mut prev: Option<[f64; 6]> = None;
+    for (n, (p, k)) in points.iter().zip(&axes).enumerate() {
+        let sols = inverse(
+            &chain,
+            &Pose {
+                position: *p,
+                orientation: *k,
+            },
+            o.tool_length,
+            &limits,
+        )?;
+        let best = nearest_solution(&sols, prev).ok_or_else(|| {
+            KinematicsError::Unreachable(format!(
+                "S-shape point {} is outside the limits of {}; move `origin`",
+                n + 1,
+                machine.name
+            ))
+        })?;
+        prev = Some(best.q);
+        nc.push_str(&block(n, &best.q, &present, o.feed));
+        nc.push('\n');
+    }
+    nc.push_str("M30\n%\n");
+    Ok(SShape { points, axes, nc })
+}
+
+/// Checks the scale, the feed, the tool length and the origin.
+fn validate(o: &SShapeOptions) -> Result<(), KinematicsError> {
     if !(o.scale.is_finite() && o.scale > 0.0 && o.scale <= 2.0) {
         return Err(KinematicsError::BadInput {
             field: "scale".into(),
@@ -133,63 +171,41 @@ pub fn s_shape(o: &SShapeOptions) -> Result<SShape, KinematicsError> {
             });
         }
     }
-    let (machine, chain) = o.machine.resolve().map_err(|e| KinematicsError::BadInput {
-        field: "machine".into(),
-        why: e.to_string(),
-    })?;
-    let (points, axes) = targets(o);
-    let limits = limits_from_degrees(&machine.limits);
-    let present = chain.axes();
-    let mut nc =
-        String::from("%\n(ISO 10791-7 S-shape, 64 evaluation points, mtmotion)\nG90 G21 G17\n");
-    let mut prev: Option<[f64; 6]> = None;
-    for (n, (p, k)) in points.iter().zip(&axes).enumerate() {
-        let sols = inverse(
-            &chain,
-            &Pose {
-                position: *p,
-                orientation: *k,
-            },
-            o.tool_length,
-            &limits,
-        )?;
-        let best = sols
-            .iter()
-            .filter(|s| s.within_limits)
-            .min_by(|a, b| {
-                let d = |s: &crate::kinematics::Solution| match prev {
-                    Some(q) => (3..6).map(|i| (s.q[i] - q[i]).abs()).sum::<f64>(),
-                    None => (3..6).map(|i| s.q[i].abs()).sum::<f64>(),
-                };
-                d(a).total_cmp(&d(b))
-            })
-            .ok_or_else(|| {
-                KinematicsError::Unreachable(format!(
-                    "S-shape point {} is outside the limits of {}; move `origin`",
-                    n + 1,
-                    machine.name
-                ))
-            })?;
-        prev = Some(best.q);
-        let qd = q_to_degrees(&best.q);
-        let mut line = if n == 0 {
-            "G0".to_string()
-        } else {
-            "G1".to_string()
+    Ok(())
+}
+
+/// The within-limits solution whose rotary axes (A, B, C) move least from
+/// `prev` (the previous point's joints), or lie nearest zero for the first
+/// point; the first of equals wins.
+fn nearest_solution(sols: &[Solution], prev: Option<[f64; 6]>) -> Option<&Solution> {
+    sols.iter().filter(|s| s.within_limits).min_by(|a, b| {
+        let d = |s: &Solution| match prev {
+            Some(q) => (3..6).map(|i| (s.q[i] - q[i]).abs()).sum::<f64>(),
+            None => (3..6).map(|i| s.q[i].abs()).sum::<f64>(),
         };
-        for (i, a) in ["X", "Y", "Z", "A", "B", "C"].iter().enumerate() {
-            if present.contains(&crate::kinematics::AXES[i]) {
-                line.push_str(&format!(" {a}{}", fmt_num(qd[i])));
-            }
+        d(a).total_cmp(&d(b))
+    })
+}
+
+/// The block (without newline) moving to joints `q` for point `n`
+/// (0-based): a G0 to the first, G1 to the others, the words of the
+/// `present` axes only, and the feed on the first G1.
+fn block(n: usize, q: &[f64; 6], present: &[&str], feed: f64) -> String {
+    let qd = q_to_degrees(q);
+    let mut line = if n == 0 {
+        "G0".to_string()
+    } else {
+        "G1".to_string()
+    };
+    for (i, a) in ["X", "Y", "Z", "A", "B", "C"].iter().enumerate() {
+        if present.contains(&crate::kinematics::AXES[i]) {
+            line.push_str(&format!(" {a}{}", fmt_num(qd[i])));
         }
-        if n == 1 {
-            line.push_str(&format!(" F{}", fmt_num(o.feed)));
-        }
-        nc.push_str(&line);
-        nc.push('\n');
     }
-    nc.push_str("M30\n%\n");
-    Ok(SShape { points, axes, nc })
+    if n == 1 {
+        line.push_str(&format!(" F{}", fmt_num(feed)));
+    }
+    line
 }
 
 /// The 64 tool-tip targets (32 on the upper S curve, then 32 on the lower,

@@ -86,9 +86,59 @@ fn is_move(s: &Segment) -> bool {
 /// The compensated segment list: edited originals (keeping their `block`),
 /// connecting lines and dwells (with `block: None`).
 pub fn rebuild(orig: &[Segment], edit: &Edit) -> Vec<Segment> {
+    let (starts, ends) = joints(orig, edit);
+    let mut out = Vec::with_capacity(orig.len() + 8);
+    let mut pen = orig.first().map_or([0.0; 3], |s| s.start.p());
+    for (i, s) in orig.iter().enumerate() {
+        let mut seg = s.clone();
+        if !is_move(s) {
+            seg.start.x = pen[0];
+            seg.start.y = pen[1];
+            seg.start.z = pen[2];
+            seg.end = seg.start;
+            out.push(seg);
+            continue;
+        }
+        if dist(pen, starts[i]) > 1e-6 {
+            let c = connector(&out, s, pen, starts[i]);
+            out.push(c);
+        }
+        seg.start.x = starts[i][0];
+        seg.start.y = starts[i][1];
+        seg.start.z = starts[i][2];
+        seg.end.x = ends[i][0];
+        seg.end.y = ends[i][1];
+        seg.end.z = ends[i][2];
+        if let Motion::Arc(a) = s.motion {
+            seg.motion = refit_arc(a, edit_radius(edit, i), starts[i], ends[i]);
+        }
+        pen = ends[i];
+        out.push(seg);
+        let dw = edit.dwell_after.get(i).copied().unwrap_or(0.0);
+        if dw > 0.0 {
+            let mut d = out.last().cloned().unwrap_or_else(|| s.clone());
+            d.block = None;
+            d.line = 0;
+            d.motion = Motion::Dwell { seconds: dw };
+            d.start = d.end;
+            d.feed = 0.0;
+            out.push(d);
+        }
+    }
+    out
+}
+
+/// The new radius of segment `i` (0 when the edit has none), mm.
+fn edit_radius(edit: &Edit, i: usize) -> f64 {
+    edit.radius.get(i).copied().unwrap_or(0.0)
+}
+
+/// The new start and end point of every segment: each joint between
+/// consecutive moves placed by the rules of the module header, dwells
+/// skipped, the program's first start and last end kept. mm.
+fn joints(orig: &[Segment], edit: &Edit) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
     let n = orig.len();
-    let r_new = |i: usize| edit.radius.get(i).copied().unwrap_or(0.0);
-    // New start and end of every segment.
+    let r_new = |i: usize| edit_radius(edit, i);
     let mut starts: Vec<[f64; 3]> = orig.iter().map(|s| s.start.p()).collect();
     let mut ends: Vec<[f64; 3]> = orig.iter().map(|s| s.end.p()).collect();
     let moves: Vec<usize> = (0..n).filter(|&i| is_move(&orig[i])).collect();
@@ -124,82 +174,59 @@ pub fn rebuild(orig: &[Segment], edit: &Edit) -> Vec<Segment> {
         ends[i] = p;
         starts[k] = q;
     }
-    let mut out = Vec::with_capacity(n + 8);
-    let mut pen = orig.first().map_or([0.0; 3], |s| s.start.p());
-    for (i, s) in orig.iter().enumerate() {
-        let mut seg = s.clone();
-        if !is_move(s) {
-            seg.start.x = pen[0];
-            seg.start.y = pen[1];
-            seg.start.z = pen[2];
-            seg.end = seg.start;
-            out.push(seg);
-            continue;
-        }
-        if dist(pen, starts[i]) > 1e-6 {
-            let mut c = s.clone();
-            c.block = None;
-            c.line = 0;
-            c.motion = Motion::Linear;
-            c.start = prev_pose(&out, s, pen);
-            c.end = c.start;
-            c.end.x = starts[i][0];
-            c.end.y = starts[i][1];
-            c.end.z = starts[i][2];
-            c.feed = if s.is_cutting() {
-                s.feed
-            } else {
-                out.iter()
-                    .rev()
-                    .find(|x| x.is_cutting())
-                    .map_or(s.feed, |x| x.feed)
-            };
-            out.push(c);
-        }
-        seg.start.x = starts[i][0];
-        seg.start.y = starts[i][1];
-        seg.start.z = starts[i][2];
-        seg.end.x = ends[i][0];
-        seg.end.y = ends[i][1];
-        seg.end.z = ends[i][2];
-        if let Motion::Arc(mut a) = s.motion {
-            a.radius = r_new(i);
-            let (u, v, _) = a.plane.axes();
-            let th0 = (starts[i][v] - a.center[v]).atan2(starts[i][u] - a.center[u]);
-            let th1 = (ends[i][v] - a.center[v]).atan2(ends[i][u] - a.center[u]);
-            let tau = std::f64::consts::TAU;
-            let mut sw = if a.sweep > 0.0 {
-                (th1 - th0).rem_euclid(tau)
-            } else {
-                -(th0 - th1).rem_euclid(tau)
-            };
-            if (sw - a.sweep).abs() > std::f64::consts::PI {
-                sw += if a.sweep > sw { tau } else { -tau };
-            }
-            if a.sweep.abs() > tau - 1e-9 && sw.abs() < 1e-9 {
-                sw = a.sweep;
-            }
-            if sw == 0.0 || sw.signum() != a.sweep.signum() {
-                seg.motion = Motion::Linear;
-            } else {
-                a.sweep = sw;
-                seg.motion = Motion::Arc(a);
-            }
-        }
-        pen = ends[i];
-        out.push(seg);
-        let dw = edit.dwell_after.get(i).copied().unwrap_or(0.0);
-        if dw > 0.0 {
-            let mut d = out.last().cloned().unwrap_or_else(|| s.clone());
-            d.block = None;
-            d.line = 0;
-            d.motion = Motion::Dwell { seconds: dw };
-            d.start = d.end;
-            d.feed = 0.0;
-            out.push(d);
-        }
+    (starts, ends)
+}
+
+/// The line from the pen (where the rebuilt program so far, `out`, ends)
+/// to `to`, the new start of `s`: at `s`'s feed, or the last cutting feed
+/// when `s` is a rapid.
+fn connector(out: &[Segment], s: &Segment, pen: [f64; 3], to: [f64; 3]) -> Segment {
+    let mut c = s.clone();
+    c.block = None;
+    c.line = 0;
+    c.motion = Motion::Linear;
+    c.start = prev_pose(out, s, pen);
+    c.end = c.start;
+    c.end.x = to[0];
+    c.end.y = to[1];
+    c.end.z = to[2];
+    c.feed = if s.is_cutting() {
+        s.feed
+    } else {
+        out.iter()
+            .rev()
+            .find(|x| x.is_cutting())
+            .map_or(s.feed, |x| x.feed)
+    };
+    c
+}
+
+/// Arc `a` with radius `r`, from `start` to `end`: same centre and
+/// direction, the sweep nearest the original; a line when no sweep of the
+/// arc's direction remains.
+fn refit_arc(mut a: Arc, r: f64, start: [f64; 3], end: [f64; 3]) -> Motion {
+    a.radius = r;
+    let (u, v, _) = a.plane.axes();
+    let th0 = (start[v] - a.center[v]).atan2(start[u] - a.center[u]);
+    let th1 = (end[v] - a.center[v]).atan2(end[u] - a.center[u]);
+    let tau = std::f64::consts::TAU;
+    let mut sw = if a.sweep > 0.0 {
+        (th1 - th0).rem_euclid(tau)
+    } else {
+        -(th0 - th1).rem_euclid(tau)
+    };
+    if (sw - a.sweep).abs() > std::f64::consts::PI {
+        sw += if a.sweep > sw { tau } else { -tau };
     }
-    out
+    if a.sweep.abs() > tau - 1e-9 && sw.abs() < 1e-9 {
+        sw = a.sweep;
+    }
+    if sw == 0.0 || sw.signum() != a.sweep.signum() {
+        Motion::Linear
+    } else {
+        a.sweep = sw;
+        Motion::Arc(a)
+    }
 }
 
 fn prev_pose(out: &[Segment], s: &Segment, pen: [f64; 3]) -> crate::nc::program::Pose {

@@ -484,19 +484,25 @@ fn check(
     before_err: &[f64],
     cfg: &ReverseConfig,
     before: &Simulation,
-    mut edit: Edit,
+    edit: Edit,
     tick: &mut dyn FnMut(f64, &str) -> Result<(), ToolpathError>,
 ) -> Result<Checked, ToolpathError> {
     let orig = &program.segments;
-    let id = identity(orig, vec![0.0; orig.len()]);
-    let mut reverted: Vec<Option<String>> = vec![None; rg.members.len()];
+    let mut rv = Review {
+        orig,
+        rg,
+        before_err,
+        id: identity(orig, vec![0.0; orig.len()]),
+        edit,
+        reverted: vec![None; rg.members.len()],
+    };
     let limit = before.motion_time * (1.0 + cfg.time_budget) + cfg.sim.dt;
     for round in 0..MAX_CHECKS {
         tick(0.7 + 0.07 * round as f64, "checking the written program")?;
-        if (0..rg.members.len()).all(|r| !changed(rg, r, &edit, &id)) {
+        if (0..rg.members.len()).all(|r| !rv.changed(r)) {
             break;
         }
-        let segments = rebuild(orig, &edit);
+        let segments = rebuild(orig, &rv.edit);
         let nc = write_source(text, program, &segments);
         let Ok(written) = parse(&nc) else {
             // A writer limit: never hand out a program that does not read back.
@@ -504,18 +510,90 @@ fn check(
         };
         let sim = simulate(&written.segments, orig, &cfg.sim)?;
         let after = region_errors(rg, &sim.segments);
-        let mut bad = false;
         let over_time = sim.motion_time > limit;
-        for r in 0..rg.members.len() {
-            if !changed(rg, r, &edit, &id) {
+        let unimproved = rv.revert_unimproved(&after, over_time);
+        let raised = rv.revert_neighbours(&after);
+        let bad = unimproved || raised;
+        let worse = sim.max_error > before.max_error;
+        if !bad && !worse && !over_time {
+            return Ok(Checked {
+                nc,
+                edit: rv.edit,
+                segments,
+                sim,
+                after,
+                reverted: rv.reverted,
+            });
+        }
+        if !bad {
+            break;
+        }
+    }
+    // Nothing left to change, or still not better everywhere.
+    Ok(rv.give_back(text, before))
+}
+
+/// The edit under [`check`], against the original program's regions and
+/// their errors, with the reason each reverted region went back.
+struct Review<'a> {
+    orig: &'a [Segment],
+    rg: &'a Regions,
+    /// Maximum error per region of the original program, mm.
+    before_err: &'a [f64],
+    /// The unchanged program's edit.
+    id: Edit,
+    edit: Edit,
+    reverted: Vec<Option<String>>,
+}
+
+impl Review<'_> {
+    /// The original program, text and simulation (`before`) as the result,
+    /// with a note on every region still changed.
+    fn give_back(mut self, text: &str, before: &Simulation) -> Checked {
+        for r in 0..self.rg.members.len() {
+            if self.changed(r) {
+                self.reverted[r] = Some("the program as a whole would not improve (error or time budget); the original is returned".into());
+            }
+        }
+        Checked {
+            nc: text.to_string(),
+            edit: self.id,
+            segments: self.orig.to_vec(),
+            sim: before.clone(),
+            after: self.before_err.to_vec(),
+            reverted: self.reverted,
+        }
+    }
+
+    /// Region `r` differs from the original.
+    fn changed(&self, r: usize) -> bool {
+        changed(self.rg, r, &self.edit, &self.id)
+    }
+
+    /// Gives region `r` its original segments back, for reason `why`.
+    fn revert(&mut self, r: usize, why: String) {
+        copy_region(self.rg, r, &self.id, &mut self.edit);
+        self.reverted[r] = Some(why);
+    }
+
+    /// Reverts every changed region whose written error (`after`, mm per
+    /// region) did not fall, and, when the program runs `over_time`, every
+    /// changed region with dwells. Whether any was reverted.
+    fn revert_unimproved(&mut self, after: &[f64], over_time: bool) -> bool {
+        let mut bad = false;
+        // `after` has one error per region.
+        for (r, &a) in after.iter().enumerate() {
+            if !self.changed(r) {
                 continue;
             }
-            let has_dwell = rg.members[r].iter().any(|&i| edit.dwell_after[i] > 0.0);
-            let why = if after[r] >= before_err[r] {
+            let has_dwell = self.rg.members[r]
+                .iter()
+                .any(|&i| self.edit.dwell_after[i] > 0.0);
+            let why = if a >= self.before_err[r] {
                 Some(format!(
                     "the written program's error here did not fall ({} → {} µm)",
-                    crate::numeric::compact(before_err[r] * 1e3),
-                    crate::numeric::compact(after[r] * 1e3)
+                    crate::numeric::compact(self.before_err[r] * 1e3),
+                    crate::numeric::compact(a * 1e3)
                 ))
             } else if over_time && has_dwell {
                 Some("its dwells would exceed the time budget".to_string())
@@ -523,61 +601,41 @@ fn check(
                 None
             };
             if let Some(w) = why {
-                copy_region(rg, r, &id, &mut edit);
-                reverted[r] = Some(w);
+                self.revert(r, w);
                 bad = true;
             }
         }
-        // An unchanged region that got worse: its changed neighbours
-        // reached it (no exact stop between them); they go back.
+        bad
+    }
+
+    /// An unchanged region that got worse (`after`, mm per region): its
+    /// changed neighbours reached it (no exact stop between them); they go
+    /// back. Whether any was reverted.
+    fn revert_neighbours(&mut self, after: &[f64]) -> bool {
+        let (orig, rg, before_err) = (self.orig, self.rg, self.before_err);
+        let mut bad = false;
         for r in 0..rg.members.len() {
-            if changed(rg, r, &edit, &id) || after[r] <= before_err[r] + NEIGHBOUR_SLACK {
+            if self.changed(r) || after[r] <= before_err[r] + NEIGHBOUR_SLACK {
                 continue;
             }
             for q in [r.wrapping_sub(1), r + 1] {
-                if q < rg.members.len() && changed(rg, q, &edit, &id) {
-                    copy_region(rg, q, &id, &mut edit);
-                    reverted[q] = Some(format!(
-                        "it raised the error of the neighbouring region (lines {}–{}) from {} to {} µm",
-                        orig[rg.members[r][0]].line,
-                        orig[rg.members[r][rg.members[r].len() - 1]].line,
-                        crate::numeric::compact(before_err[r] * 1e3),
-                        crate::numeric::compact(after[r] * 1e3)
-                    ));
+                if q < rg.members.len() && self.changed(q) {
+                    self.revert(
+                        q,
+                        format!(
+                            "it raised the error of the neighbouring region (lines {}–{}) from {} to {} µm",
+                            orig[rg.members[r][0]].line,
+                            orig[rg.members[r][rg.members[r].len() - 1]].line,
+                            crate::numeric::compact(before_err[r] * 1e3),
+                            crate::numeric::compact(after[r] * 1e3)
+                        ),
+                    );
                     bad = true;
                 }
             }
         }
-        let worse = sim.max_error > before.max_error;
-        if !bad && !worse && !over_time {
-            return Ok(Checked {
-                nc,
-                edit,
-                segments,
-                sim,
-                after,
-                reverted,
-            });
-        }
-        if !bad {
-            break;
-        }
+        bad
     }
-    // Nothing left to change, or still not better everywhere: give the
-    // original back.
-    for (r, note) in reverted.iter_mut().enumerate() {
-        if changed(rg, r, &edit, &id) {
-            *note = Some("the program as a whole would not improve (error or time budget); the original is returned".into());
-        }
-    }
-    Ok(Checked {
-        nc: text.to_string(),
-        edit: id,
-        segments: orig.clone(),
-        sim: before.clone(),
-        after: before_err.to_vec(),
-        reverted,
-    })
 }
 
 /// Why region `r` is unchanged.
