@@ -66,6 +66,15 @@ pub const MAX_CIRCULAR_RUNS: usize = 64;
 /// deviation arrays are 4 M numbers, half the argument budget).
 pub const MAX_CIRCULAR_POINTS: usize = 2_000_000;
 
+/// Most simulated samples of one reverse compensation, over all its
+/// simulations (the original, every correction round, the dwell trials
+/// and the checks of the written program): about 8 s in the wasm build
+/// at roughly 1 µs per simulated sample. A program of `n` samples needs
+/// at least `4·n` (the original, one round, two checks) and is refused
+/// above that; below it the rounds stop early, keeping their best so far,
+/// when the next would leave too little for the checks.
+pub const MAX_REVERSE_SIMULATED_SAMPLES: usize = 8_000_000;
+
 /// A refused call: the estimate of its work is above the budget.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{what}: {amount} {unit}, more than the limit of {limit}; {advice}")]

@@ -36,7 +36,9 @@ pub mod timeline;
 
 use serde::{Deserialize, Serialize};
 
-pub use simulate::{simulate, simulate_program, simulate_text, SegmentStats, Simulation};
+pub use simulate::{
+    sample_estimate, simulate, simulate_program, simulate_text, SegmentStats, Simulation,
+};
 
 /// The servo time constant: one for all axes or one per axis X, Y, Z.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -117,6 +119,9 @@ pub enum ToolpathError {
     /// The caller stopped the run (a progress callback returned false).
     #[error("cancelled")]
     Cancelled,
+    /// Over a work budget ([`crate::budget`]).
+    #[error(transparent)]
+    Budget(#[from] crate::budget::BudgetError),
     /// The run would need too many samples.
     #[error("the simulation would need {samples} samples (limit {limit}); increase dt or shorten the program")]
     TooLong {

@@ -158,6 +158,18 @@ pub fn simulate(
     })
 }
 
+/// How many samples [`simulate()`] takes for `command` under `cfg`: the
+/// work estimate a caller checks before simulating (microseconds: the
+/// timeline only).
+///
+/// # Errors
+/// A bad `cfg`, or [`ToolpathError::TooLong`] past [`MAX_SAMPLES`].
+pub fn sample_estimate(command: &[Segment], cfg: &SimConfig) -> Result<usize, ToolpathError> {
+    cfg.validate()?;
+    let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
+    sample_count(&timeline(command, cfg, tmax), cfg, tmax)
+}
+
 /// The timed command: a G0 ends in an exact stop of `tA + 10·max T`, and
 /// with `dwellExactStop` a G4 first waits `tA + 5·max T` (see the module
 /// header). `tmax` is the largest axis lag, s.

@@ -85,6 +85,7 @@ export interface ReverseCompensation {
   nc: string; before: CompSummary; after: CompSummary; segments: SegmentChange[];
   dwells: { /** [-] */ afterLine: number; seconds: number }[]; regions: RegionNote[]; historyUm: number[];
   beforeSim: ToolPathSimulation; afterSim: ToolPathSimulation;
+  /** set when the work budget cut the correction short: what was kept and what to change */ budgetNote: string | null;
 }
 "#;
 
@@ -326,6 +327,12 @@ pub fn reverse_compensate_js(
         .ser("historyUm", &c.history_um)?
         .val("beforeSim", sim_obj(&c.sim_before, &[])?)
         .val("afterSim", sim_obj(&c.sim_after, &[])?)
+        .val(
+            "budgetNote",
+            c.budget_note
+                .as_deref()
+                .map_or(JsValue::NULL, JsValue::from_str),
+        )
         .build())
 }
 

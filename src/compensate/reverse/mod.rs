@@ -53,12 +53,13 @@ pub mod rounds;
 
 use serde::{Deserialize, Serialize};
 
+use crate::budget::MAX_REVERSE_SIMULATED_SAMPLES;
 use crate::nc::patch::write_source;
 use crate::nc::program::{dist, parse, Motion, Program, Segment};
-use crate::toolpath::{simulate, SimConfig, Simulation, ToolpathError};
+use crate::toolpath::{sample_estimate, simulate, SimConfig, Simulation, ToolpathError};
 use geometry::{rebuild, Edit};
 use region::{kinds, region_errors, regions, Regions};
-use rounds::{copy_region, identity};
+use rounds::{copy_region, identity, Work};
 
 /// Dwell candidates are removed one by one (each trial costs a full set
 /// of rounds) only while candidates × samples stays below this; beyond it
@@ -180,6 +181,9 @@ pub struct Compensation {
     pub sim_before: Simulation,
     /// The simulation of the corrected program against the original path.
     pub sim_after: Simulation,
+    /// Set when the work budget cut the rounds or checks short: what was
+    /// kept and what to change for a full run.
+    pub budget_note: Option<String>,
 }
 
 /// The joints after which a dwell may help: where a run of ≥ 3 short
@@ -310,6 +314,15 @@ pub fn reverse_compensate_with(
     validate(cfg)?;
     let program = parse(text)?;
     let orig = &program.segments;
+    let n = sample_estimate(orig, &cfg.sim)? as u64;
+    crate::budget::check(
+        "reverse compensation",
+        n.saturating_mul(4),
+        MAX_REVERSE_SIMULATED_SAMPLES,
+        "simulated samples (the original, one round and two checks)",
+        "raise dt, shorten the program, or compensate it in parts",
+    )?;
+    let mut work = Work::new(MAX_REVERSE_SIMULATED_SAMPLES as u64, n);
     let mut tick = |f: f64, s: &str| {
         if progress(f, s) {
             Ok(())
@@ -328,13 +341,14 @@ pub fn reverse_compensate_with(
         &cfg.sim,
         cfg.iterations,
         identity(orig, vec![0.0; orig.len()]),
+        &mut work,
     )?;
     let mut history = plain.history_um.clone();
     let mut edit = plain.edit.clone();
     let mut best = plain.error.clone();
     let mut notes: Vec<Option<String>> = vec![None; rg.members.len()];
     tick(0.5, "dwells")?;
-    match try_dwells(orig, &rg, cfg, &sim_before)? {
+    match try_dwells(orig, &rg, cfg, &sim_before, &mut work)? {
         Dwelt::None => {}
         Dwelt::Budget(why, rs) => {
             for r in rs {
@@ -361,17 +375,26 @@ pub fn reverse_compensate_with(
         &sim_before,
         edit,
         &mut tick,
+        &mut work,
     )?;
     tick(1.0, "done")?;
-    Ok(finish(
-        &program,
-        &rg,
-        &before_err,
-        &sim_before,
-        checked,
-        notes,
-        history,
-    ))
+    let budget_note = work.stopped.then(|| {
+        format!(
+            "the work budget ({MAX_REVERSE_SIMULATED_SAMPLES} simulated samples, {n} per simulation of this program) stopped the correction early; the best rounds so far are kept and checked. Raise dt or compensate the program in parts for a full run"
+        )
+    });
+    Ok(Compensation {
+        budget_note,
+        ..finish(
+            &program,
+            &rg,
+            &before_err,
+            &sim_before,
+            checked,
+            notes,
+            history,
+        )
+    })
 }
 
 /// The dwell variant.
@@ -389,6 +412,7 @@ fn try_dwells(
     rg: &Regions,
     cfg: &ReverseConfig,
     before: &Simulation,
+    work: &mut Work,
 ) -> Result<Dwelt, ToolpathError> {
     let dwell = cfg.dwell.unwrap_or(0.1);
     let mut cands: Vec<usize> = dwell_candidates(orig, &cfg.sim);
@@ -407,12 +431,12 @@ fn try_dwells(
             0.0
         };
     let allowed = cfg.time_budget * before.motion_time;
-    let with = |set: &[usize]| {
+    let with = |set: &[usize], work: &mut Work| {
         let mut d = vec![0.0; orig.len()];
         for &i in set {
             d[i] = dwell;
         }
-        rounds::run(orig, rg, &cfg.sim, cfg.iterations, identity(orig, d))
+        rounds::run(orig, rg, &cfg.sim, cfg.iterations, identity(orig, d), work)
     };
     if each > allowed {
         let note = format!(
@@ -438,15 +462,15 @@ fn try_dwells(
     cands.truncate((allowed / each) as usize);
     cands.sort_unstable();
     let mut set = cands.clone();
-    let mut cur = with(&set)?;
+    let mut cur = with(&set, work)?;
     let worst = |r: &rounds::Rounds| r.error.iter().copied().fold(0.0, f64::max);
     if set.len() * before.t.len() <= MAX_DWELL_TRIAL_SAMPLES {
         for c in set.clone() {
             let trial_set: Vec<usize> = set.iter().copied().filter(|&x| x != c).collect();
-            if trial_set.is_empty() {
+            if trial_set.is_empty() || work.stopped {
                 break;
             }
-            let trial = with(&trial_set)?;
+            let trial = with(&trial_set, work)?;
             if worst(&trial) <= worst(&cur) * 1.01 {
                 set = trial_set;
                 cur = trial;
@@ -486,6 +510,7 @@ fn check(
     before: &Simulation,
     edit: Edit,
     tick: &mut dyn FnMut(f64, &str) -> Result<(), ToolpathError>,
+    work: &mut Work,
 ) -> Result<Checked, ToolpathError> {
     let orig = &program.segments;
     let mut rv = Review {
@@ -508,6 +533,10 @@ fn check(
             // A writer limit: never hand out a program that does not read back.
             break;
         };
+        if !work.check(work.program) {
+            // Out of budget: the original program, unchecked edits never.
+            break;
+        }
         let sim = simulate(&written.segments, orig, &cfg.sim)?;
         let after = region_errors(rg, &sim.segments);
         let over_time = sim.motion_time > limit;
@@ -724,6 +753,7 @@ fn finish(
         nc: c.nc,
         sim_before: sim_before.clone(),
         sim_after: c.sim,
+        budget_note: None,
     }
 }
 

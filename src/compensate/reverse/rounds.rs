@@ -43,6 +43,56 @@ pub struct Rounds {
     pub history_um: Vec<f64>,
 }
 
+/// What one compensation may still simulate, in samples
+/// ([`crate::budget::MAX_REVERSE_SIMULATED_SAMPLES`]). Correction rounds
+/// spend only above a reserve kept for the checks of the written program;
+/// the checks may spend the reserve too.
+#[derive(Debug, Clone)]
+pub struct Work {
+    left: u64,
+    reserve: u64,
+    /// Samples of one simulation of the whole program.
+    pub program: u64,
+    /// A round or check was skipped for want of budget.
+    pub stopped: bool,
+}
+
+impl Work {
+    /// `limit` samples in all for a program of `program` samples, of
+    /// which the original's simulation is spent at once; two more
+    /// simulations of it are kept for the checks.
+    pub fn new(limit: u64, program: u64) -> Self {
+        Self {
+            left: limit.saturating_sub(program),
+            reserve: 2 * program,
+            program,
+            stopped: false,
+        }
+    }
+
+    /// Spends `samples` on a correction round when the checks' reserve
+    /// stays; otherwise marks the work as stopped and returns `false`.
+    pub fn round(&mut self, samples: u64) -> bool {
+        self.spend(samples, self.reserve)
+    }
+
+    /// Spends `samples` on a check (the reserve included); `false` when
+    /// not even that is left.
+    pub fn check(&mut self, samples: u64) -> bool {
+        self.spend(samples, 0)
+    }
+
+    fn spend(&mut self, samples: u64, keep: u64) -> bool {
+        if self.left >= samples.saturating_add(keep) {
+            self.left -= samples;
+            true
+        } else {
+            self.stopped = true;
+            false
+        }
+    }
+}
+
 /// The identity edit of `orig` with `dwell_after`.
 pub fn identity(orig: &[Segment], dwell_after: Vec<f64>) -> Edit {
     Edit {
@@ -67,7 +117,10 @@ pub fn copy_region(regions: &Regions, r: usize, from: &Edit, to: &mut Edit) {
     }
 }
 
-/// Runs up to `iterations + 1` rounds from `start` (see the module header).
+/// Runs up to `iterations + 1` rounds from `start` (see the module header),
+/// as many as `work` allows: a round costs what the previous one
+/// simulated (the whole program for the first); with none affordable the
+/// errors stay infinite and `start` is returned.
 ///
 /// # Errors
 /// As [`simulate()`].
@@ -77,6 +130,7 @@ pub fn run(
     cfg: &SimConfig,
     iterations: usize,
     start: Edit,
+    work: &mut Work,
 ) -> Result<Rounds, ToolpathError> {
     let nr = regions.members.len();
     let mut edit = start;
@@ -86,8 +140,13 @@ pub fn run(
     let mut history = Vec::new();
     let mut errs = vec![0.0; nr];
     let mut live_window = vec![true; regions.windows.len()];
+    let mut cost = work.program;
     for round in 0..=iterations {
-        let stats = simulate_windows(orig, regions, cfg, &edit, &live_window)?;
+        if !work.round(cost) {
+            break;
+        }
+        let (stats, simulated) = simulate_windows(orig, regions, cfg, &edit, &live_window)?;
+        cost = simulated;
         let fresh = region_errors(regions, &stats);
         for r in 0..nr {
             if live_window[regions.window[r]] {
@@ -132,7 +191,8 @@ pub fn run(
 
 /// Simulates the windows marked `live` of the edited program, each alone
 /// against its own original segments (see [`Regions::windows`]); the
-/// statistics carry whole-program segment indices.
+/// statistics carry whole-program segment indices, and the number of
+/// samples simulated.
 ///
 /// # Errors
 /// As [`simulate()`].
@@ -142,8 +202,9 @@ pub fn simulate_windows(
     cfg: &SimConfig,
     edit: &Edit,
     live: &[bool],
-) -> Result<Vec<SegmentStats>, ToolpathError> {
+) -> Result<(Vec<SegmentStats>, u64), ToolpathError> {
     let mut out = Vec::new();
+    let mut samples = 0u64;
     for (w, range) in regions.windows.iter().enumerate() {
         if !live[w] {
             continue;
@@ -160,12 +221,13 @@ pub fn simulate_windows(
             Err(ToolpathError::Empty) => continue,
             Err(e) => return Err(e),
         };
+        samples += sim.t.len() as u64;
         out.extend(sim.segments.into_iter().map(|mut st| {
             st.segment += range.start;
             st
         }));
     }
-    Ok(out)
+    Ok((out, samples))
 }
 
 /// One correction of `edit` from the per-segment statistics.
@@ -225,4 +287,45 @@ fn half_turn_cos(a: &Segment, b: &Segment) -> f64 {
     let (u, w) = (dir(a), dir(b));
     let c = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
     (0.5 * (1.0 + c)).max(0.0).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compensate::reverse::region::regions;
+    use crate::nc::program::parse;
+    use crate::toolpath::{example::arc_example, sample_estimate};
+
+    #[test]
+    fn work_keeps_the_checks_reserve_and_checks_may_spend_it() {
+        let mut w = Work::new(10, 2); // 8 left after the original, 4 kept
+        assert!(w.round(2) && w.round(2)); // 4 left
+        assert!(!w.round(1) && w.stopped); // would eat into the reserve
+        assert!(w.check(2) && w.check(2)); // the checks spend it
+        assert!(!w.check(1));
+    }
+
+    #[test]
+    fn rounds_stop_at_the_budget_and_keep_their_best() {
+        let p = parse(&arc_example()).unwrap();
+        let cfg = SimConfig::default();
+        let n = sample_estimate(&p.segments, &cfg).unwrap() as u64;
+        let rg = regions(&p);
+        let start = || identity(&p.segments, vec![0.0; p.segments.len()]);
+        // Room for the original, two rounds and the checks' reserve.
+        let mut tight = Work::new(5 * n, n);
+        let cut = run(&p.segments, &rg, &cfg, 6, start(), &mut tight).unwrap();
+        assert!(tight.stopped);
+        assert_eq!(cut.history_um.len(), 2, "{:?}", cut.history_um);
+        // The same two rounds as an unbudgeted run's first two.
+        let mut ample = Work::new(u64::MAX, n);
+        let full = run(&p.segments, &rg, &cfg, 6, start(), &mut ample).unwrap();
+        assert!(!ample.stopped && full.history_um.len() > 2);
+        assert_eq!(cut.history_um[..], full.history_um[..2]);
+        // No round affordable: the start edit, errors unknown.
+        let mut none = Work::new(3 * n, n);
+        let zero = run(&p.segments, &rg, &cfg, 6, start(), &mut none).unwrap();
+        assert!(none.stopped && zero.history_um.is_empty());
+        assert!(zero.error.iter().all(|e| e.is_infinite()));
+    }
 }
