@@ -223,7 +223,8 @@ pub fn dwell_candidates(orig: &[Segment], sim: &SimConfig) -> Vec<usize> {
 /// corner for a dwell, rad (10°: CAM chains of short lines turn less).
 pub const CORNER_TURN: f64 = 10.0 * std::f64::consts::PI / 180.0;
 
-/// The joints between two cutting moves of one region where the path
+/// The joints between two cutting moves of one region, and between a
+/// region's last cutting move and the rapid after it, where the path
 /// turns by more than [`CORNER_TURN`]: there the tool cuts the corner
 /// short, and a dwell (the NC stops at the corner) removes that error.
 pub fn sharp_corners(orig: &[Segment], rg: &Regions) -> Vec<usize> {
@@ -245,7 +246,12 @@ pub fn sharp_corners(orig: &[Segment], rg: &Regions) -> Vec<usize> {
         .windows(2)
         .filter_map(|w| {
             let (i, k) = (w[0], w[1]);
-            if rg.of[i].is_none() || rg.of[i] != rg.of[k] {
+            // A joint inside a region, or a region's exit into a rapid: the
+            // rapid starts while the cut still settles and cuts that
+            // corner too (a rapid ends in an exact stop, it does not start
+            // with one).
+            let exit = matches!(orig[k].motion, Motion::Rapid);
+            if rg.of[i].is_none() || (rg.of[i] != rg.of[k] && !exit) {
                 return None;
             }
             let (u, v) = (dir(&orig[i], true)?, dir(&orig[k], false)?);
