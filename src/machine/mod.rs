@@ -131,6 +131,38 @@ pub fn names() -> Vec<&'static str> {
     PRESETS.iter().map(|(n, _)| *n).collect()
 }
 
+/// The description of one 5-axis preset (the page's kinematics machines).
+struct FiveAxis<'a> {
+    name: &'a str,
+    description: &'a str,
+    source: &'a str,
+    axes: BTreeMap<String, AxisParams>,
+    /// Travel limits per axis letter: mm, or degrees for rotary axes.
+    limits: [(&'a str, [f64; 2]); 5],
+    chain: Chain,
+    example: example_errors::Example,
+}
+
+impl FiveAxis<'_> {
+    /// The preset: its chain, limits and illustrative example errors; no
+    /// paper sweep and no readings.
+    fn machine(self) -> Machine {
+        Machine {
+            name: self.name.into(),
+            description: self.description.into(),
+            source: self.source.into(),
+            axes: self.axes,
+            limits: self.limits.iter().map(|(k, v)| ((*k).into(), *v)).collect(),
+            kinematics: Some(self.chain),
+            example_errors: Some(self.example.0),
+            example_drives: Some(self.example.1),
+            paper_sweep: None,
+            saturation_readings: Vec::new(),
+            loop_readings: Vec::new(),
+        }
+    }
+}
+
 /// The preset called `name`.
 ///
 /// # Examples

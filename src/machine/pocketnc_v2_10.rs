@@ -80,23 +80,20 @@ pub fn chain() -> Chain {
 /// The preset.
 pub fn machine() -> Machine {
     let example = super::example_errors::pocketnc_v2_10();
-    Machine {
-        name: "pocketnc-v2-10".into(),
-        description: "Pocket NC V2-10 mini 5-axis mill: B table on an A trunnion, Y under the work, X and Z in the head".into(),
-        source: "thasana-htm-nc-compensation Eq. 8 and §II-D (d-parameters); travel limits from the maker's specification".into(),
+    super::FiveAxis {
+        name: "pocketnc-v2-10",
+        description: "Pocket NC V2-10 mini 5-axis mill: B table on an A trunnion, Y under the work, X and Z in the head",
+        source: "thasana-htm-nc-compensation Eq. 8 and §II-D (d-parameters); travel limits from the maker's specification",
         axes: BTreeMap::new(),
-        limits: BTreeMap::from([
-            ("x".into(), [-114.3, 0.0]),
-            ("y".into(), [-127.0, 0.0]),
-            ("z".into(), [-110.0, -21.1]),
-            ("a".into(), [-25.0, 135.0]),
-            ("b".into(), [-360.0, 360.0]),
-        ]),
-        kinematics: Some(chain()),
-        example_errors: Some(example.0),
-        example_drives: Some(example.1),
-        paper_sweep: None,
-        saturation_readings: Vec::new(),
-        loop_readings: Vec::new(),
+        limits: [
+            ("x", [-114.3, 0.0]),
+            ("y", [-127.0, 0.0]),
+            ("z", [-110.0, -21.1]),
+            ("a", [-25.0, 135.0]),
+            ("b", [-360.0, 360.0]),
+        ],
+        chain: chain(),
+        example,
     }
+    .machine()
 }

@@ -14,8 +14,6 @@
 //! (X, Y, C); Z copies Y and B copies C, because the paper identifies only
 //! X, Y and C.
 
-use std::collections::BTreeMap;
-
 use super::Machine;
 use crate::kinematics::htm::Dir;
 use crate::kinematics::Chain;
@@ -37,23 +35,20 @@ pub fn machine() -> Machine {
         axes.insert("z".into(), y.clone());
         axes.insert("b".into(), c.clone());
     }
-    Machine {
-        name: "table-on-table-bc".into(),
-        description: "Table-on-table B–C 5-axis machining centre like the NMV5000: C table on a B cradle".into(),
-        source: "chain: NMV5000 layout (table-on-table B–C, as in takayama-alignment-travel-range); feed drives suzuki-best-kffp Table 1 (Z copies Y, B copies C); limits: NMV5000 catalogue travels".into(),
+    super::FiveAxis {
+        name: "table-on-table-bc",
+        description: "Table-on-table B–C 5-axis machining centre like the NMV5000: C table on a B cradle",
+        source: "chain: NMV5000 layout (table-on-table B–C, as in takayama-alignment-travel-range); feed drives suzuki-best-kffp Table 1 (Z copies Y, B copies C); limits: NMV5000 catalogue travels",
         axes,
-        limits: BTreeMap::from([
-            ("x".into(), [-365.0, 365.0]),
-            ("y".into(), [-255.0, 255.0]),
-            ("z".into(), [-150.0, 360.0]),
-            ("b".into(), [-10.0, 110.0]),
-            ("c".into(), [-360.0, 360.0]),
-        ]),
-        kinematics: Some(chain()),
-        example_errors: Some(example.0),
-        example_drives: Some(example.1),
-        paper_sweep: None,
-        saturation_readings: Vec::new(),
-        loop_readings: Vec::new(),
+        limits: [
+            ("x", [-365.0, 365.0]),
+            ("y", [-255.0, 255.0]),
+            ("z", [-150.0, 360.0]),
+            ("b", [-10.0, 110.0]),
+            ("c", [-360.0, 360.0]),
+        ],
+        chain: chain(),
+        example,
     }
+    .machine()
 }

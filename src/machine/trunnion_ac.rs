@@ -41,23 +41,20 @@ pub fn machine() -> Machine {
             axes.insert(r.to_string(), c.clone());
         }
     }
-    Machine {
-        name: "trunnion-ac".into(),
-        description: "Trunnion A–C 5-axis machining centre like kato's: C table on an A trunnion".into(),
-        source: "layout: kato-cone-frustum-ballbar §2 (A and C worm-gear axes); geometry and limits illustrative; feed drives copied from suzuki-best-kffp Table 1 (X for linear, C for rotary axes)".into(),
+    super::FiveAxis {
+        name: "trunnion-ac",
+        description: "Trunnion A–C 5-axis machining centre like kato's: C table on an A trunnion",
+        source: "layout: kato-cone-frustum-ballbar §2 (A and C worm-gear axes); geometry and limits illustrative; feed drives copied from suzuki-best-kffp Table 1 (X for linear, C for rotary axes)",
         axes,
-        limits: BTreeMap::from([
-            ("x".into(), [-300.0, 300.0]),
-            ("y".into(), [-250.0, 250.0]),
-            ("z".into(), [-200.0, 400.0]),
-            ("a".into(), [-30.0, 120.0]),
-            ("c".into(), [-360.0, 360.0]),
-        ]),
-        kinematics: Some(chain()),
-        example_errors: Some(example.0),
-        example_drives: Some(example.1),
-        paper_sweep: None,
-        saturation_readings: Vec::new(),
-        loop_readings: Vec::new(),
+        limits: [
+            ("x", [-300.0, 300.0]),
+            ("y", [-250.0, 250.0]),
+            ("z", [-200.0, 400.0]),
+            ("a", [-30.0, 120.0]),
+            ("c", [-360.0, 360.0]),
+        ],
+        chain: chain(),
+        example,
     }
+    .machine()
 }
