@@ -8,9 +8,10 @@
 //! configured rapid rate; dwells added).
 //!
 //! Simulation in the default (debug) test run is limited to programs whose
-//! nominal time is under 1000 s (dt = 1 ms); the one longer program, the
-//! 40,306-line pocket (5176 s, 5.2 M samples), is parsed and summarised
-//! here and simulated by the `#[ignore]`d test below
+//! nominal time is under 1000 s (dt = 1 ms); the two longer programs, the
+//! 40,306-line pocket (5176 s, 5.2 M samples) and the CAMotics
+//! `botomata_bottom` pocket (5567 s), are parsed and summarised here; the
+//! pocket is simulated by the `#[ignore]`d test below
 //! (`cargo test --release --test nc_corpus -- --ignored`).
 
 use mtmotion::nc::program::{parse_all, Motion, ParseOptions, Segment};
@@ -26,6 +27,7 @@ enum Outcome {
 }
 
 const CORPUS: &[(&str, Outcome)] = &[
+    ("camotics_botomata_bottom.nc", Outcome::Ok(6076)),
     (
         "cncjs_Circle_Diamond_Square_Calibration.gcode",
         Outcome::Err(624, 18, "inconsistent radius", 5),
