@@ -8,9 +8,10 @@
 //! configured rapid rate; dwells added).
 //!
 //! Simulation in the default (debug) test run is limited to programs whose
-//! nominal time is under 1000 s (dt = 1 ms); the one longer program, the
-//! 40,306-line pocket (5176 s, 5.2 M samples), is parsed and summarised
-//! here and simulated by the `#[ignore]`d test below
+//! nominal time is under 1000 s (dt = 1 ms); the two longer programs, the
+//! 40,306-line pocket (5176 s, 5.2 M samples) and the CAMotics
+//! `botomata_bottom` pocket (5567 s), are parsed and summarised here; the
+//! pocket is simulated by the `#[ignore]`d test below
 //! (`cargo test --release --test nc_corpus -- --ignored`).
 
 use mtmotion::nc::program::{parse_all, Motion, ParseOptions, Segment};
@@ -26,6 +27,7 @@ enum Outcome {
 }
 
 const CORPUS: &[(&str, Outcome)] = &[
+    ("camotics_botomata_bottom.nc", Outcome::Ok(6076)),
     (
         "cncjs_Circle_Diamond_Square_Calibration.gcode",
         Outcome::Err(624, 18, "inconsistent radius", 5),
@@ -43,6 +45,39 @@ const CORPUS: &[(&str, Outcome)] = &[
         Outcome::Err(17, 5, "this looks like a 3D-printer program", 1),
     ),
     ("cncjs_tball-pocket.gcode", Outcome::Ok(40266)),
+    // Laser Macro B programs (a Mitsubishi-style dialect): their named
+    // headers (`O7997A`, `OCIRCLE`) are read; each stops at a construct
+    // outside Fanuc Macro B, named. All four also call O9010, a
+    // subprogram not in the file (M98 P9010), and use G41/G42 and G92.
+    (
+        "cncsprayer_7997A.NC",
+        Outcome::Err(25, 15, "'AND' after IF […]", 86),
+    ),
+    (
+        "cncsprayer_CIRCLE.NC",
+        Outcome::Err(18, 11, "put the arithmetic in brackets (X[#1/2])", 8),
+    ),
+    (
+        "cncsprayer_RECTANGLE.NC",
+        Outcome::Err(24, 3, "corner word ',R' in a macro line", 14),
+    ),
+    (
+        "cncsprayer_WASHER.NC",
+        Outcome::Err(21, 12, "put the arithmetic in brackets (X[#1/2])", 10),
+    ),
+    // Fusion 360 generic post (`G28 G91 Z0.`, `G43 Z15.24 H1`, G18
+    // lead-in arcs) whose G21 was edited to G20: metric numbers read as
+    // inches, and the post's 0.001 rounding (0.0254 mm in inch) exceeds
+    // the radius tolerance (0.005 mm + 1e-5·R) on the first semicircle.
+    (
+        "cncsprayer_fusion-output.nc",
+        Outcome::Err(25, 18, "inconsistent radius", 12),
+    ),
+    ("ledfloor_1003.nc", Outcome::Ok(181)),
+    (
+        "ledfloor_1112_tab_test_29bit_715_tab_thickness.nc",
+        Outcome::Ok(1327),
+    ),
     ("linuxcnc_3D_Chips.ngc", Outcome::Ok(4684)),
     ("linuxcnc_arcspiral.ngc", Outcome::Ok(1005)),
     ("linuxcnc_cds.ngc", Outcome::Ok(266)),

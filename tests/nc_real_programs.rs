@@ -255,8 +255,7 @@ fn three_d_printer_program_is_recognised() {
 
 #[test]
 fn every_error_is_reported_in_order() {
-    let src =
-        "G21\nG1 X1\nG0 X1 (DRILL (5 HOLES)\nIF [#1 GT] GOTO 5\nG1 X2 F100\nG2 X3\nG0 X\u{1a}2";
+    let src = "G21\nG1 X1\nG0 X1 (DRILL 5 HOLES\nIF [#1 GT] GOTO 5\nG1 X2 F100\nG2 X3\nG0 X\u{1a}2";
     let e = parse_all(src, &ParseOptions::default()).unwrap_err();
     let at: Vec<(usize, usize)> = e.errors.iter().map(|e| (e.line, e.column)).collect();
     assert_eq!(at, vec![(2, 4), (3, 7), (4, 10), (6, 4), (7, 5)]);
@@ -293,4 +292,78 @@ fn summary_groups_warnings_by_kind_with_their_lines() {
     // 2 mm of rapids at 10 m/min.
     assert!((s.motion_time - 2.0 / 10_000.0 * 60.0).abs() < 1e-15);
     assert_eq!(s.units, "mm");
+}
+
+#[test]
+fn a_bare_program_name_is_a_header_not_an_address_error() {
+    // Laser Macro B programs (tests/nc_corpus/cncsprayer_*.NC) open with
+    // `OCIRCLE(Circle)` and `O7997A(NestedShtCutoff)`: a program name, as
+    // Mitsubishi and Fanuc 30i-series controls allow.
+    for (head, name) in [
+        ("OCIRCLE(Circle)", "CIRCLE"),
+        ("O7997A(NestedShtCutoff)", "7997A"),
+        ("Oface_mill", "face_mill"),
+    ] {
+        let src = format!("%\n{head}\nG0 X1 Y2\nG1 X3 F100\nM30\n%\n");
+        let p = parse(&src).unwrap_or_else(|e| panic!("{head}: {e}"));
+        assert_eq!(p.blocks[1].program_name.as_deref(), Some(name), "{head}");
+        assert!(p.blocks[1].program_name_bare, "{head}");
+        assert_eq!(p.blocks[1].write(), head.replacen('(', " (", 1), "{head}");
+        assert_eq!(ends(&p.segments), vec![[1.0, 2.0, 0.0], [3.0, 2.0, 0.0]]);
+    }
+    // Not a name: a LinuxCNC o-word keyword, or words after the O number.
+    let e = parse("o100sub\nG0 X1").unwrap_err();
+    assert!(e.message.contains("o100 sub is never closed"), "{e}");
+    let p = parse("O1000 M30").unwrap();
+    assert!(p.blocks[0].program_name.is_none());
+    assert_eq!(p.blocks[0].word('O').unwrap().value, 1000.0);
+}
+
+#[test]
+fn a_stray_paren_inside_a_comment_ends_at_the_first_close_paren() {
+    // cncsprayer_CIRCLE.NC line 28 comments out a block with its own
+    // comment: `(G0G40X0Y#140+.25(move up)`. Fanuc comments do not nest,
+    // so the comment ends at the `)`.
+    let p = parse("G0 X1 (G0G40X0Y5+.25(move up)\nG1 X2 F100").unwrap();
+    assert_eq!(p.blocks[0].comments, vec!["G0G40X0Y5+.25(move up"]);
+    assert_eq!(ends(&p.segments), vec![[1.0, 0.0, 0.0], [2.0, 0.0, 0.0]]);
+    // The same in a macro line.
+    let p = parse_all("#1=2 (G0X#1+.25(up)\nG0 X#1", &ParseOptions::default()).unwrap();
+    assert_eq!(ends(&p.segments), vec![[2.0, 0.0, 0.0]]);
+    // Balanced nesting stays one comment; no `)` at all is still an error.
+    let p = parse("G0 X1 (DRILL (5 HOLES)) Y2").unwrap();
+    assert_eq!(p.blocks[0].comments, vec!["DRILL (5 HOLES)"]);
+    assert_eq!(ends(&p.segments), vec![[1.0, 2.0, 0.0]]);
+    let e = parse("G0 X1 (open").unwrap_err();
+    assert_eq!((e.line, e.column), (1, 7));
+}
+
+#[test]
+fn unbracketed_macro_arithmetic_and_macro_corner_words_are_named() {
+    // `X#140/2` (Mitsubishi-style) and `X0,R#144` in the laser programs.
+    let e = parse_all("#1=4\nG0 X#1/2 Y0", &ParseOptions::default()).unwrap_err();
+    let first = &e.errors[0];
+    assert_eq!((first.line, first.column), (2, 7));
+    assert!(
+        first
+            .message
+            .contains("put the arithmetic in brackets (X[#1/2])"),
+        "{first}"
+    );
+    let e = parse_all("#1=4\nG1 X0,R#1 F100\nY5", &ParseOptions::default()).unwrap_err();
+    let first = &e.errors[0];
+    assert_eq!((first.line, first.column), (2, 6));
+    assert!(
+        first.message.contains("corner word ',R' in a macro line"),
+        "{first}"
+    );
+    // `IF[#1EQ#2]AND[#3EQ#4]GOTO10` (cncsprayer_7997A.NC line 25).
+    let src = "#1=1\n#2=1\nIF[#1EQ#2]AND[#2EQ1]GOTO10\nG0 X1\nN10 G0 X2";
+    let e = parse_all(src, &ParseOptions::default()).unwrap_err();
+    let first = &e.errors[0];
+    assert_eq!((first.line, first.column), (3, 11));
+    assert!(
+        first.message.contains("write IF[[…] AND […]] GOTO n"),
+        "{first}"
+    );
 }

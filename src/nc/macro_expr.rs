@@ -120,6 +120,16 @@ pub fn tokenize(src: &str) -> Result<Vec<Token>, (usize, String)> {
                 (']', _) => (Tok::Close, 1),
                 ('=', _) => (Tok::Assign, 1),
                 ('%', _) => (Tok::Percent, 1),
+                (',', Some(&l)) if matches!(l.to_ascii_uppercase(), 'R' | 'C') => {
+                    return Err((
+                        col,
+                        format!(
+                            "Fanuc corner word ',{}' in a macro line is not supported yet; write it on a block without macro code, with a number (,{}0.5)",
+                            l.to_ascii_uppercase(),
+                            l.to_ascii_uppercase()
+                        ),
+                    ))
+                }
                 _ => {
                     return Err((
                         col,
@@ -137,14 +147,20 @@ pub fn tokenize(src: &str) -> Result<Vec<Token>, (usize, String)> {
     Ok(out)
 }
 
-/// A `( … )` comment (nested parentheses allowed) starting at `chars[i]`:
-/// its trimmed text and the index after it.
-fn comment(chars: &[char], i: usize) -> Option<(String, usize)> {
+/// A `( … )` comment starting at `chars[i]`: its trimmed text and the
+/// index after it. Balanced parentheses nest (`(DRILL (5 HOLES))` is one
+/// comment). A stray `(` inside a comment (`(G0 X#1+.25(move up)`) leaves
+/// the nesting unclosed at the end of the line; Fanuc comments do not nest,
+/// so the comment then ends at its first `)`, as the control reads it.
+/// `None` when no `)` follows at all.
+pub(crate) fn comment(chars: &[char], i: usize) -> Option<(String, usize)> {
     let mut depth = 0usize;
+    let mut first_close = None;
     for (j, &c) in chars.iter().enumerate().skip(i) {
         match c {
             '(' => depth += 1,
             ')' => {
+                first_close.get_or_insert(j);
                 depth -= 1;
                 if depth == 0 {
                     let text: String = chars[i + 1..j].iter().collect();
@@ -154,7 +170,9 @@ fn comment(chars: &[char], i: usize) -> Option<(String, usize)> {
             _ => {}
         }
     }
-    None
+    let j = first_close?;
+    let text: String = chars[i + 1..j].iter().collect();
+    Some((text.trim().to_string(), j + 1))
 }
 
 /// `#`, `#<name>` or `<name>` at `chars[i]`; returns the index after it.

@@ -261,6 +261,15 @@ fn statement(c: &mut Cursor) -> PResult<Stmt> {
         if matches!(c.peek(), Some(Tok::Word(w)) if w == "N") {
             return Err((c.col(), okuma_message("IF […] N…")));
         }
+        if let Some(Tok::Word(w)) = c
+            .peek()
+            .filter(|t| matches!(t, Tok::Word(w) if matches!(w.as_str(), "AND" | "OR" | "XOR")))
+        {
+            return Err((
+                c.col(),
+                format!("'{w}' after IF […]: Fanuc Macro B takes one bracketed condition; write IF[[…] {w} […]] GOTO n"),
+            ));
+        }
         if c.eat_word("THEN") {
             let assigns = assignments(c)?;
             if assigns.is_empty() {
@@ -296,6 +305,9 @@ fn statement(c: &mut Cursor) -> PResult<Stmt> {
             Tok::Hash | Tok::Named(_) => assigns.push(assignment(c)?),
             Tok::Word(w) if w.len() == 1 => words.push(word(c)?),
             Tok::Word(w) => return Err((c.col(), keyword_message(w))),
+            Tok::Op(o) if !words.is_empty() => {
+                return Err((c.col(), unbracketed_message(&words, o)));
+            }
             t => {
                 return Err((
                     c.col(),
@@ -414,6 +426,15 @@ fn o_word(c: &mut Cursor) -> PResult<Option<Stmt>> {
         args.push(c.bracketed()?);
     }
     Ok(Some(Stmt::O(label, kw, args, col)))
+}
+
+/// The message for an operator right after a word's value (`X#140/2`):
+/// Fanuc Macro B computes a word's value only inside brackets.
+fn unbracketed_message(words: &[MWord], op: &str) -> String {
+    let letter = words.last().map_or('?', |w| w.letter);
+    format!(
+        "'{op}' after the value of address '{letter}': an address takes one number, #i or [expression]; put the arithmetic in brackets ({letter}[#1{op}2])"
+    )
 }
 
 /// The message for a letter run that is no keyword.

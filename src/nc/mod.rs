@@ -91,8 +91,13 @@ pub struct Block {
     /// Fanuc corner words written with a leading comma (`,R2.`, `,C1.`),
     /// letter `R` or `C`.
     pub comma_words: Vec<Word>,
-    /// A named program `O<NAME>`.
+    /// A named program `O<NAME>`, or a bare program name (`OCIRCLE`,
+    /// `O7997A`, see [`Block::program_name_bare`]).
     pub program_name: Option<String>,
+    /// The program name was written without brackets, as Mitsubishi and
+    /// Fanuc 30i-series file names are (`OCIRCLE(CIRCLE)`); [`Block::write`]
+    /// keeps that form.
+    pub program_name_bare: bool,
     /// A macro statement (Fanuc Macro B or LinuxCNC o-word code); its
     /// `words` then hold only a literal `N` number.
     pub macro_line: Option<Box<macro_line::MacroLine>>,
@@ -150,7 +155,11 @@ impl Block {
             if !s.is_empty() && !s.ends_with('/') {
                 s.push(' ');
             }
-            s.push_str(&format!("O<{n}>"));
+            s.push_str(&if self.program_name_bare {
+                format!("O{n}")
+            } else {
+                format!("O<{n}>")
+            });
         }
         for w in &self.comma_words {
             s.push_str(&format!(",{}{}", w.letter, w.text));
@@ -332,8 +341,11 @@ fn control_char(c: char) -> bool {
 
 /// Lexes one line; `line` is its 1-based number.
 ///
-/// Comments: `( … )` may nest (`(DRILL (5 HOLES))` is one comment) and `;`
-/// runs to the end of the line. A Fanuc `:0097` program number is read as
+/// Comments: `( … )` may nest (`(DRILL (5 HOLES))` is one comment; a stray
+/// `(` inside one, `(X1+.25(move up)`, ends at the first `)` as on a Fanuc
+/// control) and `;` runs to the end of the line. A bare program name
+/// alone on its line (`OCIRCLE(CIRCLE)`, `O7997A`) sets
+/// [`Block::program_name`]. A Fanuc `:0097` program number is read as
 /// `O0097`; a named program `O<NAME>` sets [`Block::program_name`]. Fanuc
 /// `,R` / `,C` (corner rounding / chamfer on G01) are kept in
 /// [`Block::comma_words`].
@@ -367,6 +379,10 @@ pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
     i = skip_ws(&chars, i);
     if i < chars.len() && chars[i] == ':' {
         lex_colon_number(&chars, &mut i, line, &mut block)?;
+    } else if let Some(end) = bare_program_name(&chars, i) {
+        block.program_name = Some(chars[i + 1..end].iter().collect());
+        block.program_name_bare = true;
+        i = end;
     }
     while i < chars.len() {
         if !lex_item(&chars, &mut i, line, &mut block)? {
@@ -403,6 +419,34 @@ fn keyword_after(chars: &[char], i: usize) -> Option<(usize, String)> {
             chars[k..e].iter().collect::<String>().to_ascii_uppercase(),
         )
     })
+}
+
+/// The end of a bare program name at `chars[i]` (the `O`): `OCIRCLE` or
+/// `O7997A` alone on its line (only a comment may follow), as Mitsubishi
+/// and Fanuc 30i-series controls name programs. The name is a letter then
+/// letters, digits or `_`, or digits then letters; a LinuxCNC o-word
+/// keyword (`o100sub`) and anything else (`O1000M30`) is not a name.
+fn bare_program_name(chars: &[char], i: usize) -> Option<usize> {
+    if !matches!(chars.get(i), Some('O' | 'o')) {
+        return None;
+    }
+    let start = i + 1;
+    let mut end = start;
+    while end < chars.len() && (chars[end].is_ascii_alphanumeric() || chars[end] == '_') {
+        end += 1;
+    }
+    let name: String = chars[start..end].iter().collect();
+    let digits = name.chars().take_while(char::is_ascii_digit).count();
+    let tail = &name[digits..];
+    let named = match name.chars().next() {
+        Some(c) if c.is_ascii_alphabetic() || c == '_' => true,
+        Some(_) => !tail.is_empty() && tail.chars().all(|c| c.is_ascii_alphabetic() || c == '_'),
+        None => false,
+    };
+    let rest = skip_ws(chars, end);
+    let alone = rest == chars.len() || matches!(chars[rest], '(' | ';');
+    let keyword = O_WORDS.contains(&tail.to_ascii_uppercase().as_str());
+    (named && alone && !keyword).then_some(end)
 }
 
 /// A Fanuc `:0097` program number at `chars[*i]` (the colon), read as the
@@ -486,7 +530,7 @@ fn lex_item(
     Ok(true)
 }
 
-/// A `( … )` comment at `chars[*i]`, nested parentheses included; `*i`
+/// A `( … )` comment at `chars[*i]` (see [`macro_expr::comment`]); `*i`
 /// moves past its `)`.
 fn lex_comment(
     chars: &[char],
@@ -494,36 +538,15 @@ fn lex_comment(
     line: usize,
     block: &mut Block,
 ) -> Result<(), NcError> {
-    let mut depth = 0usize;
-    let mut j = *i;
-    while j < chars.len() {
-        match chars[j] {
-            '(' => depth += 1,
-            ')' => {
-                depth -= 1;
-                if depth == 0 {
-                    break;
-                }
-            }
-            _ => {}
-        }
-        j += 1;
-    }
-    if j >= chars.len() {
-        return Err(NcError::new(
+    let (text, next) = macro_expr::comment(chars, *i).ok_or_else(|| {
+        NcError::new(
             line,
             *i + 1,
             "comment opened with '(' is not closed with ')'",
-        ));
-    }
-    block.comments.push(
-        chars[*i + 1..j]
-            .iter()
-            .collect::<String>()
-            .trim()
-            .to_string(),
-    );
-    *i = j + 1;
+        )
+    })?;
+    block.comments.push(text);
+    *i = next;
     Ok(())
 }
 
