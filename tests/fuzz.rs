@@ -358,6 +358,11 @@ fn writer_round_trip_regressions() {
         w,
         "G21 G17 G90\nG0 X0. Y0.\nG2 X6.035 Y0. I3.0175 J-0.2146 F406.4\nG90 G3 X8.4201 Y2.3851 Z0.4547 R2.3851"
     );
+    // A `;` comment with an unpaired parenthesis was written as `( … )`,
+    // which does not read back: it stays a `;` comment.
+    let text = "; dri(Ci\nG0 X1 (a) ; b)c\n";
+    fuzz_targets::nc_write_target(text).unwrap();
+    assert_eq!(parse(text).unwrap().write(), "; dri(Ci\nG0 X1 (a) ; b)c");
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/tests/nc_corpus/cncjs_helical-thread-milling.gcode"

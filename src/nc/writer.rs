@@ -239,12 +239,42 @@ fn rewrite_common(program: &Program, bi: usize, w: &Word, out: &mut Out) -> Opti
     }
 }
 
+/// `block` with `words`; its comments in parentheses, or, from the first
+/// one whose parentheses do not pair (a `;` comment such as `; see (1`),
+/// as one `;` comment to the line end, so they read back as comments.
 fn emit(block: &Block, words: Vec<Word>, out: &mut Out) {
     let b = Block {
         words,
+        comments: Vec::new(),
         ..block.clone()
     };
-    out.lines.push(b.write());
+    let mut line = b.write();
+    for (k, c) in block.comments.iter().enumerate() {
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        if !paired(c) {
+            line.push_str("; ");
+            line.push_str(&block.comments[k..].join(" "));
+            break;
+        }
+        line.push_str(&format!("({c})"));
+    }
+    out.lines.push(line);
+}
+
+/// Every `)` of `c` closes an earlier `(` and every `(` is closed.
+fn paired(c: &str) -> bool {
+    let mut depth = 0usize;
+    for ch in c.chars() {
+        match ch {
+            '(' => depth += 1,
+            ')' if depth == 0 => return false,
+            ')' => depth -= 1,
+            _ => {}
+        }
+    }
+    depth == 0
 }
 
 /// A source block without a segment in the output.
@@ -616,13 +646,12 @@ fn write_passive(program: &Program, bi: usize, out: &mut Out) {
         return;
     }
     let host = Block {
-        words,
         comments: block.comments.clone(),
         percent: block.percent,
         block_delete: block.block_delete,
         ..Block::default()
     };
-    out.lines.push(host.write());
+    emit(&host, words, out);
 }
 
 /// The program written flat: the segments in order, each a block; the
