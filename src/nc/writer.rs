@@ -52,16 +52,8 @@ use super::{Block, Word};
 /// assert_eq!(fmt_num(-0.00001), "0.");
 /// ```
 pub fn fmt_num(v: f64) -> String {
-    fmt_decimals(v, 4)
-}
-
-/// `v` with up to `decimals` decimals and a decimal point.
-fn fmt_decimals(v: f64, decimals: usize) -> String {
-    let mut s = format!("{v:.decimals$}");
-    if !s.contains('.') {
-        s.push('.');
-    }
-    while s.ends_with('0') && s.contains('.') {
+    let mut s = format!("{v:.4}");
+    while s.ends_with('0') {
         s.pop();
     }
     if s == "-0." {
@@ -88,7 +80,7 @@ fn fmt_exact(v: f64) -> String {
 /// An R arc whose centre, read back from the written (rounded) start, end
 /// and R, moves by more than this is written with I/J/K instead, mm: one
 /// written digit (0.1 µm). R close to half the chord makes the centre
-/// sensitive to the rounding (a 172° arc of R 3 mm moves it 0.6 µm).
+/// sensitive to the rounding (a 172° arc of R 3 mm moves it 0.3 µm).
 pub const REREAD_MM: f64 = 1e-4;
 
 /// Positions closer than this are the same point to the reader, mm (the
@@ -574,9 +566,9 @@ fn write_new(program: &Program, seg: &Segment, passive: Option<&Block>, out: &mu
     let want = motion_code(seg);
     let at = words.len();
     let coords = coord_words(program, None, seg, out);
-    if !coords.iter().any(|w| AXES.contains(&w.letter)) {
-        // A move that ends where it starts still needs an axis word to be
-        // a move when read back.
+    if seg.block.is_some() && !coords.iter().any(|w| AXES.contains(&w.letter)) {
+        // A source move that ends where it starts still needs an axis word
+        // to be a move when read back (an inserted one moves nothing).
         words.push(word('X', fmt_num(out.pos.x)));
     }
     words.extend(coords);
