@@ -409,6 +409,17 @@ pub fn write_source(text: &str, program: &Program, segments: &[Segment]) -> Stri
     out
 }
 
+/// A source block being edited to carry `seg` (originally `o`) from `pos`.
+struct Edit<'a> {
+    block: &'a Block,
+    line: &'a [char],
+    m: Modal,
+    seg: &'a Segment,
+    o: &'a Segment,
+    pos: [f64; 3],
+    same_start: bool,
+}
+
 impl Writer<'_> {
     fn line_of(&self, block: usize) -> Option<usize> {
         self.p
@@ -546,46 +557,17 @@ impl Writer<'_> {
             Some(c) => c.chars().collect(),
             None => self.p_line(l),
         };
+        let e = Edit {
+            block,
+            line: &line,
+            m,
+            seg,
+            o,
+            pos,
+            same_start,
+        };
         let mut splices = Vec::new();
-        let mut end = pos;
-        let e = seg.end.p();
-        let s0 = seg.start.p();
-        let mut last_col = None;
-        for (k, letter) in ['X', 'Y', 'Z'].into_iter().enumerate() {
-            // An axis the segment does not move is written as the start's
-            // written value (full circles, helix plane axes).
-            let target = if (e[k] - s0[k]).abs() <= SAME {
-                pos[k]
-            } else {
-                e[k]
-            };
-            match block.word(letter) {
-                Some(wd) => {
-                    let keep = e[k] == o.end.p()[k] && (!m.incremental || same_start);
-                    if keep {
-                        end[k] = o.end.p()[k];
-                    } else {
-                        let (t, v) = self.coord(&m, target, pos[k], k);
-                        end[k] = v;
-                        if t != wd.text {
-                            if let Some((at, len)) = number_span(&line, wd.column, &wd.text) {
-                                splices.push(Splice { at, len, text: t });
-                            }
-                        }
-                    }
-                    last_col = last_col.max(Some(wd.column));
-                }
-                None => {
-                    if (target - pos[k]).abs() > SAME {
-                        let (t, v) = self.coord(&m, target, pos[k], k);
-                        if (v - pos[k]).abs() > SAME {
-                            end[k] = v;
-                            splices.push(self.insert_word(block, &line, letter, t));
-                        }
-                    }
-                }
-            }
-        }
+        let end = self.axis_splices(&e, &mut splices);
         if let (Motion::Arc(a), Motion::Arc(oa)) = (seg.motion, o.motion) {
             self.arc_words(
                 block,
@@ -598,14 +580,71 @@ impl Writer<'_> {
                 &mut splices,
             );
         }
+        let changed = self.motion_splices(&e, restore, &mut splices);
+        if !splices.is_empty() {
+            self.content[l] = Some(apply(&line, splices));
+        }
+        (end, changed)
+    }
+
+    /// The splices of the X/Y/Z words of an edited block; returns the end
+    /// position read back.
+    fn axis_splices(&self, e: &Edit, splices: &mut Vec<Splice>) -> [f64; 3] {
+        let (m, pos) = (&e.m, e.pos);
+        let mut end = pos;
+        let (t1, s0, o1) = (e.seg.end.p(), e.seg.start.p(), e.o.end.p());
+        for (k, letter) in ['X', 'Y', 'Z'].into_iter().enumerate() {
+            // An axis the segment does not move is written as the start's
+            // written value (full circles, helix plane axes).
+            let target = if (t1[k] - s0[k]).abs() <= SAME {
+                pos[k]
+            } else {
+                t1[k]
+            };
+            match e.block.word(letter) {
+                Some(wd) => {
+                    let keep = t1[k] == o1[k] && (!m.incremental || e.same_start);
+                    if keep {
+                        end[k] = o1[k];
+                    } else {
+                        let (t, v) = self.coord(m, target, pos[k], k);
+                        end[k] = v;
+                        if t != wd.text {
+                            if let Some((at, len)) = number_span(e.line, wd.column, &wd.text) {
+                                splices.push(Splice { at, len, text: t });
+                            }
+                        }
+                    }
+                }
+                None => {
+                    if (target - pos[k]).abs() > SAME {
+                        let (t, v) = self.coord(m, target, pos[k], k);
+                        if (v - pos[k]).abs() > SAME {
+                            end[k] = v;
+                            splices.push(self.insert_word(e.block, e.line, letter, t));
+                        }
+                    }
+                }
+            }
+        }
+        end
+    }
+
+    /// The splices of the motion code of an edited block: a changed G0–G3,
+    /// the centre words of an arc that became a line, the code written on
+    /// a block that relied on a modal one the edit changed. Returns whether
+    /// the modal motion now differs from the original's.
+    fn motion_splices(&self, e: &Edit, restore: bool, splices: &mut Vec<Splice>) -> bool {
+        let (block, line) = (e.block, e.line);
         let code_word = block
             .words
             .iter()
             .find(|w| w.letter == 'G' && w.value.fract() == 0.0 && (0.0..=3.0).contains(&w.value));
-        let new_code = motion_code(&seg.motion);
+        let old_code = motion_code(&e.o.motion);
+        let new_code = motion_code(&e.seg.motion);
         if let (Some(cw), Some(code)) = (code_word, new_code) {
-            if motion_code(&o.motion) != new_code {
-                if let Some((at, len)) = number_span(&line, cw.column, &cw.text) {
+            if old_code != new_code {
+                if let Some((at, len)) = number_span(line, cw.column, &cw.text) {
                     let t = self.d.g(code);
                     splices.push(Splice {
                         at,
@@ -615,13 +654,13 @@ impl Writer<'_> {
                 }
             }
         }
-        if matches!(seg.motion, Motion::Linear) && matches!(o.motion, Motion::Arc(_)) {
+        if matches!(e.seg.motion, Motion::Linear) && matches!(e.o.motion, Motion::Arc(_)) {
             for wd in block
                 .words
                 .iter()
                 .filter(|w| matches!(w.letter, 'I' | 'J' | 'K' | 'R'))
             {
-                if let Some((at, len)) = number_span(&line, wd.column, &wd.text) {
+                if let Some((at, len)) = number_span(line, wd.column, &wd.text) {
                     let from = wd.column - 1;
                     splices.push(Splice {
                         at: from,
@@ -631,29 +670,24 @@ impl Writer<'_> {
                 }
             }
         }
-        let restore = restore || (code_word.is_none() && motion_code(&o.motion) != new_code);
-        if restore && code_word.is_none() {
-            if let Some(code) = new_code {
-                let at = block
-                    .words
-                    .iter()
-                    .find(|w| w.letter != 'N')
-                    .map_or(line.len(), |w| w.column - 1);
-                splices.push(Splice {
-                    at,
-                    len: 0,
-                    text: format!(
-                        "{}{}",
-                        self.d.g(code),
-                        line_space(block, &line, self.d.space)
-                    ),
-                });
-            }
+        let restore = restore || (code_word.is_none() && old_code != new_code);
+        if let (true, None, Some(code)) = (restore, code_word, new_code) {
+            let at = block
+                .words
+                .iter()
+                .find(|w| w.letter != 'N')
+                .map_or(line.len(), |w| w.column - 1);
+            splices.push(Splice {
+                at,
+                len: 0,
+                text: format!(
+                    "{}{}",
+                    self.d.g(code),
+                    line_space(block, line, self.d.space)
+                ),
+            });
         }
-        if !splices.is_empty() {
-            self.content[l] = Some(apply(&line, splices));
-        }
-        (end, motion_code(&o.motion) != new_code)
+        old_code != new_code
     }
 
     fn p_line(&self, l: usize) -> Vec<char> {

@@ -20,13 +20,26 @@
 //!   dwells are `P` in integer milliseconds (`Auto`, `Milliseconds`) or
 //!   seconds (`Seconds`).
 //!
+//! - a program whose blocks cannot be rewritten one by one is written flat,
+//!   as the path it runs: one block per segment, in execution order. That
+//!   is a program with macro code, with a G92 shift, or with `fixed`
+//!   segments (a subprogram body — a `G91` body called twice moves from
+//!   two different starts —, a canned cycle, a corner `,R`/`,C`). Blocks
+//!   without motion keep their N numbers, comments and M/S/T/D/H words in
+//!   place (not M98/M99); G codes, O numbers and call words are dropped.
+//!
 //! Numbers are written with up to 4 decimals (0.1 µm) and always with a
 //! decimal point, because FANUC reads `X10` without one as 10 µm when
-//! "decimal point input" is off.
+//! "decimal point input" is off. Where 4 decimals would change what is read
+//! back, more are written: a short arc whose end would round onto its start
+//! (it would become a full circle), a feed that would round to zero; an R
+//! arc whose centre would move by more than [`REREAD_MM`] (R close to half
+//! the chord) is written with I/J/K.
 //!
 //! Units: mm, degrees for A/B/C, mm/min.
 
-use super::program::{DwellP, Modal, Motion, MotionCode, Plane, Pose, Program, Segment, AXES};
+use super::arc::arc;
+use super::program::{Arc, DwellP, Modal, Motion, MotionCode, Plane, Pose, Program, Segment, AXES};
 use super::{Block, Word};
 
 /// A number with up to 4 decimals and a decimal point, e.g. `10.`, `-0.5`.
@@ -48,6 +61,31 @@ pub fn fmt_num(v: f64) -> String {
     }
     s
 }
+
+/// The value a reader gets from [`fmt_num`]`(v)`.
+fn written(v: f64) -> f64 {
+    fmt_num(v).parse().unwrap_or(v)
+}
+
+/// `v` exactly (the shortest decimal that reads back as `v`), with a
+/// decimal point.
+fn fmt_exact(v: f64) -> String {
+    let mut s = format!("{v}");
+    if !s.contains('.') {
+        s.push('.');
+    }
+    s
+}
+
+/// An R arc whose centre, read back from the written (rounded) start, end
+/// and R, moves by more than this is written with I/J/K instead, mm: one
+/// written digit (0.1 µm). R close to half the chord makes the centre
+/// sensitive to the rounding (a 172° arc of R 3 mm moves it 0.3 µm).
+pub const REREAD_MM: f64 = 1e-4;
+
+/// Positions closer than this are the same point to the reader, mm (the
+/// interpreter's full-circle test).
+const SAME_POINT_MM: f64 = 1e-9;
 
 fn word(letter: char, text: String) -> Word {
     Word {
@@ -127,6 +165,10 @@ pub fn write(program: &Program, segments: &[Segment]) -> String {
         pos: program.options.start,
         lines: Vec::new(),
     };
+    if needs_flat(program) {
+        write_flat(program, segments, &mut out);
+        return out.lines.join("\n");
+    }
     let mut next = 0usize;
     for seg in segments {
         match seg.block {
@@ -137,7 +179,7 @@ pub fn write(program: &Program, segments: &[Segment]) -> String {
                 write_block(program, bi, seg, &mut out);
                 next = bi + 1;
             }
-            _ => write_new(program, seg, &mut out),
+            _ => write_new(program, seg, None, &mut out),
         }
     }
     for j in next..program.blocks.len() {
@@ -160,6 +202,7 @@ fn rewrite_common(program: &Program, bi: usize, w: &Word, out: &mut Out) -> Opti
             match g {
                 200 => w = word('G', "21".into()),
                 910 => w = word('G', "90".into()),
+                901 => w = word('G', "91.1".into()),
                 0 | 10 | 20 | 30 => {
                     out.motion = Some(match g {
                         0 => MotionCode::Rapid,
@@ -179,7 +222,7 @@ fn rewrite_common(program: &Program, bi: usize, w: &Word, out: &mut Out) -> Opti
             let f = if m.inch { w.value * 25.4 } else { w.value };
             out.feed = Some(f);
             Some(if m.inch {
-                word('F', fmt_num(f))
+                word('F', fmt_feed(f))
             } else {
                 w.clone()
             })
@@ -188,12 +231,42 @@ fn rewrite_common(program: &Program, bi: usize, w: &Word, out: &mut Out) -> Opti
     }
 }
 
+/// `block` with `words`; its comments in parentheses, or, from the first
+/// one whose parentheses do not pair (a `;` comment such as `; see (1`),
+/// as one `;` comment to the line end, so they read back as comments.
 fn emit(block: &Block, words: Vec<Word>, out: &mut Out) {
     let b = Block {
         words,
+        comments: Vec::new(),
         ..block.clone()
     };
-    out.lines.push(b.write());
+    let mut line = b.write();
+    for (k, c) in block.comments.iter().enumerate() {
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        if !paired(c) {
+            line.push_str("; ");
+            line.push_str(&block.comments[k..].join(" "));
+            break;
+        }
+        line.push_str(&format!("({c})"));
+    }
+    out.lines.push(line);
+}
+
+/// Every `)` of `c` closes an earlier `(` and every `(` is closed.
+fn paired(c: &str) -> bool {
+    let mut depth = 0usize;
+    for ch in c.chars() {
+        match ch {
+            '(' => depth += 1,
+            ')' if depth == 0 => return false,
+            ')' => depth -= 1,
+            _ => {}
+        }
+    }
+    depth == 0
 }
 
 /// A source block without a segment in the output.
@@ -224,48 +297,127 @@ fn write_plain(program: &Program, bi: usize, out: &mut Out) {
     emit(block, words, out);
 }
 
+/// The axis words of `seg`'s end: an axis is written when the source block
+/// had it or when it moves. An axis that stays where the segment started
+/// (within [`SAME_POINT_MM`]) is written with the start's value, so a full
+/// circle stays a full circle; a short arc whose end would round onto its
+/// start is written exactly.
+fn axis_words(block: Option<&Block>, plain: bool, seg: &Segment, out: &Out) -> Vec<Word> {
+    let exact = match seg.motion {
+        Motion::Arc(a) => {
+            let (u, v, _) = a.plane.axes();
+            let chord = |f: &dyn Fn(f64) -> f64| {
+                (f(seg.end.get(u)) - f(seg.start.get(u)))
+                    .hypot(f(seg.end.get(v)) - f(seg.start.get(v)))
+            };
+            chord(&|x| x) >= SAME_POINT_MM && chord(&written) < SAME_POINT_MM
+        }
+        _ => false,
+    };
+    let mut ws = Vec::new();
+    for (i, &letter) in AXES.iter().enumerate() {
+        let mut v = seg.end.get(i);
+        let orig = block.and_then(|b| b.word(letter));
+        if (v - out.pos.get(i)).abs() < SAME_POINT_MM {
+            if orig.is_none() {
+                continue;
+            }
+            v = out.pos.get(i);
+        }
+        match orig {
+            Some(o) if plain && o.value == v => ws.push(o.clone()),
+            _ if exact => ws.push(word(letter, fmt_exact(v))),
+            _ => ws.push(word(letter, fmt_num(v))),
+        }
+    }
+    ws
+}
+
+/// The pose a reader gets back from `pose` written with [`fmt_num`].
+fn written_pose(pose: &Pose) -> Pose {
+    let mut a = [0.0; 6];
+    for (i, v) in a.iter_mut().enumerate() {
+        *v = written(pose.get(i));
+    }
+    Pose::from_array(a)
+}
+
+/// The R word of `a`, when a reader gets `a`'s centre back from it and the
+/// written end point within [`REREAD_MM`].
+fn r_word(orig: Option<&Word>, inch: bool, seg: &Segment, a: &Arc, end: &[Word]) -> Option<Word> {
+    let r = if a.sweep.abs() > std::f64::consts::PI {
+        -a.radius
+    } else {
+        a.radius
+    };
+    let w = match orig {
+        Some(o) if !inch && o.value == r => o.clone(),
+        _ => word('R', fmt_num(r)),
+    };
+    let start = written_pose(&seg.start);
+    let mut e = written_pose(&seg.end);
+    for ew in end {
+        if let Some(i) = AXES.iter().position(|&c| c == ew.letter) {
+            e.set(i, ew.value);
+        }
+    }
+    let b = Block {
+        words: vec![w.clone()],
+        ..Block::default()
+    };
+    let back = arc(&b, &w, a.plane, a.sweep < 0.0, start, e, 1.0).ok()?;
+    let moved = (0..3)
+        .map(|k| (back.center[k] - a.center[k]).abs())
+        .fold(0.0, f64::max);
+    (moved <= REREAD_MM && (back.sweep - a.sweep).abs() < std::f64::consts::PI).then_some(w)
+}
+
+/// The centre words I/J/K of `a`, from the written start point (so only
+/// their own rounding counts); exact when they would round to zero.
+fn centre_words(block: Option<&Block>, inch: bool, seg: &Segment, a: &Arc) -> Vec<Word> {
+    let (u, v, _) = a.plane.axes();
+    let letters = ['I', 'J', 'K'];
+    let p0 = written_pose(&seg.start).p();
+    let vals = [a.center[u] - p0[u], a.center[v] - p0[v]];
+    let tiny = vals.iter().all(|&x| written(x) == 0.0);
+    let mut ws = Vec::new();
+    for (k, val) in [u, v].into_iter().zip(vals) {
+        match block.and_then(|b| b.word(letters[k])) {
+            Some(o) if !inch && o.value == val => ws.push(o.clone()),
+            _ if tiny => ws.push(word(letters[k], fmt_exact(val))),
+            _ => ws.push(word(letters[k], fmt_num(val))),
+        }
+    }
+    ws
+}
+
 fn coord_words(program: &Program, bi: Option<usize>, seg: &Segment, out: &Out) -> Vec<Word> {
     let block = bi.and_then(|i| program.blocks.get(i));
     let m = bi.map(|i| modal_at(program, i)).unwrap_or_default();
     let plain = !m.inch && !m.incremental;
-    let mut ws = Vec::new();
-    for (i, &letter) in AXES.iter().enumerate() {
-        let v = seg.end.get(i);
-        let orig = block.and_then(|b| b.word(letter));
-        if orig.is_none() && (v - out.pos.get(i)).abs() < 1e-7 {
-            continue;
-        }
-        match orig {
-            Some(o) if plain && o.value == v => ws.push(o.clone()),
-            _ => ws.push(word(letter, fmt_num(v))),
-        }
-    }
+    let mut ws = axis_words(block, plain, seg, out);
     if let Motion::Arc(a) = seg.motion {
         let full = a.sweep.abs() > std::f64::consts::TAU - 1e-9;
-        if a.r_form && !full {
-            let r = if a.sweep.abs() > std::f64::consts::PI {
-                -a.radius
-            } else {
-                a.radius
-            };
-            match block.and_then(|b| b.word('R')) {
-                Some(o) if !m.inch && o.value == r => ws.push(o.clone()),
-                _ => ws.push(word('R', fmt_num(r))),
-            }
-        } else {
-            let (u, v, _) = a.plane.axes();
-            let letters = ['I', 'J', 'K'];
-            let p0 = seg.start.p();
-            for k in [u, v] {
-                let val = a.center[k] - p0[k];
-                match block.and_then(|b| b.word(letters[k])) {
-                    Some(o) if !m.inch && o.value == val => ws.push(o.clone()),
-                    _ => ws.push(word(letters[k], fmt_num(val))),
-                }
-            }
+        let orig_r = block.and_then(|b| b.word('R'));
+        match (a.r_form && !full)
+            .then(|| r_word(orig_r, m.inch, seg, &a, &ws))
+            .flatten()
+        {
+            Some(r) => ws.push(r),
+            None => ws.extend(centre_words(block, m.inch, seg, &a)),
         }
     }
     ws
+}
+
+/// A feed with up to 4 decimals, or exactly when that would change it by
+/// more than 1e-7 of itself (a feed below 0.001 mm/min).
+fn fmt_feed(f: f64) -> String {
+    if (written(f) - f).abs() <= 1e-7 * f.abs() {
+        fmt_num(f)
+    } else {
+        fmt_exact(f)
+    }
 }
 
 fn dwell_word(program: &Program, orig: Option<&Word>, seconds: f64) -> Word {
@@ -281,17 +433,17 @@ fn dwell_word(program: &Program, orig: Option<&Word>, seconds: f64) -> Word {
             return o.clone();
         }
         if o.letter != 'P' || !ms {
-            return word(o.letter, fmt_num(seconds));
+            return word(o.letter, fmt_feed(seconds));
         }
     }
     let ms = seconds * 1000.0;
+    let whole = (ms - ms.round()).abs() < 1e-9;
     match program.options.dwell_p {
-        DwellP::Seconds => word('P', fmt_num(seconds)),
-        DwellP::Milliseconds => word('P', format!("{}", ms.round() as i64)),
-        DwellP::Auto if (ms - ms.round()).abs() < 1e-9 => {
-            word('P', format!("{}", ms.round() as i64))
-        }
-        DwellP::Auto => word('P', fmt_num(seconds)),
+        DwellP::Seconds => word('P', fmt_feed(seconds)),
+        DwellP::Milliseconds if whole => word('P', format!("{}", ms.round() as i64)),
+        DwellP::Milliseconds => word('P', fmt_feed(ms)),
+        DwellP::Auto if whole => word('P', format!("{}", ms.round() as i64)),
+        DwellP::Auto => word('P', fmt_feed(seconds)),
     }
 }
 
@@ -300,39 +452,64 @@ fn insert_front(words: &mut Vec<Word>, w: Word) {
     words.insert(at, w);
 }
 
+/// A source block carrying the dwell `seconds`.
+fn write_dwell_block(program: &Program, bi: usize, block: &Block, seconds: f64, out: &mut Out) {
+    let orig = block.word('X').or(block.word('U')).or(block.word('P'));
+    let mut words = Vec::new();
+    let mut placed = false;
+    for w in &block.words {
+        if matches!(w.letter, 'X' | 'U' | 'P') {
+            if !placed {
+                words.push(dwell_word(program, orig, seconds));
+                placed = true;
+            }
+            continue;
+        }
+        if let Some(w) = rewrite_common(program, bi, w, out) {
+            words.push(w);
+        }
+    }
+    if !placed {
+        words.push(dwell_word(program, None, seconds));
+    }
+    emit(block, words, out);
+}
+
+/// The modal words a block writing `seg` needs in front (plane, motion
+/// code) and behind (feed) when it does not carry them itself.
+fn modal_words(seg: &Segment, had: [bool; 3], words: &mut Vec<Word>, out: &mut Out) {
+    let [had_motion, had_plane, had_feed] = had;
+    let want = motion_code(seg);
+    if let Motion::Arc(a) = seg.motion {
+        if !had_plane && out.plane != a.plane {
+            insert_front(words, word('G', a.plane.code().to_string()));
+            out.plane = a.plane;
+        }
+    }
+    if !had_motion && want != out.motion {
+        if let Some(m) = want {
+            insert_front(words, word('G', m.code().to_string()));
+        }
+    }
+    out.motion = want.or(out.motion);
+    if seg.is_cutting() && !had_feed && out.feed != Some(seg.feed) {
+        words.push(word('F', fmt_feed(seg.feed)));
+        out.feed = Some(seg.feed);
+    }
+}
+
 /// A source block carrying `seg`.
 fn write_block(program: &Program, bi: usize, seg: &Segment, out: &mut Out) {
     let Some(block) = program.blocks.get(bi) else {
         return;
     };
     if let Motion::Dwell { seconds } = seg.motion {
-        let orig = block.word('X').or(block.word('U')).or(block.word('P'));
-        let mut words = Vec::new();
-        let mut placed = false;
-        for w in &block.words {
-            if matches!(w.letter, 'X' | 'U' | 'P') {
-                if !placed {
-                    words.push(dwell_word(program, orig, seconds));
-                    placed = true;
-                }
-                continue;
-            }
-            if let Some(w) = rewrite_common(program, bi, w, out) {
-                words.push(w);
-            }
-        }
-        if !placed {
-            words.push(dwell_word(program, None, seconds));
-        }
-        return emit(block, words, out);
+        return write_dwell_block(program, bi, block, seconds, out);
     }
     let want = motion_code(seg);
-    let coords = coord_words(program, Some(bi), seg, out);
-    let mut coords = Some(coords);
+    let mut coords = Some(coord_words(program, Some(bi), seg, out));
     let mut words = Vec::new();
-    let mut had_motion = false;
-    let mut had_plane = false;
-    let mut had_feed = false;
+    let mut had = [false; 3];
     for w in &block.words {
         if is_move_word(w.letter) {
             if let Some(c) = coords.take() {
@@ -344,21 +521,21 @@ fn write_block(program: &Program, bi: usize, seg: &Segment, out: &mut Out) {
         if w.letter == 'G' {
             let g = g_code(&w);
             if matches!(g, 0 | 10 | 20 | 30) {
-                had_motion = true;
+                had[0] = true;
                 if let Some(m) = want {
                     if g != 10 * m.code() as i64 {
                         w = word('G', m.code().to_string());
                     }
                 }
             }
-            had_plane |= matches!(g, 170 | 180 | 190);
+            had[1] |= matches!(g, 170 | 180 | 190);
         }
         if w.letter == 'F' {
-            had_feed = true;
+            had[2] = true;
             let m = modal_at(program, bi);
             let f = if m.inch { w.value * 25.4 } else { w.value };
             if seg.is_cutting() && f != seg.feed {
-                w = word('F', fmt_num(seg.feed));
+                w = word('F', fmt_feed(seg.feed));
             }
         }
         if let Some(w) = rewrite_common(program, bi, &w, out) {
@@ -368,54 +545,132 @@ fn write_block(program: &Program, bi: usize, seg: &Segment, out: &mut Out) {
     if let Some(c) = coords.take() {
         words.extend(c);
     }
-    if let Motion::Arc(a) = seg.motion {
-        if !had_plane && out.plane != a.plane {
-            insert_front(&mut words, word('G', a.plane.code().to_string()));
-            out.plane = a.plane;
-        }
-    }
-    if !had_motion && want != out.motion {
-        if let Some(m) = want {
-            insert_front(&mut words, word('G', m.code().to_string()));
-        }
-    }
-    out.motion = want.or(out.motion);
-    if seg.is_cutting() && !had_feed && out.feed != Some(seg.feed) {
-        words.push(word('F', fmt_num(seg.feed)));
-        out.feed = Some(seg.feed);
-    }
+    modal_words(seg, had, &mut words, out);
     out.pos = seg.end;
     emit(block, words, out);
 }
 
-/// A segment without a source block.
-fn write_new(program: &Program, seg: &Segment, out: &mut Out) {
-    let mut words = Vec::new();
+/// A segment without a source block, or (`passive`) with its source
+/// block's passive words and comments in front.
+fn write_new(program: &Program, seg: &Segment, passive: Option<&Block>, out: &mut Out) {
+    let mut words: Vec<Word> = passive.map_or_else(Vec::new, passive_words);
+    let host = Block {
+        comments: passive.map_or_else(Vec::new, |b| b.comments.clone()),
+        ..Block::default()
+    };
     if let Motion::Dwell { seconds } = seg.motion {
-        words.push(word('G', "04".into()));
+        insert_front(&mut words, word('G', "04".into()));
         words.push(dwell_word(program, None, seconds));
-        return emit(&Block::default(), words, out);
+        return emit(&host, words, out);
     }
     let want = motion_code(seg);
+    let at = words.len();
+    let coords = coord_words(program, None, seg, out);
+    if seg.block.is_some() && !coords.iter().any(|w| AXES.contains(&w.letter)) {
+        // A source move that ends where it starts still needs an axis word
+        // to be a move when read back (an inserted one moves nothing).
+        words.push(word('X', fmt_num(out.pos.x)));
+    }
+    words.extend(coords);
+    let mut front = Vec::new();
     if let Motion::Arc(a) = seg.motion {
         if out.plane != a.plane {
-            words.push(word('G', a.plane.code().to_string()));
+            front.push(word('G', a.plane.code().to_string()));
             out.plane = a.plane;
         }
     }
     if want != out.motion {
         if let Some(m) = want {
-            words.push(word('G', m.code().to_string()));
+            front.push(word('G', m.code().to_string()));
         }
         out.motion = want;
     }
-    words.extend(coord_words(program, None, seg, out));
+    words.splice(at..at, front);
     if seg.is_cutting() && out.feed != Some(seg.feed) {
-        words.push(word('F', fmt_num(seg.feed)));
+        words.push(word('F', fmt_feed(seg.feed)));
         out.feed = Some(seg.feed);
     }
     out.pos = seg.end;
-    emit(&Block::default(), words, out);
+    emit(&host, words, out);
+}
+
+/// True when `program`'s blocks cannot be rewritten one by one (see the
+/// module header): macro code, a G92 shift, `fixed` segments, or segments
+/// out of block order.
+fn needs_flat(program: &Program) -> bool {
+    let mut last = None;
+    let out_of_order = program.segments.iter().any(|s| {
+        let before = last;
+        last = s.block;
+        s.block.is_none() || s.block <= before
+    });
+    program.has_macros()
+        || out_of_order
+        || program.segments.iter().any(|s| s.fixed)
+        || program
+            .modal
+            .iter()
+            .any(|m| m.offset.iter().any(|&o| o != 0.0))
+}
+
+/// The words of `block` that neither move nor change a mode: N, S, T, D,
+/// H and M (not the subprogram calls and returns M97, M98, M99, M198).
+fn passive_words(block: &Block) -> Vec<Word> {
+    block
+        .words
+        .iter()
+        .filter(|w| match w.letter {
+            'N' | 'S' | 'T' | 'D' | 'H' => true,
+            'M' => !matches!(w.value as i64, 97 | 98 | 99 | 198),
+            _ => false,
+        })
+        .cloned()
+        .collect()
+}
+
+/// A block without motion, flat: its passive words and comments.
+fn write_passive(program: &Program, bi: usize, out: &mut Out) {
+    let Some(block) = program.blocks.get(bi) else {
+        return;
+    };
+    let words = passive_words(block);
+    if words.is_empty() && block.comments.is_empty() && !block.percent {
+        return;
+    }
+    let host = Block {
+        comments: block.comments.clone(),
+        percent: block.percent,
+        block_delete: block.block_delete,
+        ..Block::default()
+    };
+    emit(&host, words, out);
+}
+
+/// The program written flat: the segments in order, each a block; the
+/// blocks of the main program without motion in place, up to its end
+/// (M2/M30), so a subprogram body after it is not read as main program.
+fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
+    let end = program
+        .modal
+        .iter()
+        .position(|m| m.ended)
+        .unwrap_or(program.blocks.len().saturating_sub(1));
+    let mut next = 0usize;
+    for seg in segments {
+        match seg.block {
+            Some(bi) if bi >= next && bi <= end => {
+                for j in next..bi {
+                    write_passive(program, j, out);
+                }
+                next = bi + 1;
+                write_new(program, seg, program.blocks.get(bi), out);
+            }
+            _ => write_new(program, seg, None, out),
+        }
+    }
+    for j in next..=end.min(program.blocks.len()) {
+        write_passive(program, j, out);
+    }
 }
 
 #[cfg(test)]
