@@ -53,7 +53,6 @@ pub mod rounds;
 
 use serde::{Deserialize, Serialize};
 
-use crate::budget::MAX_REVERSE_SIMULATED_SAMPLES;
 use crate::nc::patch::write_source;
 use crate::nc::program::{dist, parse, Motion, Program, Segment};
 use crate::toolpath::{sample_estimate, simulate, SimConfig, Simulation, ToolpathError};
@@ -320,15 +319,7 @@ pub fn reverse_compensate_with(
     validate(cfg)?;
     let program = parse(text)?;
     let orig = &program.segments;
-    let n = sample_estimate(orig, &cfg.sim)? as u64;
-    crate::budget::check(
-        "reverse compensation",
-        n.saturating_mul(4),
-        MAX_REVERSE_SIMULATED_SAMPLES,
-        "simulated samples (the original, one round and two checks)",
-        "raise dt, shorten the program, or compensate it in parts",
-    )?;
-    let mut work = Work::new(MAX_REVERSE_SIMULATED_SAMPLES as u64, n);
+    let mut work = Work::for_program(sample_estimate(orig, &cfg.sim)? as u64)?;
     let mut tick = |f: f64, s: &str| {
         if progress(f, s) {
             Ok(())
@@ -384,13 +375,8 @@ pub fn reverse_compensate_with(
         &mut work,
     )?;
     tick(1.0, "done")?;
-    let budget_note = work.stopped.then(|| {
-        format!(
-            "the work budget ({MAX_REVERSE_SIMULATED_SAMPLES} simulated samples, {n} per simulation of this program) stopped the correction early; the best rounds so far are kept and checked. Raise dt or compensate the program in parts for a full run"
-        )
-    });
     Ok(Compensation {
-        budget_note,
+        budget_note: work.note(),
         ..finish(
             &program,
             &rg,

@@ -28,6 +28,7 @@
 
 use super::geometry::{rebuild, Edit};
 use super::region::{region_errors, Regions};
+use crate::budget::{BudgetError, MAX_REVERSE_SIMULATED_SAMPLES};
 use crate::nc::program::{Motion, Segment};
 use crate::toolpath::{simulate, SegmentStats, SimConfig, ToolpathError};
 
@@ -58,6 +59,32 @@ pub struct Work {
 }
 
 impl Work {
+    /// The budget of one compensation of a program of `program` samples
+    /// ([`MAX_REVERSE_SIMULATED_SAMPLES`]).
+    ///
+    /// # Errors
+    /// When the original, one round and two checks would not fit.
+    pub fn for_program(program: u64) -> Result<Self, BudgetError> {
+        crate::budget::check(
+            "reverse compensation",
+            program.saturating_mul(4),
+            MAX_REVERSE_SIMULATED_SAMPLES,
+            "simulated samples (the original, one round and two checks)",
+            "raise dt, shorten the program, or compensate it in parts",
+        )?;
+        Ok(Self::new(MAX_REVERSE_SIMULATED_SAMPLES as u64, program))
+    }
+
+    /// What the result says when the budget cut the work short.
+    pub fn note(&self) -> Option<String> {
+        self.stopped.then(|| {
+            format!(
+                "the work budget ({MAX_REVERSE_SIMULATED_SAMPLES} simulated samples, {} per simulation of this program) stopped the correction early; the best rounds so far are kept and checked. Raise dt or compensate the program in parts for a full run",
+                self.program
+            )
+        })
+    }
+
     /// `limit` samples in all for a program of `program` samples, of
     /// which the original's simulation is spent at once; two more
     /// simulations of it are kept for the checks.
