@@ -65,7 +65,10 @@ export function lineChart(el, opts) {
     );
   };
   build(opts);
-  observe(el, () => plot && el.clientWidth && plot.setSize({ width: el.clientWidth, height: opts.height || 260 }), () => plot?.destroy());
+  // A ResizeObserver also reports once when it starts: only a real change
+  // of width resizes (uPlot's setSize clears and redraws the whole chart
+  // even at the same size, which doubled the drawing of every new chart).
+  observe(el, () => plot && el.clientWidth && el.clientWidth !== plot.width && plot.setSize({ width: el.clientWidth, height: opts.height || 260 }), () => plot?.destroy());
   return {
     el,
     plot: () => plot,
