@@ -93,7 +93,11 @@ const ACTIONS = [
   ['ballbar', 'ballbar: Analyse', '#ballbar-run', '#ballbar-centre-x'],
   ['ballbar', 'ballbar: paper example (Fig. 7)', '#ballbar-example-run', '#ballbar-paper-table'],
   ['kinematics', 'kinematics: cone-frustum 4 runs', '#kinematics-cone-run', '#kinematics-cone-max'],
-  ['kinematics', 'kinematics: NC compensation (Monte-Carlo)', '#kinematics-nc-run', '#kinematics-nc-reduction', null, 'Monte-Carlo'],
+  // The NC program starts empty on the default machine: load the S-shape first.
+  ['kinematics', 'kinematics: NC compensation (Monte-Carlo)', '#kinematics-nc-run', '#kinematics-nc-reduction', async (page) => {
+    await page.click('#kinematics-sshape');
+    await page.waitForFunction(() => /** @type {HTMLTextAreaElement} */ (document.getElementById('kinematics-nc-input')).value.length > 0);
+  }, 'Monte-Carlo'],
 ];
 
 /** Click → result element present → next painted frame, timed in the page. */

@@ -67,3 +67,18 @@ test('a core error reaches the caller with its message', async () => {
   await assert.rejects(travelRangeSweep(pool, { ...sweepCfg, ranges: [400] }), /400/);
   pool.close();
 });
+
+test('the cone-frustum panel\'s four runs side by side equal the runs in sequence', async () => {
+  // The kinematics panel's runCone: 15°/45° × perpendicular/parallel, 1440 points, servo models.
+  const args = [[15, 'perpendicular'], [15, 'parallel'], [45, 'perpendicular'], [45, 'parallel']].map(([halfApexDeg, method]) => [{
+    machine: 'trunnion-ac', halfApexDeg, inclinationDeg: 10, method, barLength: 100, feed: 1000, centre: [60, 40, 20],
+    errors: { location: { EX0C: 0.01 } }, drives: { backlash: { c: 1e-4 } }, idealServo: false, points: 1440,
+  }]);
+  const sequential = args.map(([cfg]) => mt.coneFrustumTest(cfg));
+  const pool = createPool({ size: 2, spawn: nodeSpawn });
+  try {
+    assert.deepEqual(await pool.map('coneFrustumTest', args), sequential);
+  } finally {
+    pool.close();
+  }
+});

@@ -65,7 +65,10 @@ export function lineChart(el, opts) {
     );
   };
   build(opts);
-  observe(el, () => plot && el.clientWidth && plot.setSize({ width: el.clientWidth, height: opts.height || 260 }), () => plot?.destroy());
+  // A ResizeObserver also reports once when it starts: only a real change
+  // of width resizes (uPlot's setSize clears and redraws the whole chart
+  // even at the same size, which doubled the drawing of every new chart).
+  observe(el, () => plot && el.clientWidth && el.clientWidth !== plot.width && plot.setSize({ width: el.clientWidth, height: opts.height || 260 }), () => plot?.destroy());
   return {
     el,
     plot: () => plot,
@@ -303,13 +306,22 @@ export function xyChart(el, opts) {
         ctx.fillStyle = color;
         for (let i = 0; i < t.x.length; i++) ctx.fillRect(X(t.x[i]) - 2, Y(t.y[i]) - 2, 4, 4);
       } else if (t.values) {
+        // Segment i takes the colour of point i; consecutive segments of
+        // the same colour are one stroke (the colours are whole RGB values,
+        // so neighbours often share one): far fewer strokes to rasterise.
+        let run = null;
         for (let i = 1; i < t.x.length; i++) {
-          ctx.strokeStyle = colorScale((t.values[i] - v0) / (v1 - v0 || 1));
-          ctx.beginPath();
-          ctx.moveTo(X(t.x[i - 1]), Y(t.y[i - 1]));
+          const c = colorScale((t.values[i] - v0) / (v1 - v0 || 1));
+          if (c !== run) {
+            if (run !== null) ctx.stroke();
+            run = c;
+            ctx.strokeStyle = c;
+            ctx.beginPath();
+            ctx.moveTo(X(t.x[i - 1]), Y(t.y[i - 1]));
+          }
           ctx.lineTo(X(t.x[i]), Y(t.y[i]));
-          ctx.stroke();
         }
+        if (run !== null) ctx.stroke();
       } else {
         ctx.strokeStyle = color;
         ctx.beginPath();

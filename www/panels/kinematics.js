@@ -106,16 +106,17 @@ export async function mount(root, api) {
     coneUi.start();
     /** @type {[number, 'perpendicular' | 'parallel'][]} */
     const combos = [[15, 'perpendicular'], [15, 'parallel'], [45, 'perpendicular'], [45, 'parallel']];
-    const results = [];
+    let results;
     try {
-      for (const [i, [theta, method]] of combos.entries()) {
-        progress.set(i / combos.length, `θ = ${theta}°, ${method}`);
-        results.push(await api.call('coneFrustumTest', [{
-          machine: machineSel.value, halfApexDeg: theta, inclinationDeg: Number(incl.value), method,
-          barLength: bar.value, feed: feed.value, centre: [cx.value, cy.value, cz.value],
-          errors: errors(), drives: drives(), idealServo: ideal.checked, points: 1440,
-        }]));
-      }
+      // The four runs are independent: on the study pool they run side by
+      // side (one per core), in order otherwise; the same results either way.
+      const args = combos.map(([theta, method]) => [{
+        machine: machineSel.value, halfApexDeg: theta, inclinationDeg: Number(incl.value), method,
+        barLength: bar.value, feed: feed.value, centre: [cx.value, cy.value, cz.value],
+        errors: errors(), drives: drives(), idealServo: ideal.checked, points: 1440,
+      }]);
+      progress.set(0, 'simulating the four runs');
+      results = await mapCalls(api, 'coneFrustumTest', args, { onProgress: (d, n) => progress.set(d / n, `${d} of ${n} runs`) });
       progress.done();
     } catch (e) {
       progress.done();
