@@ -68,7 +68,10 @@ export default async function (page, check) {
   await page.waitForSelector('#kinematics-nc-out:not(.stale) #kinematics-mc-runs-chart canvas', { timeout: 120_000 });
   const first = parseFloat(await page.textContent('#kinematics-nc-reduction'));
   check(first === red, `the first of 3 runs should repeat the single run's ${red} %, shows ${first} %`);
-  check((await page.$$('#kinematics-mc-download')).length === 1, 'the runs can be downloaded as CSV');
+  const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#kinematics-mc-download')]);
+  const csv = readFileSync(await dl.path(), 'utf8').trim().split('\n');
+  check(csv.length === 4 && csv[0].startsWith('seed,') && csv[1].startsWith('42,') && csv[3].startsWith('44,'), `the CSV should hold a header and seeds 42–44, got ${csv.slice(0, 2).join(' | ')}`);
+  check(Math.abs(Number(csv[1].split(',').at(-1)) - red) < 1e-3, `the CSV's first total (${csv[1]}) should be the shown ${red} %`);
   await page.fill('#kinematics-mc-runs', '0');
   await page.click('#kinematics-nc-run');
   await page.waitForSelector('#kinematics-nc-out .error-box');
