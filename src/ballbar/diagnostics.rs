@@ -38,8 +38,9 @@
 //!   least-squares coefficient (σ of the kept residuals, diagonal of
 //!   (AᵀA)⁻¹, averaged over runs); below it reads 0 and the report gives
 //!   the resolution;
-//! - cyclic error: on the residuals of all runs, the pitch p (1 mm … R₀/4,
-//!   log grid then refined) whose model
+//! - cyclic error ([`super::cyclic`]): on the residuals of all runs, the
+//!   pitch p (1 mm … R₀/4, a grid uniform in 2π/p fine enough to resolve
+//!   the peak, then refined) whose model
 //!   cos θ·(a sin 2πx/p + b cos 2πx/p) + sin θ·(c sin 2πy/p + d cos 2πy/p)
 //!   explains most variance; then the pitch is refined (±2 %) and a, b, c, d
 //!   are refitted jointly with the
@@ -53,6 +54,7 @@
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
+use super::cyclic::{cyclic_amplitudes, cyclic_pitch};
 use super::trace_import::{BallbarTrace, Direction, Run};
 
 /// A reversal spike after a quadrant point.
@@ -127,17 +129,10 @@ fn sgn(v: f64) -> f64 {
 
 /// Least squares through the normal equations (the basis is bounded and a
 /// run covers a full revolution, so they are well conditioned; memory stays
-/// O(cols²) for traces of any length). None when rank deficient.
-fn lsq<const N: usize>(
-    rows: impl Iterator<Item = ([f64; N], f64)>,
-    cols: usize,
-) -> Option<DVector<f64>> {
-    lsq_full(rows, cols).map(|(x, _)| x)
-}
-
-/// As [`lsq`], also returning the diagonal of (AᵀA)⁻¹ (the coefficient
-/// variances per unit residual variance).
-fn lsq_full<const N: usize>(
+/// O(cols²) for traces of any length), also returning the diagonal of
+/// (AᵀA)⁻¹ (the coefficient variances per unit residual variance). None
+/// when rank deficient.
+pub(super) fn lsq_full<const N: usize>(
     rows: impl Iterator<Item = ([f64; N], f64)>,
     cols: usize,
 ) -> Option<(DVector<f64>, DVector<f64>)> {
@@ -156,43 +151,35 @@ fn lsq_full<const N: usize>(
             m[(i, j)] = m[(j, i)];
         }
     }
-    let big = (0..cols).map(|k| m[(k, k)]).fold(0.0, f64::max);
-    let chol = m.cholesky()?;
-    let l = chol.l();
-    // A pivot below 1e-10 of the largest column norm: rank deficient.
-    if (0..cols).any(|k| l[(k, k)] * l[(k, k)] <= 1e-20 * big) {
-        return None;
-    }
+    let chol = cholesky(m)?;
     let x = chol.solve(&g);
     let inv = chol.inverse().diagonal();
     Some((x, inv))
 }
 
-/// As [`lsq`], also returning the explained sum of squares xᵀg.
-fn lsq_explained<const N: usize>(
-    rows: impl Iterator<Item = ([f64; N], f64)>,
-    cols: usize,
-) -> Option<(DVector<f64>, f64)> {
-    let rows: Vec<([f64; N], f64)> = rows.collect();
-    let x = lsq(rows.iter().copied(), cols)?;
-    let e = rows
-        .iter()
-        .map(|(b, y)| {
-            b[..cols]
-                .iter()
-                .zip(x.iter())
-                .map(|(p, q)| p * q)
-                .sum::<f64>()
-                * y
-        })
-        .sum();
-    Some((x, e))
+/// Cholesky factor of normal equations; None when rank deficient (a pivot
+/// below 1e-10 of the largest column norm).
+fn cholesky(m: DMatrix<f64>) -> Option<nalgebra::Cholesky<f64, nalgebra::Dyn>> {
+    let cols = m.nrows();
+    let big = (0..cols).map(|k| m[(k, k)]).fold(0.0, f64::max);
+    let chol = m.cholesky()?;
+    let l = chol.l();
+    if (0..cols).any(|k| l[(k, k)] * l[(k, k)] <= 1e-20 * big) {
+        return None;
+    }
+    Some(chol)
+}
+
+/// The solution of normal equations (full symmetric `m`); None when rank
+/// deficient.
+pub(super) fn cholesky_solve(m: DMatrix<f64>, g: &DVector<f64>) -> Option<DVector<f64>> {
+    Some(cholesky(m)?.solve(g))
 }
 
 /// Columns of the per-run model: 7 signature terms, then orders 3 … 8.
-const COLS: usize = 7 + 2 * 6;
+pub(super) const COLS: usize = 7 + 2 * 6;
 
-fn basis(t: f64, s: f64) -> [f64; COLS] {
+pub(super) fn basis(t: f64, s: f64) -> [f64; COLS] {
     let (c, sn) = (t.cos(), t.sin());
     let mut b = [0.0; COLS];
     b[..7].copy_from_slice(&[
@@ -286,7 +273,7 @@ pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
 }
 
 /// The runs that cover a full revolution (≥ 355°).
-fn full_runs(trace: &BallbarTrace) -> Vec<&Run> {
+pub(super) fn full_runs(trace: &BallbarTrace) -> Vec<&Run> {
     trace
         .runs
         .iter()
@@ -304,7 +291,7 @@ fn full_runs(trace: &BallbarTrace) -> Vec<&Run> {
 
 /// Coefficients, diagonal of the inverse normal matrix, residuals (mm),
 /// residual variance (mm²).
-type RunFit = (DVector<f64>, DVector<f64>, Vec<f64>, f64);
+pub(super) type RunFit = (DVector<f64>, DVector<f64>, Vec<f64>, f64);
 
 /// The error model fitted to one run: coefficients, the diagonal of the
 /// inverse normal matrix, the residual of every sample (mm) and the
@@ -313,7 +300,7 @@ type RunFit = (DVector<f64>, DVector<f64>, Vec<f64>, f64);
 /// are left out of the fit (the steps stay visible); orders 3–8 are in
 /// the model, so that smooth motion errors are read neither as spikes nor
 /// as cyclic error.
-fn fit_run(run: &Run) -> Option<RunFit> {
+pub(super) fn fit_run(run: &Run) -> Option<RunFit> {
     let s = run.direction.sign();
     let keep: Vec<usize> = (0..run.angle.len())
         .filter(|&i| !after_quadrant(run.angle[i], s, 10f64.to_radians()))
@@ -342,7 +329,7 @@ fn fit_run(run: &Run) -> Option<RunFit> {
 }
 
 /// Whether θ lies within `w` after a quadrant point in the direction `s`.
-fn after_quadrant(t: f64, s: f64, w: f64) -> bool {
+pub(super) fn after_quadrant(t: f64, s: f64, w: f64) -> bool {
     (s * t).rem_euclid(std::f64::consts::FRAC_PI_2) < w
 }
 
@@ -409,151 +396,6 @@ fn find_spikes(run: &Run, res: &[f64]) -> (Vec<Spike>, f64) {
         });
     }
     (out, threshold)
-}
-
-/// Bins per revolution for long traces, see [`binned`].
-const BINS: usize = 18_000;
-
-/// Points (θ, value) as (θ, value, weight). A trace of more than 2·[`BINS`]
-/// points (several revolutions) is averaged into bins of θ mod 2π
-/// (0.02° wide) weighted by their counts: the run model and the cyclic
-/// signature are functions of θ alone, so the weighted fits on the bin
-/// means equal the fits on the points up to the bin width, which is 1/28
-/// of the shortest cyclic period searched (1 mm at R₀ = 100 mm: 0.57°).
-/// This keeps the cyclic search O(points) for files of any length.
-fn binned(points: impl Iterator<Item = (f64, f64)>, n: usize) -> Vec<(f64, f64, f64)> {
-    if n <= 2 * BINS {
-        return points.map(|(t, v)| (t, v, 1.0)).collect();
-    }
-    let tau = std::f64::consts::TAU;
-    let mut acc = vec![(0.0f64, 0.0f64, 0.0f64); BINS];
-    for (t, v) in points {
-        let a = t.rem_euclid(tau);
-        let k = ((a / tau * BINS as f64) as usize).min(BINS - 1);
-        acc[k].0 += a;
-        acc[k].1 += v;
-        acc[k].2 += 1.0;
-    }
-    acc.into_iter()
-        .filter(|b| b.2 > 0.0)
-        .map(|(t, v, w)| (t / w, v / w, w))
-        .collect()
-}
-
-fn cyclic_pitch(resid: &[(f64, f64)], r0: f64) -> Option<f64> {
-    let (pmin, pmax) = (1.0, r0 / 4.0);
-    if resid.len() < 16 || pmax <= pmin {
-        return None;
-    }
-    // Precomputed per point: cos θ, sin θ, and the axis positions.
-    // Weighted rows: each scaled by √weight (1 unless binned).
-    let pts: Vec<[f64; 6]> = binned(resid.iter().copied(), resid.len())
-        .into_iter()
-        .map(|(t, r, w)| {
-            let (c, s) = (t.cos(), t.sin());
-            let sw = w.sqrt();
-            [c, s, r0 * c, r0 * s, r * sw, sw]
-        })
-        .collect();
-    let fit = |p: f64| -> Option<(f64, [f64; 4])> {
-        let k = std::f64::consts::TAU / p;
-        let (mut m, mut g) = ([[0.0f64; 4]; 4], [0.0f64; 4]);
-        for &[c, s, x, y, r, sw] in &pts {
-            let ((sx, cx), (sy, cy)) = ((k * x).sin_cos(), (k * y).sin_cos());
-            let b = [c * sx * sw, c * cx * sw, s * sy * sw, s * cy * sw];
-            for i in 0..4 {
-                g[i] += b[i] * r;
-                for j in i..4 {
-                    m[i][j] += b[i] * b[j];
-                }
-            }
-        }
-        let m = nalgebra::Matrix4::from_fn(|i, j| if i <= j { m[i][j] } else { m[j][i] });
-        let g = nalgebra::Vector4::from(g);
-        let x = m.cholesky()?.solve(&g);
-        Some((x.dot(&g), [x[0], x[1], x[2], x[3]]))
-    };
-    let steps = 150;
-    let ratio = (pmax / pmin).powf(1.0 / steps as f64);
-    let mut best: Option<(f64, f64)> = None; // (explained, pitch)
-    for i in 0..=steps {
-        let p = pmin * ratio.powi(i);
-        if let Some((e, _)) = fit(p) {
-            if best.is_none_or(|(b, _)| e > b) {
-                best = Some((e, p));
-            }
-        }
-    }
-    let (_, mut p) = best?;
-    // Golden-section refinement within one grid step either side.
-    let (mut a, mut b) = (p / ratio, p * ratio);
-    let gr = (5f64.sqrt() - 1.0) / 2.0;
-    for _ in 0..30 {
-        let (c, d) = (b - gr * (b - a), a + gr * (b - a));
-        let (fc, fd) = (fit(c).map_or(0.0, |f| f.0), fit(d).map_or(0.0, |f| f.0));
-        if fc > fd {
-            b = d;
-        } else {
-            a = c;
-        }
-    }
-    p = (a + b) / 2.0;
-    Some(p)
-}
-
-/// Cyclic amplitudes at pitch `p`, fitted jointly with the run model (the
-/// orders 3–8 would otherwise take up part of the cyclic signature), and
-/// averaged over the runs (the error depends on position, not direction).
-fn cyclic_amplitudes(runs: &[&Run], p0: f64, r0: f64) -> Option<Cyclic> {
-    let joint = |p: f64| -> Option<([f64; 4], f64)> {
-        let k = std::f64::consts::TAU / p;
-        let (mut sum, mut explained) = ([0.0f64; 4], 0.0);
-        for run in runs {
-            let s = run.direction.sign();
-            let w = 10f64.to_radians();
-            let kept = run
-                .angle
-                .iter()
-                .zip(&run.deviation)
-                .filter(|(t, _)| !after_quadrant(**t, s, w))
-                .map(|(&t, &d)| (t, d));
-            let rows = binned(kept, run.angle.len()).into_iter().map(|(t, d, wt)| {
-                let sw = wt.sqrt();
-                let mut b = [0.0f64; COLS + 4];
-                b[..COLS].copy_from_slice(&basis(t, s));
-                let (c, sn) = (t.cos(), t.sin());
-                let ((sx, cx), (sy, cy)) = ((k * r0 * c).sin_cos(), (k * r0 * sn).sin_cos());
-                b[COLS..].copy_from_slice(&[c * sx, c * cx, sn * sy, sn * cy]);
-                b.iter_mut().for_each(|v| *v *= sw);
-                let d = d * sw;
-                (b, d)
-            });
-            let (coef, e) = lsq_explained(rows, COLS + 4)?;
-            explained += e;
-            for (j, v) in sum.iter_mut().enumerate() {
-                *v += coef[COLS + j] / runs.len() as f64;
-            }
-        }
-        Some((sum, explained))
-    };
-    // Golden-section refinement of the pitch on the joint model, ±2 %.
-    let (mut a, mut b) = (p0 / 1.02, p0 * 1.02);
-    let gr = (5f64.sqrt() - 1.0) / 2.0;
-    for _ in 0..12 {
-        let (c, d) = (b - gr * (b - a), a + gr * (b - a));
-        if joint(c).map_or(0.0, |f| f.1) > joint(d).map_or(0.0, |f| f.1) {
-            b = d;
-        } else {
-            a = c;
-        }
-    }
-    let p = (a + b) / 2.0;
-    let (sum, _) = joint(p)?;
-    Some(Cyclic {
-        pitch_mm: p,
-        amplitude_x_um: sum[0].hypot(sum[1]) * 1e3,
-        amplitude_y_um: sum[2].hypot(sum[3]) * 1e3,
-    })
 }
 
 #[cfg(test)]

@@ -8,9 +8,11 @@
 //! | [`trace_import`] | CSV/TSV ball-bar traces (angle + deviation or X/Y), split into CCW/CW runs |
 //! | [`iso230_4`] | ISO 230-4 circular deviation G, hysteresis H, radial deviation F |
 //! | [`diagnostics`] | backlash, reversal spikes, servo and scale mismatch, squareness, cyclic error |
+//! | [`cyclic`] | the cyclic-error pitch search and amplitudes of the diagnostics |
 //! | [`synthetic`] | synthetic traces with known machine errors (the diagnostics' forward model) |
 
 pub mod circle_fit;
+pub mod cyclic;
 pub mod diagnostics;
 pub mod harmonics;
 pub mod iso230_4;
