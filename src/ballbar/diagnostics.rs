@@ -305,22 +305,13 @@ pub(super) fn fit_run(run: &Run) -> Option<RunFit> {
     let keep: Vec<usize> = (0..run.angle.len())
         .filter(|&i| !after_quadrant(run.angle[i], s, 10f64.to_radians()))
         .collect();
-    let (coef, inv) = lsq_full(
-        keep.iter()
-            .map(|&i| (basis(run.angle[i], s), run.deviation[i])),
-        COLS,
-    )?;
-    let res: Vec<f64> = run
-        .angle
+    // Each point's basis once (ten sin/cos), for the fit and the residuals.
+    let bases: Vec<[f64; COLS]> = run.angle.iter().map(|&t| basis(t, s)).collect();
+    let (coef, inv) = lsq_full(keep.iter().map(|&i| (bases[i], run.deviation[i])), COLS)?;
+    let res: Vec<f64> = bases
         .iter()
         .zip(&run.deviation)
-        .map(|(t, d)| {
-            d - basis(*t, s)
-                .iter()
-                .zip(coef.iter())
-                .map(|(b, c)| b * c)
-                .sum::<f64>()
-        })
+        .map(|(b, d)| d - b.iter().zip(coef.iter()).map(|(b, c)| b * c).sum::<f64>())
         .collect();
     // Residual variance of the fitted points → backlash standard errors.
     let dof = keep.len().saturating_sub(COLS).max(1) as f64;
