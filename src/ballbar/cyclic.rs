@@ -319,11 +319,17 @@ pub(super) fn cyclic_amplitudes(runs: &[&Run], p0: f64, r0: f64) -> Option<Cycli
     let f = |p: f64| joint(p).map_or(0.0, |f| f.1);
     let p = golden_max(f, p0 / 1.02, p0 * 1.02, 12);
     let (sum, _) = joint(p)?;
-    Some(Cyclic {
+    Some(cyclic_at(p, &sum))
+}
+
+/// The cyclic error at pitch `p` (mm) from the run-averaged coefficients
+/// `[x sin, x cos, y sin, y cos]` (mm): amplitudes in µm.
+fn cyclic_at(p: f64, sum: &[f64; 4]) -> Cyclic {
+    Cyclic {
         pitch_mm: p,
         amplitude_x_um: sum[0].hypot(sum[1]) * 1e3,
         amplitude_y_um: sum[2].hypot(sum[3]) * 1e3,
-    })
+    }
 }
 
 /// The exhaustive search this module replaced, kept as the oracle of its
@@ -470,11 +476,7 @@ pub(super) mod exhaustive {
         }
         let p = (a + b) / 2.0;
         let (sum, _) = joint(p)?;
-        Some(Cyclic {
-            pitch_mm: p,
-            amplitude_x_um: sum[0].hypot(sum[1]) * 1e3,
-            amplitude_y_um: sum[2].hypot(sum[3]) * 1e3,
-        })
+        Some(super::cyclic_at(p, &sum))
     }
 }
 
