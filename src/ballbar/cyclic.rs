@@ -42,7 +42,7 @@
 
 use nalgebra::{DMatrix, DVector, Matrix4, Vector4};
 
-use super::diagnostics::{after_quadrant, basis, cholesky_solve, Cyclic, COLS};
+use super::diagnostics::{basis, cholesky_solve, fit_points, Cyclic, COLS};
 use super::trace_import::Run;
 
 /// Bins per revolution for long traces, see [`binned`].
@@ -239,13 +239,7 @@ struct JointRun {
 
 fn joint_run(run: &Run, r0: f64) -> JointRun {
     let s = run.direction.sign();
-    let w = 10f64.to_radians();
-    let kept = run
-        .angle
-        .iter()
-        .zip(&run.deviation)
-        .filter(|(t, _)| !after_quadrant(**t, s, w))
-        .map(|(&t, &d)| (t, d));
+    let kept = fit_points(run);
     let cols = COLS + 4;
     let mut m0 = DMatrix::<f64>::zeros(cols, cols);
     let mut g0 = DVector::<f64>::zeros(cols);
@@ -339,7 +333,7 @@ fn cyclic_at(p: f64, sum: &[f64; 4]) -> Cyclic {
 pub(super) mod exhaustive {
     use nalgebra::DVector;
 
-    use super::super::diagnostics::{after_quadrant, basis, lsq_full, Cyclic, COLS};
+    use super::super::diagnostics::{basis, fit_points, lsq_full, Cyclic, COLS};
     use super::super::trace_import::Run;
     use super::binned;
 
@@ -434,13 +428,7 @@ pub(super) mod exhaustive {
             let (mut sum, mut explained) = ([0.0f64; 4], 0.0);
             for run in runs {
                 let s = run.direction.sign();
-                let w = 10f64.to_radians();
-                let kept = run
-                    .angle
-                    .iter()
-                    .zip(&run.deviation)
-                    .filter(|(t, _)| !after_quadrant(**t, s, w))
-                    .map(|(&t, &d)| (t, d));
+                let kept = fit_points(run);
                 let rows = binned(kept, run.angle.len(), false)
                     .into_iter()
                     .map(|(t, d, wt)| {

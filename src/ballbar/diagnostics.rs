@@ -303,7 +303,7 @@ pub(super) type RunFit = (DVector<f64>, DVector<f64>, Vec<f64>, f64);
 pub(super) fn fit_run(run: &Run) -> Option<RunFit> {
     let s = run.direction.sign();
     let keep: Vec<usize> = (0..run.angle.len())
-        .filter(|&i| !after_quadrant(run.angle[i], s, 10f64.to_radians()))
+        .filter(|&i| !after_quadrant(run.angle[i], s, FIT_SKIP))
         .collect();
     // Each point's basis once (ten sin/cos), for the fit and the residuals.
     let bases: Vec<[f64; COLS]> = run.angle.iter().map(|&t| basis(t, s)).collect();
@@ -317,6 +317,21 @@ pub(super) fn fit_run(run: &Run) -> Option<RunFit> {
     let dof = keep.len().saturating_sub(COLS).max(1) as f64;
     let var = keep.iter().map(|&i| res[i] * res[i]).sum::<f64>() / dof;
     Some((coef, inv, res, var))
+}
+
+/// The part after each quadrant point, in the direction of travel, that the
+/// run model leaves out, rad (10°: where the reversal spikes live).
+pub(super) const FIT_SKIP: f64 = 10.0 * (std::f64::consts::PI / 180.0);
+
+/// The (θ, deviation) pairs of a run the run model is fitted to: all but
+/// the [`FIT_SKIP`] after each quadrant point.
+pub(super) fn fit_points(run: &Run) -> impl Iterator<Item = (f64, f64)> + '_ {
+    let s = run.direction.sign();
+    run.angle
+        .iter()
+        .zip(&run.deviation)
+        .filter(move |(t, _)| !after_quadrant(**t, s, FIT_SKIP))
+        .map(|(&t, &d)| (t, d))
 }
 
 /// Whether θ lies within `w` after a quadrant point in the direction `s`.
