@@ -33,7 +33,8 @@ export async function mount(root, api) {
     coneUi.clear();
     ncUi.clear();
     try {
-      preset = await api.call('machinePreset', [machineSel.value]);
+      preset = presets.find((p) => p.name === machineSel.value);
+      if (!preset) throw new Error(`machine '${machineSel.value}': not among the core's presets`);
       const axes = Object.keys(preset.limits || {});
       errInputs = {};
       const symbols = await api.call('errorSymbols', [machineSel.value]);

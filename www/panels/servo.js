@@ -25,9 +25,10 @@ export async function mount(root, api) {
 
   // ---- parameter table (editable) ----
   const inputs = {};
+  /** A parameter as the table shows it (empty when the preset has none). */
+  const shown = (v) => (v === undefined ? '' : String(v));
   const cell = (a, f) => {
-    const v = machine.axes[a][f];
-    const input = h('input', { type: 'number', step: 'any', id: `servo-p-${a}-${f}`, value: v === undefined ? '' : String(v), style: 'width:6.5em' });
+    const input = h('input', { type: 'number', step: 'any', id: `servo-p-${a}-${f}`, value: shown(machine.axes[a][f]), style: 'width:6.5em' });
     inputs[`${a}.${f}`] = input;
     return input;
   };
@@ -43,10 +44,7 @@ export async function mount(root, api) {
       try {
         const m = await api.call('machinePreset', [machine.name, r]);
         for (const a of axes) {
-          for (const [f] of FIELDS) {
-            const v = m.axes[a][f];
-            inputs[`${a}.${f}`].value = v === undefined ? '' : String(v);
-          }
+          for (const [f] of FIELDS) inputs[`${a}.${f}`].value = shown(m.axes[a][f]);
         }
         inputs['c.j'].dispatchEvent(new Event('input'));
       } catch (e) {
