@@ -132,13 +132,7 @@ pub fn check(
 /// assert!(check_text("trace", &"\r".repeat(300_000)).is_err());
 /// ```
 pub fn check_text(what: &'static str, text: &str) -> Result<(), BudgetError> {
-    check(
-        what,
-        text.len() as u64,
-        MAX_TEXT_BYTES,
-        "bytes",
-        "split the file or remove what the calculation does not need",
-    )?;
+    check_bytes(what, text.len() as u64)?;
     check(
         what,
         lines(text) as u64,
@@ -146,6 +140,24 @@ pub fn check_text(what: &'static str, text: &str) -> Result<(), BudgetError> {
         "lines",
         "split the file into parts and run each",
     )
+}
+
+/// What to change when a text is over [`MAX_TEXT_BYTES`].
+pub const TEXT_ADVICE: &str = "split the file or remove what the calculation does not need";
+
+/// Checks a text's size in bytes against [`MAX_TEXT_BYTES`] before it is
+/// read: the page asks this of a dropped file's size, so a file the core
+/// would refuse is never read into the page at all.
+///
+/// # Examples
+/// ```
+/// use mtmotion::budget::{check_bytes, MAX_TEXT_BYTES};
+/// assert!(check_bytes("file", MAX_TEXT_BYTES as u64).is_ok());
+/// let e = check_bytes("file", 50 << 20).unwrap_err();
+/// assert!(e.to_string().starts_with("file: 52428800 bytes, more than the limit of 8388608"));
+/// ```
+pub fn check_bytes(what: &'static str, bytes: u64) -> Result<(), BudgetError> {
+    check(what, bytes, MAX_TEXT_BYTES, "bytes", TEXT_ADVICE)
 }
 
 /// Number of lines of `text` (LF, CRLF or CR alone end a line).

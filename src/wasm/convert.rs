@@ -227,9 +227,10 @@ pub fn string_arg(value: &JsValue, what: &str) -> Result<String, JsError> {
     };
     if s.length() as usize > budget::MAX_TEXT_BYTES {
         return Err(JsError::new(&format!(
-            "{what}: {} characters, more than the limit of {} bytes; split the file or remove what the calculation does not need",
+            "{what}: {} characters, more than the limit of {} bytes; {}",
             s.length(),
-            budget::MAX_TEXT_BYTES
+            budget::MAX_TEXT_BYTES,
+            budget::TEXT_ADVICE
         )));
     }
     Ok(String::from(s))

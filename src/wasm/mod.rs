@@ -41,3 +41,23 @@ pub fn start() {
 pub fn version() -> String {
     env!("CARGO_PKG_VERSION").to_string()
 }
+
+/// Checks a file's size before the page reads it: an `Error` when a text of
+/// `bytes` bytes is over the core's text budget ([`crate::budget::check_bytes`]),
+/// naming the file. The page asks this first, so a 50 MB file it would
+/// refuse is never read into the page or copied to the worker.
+#[wasm_bindgen(js_name = checkFileSize)]
+pub fn check_file_size(
+    #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
+    bytes: f64,
+) -> Result<(), JsError> {
+    let name = convert::string_arg(&name, "name")?;
+    if !(bytes.is_finite() && bytes >= 0.0 && bytes.fract() == 0.0) {
+        return Err(JsError::new(&format!(
+            "bytes: expected a whole number of bytes, 0 or more, got {}",
+            crate::numeric::compact(bytes)
+        )));
+    }
+    crate::budget::check_bytes("file size", bytes as u64)
+        .map_err(|e| JsError::new(&format!("{}: {e}", crate::budget::clip(&name, 80))))
+}

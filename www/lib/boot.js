@@ -1,7 +1,7 @@
 // Page start-up shared by the served page (main.js) and the single-file page
 // (standalone.js): start the core, mount the panels, restore the deep link,
 // then mark the page ready for the tests.
-import { showError, ariaTabs, downloadText, packText, unpackText, LINK_TEXT_LIMIT, linkedDrops, h } from './ui.js';
+import { showError, ariaTabs, downloadText, packText, unpackText, LINK_TEXT_LIMIT, linkedDrops, h, checkFilesWith } from './ui.js';
 import { reportHtml } from './report.js';
 
 export const PANELS = ['servo', 'toolpath', 'ballbar', 'kinematics'];
@@ -175,6 +175,8 @@ export async function boot({ makeApi, loadPanel }) {
     // Proves the round trip with a real core call.
     const preset = await api.call('machinePreset', ['nmv5000']);
     status.textContent = `Core v${api.version} ready (${api.mode}) · default machine: ${preset.name}`;
+    // The core decides whether a dropped file is small enough to read.
+    checkFilesWith((file) => api.call('checkFileSize', [file.name, file.size]));
     // For the browser console and the browser test.
     globalThis.mtmotion = { api };
   } catch (e) {

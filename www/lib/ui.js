@@ -88,22 +88,40 @@ export function toCsv(columns) {
   return lines.join('\n') + '\n';
 }
 
+/** @type {(file: File) => Promise<unknown>} */
+let fileCheck = async () => {};
+
+/** Sets the check every drop zone runs on a file's size before reading it
+ * (boot: the core's checkFileSize, through the worker). */
+export function checkFilesWith(check) {
+  fileCheck = check;
+}
+
 /**
  * Drag-and-drop area with a file picker; calls onText(text, fileName), or
  * with `multiple`, onFiles([{ text, name }, …]) once for all dropped files.
+ * Each file's size is first checked by the core (checkFilesWith): a file
+ * it would refuse is never read, and onRefused(error) shows the core's
+ * budget error instead (reading 50 MB into the page stalls it).
  * A single-file zone with a `link` key (starting with its panel's name)
  * puts the dropped file in the shared link (linkedDrops).
  * @param {{ label?: string, accept?: string, id?: string, multiple?: boolean, link?: string,
  *   onText?: (text: string, name: string) => unknown,
- *   onFiles?: (files: { text: string, name: string }[]) => unknown }} options
+ *   onFiles?: (files: { text: string, name: string }[]) => unknown,
+ *   onRefused: (error: Error) => unknown }} options
  */
-export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, multiple = false, onFiles, id, link }) {
+export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, multiple = false, onFiles, onRefused, id, link }) {
   const input = h('input', { type: 'file', accept, hidden: true, multiple, id });
   const el = h('div', { class: 'drop', tabindex: 0, role: 'button' }, label, input);
   if (link && !multiple) linkedDrops.set(link, { el, onText, file: null });
   const read = async (files) => {
     const list = Array.from(files || []);
     if (!list.length) return;
+    try {
+      for (const f of list) await fileCheck(f);
+    } catch (e) {
+      return onRefused(e instanceof Error ? e : new Error(String(e)));
+    }
     if (multiple) return onFiles(await Promise.all(list.map(async (f) => ({ text: await f.text(), name: f.name }))));
     const file = { text: await list[0].text(), name: list[0].name };
     if (link) {

@@ -60,12 +60,17 @@ export async function mount(root, api) {
         source.value = 'file';
         await analyse();
       } catch (e) {
-        fileInfo.textContent = `${name}: not loaded (see the error below). No file loaded.`;
-        source.value = 'synthetic';
-        outUi.fail(e);
+        notLoaded(e);
       }
     },
+    onRefused: (e) => notLoaded(e),
   });
+  function notLoaded(e) {
+    loaded = null;
+    fileInfo.textContent = 'Not loaded (see the error below). No file loaded.';
+    source.value = 'synthetic';
+    outUi.fail(e);
+  }
   const run = h('button', { id: 'ballbar-run', class: 'primary', dataset: { run: '' }, onclick: () => analyse() }, 'Analyse');
   const out = h('div', { id: 'ballbar-results' });
   const outUi = runState(out);
@@ -95,6 +100,7 @@ export async function mount(root, api) {
     label: 'Drop one trace per section (two or more for the angle errors), or one file whose runs are the sections',
     accept: '.csv,.tsv,.txt',
     multiple: true,
+    onRefused: (e) => sectionsRefused(e),
     onFiles: async (files) => {
       alUi.clear();
       sections = [];
@@ -119,13 +125,17 @@ export async function mount(root, api) {
         }));
         alInfo.textContent = `${sections.length} section(s): ${sections.map((x) => `${x.name} (${x.angleDeg.length} points)`).join(', ')}`;
       } catch (e) {
-        alInfo.textContent = `${files.map((x) => x.name).join(', ')}: not loaded (see the error below). No section loaded.`;
-        sections = [];
-        alUi.fail(e);
+        sectionsRefused(e);
       }
       renderSections();
     },
   });
+  function sectionsRefused(e) {
+    alInfo.textContent = 'Not loaded (see the error below). No section loaded.';
+    sections = [];
+    renderSections();
+    alUi.fail(e);
+  }
   const alRun = h('button', { id: 'align-run', class: 'primary', onclick: () => estimate() }, 'Estimate alignment');
   function renderSections() {
     const ax = AXES[al.axis.value];

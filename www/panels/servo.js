@@ -248,6 +248,12 @@ export async function mount(root, api) {
   // ---- trace import ----
   const mapBox = h('div', { id: 'servo-trace-mapper' });
   const traceInfo = h('p', { id: 'servo-trace-file', class: 'unit' }, 'No trace loaded. Expected columns: time, X, Y, C (and optionally torque), units in the header such as Time [ms] or X_mm.');
+  const traceRefused = (e) => {
+    mapBox.replaceChildren();
+    if (last) last.trace = null;
+    traceInfo.textContent = 'Not loaded (see the error below).';
+    traceUi.fail(e);
+  };
   const onTrace = async (text, name) => {
     // The core reads the header (and refuses non-text files); the unit each
     // column name states sets its unit menu.
@@ -258,8 +264,7 @@ export async function mount(root, api) {
     try {
       columns = await api.call('traceColumns', [text]);
     } catch (e) {
-      traceInfo.textContent = `${name}: not loaded (see the error below).`;
-      traceUi.fail(e);
+      traceRefused(e);
       return;
     }
     traceInfo.textContent = `${name}: columns ${columns.map((c) => c.name).join(', ')}`;
@@ -324,7 +329,7 @@ export async function mount(root, api) {
         h('button', { id: 'servo-csv', onclick: csv }, 'Download CSV'),
         h('button', { id: 'servo-json', onclick: json }, 'Download JSON')),
       status, out, charts),
-    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ link: 'servo-trace', label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace }), traceInfo, mapBox, traceBox),
+    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ link: 'servo-trace', label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace, onRefused: traceRefused }), traceInfo, mapBox, traceBox),
     h('div', { class: 'card' }, h('h3', {}, `The paper's sweep: R_C = ${paper.rc} mm, R_W = ${paper.rw} mm, ω = ${paper.omega.map((w) => `${+(w / Math.PI).toFixed(3)}π`).join(', ')} rad/s, J1 = ${paper.j1.map((v) => v.toFixed(2)).join(', ')} kg·m² (Figs. 14, 15, 20, 21, 22)`),
       h('p', { class: 'unit' }, `Source: ${paper.source}.`),
       h('button', { id: 'servo-sweep', onclick: sweep }, 'Run the sweep'), progress.el, sweepBox),

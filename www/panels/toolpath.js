@@ -101,7 +101,7 @@ export async function mount(root, api) {
     checkProgram(known);
   };
   const files = programFiles(api, { onMain: takeProgram });
-  const drop = dropZone({ label: 'Drop an NC program (with its subprogram files, if any) here, or click to choose', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', multiple: true, onFiles: files.take, id: 'toolpath-file' });
+  const drop = dropZone({ label: 'Drop an NC program (with its subprogram files, if any) here, or click to choose', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', multiple: true, onFiles: files.take, onRefused: (e) => showError(check, e), id: 'toolpath-file' });
   const tA = numberField({ label: 'tA (acc/dec)', value: 40, unit: 'ms', step: 1, min: 0, id: 'toolpath-ta' });
   const tx = numberField({ label: 'T X', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-tx' });
   const ty = numberField({ label: 'T Y', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-ty' });
