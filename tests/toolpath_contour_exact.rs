@@ -15,10 +15,15 @@ use proptest::prelude::*;
 /// Tracker against exhaustive search at every sample; returns the largest
 /// exhaustive error on cutting moves, mm.
 fn check_exact(text: &str, cfg: &SimConfig) -> f64 {
+    check_exact_every(text, cfg, 1)
+}
+
+/// As [`check_exact`], at every `stride`-th sample.
+fn check_exact_every(text: &str, cfg: &SimConfig, stride: usize) -> f64 {
     let p = parse(text).unwrap();
     let s = simulate(&p.segments, &p.segments, cfg).unwrap();
     let path = Path::new(&p.segments);
-    for k in 0..s.error.len() {
+    for k in (0..s.error.len()).step_by(stride) {
         let q = [s.sim[0][k], s.sim[1][k], s.sim[2][k]];
         let exhaustive = (0..path.elements.len())
             .map(|i| path.nearest_on(i, q, 0.0).dist)
@@ -55,6 +60,22 @@ fn return_pass_then_retract_over_the_part() {
         default < 0.5,
         "max contour error {default} mm (default config)"
     );
+}
+
+/// LinuxCNC's `tort.ngc` (tests/nc_corpus): 282 lines of helical arcs in
+/// G17, G18 and G19, lines and rapids crossing one another in a 60 mm
+/// cube, where a point is inside many arcs' bounding spheres and the arcs'
+/// own cylinder test decides (`ArcGeo::farther_than`). Every 23rd of its
+/// 549,000 samples (a prime stride, so the checked points fall on every
+/// kind of element).
+#[test]
+fn tortuous_helical_arcs_in_three_planes() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/nc_corpus/linuxcnc_tort.ngc"
+    ))
+    .unwrap();
+    check_exact_every(&text, &cfg(), 23);
 }
 
 #[test]

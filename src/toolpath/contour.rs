@@ -22,7 +22,10 @@
 //! farther than the best distance so far (+ 2 nm) cannot win and is skipped
 //! without computing its nearest point — the result is the same as
 //! examining it, at a few multiplications instead of square roots and an
-//! `atan2`.
+//! `atan2`. An arc inside whose sphere the point lies is tested once more
+//! against its cylinder band (radius `r`, the helix's height range) and
+//! its end points, which rejects the points near a large arc's centre
+//! (reverse compensation of LinuxCNC's `tort.ngc`: 7.7 → 4.1 s natively).
 //!
 //! Units: mm.
 
@@ -210,9 +213,16 @@ impl Path {
     /// (a conservative test on the bounding sphere).
     #[inline]
     pub fn farther_than(&self, i: usize, q: [f64; 3], d: f64) -> bool {
-        let (m, rad) = self.elements[i].bound;
+        let e = &self.elements[i];
+        let (m, rad) = e.bound;
         let reach = rad + d;
-        (q[0] - m[0]).powi(2) + (q[1] - m[1]).powi(2) + (q[2] - m[2]).powi(2) > reach * reach
+        if (q[0] - m[0]).powi(2) + (q[1] - m[1]).powi(2) + (q[2] - m[2]).powi(2) > reach * reach {
+            return true;
+        }
+        match e.geo {
+            Geo::Arc(ref arc) => arc.farther_than(q, d),
+            Geo::Line(_) => false,
+        }
     }
 
     /// Exact nearest point on element `i` to `q`. `hint` is the arc length
@@ -255,6 +265,27 @@ impl LineGeo {
 }
 
 impl ArcGeo {
+    /// Whether every point [`ArcGeo::nearest`] can return is farther than
+    /// `d` from `q`: its interior points lie on the cylinder of radius `r`
+    /// between the heights `n0` and `n0 + dn`, so their distance is at
+    /// least √((ρ − r)² + axial gap²); its end points are tested as they
+    /// are (they may sit off the radius by the interpreter's tolerance).
+    /// A sphere around a large arc holds many points near its centre that
+    /// this test rejects at one square root instead of an `atan2`.
+    #[inline]
+    fn farther_than(&self, q: [f64; 3], d: f64) -> bool {
+        let (u, v, n) = self.axes;
+        let reach = d + 1e-9;
+        let r2 = reach * reach;
+        let (x, y) = (q[u] - self.c[u], q[v] - self.c[v]);
+        let radial = (x * x + y * y).sqrt() - self.r;
+        let axial = ((q[n] - self.n0 - 0.5 * self.dn).abs() - 0.5 * self.dn.abs()).max(0.0);
+        let far = |p: [f64; 3]| {
+            (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2) > r2
+        };
+        radial * radial + axial * axial > r2 && far(self.p0) && far(self.p1)
+    }
+
     /// Nearest point to `q` on this arc, element `i` of the path: radial
     /// inside the swept sector, else the nearer end point. `hint` as in
     /// [`Path::nearest_on`].
