@@ -20,7 +20,7 @@ use super::program::{Arc, Motion, Program, Segment, Warning};
 #[serde(rename_all = "camelCase")]
 pub struct WarningGroup {
     /// The kind: the message's leading code or phrase (e.g. `G54`, `M6`,
-    /// `block delete`, `unknown word`).
+    /// `block delete`, `unknown word`, `cutter compensation`).
     pub kind: String,
     /// How many warnings of this kind.
     pub count: usize,
@@ -70,6 +70,7 @@ pub fn warning_kind(message: &str) -> String {
         "unknown word",
         "work offset",
         "blocks after the program end",
+        "cutter compensation",
     ];
     if let Some(p) = phrases.iter().find(|p| message.starts_with(*p)) {
         return (*p).to_string();
