@@ -1,5 +1,5 @@
 //! Cutter radius compensation as modal state (Fanuc G40/G41/G42 with a D
-//! word, LinuxCNC G41.1/G42.1 D<diameter>): which side of the programmed
+//! word, LinuxCNC G41.1/G42.1 `D<diameter>`): which side of the programmed
 //! contour the tool centre runs on, with which radius, over which stretch of
 //! the program. The offset path itself is computed after the run, in
 //! [`super::cutter_path`].

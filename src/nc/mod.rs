@@ -19,7 +19,7 @@ pub mod arc;
 mod block;
 pub mod corner;
 pub mod cutter;
-mod cutter_path;
+pub mod cutter_path;
 pub mod cycles;
 pub mod files;
 mod gcodes;
