@@ -17,6 +17,7 @@
 //! - the located refusals.
 //!
 //! Tolerances: 1e-9 mm on points (the geometry is closed-form in f64).
+#![cfg(not(target_arch = "wasm32"))]
 
 use std::f64::consts::PI;
 
