@@ -449,3 +449,42 @@ fn linuxcnc_comp_offsets_at_r_in_g17_and_g18_and_simulates() {
     let sim = simulate(&p.segments, &p.segments, &SimConfig::default()).unwrap();
     assert!(sim.max_error.is_finite());
 }
+
+#[test]
+fn cncjs_helical_thread_milling_keeps_z_and_grows_each_arc_by_r() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/nc_corpus/cncjs_helical-thread-milling.gcode"
+    ))
+    .unwrap();
+    let programmed = run(&text, "");
+    let p = run(&text, "D08=0.05");
+    let r = 0.05 * 25.4;
+    assert_eq!(p.cutter[0].radius, Some(r));
+    for w in p.segments.windows(2) {
+        assert!(
+            close(w[0].end.p(), w[1].start.p()),
+            "gap at line {}",
+            w[1].line
+        );
+    }
+    // G42 with G3 arcs: the tool runs outside, R + r about the same centre;
+    // every block's Z end is the programmed one (helical Z passes through).
+    let mut arcs = 0;
+    for s in &p.segments {
+        let q = programmed
+            .segments
+            .iter()
+            .find(|q| q.line == s.line)
+            .unwrap();
+        assert!((s.end.z - q.end.z).abs() < TOL, "line {}", s.line);
+        if let (Motion::Arc(a), Motion::Arc(b)) = (s.motion, q.motion) {
+            assert!((a.radius - (b.radius + r)).abs() < TOL, "line {}", s.line);
+            assert!(
+                (a.center[0] - b.center[0]).abs() < TOL && (a.center[1] - b.center[1]).abs() < TOL
+            );
+            arcs += 1;
+        }
+    }
+    assert_eq!(arcs, 10);
+}
