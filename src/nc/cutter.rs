@@ -5,8 +5,9 @@
 //! [`super::cutter_path`].
 //!
 //! Readings chosen:
-//! - G41 (left of the contour, seen along the direction of travel) and G42
-//!   (right) take the radius of their `D` word from
+//! - G41 (left of the contour, seen along the direction of travel from the
+//!   positive plane normal, the view in which G3 is counter-clockwise) and
+//!   G42 (right) take the radius of their `D` word from
 //!   [`super::program::ParseOptions::tool_radii`] (the control's offset
 //!   table, which the program does not hold), in program units (G20:
 //!   inch), converted to mm when the G41/G42 is read. `D0` is a radius of

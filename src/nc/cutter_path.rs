@@ -7,16 +7,18 @@
 //! - Contour elements are the lines (G0/G1) with motion in the
 //!   compensation plane and the arcs of that plane. A line is shifted by r
 //!   along its normal, left of the direction of travel for G41, right for
-//!   G42; an arc keeps its centre and becomes R − r on the side of its
+//!   G42, seen from the positive plane normal (+Z in G17, +Y in G18, +X in
+//!   G19: the view in which G3 is counter-clockwise); an arc keeps its centre and becomes R − r on the side of its
 //!   centre, R + r on the other (G41 with G3, G42 with G2: R − r). An offset
 //!   radius ≤ 0 is a located error.
 //! - Inside corners: the two offset elements are trimmed to their
 //!   intersection (the one nearest the programmed corner). Outside corners:
 //!   an arc of radius r around the programmed corner point joins them (the
-//!   rounded corner, as LinuxCNC and Fanuc's outside corners below 90° of
-//!   turn with the "arc" setting), for every outside angle, never the
-//!   intersection: so every point of an offset element and of a corner arc
-//!   is at exactly r from the programmed contour. Between two rapids the
+//!   rounded corner, as LinuxCNC makes it), for every outside angle, never
+//!   the intersection (a Fanuc control joins shallow outside corners at the
+//!   intersection, r/cos(φ/2) from the corner for a turn φ): so every point
+//!   of an offset element and of a corner arc is at exactly r from the
+//!   programmed contour. Between two rapids the
 //!   corner is a rapid straight move. Nearly tangent inside joins whose
 //!   offsets do not meet (numerically) but lie within 1 µm are joined by a
 //!   straight move.
