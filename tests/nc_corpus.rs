@@ -48,22 +48,25 @@ const CORPUS: &[(&str, Outcome)] = &[
     // Laser Macro B programs (a Mitsubishi-style dialect): their named
     // headers (`O7997A`, `OCIRCLE`) are read; each stops at a construct
     // outside Fanuc Macro B, named. All four also call O9010, a
-    // subprogram not in the file (M98 P9010), and use G41/G42 and G92.
+    // subprogram not in the file (M98 P9010), and use G41/G42 and G92;
+    // CIRCLE, RECTANGLE and WASHER also run `G28` while G41/G42 is in
+    // force, a located refusal (one more error each since cutter
+    // compensation is simulated).
     (
         "cncsprayer_7997A.NC",
         Outcome::Err(25, 15, "'AND' after IF […]", 86),
     ),
     (
         "cncsprayer_CIRCLE.NC",
-        Outcome::Err(18, 11, "put the arithmetic in brackets (X[#1/2])", 8),
+        Outcome::Err(18, 11, "put the arithmetic in brackets (X[#1/2])", 9),
     ),
     (
         "cncsprayer_RECTANGLE.NC",
-        Outcome::Err(24, 3, "corner word ',R' in a macro line", 14),
+        Outcome::Err(24, 3, "corner word ',R' in a macro line", 15),
     ),
     (
         "cncsprayer_WASHER.NC",
-        Outcome::Err(21, 12, "put the arithmetic in brackets (X[#1/2])", 10),
+        Outcome::Err(21, 12, "put the arithmetic in brackets (X[#1/2])", 11),
     ),
     // Fusion 360 generic post (`G28 G91 Z0.`, `G43 Z15.24 H1`, G18
     // lead-in arcs) whose G21 was edited to G20: metric numbers read as

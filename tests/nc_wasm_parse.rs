@@ -99,3 +99,35 @@ fn extra_files_hold_the_subprograms() {
     let texts = js_sys::JSON::parse(r#"["O2000\nM99","G0 X0\nM30"]"#).unwrap();
     assert_eq!(tp::nc_main_file(texts).unwrap(), 1);
 }
+
+#[wasm_bindgen_test]
+fn tool_radii_offset_the_compensated_path_and_are_validated() {
+    let text = "G0 X0 Y0\nG41 D1 G1 X20 F400\nG3 X20 Y0 I-20 J0\nG40 G1 X0 Y0\nM30";
+    // The G3 circle of radius 20 with G41 (tool inside): radius 20 − 2.
+    for opts in [r#"{"toolRadii":{"D1":2}}"#, r#"{"toolRadii":"D1=2"}"#] {
+        let p = tp::parse_nc(JsValue::from_str(text), obj(opts)).unwrap();
+        let r = get(&p, &["segments", "2", "motion", "radius"])
+            .as_f64()
+            .unwrap();
+        assert!((r - 18.0).abs() < 1e-9, "{opts}: {r}");
+        let c = get(&p, &["summary", "cutterCompensation", "0"]);
+        assert_eq!(get(&c, &["radius"]).as_f64(), Some(2.0));
+        assert_eq!(get(&c, &["d"]).as_string().as_deref(), Some("D1"));
+    }
+    let p = tp::parse_nc(JsValue::from_str(text), JsValue::UNDEFINED).unwrap();
+    assert!(get(&p, &["summary", "cutterCompensation", "0", "radius"]).is_null());
+    assert_eq!(
+        get(&p, &["summary", "warnings", "0", "kind"])
+            .as_string()
+            .as_deref(),
+        Some("cutter compensation")
+    );
+    let e = tp::parse_nc(JsValue::from_str(text), obj(r#"{"toolRadii":{"D1":-2}}"#)).unwrap_err();
+    assert!(message(e).contains("toolRadii D1"));
+    let cfg = r#"{"toolRadii":"D1=2","tA":0,"T":0}"#;
+    let s = tp::simulate_tool_path(JsValue::from_str(text), obj(cfg)).unwrap();
+    let t = get(&s, &["nominalTime"]).as_f64().unwrap();
+    // 18 mm start-up and 18 mm cancel at 400 mm/min, the circle of 18 mm.
+    let want = (18.0 + 2.0 * std::f64::consts::PI * 18.0 + 18.0) / 400.0 * 60.0;
+    assert!((t - want).abs() < 1e-9, "{t} vs {want}");
+}

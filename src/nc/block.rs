@@ -1,6 +1,8 @@
 //! One block's interpretation, in the order a FANUC-style control reads it:
 //! the G codes by group ([`super::gcodes`]), the M codes that end the
-//! program, the F word and the words the motion model ignores, then what
+//! program, the F word and the words the motion model ignores, cutter
+//! compensation ([`super::cutter`]; refused around the moves it does not
+//! simulate), then what
 //! the block does: G10 data setting (nothing), a G4 dwell, a canned-cycle
 //! block ([`super::cycles`]), a non-modal move ([`super::non_modal`]) or a
 //! move ([`super::moves`]). The readings are those of the interpreter's
@@ -8,6 +10,7 @@
 //!
 //! Units: mm, s, feed in mm/min (inch words scaled by 25.4).
 
+use super::cutter::{cutter_word, refused_during};
 use super::cycles::{canned_cycle, Cycle};
 use super::gcodes::{code10, read_g_words, GWords};
 use super::moves::move_block;
@@ -39,6 +42,9 @@ pub(super) fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result
     let gw = read_g_words(b, st, cx.warnings)?;
     read_m_words(b, st)?;
     let scale = length_scale(st);
+    if let Some((w, g)) = gw.cutter {
+        cutter_word(b, st, cx, w, g)?;
+    }
     read_other_words(b, st, &gw, cx.warnings)?;
     if gw.is_g10() {
         if let Some((w, _)) = gw.non_modal {
@@ -54,6 +60,14 @@ pub(super) fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result
         return dwell(b, st, cx, dw, &gw);
     }
     set_motion_or_cycle(b, st, &gw)?;
+    let moving_code = match (gw.non_modal, gw.cycle) {
+        (Some((w, _)), _) | (None, Some((w, _))) => Some(w),
+        _ if st.cycle.is_some() => b.words.first(),
+        _ => None,
+    };
+    if let Some(e) = refused_during(b, st, cx, moving_code) {
+        return Err(e);
+    }
     if st.cycle.is_some() && gw.non_modal.is_none() {
         return canned_cycle(b, st, cx, gw.cycle.map(|(w, _)| w), scale);
     }
@@ -127,6 +141,7 @@ fn read_other_words(
             'P' | 'L' if m98 => continue,
             'M' if matches!(code10(w), 20 | 300 | 980 | 990) => continue,
             'L' | 'P' | 'Q' if st.cycle.is_some() || gw.cycle.is_some() => continue,
+            'D' if gw.cutter.is_some_and(|(_, g)| g != 400) => continue,
             'M' | 'S' | 'T' | 'H' | 'D' => format!(
                 "{}{} does not affect the motion model and was ignored",
                 w.letter, w.text

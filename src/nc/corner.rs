@@ -28,16 +28,27 @@ fn plane_of(a: &Segment, b: &Segment) -> Option<Plane> {
     })
 }
 
-/// Applies every corner to `segments` (in place).
+/// Applies every corner to `segments` (in place); `tags`, one per segment
+/// (e.g. the cutter-compensation stretch of each), gets the tag of the
+/// shortened line for each inserted segment.
 ///
 /// # Errors
 /// One per corner that cannot be made: no following G01, lines not in one
 /// plane, collinear lines, or a corner larger than a line.
-pub fn apply_corners(segments: &mut Vec<Segment>, corners: &[Corner]) -> Result<(), Vec<NcError>> {
+pub fn apply_corners<T: Clone>(
+    segments: &mut Vec<Segment>,
+    corners: &[Corner],
+    tags: &mut Vec<T>,
+) -> Result<(), Vec<NcError>> {
     let mut errors = Vec::new();
     for c in corners.iter().rev() {
-        if let Err(e) = apply(segments, c) {
-            errors.push(e);
+        match apply(segments, c) {
+            Ok(()) => {
+                if let Some(t) = tags.get(c.segment).cloned() {
+                    tags.insert(c.segment + 1, t);
+                }
+            }
+            Err(e) => errors.push(e),
         }
     }
     errors.reverse();

@@ -116,6 +116,9 @@ fn relocate_program(p: &mut Program, spans: &[(usize, &str)]) {
     for w in &mut p.warnings {
         (w.file, w.line) = locate(w.line, spans);
     }
+    for c in &mut p.cutter {
+        (c.file, c.line) = locate(c.line, spans);
+    }
     for s in &mut p.segments {
         s.line = locate(s.line, spans).1;
     }

@@ -4,7 +4,7 @@
 //! the canned-cycle return level, the non-modal codes (G10, G28, G30, G53,
 //! the G92 family), the canned-cycle codes, and the codes that are refused
 //! (not simulated, and they would change the path) or warned about and
-//! ignored. The readings are those of the interpreter's header
+//! ignored, and the cutter-compensation codes ([`super::cutter`]). The readings are those of the interpreter's header
 //! ([`super::program`]).
 //!
 //! A G code is handled as its value ×10, rounded (G91.1 → 911).
@@ -25,6 +25,9 @@ pub(super) struct GWords<'a> {
     pub non_modal: Option<(&'a Word, i64)>,
     /// The canned-cycle code (G73–G89) and its code ×10.
     pub cycle: Option<(&'a Word, i64)>,
+    /// The cutter-compensation code (G40, G41, G42, G41.1, G42.1) and its
+    /// code ×10.
+    pub cutter: Option<(&'a Word, i64)>,
 }
 
 impl GWords<'_> {
@@ -146,6 +149,14 @@ fn grouped_or_other<'a>(
         730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 890 => {
             only_one(&mut gw.cycle, b, w, g, "canned cycles", "")
         }
+        400 | 410 | 420 | 411 | 421 => only_one(
+            &mut gw.cutter,
+            b,
+            w,
+            g,
+            "cutter-compensation codes",
+            "; expected one of G40, G41, G42",
+        ),
         _ => {
             if let Some(e) = refused(b, w, g) {
                 return Err(e);
@@ -193,21 +204,17 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
     Some(err(b, w, msg))
 }
 
-/// The warning for an ignored code: work offsets (G54–G59, G54.1), cutter
-/// radius compensation (G41/G42), tool length compensation (G43, G44,
-/// G43.1, G43.4) and any code not modelled. `None` for the codes that do
-/// not affect the path (G40, G49, G94, G15, G69, G61–G64).
+/// The warning for an ignored code: work offsets (G54–G59, G54.1), tool
+/// length compensation (G43, G44, G43.1, G43.4) and any code not modelled.
+/// `None` for the codes that do not affect the path (G49, G94, G15, G69,
+/// G61–G64).
 fn warned(w: &Word, g: i64) -> Option<String> {
     Some(match g {
         540..=590 => format!(
             "work offset G{}: its offset values are unknown here, so the program frame is kept (all work offsets coincide)",
             w.text
         ),
-        400 | 490 | 940 | 150 | 690 | 610..=649 => return None,
-        410 | 420 => format!(
-            "G{}: cutter radius compensation is not simulated; the simulated path is the programmed path (the tool centre follows the written contour)",
-            w.text
-        ),
+        490 | 940 | 150 | 690 | 610..=649 => return None,
         430 | 440 | 431 | 434 => format!(
             "G{}: tool length compensation is ignored (Z is the programmed Z)",
             w.text

@@ -18,6 +18,8 @@
 pub mod arc;
 mod block;
 pub mod corner;
+pub mod cutter;
+pub mod cutter_path;
 pub mod cycles;
 pub mod files;
 mod gcodes;

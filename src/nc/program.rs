@@ -32,10 +32,13 @@
 //! Readings chosen: the program starts at [`ParseOptions::start`] (the origin
 //! by default) in G90 G21 G17 with no motion mode and no feed, so an axis
 //! word before any G0–G3 is an error, not a silent rapid. M, S, T, H, D and
-//! unknown letters are reported as [`Warning`]s and ignored. Tool-radius
-//! (G41/G42) compensation is not simulated: the simulated path is the
-//! programmed path, and a warning says so; G43 length compensation is
-//! ignored (warned). What is not simulated and would change the path is a
+//! unknown letters are reported as [`Warning`]s and ignored (a D word on a
+//! G41/G42 block is its tool-offset number). Cutter radius compensation
+//! G40/G41/G42 (and LinuxCNC G41.1/G42.1): with a tool radius for the D
+//! word ([`ParseOptions::tool_radii`]) the segments are the offset
+//! tool-centre path ([`super::cutter`], [`super::cutter_path`]); without
+//! one the simulated path is the programmed path, and one warning per
+//! stretch says so. G43 length compensation is ignored (warned). What is not simulated and would change the path is a
 //! located error: G33/G33.1 threading, G84.x, G87/G88, G93/G95 feeds, M97,
 //! G65/G66 macro calls, macro `#` variables and `[ ]` expressions, LinuxCNC
 //! o-words and polar words; an `E` word stops the program as "this looks
@@ -52,6 +55,7 @@
 
 use serde::{Deserialize, Serialize};
 
+pub use super::cutter::{Cutter, CutterStretch, Side, ToolRadii};
 use super::cycles::Cycle;
 pub use super::files::{parse_files, NcFile};
 use super::run::{needs_macros, Run};
@@ -127,7 +131,7 @@ impl DwellP {
 
 /// Interpreter options. Unknown keys are rejected when deserialised (a
 /// misspelt key is an error naming it, never silently dropped).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default, deny_unknown_fields)]
 pub struct ParseOptions {
     /// Reading of G4 P.
@@ -143,11 +147,17 @@ pub struct ParseOptions {
     /// otherwise (a 3-axis program) `C` on a G01 block is a Fanuc chamfer
     /// and anywhere else an error. A and B are always rotary axes.
     pub c_axis: bool,
+    /// Tool radius per D number, in program units, for cutter compensation
+    /// G41/G42 (see [`super::cutter`]); JS `{ D1: 3 }` or `"D1=3, D8=0.25"`.
+    /// Without a radius for a D the simulated path is the programmed path
+    /// (warned).
+    pub tool_radii: ToolRadii,
 }
 
 impl ParseOptions {
     /// The keys of the serialised form (camelCase).
-    pub const KEYS: [&'static str; 4] = ["dwellP", "start", "skipBlockDelete", "cAxis"];
+    pub const KEYS: [&'static str; 5] =
+        ["dwellP", "start", "skipBlockDelete", "cAxis", "toolRadii"];
 }
 
 impl Default for ParseOptions {
@@ -157,6 +167,7 @@ impl Default for ParseOptions {
             start: Pose::default(),
             skip_block_delete: true,
             c_axis: false,
+            tool_radii: ToolRadii::default(),
         }
     }
 }
@@ -193,6 +204,8 @@ pub struct Modal {
     /// G99 in force: canned cycles return to the R level (G98, the
     /// default, returns to the initial level).
     pub cycle_return_r: bool,
+    /// Cutter radius compensation in force (G41/G42 until G40).
+    pub cutter: Option<Cutter>,
 }
 
 /// An interpreted program.
@@ -206,6 +219,9 @@ pub struct Program {
     pub segments: Vec<Segment>,
     /// Ignored words and unmodelled modes.
     pub warnings: Vec<Warning>,
+    /// The cutter-compensation stretches (G41/G42 … G40), in order, with
+    /// the radius each used (`None`: the programmed path, warned).
+    pub cutter: Vec<CutterStretch>,
     /// The options it was read with.
     pub options: ParseOptions,
 }
@@ -283,7 +299,7 @@ pub fn interpret(blocks: Vec<Block>, options: &ParseOptions) -> Result<Program, 
 pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Program, NcErrors> {
     let effective = ParseOptions {
         c_axis: options.c_axis || multi_axis(&blocks),
-        ..*options
+        ..options.clone()
     };
     let mut run = Run::new(&blocks, &effective)?;
     while run.pc < blocks.len() {
@@ -329,6 +345,8 @@ pub(super) struct Ctx<'a> {
     pub segments: &'a mut Vec<Segment>,
     /// Corner words waiting for the next move.
     pub corners: &'a mut Vec<Corner>,
+    /// Cutter-compensation stretches so far.
+    pub stretches: &'a mut Vec<CutterStretch>,
 }
 
 /// An error at word `w` of block `b`.

@@ -6,7 +6,9 @@
 //! returns `M99` with repeat counts and nesting up to
 //! [`super::program::MAX_NESTING`] levels. After the last block it gives
 //! every block its modal state, marks the segments of blocks run more than
-//! once `fixed`, and applies the Fanuc corners ([`super::corner`]). The
+//! once `fixed`, applies the Fanuc corners ([`super::corner`]) and then
+//! the cutter-compensation offsets ([`super::cutter_path`], each segment
+//! tagged with the G41/G42 stretch in force after its block). The
 //! readings are those of the interpreter's header ([`super::program`]).
 
 use std::collections::HashMap;
@@ -14,8 +16,8 @@ use std::collections::HashMap;
 use super::block::interpret_block;
 use super::macro_exec::{has_macros, Macros, Step};
 use super::program::{
-    err, Corner, Ctx, Modal, ParseOptions, Program, Segment, Warning, MAX_EXECUTED_BLOCKS,
-    MAX_NESTING,
+    err, Corner, Ctx, CutterStretch, Modal, ParseOptions, Program, Segment, Warning,
+    MAX_EXECUTED_BLOCKS, MAX_NESTING,
 };
 use super::{Block, NcError, NcErrors, Word};
 
@@ -45,6 +47,10 @@ pub(super) struct Run<'a> {
     mac: Option<Macros>,
     /// How often each block was run.
     runs: Vec<u32>,
+    /// Cutter-compensation stretches so far.
+    stretches: Vec<CutterStretch>,
+    /// The stretch in force for each segment (same length as `segments`).
+    tags: Vec<Option<usize>>,
 }
 
 /// An active subprogram or macro call.
@@ -102,6 +108,8 @@ impl<'a> Run<'a> {
                 None
             },
             runs: vec![0u32; blocks.len()],
+            stretches: Vec::new(),
+            tags: Vec::new(),
         })
     }
 
@@ -238,8 +246,12 @@ impl<'a> Run<'a> {
             warnings: &mut self.warnings,
             segments: &mut self.segments,
             corners: &mut self.corners,
+            stretches: &mut self.stretches,
         };
-        if let Err(e) = interpret_block(b, &mut self.st, &mut ctx) {
+        let result = interpret_block(b, &mut self.st, &mut ctx);
+        self.tags
+            .resize(self.segments.len(), self.st.cutter.map(|c| c.stretch));
+        if let Err(e) = result {
             let stop = e.message.contains("this looks like");
             self.errors.push(e);
             if stop {
@@ -327,6 +339,8 @@ impl<'a> Run<'a> {
             modal,
             stack,
             runs,
+            stretches,
+            mut tags,
             ..
         } = self;
         if let (Some(f), true) = (stack.last(), errors.is_empty()) {
@@ -356,9 +370,18 @@ impl<'a> Run<'a> {
                 s.fixed = true;
             }
         }
-        if let Err(es) = super::corner::apply_corners(&mut segments, &corners) {
+        if let Err(es) = super::corner::apply_corners(&mut segments, &corners, &mut tags) {
             for e in es {
                 errors.push(e);
+            }
+        }
+        if errors.is_empty() {
+            if let Err(es) =
+                super::cutter_path::offset_path(&mut segments, &tags, &stretches, &blocks)
+            {
+                for e in es {
+                    errors.push(e);
+                }
             }
         }
         if !errors.is_empty() {
@@ -369,7 +392,8 @@ impl<'a> Run<'a> {
             modal,
             segments,
             warnings,
-            options: *opt,
+            cutter: stretches,
+            options: opt.clone(),
         })
     }
 }

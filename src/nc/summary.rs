@@ -1,6 +1,8 @@
 //! The summary a user checks first, before simulating: bounding box, path
 //! length, counts of arcs, lines, rapids and dwells, units and planes used,
-//! an estimated motion time, and the warnings grouped by kind.
+//! an estimated motion time, the warnings grouped by kind, and the
+//! cutter-compensation stretches with the radius each used (or none: the
+//! programmed path).
 //!
 //! Motion time (estimate, no acc/dec): Σ length/feed over cutting moves,
 //! Σ length/rapid rate over rapids, plus the dwells. With the tool-path
@@ -13,14 +15,14 @@
 
 use serde::Serialize;
 
-use super::program::{Arc, Motion, Program, Segment, Warning};
+use super::program::{Arc, CutterStretch, Motion, Program, Segment, Warning};
 
 /// Warnings of one kind.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct WarningGroup {
     /// The kind: the message's leading code or phrase (e.g. `G54`, `M6`,
-    /// `block delete`, `unknown word`).
+    /// `block delete`, `unknown word`, `cutter compensation`).
     pub kind: String,
     /// How many warnings of this kind.
     pub count: usize,
@@ -61,6 +63,10 @@ pub struct Summary {
     pub rapid_feed: f64,
     /// Warnings grouped by kind, in order of first appearance.
     pub warnings: Vec<WarningGroup>,
+    /// The cutter-compensation stretches (G41/G42 … G40): where each starts
+    /// and the tool radius its offset path used (`None`: the simulated
+    /// path is the programmed path, warned).
+    pub cutter_compensation: Vec<CutterStretch>,
 }
 
 /// The kind of a warning message (see [`WarningGroup::kind`]).
@@ -70,6 +76,7 @@ pub fn warning_kind(message: &str) -> String {
         "unknown word",
         "work offset",
         "blocks after the program end",
+        "cutter compensation",
     ];
     if let Some(p) = phrases.iter().find(|p| message.starts_with(*p)) {
         return (*p).to_string();
@@ -122,6 +129,7 @@ pub fn summarize(p: &Program, rapid_feed: f64) -> Summary {
         motion_time: t.time,
         rapid_feed,
         warnings: group_warnings(&p.warnings),
+        cutter_compensation: p.cutter.clone(),
     }
 }
 

@@ -8,7 +8,7 @@ use wasm_bindgen::prelude::*;
 use super::convert::{from_js, object, plain, string_arg, to_js, Obj};
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
 use crate::nc::files::{main_file, parse_files, NcFile};
-use crate::nc::program::{ParseOptions, Program, Segment, Warning};
+use crate::nc::program::{ParseOptions, Program, Segment, ToolRadii, Warning};
 use crate::nc::summary::{summarize, Summary};
 use crate::nc::{NcError, NcErrors};
 use crate::toolpath::identify::{
@@ -33,7 +33,11 @@ export interface NcWarning { /** [-] 1-based */ line: number; /** [-] 1-based */
 /** An extra program file holding subprograms (O… M99, G65 macros, o<name> sub … endsub) the main program calls. */
 export interface NcFile { name: string; text: string }
 /** Reading options; an unknown key is an error naming it. dwellP: how G4 P is read ('auto': with a decimal point seconds, without milliseconds; 'milliseconds': Fanuc; 'seconds': LinuxCNC/Grbl). skipBlockDelete (default true): skip '/' blocks. cAxis (default false): C is a rotary axis; otherwise C on G01 is a Fanuc chamfer. */
-export interface NcParseOptions { dwellP?: 'auto' | 'milliseconds' | 'seconds'; skipBlockDelete?: boolean; cAxis?: boolean; start?: Pose; files?: NcFile[] }
+export interface NcParseOptions { dwellP?: 'auto' | 'milliseconds' | 'seconds'; skipBlockDelete?: boolean; cAxis?: boolean; start?: Pose; files?: NcFile[]; toolRadii?: NcToolRadii }
+/** Tool radius per D number for cutter compensation G41/G42, in program units (inch under G20): a map { D1: 3, "8": 0.25 } or a text "D1=3, D8=0.25"; each finite and ≥ 0. Without an entry for a D the simulated path is the programmed path (warned). */
+export type NcToolRadii = Record<string, number> | string;
+/** One cutter-compensation stretch (G41/G42 … G40). radius: [mm] the tool radius its offset path used; null: the simulated path is the programmed path (warned). */
+export interface NcCutterStretch { code: string; side: 'Left' | 'Right'; d: string | null; /** [mm] */ radius: number | null; plane: 'XY' | 'ZX' | 'YZ'; /** [-] */ line: number; /** [-] */ column: number; file?: string }
 export interface NcWarningGroup { kind: string; /** [-] */ count: number; /** [-] source lines */ lines: number[]; /** [-] indices into warnings */ indices: number[] }
 /** Lengths mm, motionTime s (Σ length/feed, rapids at rapidFeed mm/min, dwells; no acc/dec). */
 export interface NcSummary {
@@ -41,12 +45,13 @@ export interface NcSummary {
   /** [mm] */ totalLength: number; /** [mm] */ cuttingLength: number;
   /** [-] */ arcs: number; /** [-] */ lines: number; /** [-] */ rapids: number; /** [-] */ dwells: number;
   units: string; planes: string[]; /** [s] */ motionTime: number; /** [mm/min] */ rapidFeed: number; warnings: NcWarningGroup[];
+  cutterCompensation: NcCutterStretch[];
 }
 export interface ParsedNc { segments: NcSegment[]; warnings: NcWarning[]; summary: NcSummary }
 export interface NcCheck { errors: NcWarning[]; truncated: boolean; warnings: NcWarning[]; summary: NcSummary | null }
 /** tA and T in s (T one value or [Tx, Ty, Tz]), dt in s, rapidFeed in mm/min, feedOverride as a fraction; dwellExactStop: every G4 first waits tA + 5·max T (exact stop, in-position check). */
 export interface ToolPathConfig {
-  files?: NcFile[]; /** [s] */ tA?: number; /** [s] */ T?: number | [number, number, number]; /** [s] */ dt?: number; /** [mm/min] */ rapidFeed?: number;
+  files?: NcFile[]; toolRadii?: NcToolRadii; /** [s] */ tA?: number; /** [s] */ T?: number | [number, number, number]; /** [s] */ dt?: number; /** [mm/min] */ rapidFeed?: number;
   /** [-] fraction */ feedOverride?: number; dwellExactStop?: boolean;
 }
 export interface SegmentStats {
@@ -71,7 +76,7 @@ export interface RadiusReductionInput { /** [mm/min] */ feed: number; /** [mm] *
 export interface CircleLoss { /** [mm/min] */ feed: number; /** [mm] */ radius: number; /** [mm] */ radiusLoss: number }
 export interface AccDec { /** [s] */ tA: number; /** [s] */ T: number; /** [mm] RMS of the Δr residuals */ residual: number }
 /** dwell (unset: automatic 0.1 s, 0: none); timeBudget: largest motion-time growth as a fraction (default 0.05). */
-export interface ReverseConfig extends Omit<ToolPathConfig, 'files'> { /** [s] */ dwell?: number; /** [-] */ iterations?: number; /** [-] fraction */ timeBudget?: number }
+export interface ReverseConfig extends Omit<ToolPathConfig, 'files' | 'toolRadii'> { /** [s] */ dwell?: number; /** [-] */ iterations?: number; /** [-] fraction */ timeBudget?: number }
 /** One region (cutting moves between rapids and fixed segments); reason says why it was left unchanged. */
 export interface RegionNote {
   /** [-] */ firstLine: number; /** [-] */ lastLine: number; /** [-] */ arcs: number; /** [-] */ lines: number;
@@ -125,20 +130,30 @@ fn parse_args(text: &JsValue, options: JsValue) -> Result<Result<Program, NcErro
 /// Splits the optional `files` key off an options object: the extra files
 /// and the options without it.
 fn take_files(options: JsValue) -> Result<(Vec<NcFile>, JsValue), JsError> {
+    let (files, rest) = take_key(options, "files")?;
+    if files.is_undefined() {
+        return Ok((Vec::new(), rest));
+    }
+    let files: Vec<NcFile> = from_js(files, "files (expected [{ name, text }])")?;
+    Ok((files, rest))
+}
+
+/// Splits key `name` off an options object (read as plain data): its value
+/// (undefined when absent) and a copy of the options without it.
+fn take_key(options: JsValue, name: &str) -> Result<(JsValue, JsValue), JsError> {
     if !options.is_object() {
-        return Ok((Vec::new(), options));
+        return Ok((JsValue::UNDEFINED, options));
     }
     // Plain data first (no getter or Proxy runs while the key is read).
     let options = plain(&options, "options")?;
-    let key = JsValue::from_str("files");
-    let files = js_sys::Reflect::get(&options, &key).unwrap_or(JsValue::UNDEFINED);
-    if files.is_undefined() {
-        return Ok((Vec::new(), options));
+    let key = JsValue::from_str(name);
+    let value = js_sys::Reflect::get(&options, &key).unwrap_or(JsValue::UNDEFINED);
+    if value.is_undefined() {
+        return Ok((value, options));
     }
-    let files: Vec<NcFile> = from_js(files, "files (expected [{ name, text }])")?;
     let rest = js_sys::Object::assign(&js_sys::Object::new(), options.unchecked_ref());
     let _ = js_sys::Reflect::delete_property(&rest, &key);
-    Ok((files, rest.into()))
+    Ok((value, rest.into()))
 }
 
 /// Index of the main program among several dropped program texts: the
@@ -245,13 +260,21 @@ pub fn simulate_tool_path(
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let (files, config) = take_files(config)?;
+    let (radii, config) = take_key(config, "toolRadii")?;
     let cfg: SimConfig = if config.is_undefined() || config.is_null() {
         SimConfig::default()
     } else {
         object(config, "config")?
     };
-    let p = parse_files(text, &files, &ParseOptions::default())
-        .map_err(|e| JsError::new(&e.first().to_string()))?;
+    let opts = ParseOptions {
+        tool_radii: if radii.is_undefined() {
+            ToolRadii::default()
+        } else {
+            from_js(radii, "config.toolRadii")?
+        },
+        ..ParseOptions::default()
+    };
+    let p = parse_files(text, &files, &opts).map_err(|e| JsError::new(&e.first().to_string()))?;
     let s = crate::toolpath::simulate_program(&p, &cfg)?;
     sim_obj(&s, &p.warnings)
 }

@@ -90,11 +90,13 @@ const CASES = {
     bad: [['G2 X10 Y0 F100'], ['G1 X1e999 F100'], ['G2 X10 Y0 R1 F100'], ['G1 X1'], ['G4 P-1'], ['(unclosed'], ['\u0000\u0001'], ['G1 X1 F0'],
       ['G1 X1 F100', { bogus: 1 }], ['G1 X1 F100\n'.repeat(300000)], [`G1 X1 F${'9'.repeat(309)}`]],
   },
-  checkNc: { good: () => mt.checkNc(arcs), bad: [[42], ['G1 X1 F100', { dwellP: 'weeks' }], ['G1 X1 F100', []]] },
+  checkNc: { good: () => mt.checkNc(arcs), bad: [[42], ['G1 X1 F100', { dwellP: 'weeks' }], ['G1 X1 F100', []],
+    ['G1 X1 F100', { toolRadii: { D1: -1 } }], ['G1 X1 F100', { toolRadii: 'D1=NaN' }], ['G1 X1 F100', { toolRadii: 3 }], ['G1 X1 F100', { toolRadii: { X1: 1 } }]] },
   simulateToolPath: {
     good: () => mt.simulateToolPath(arcs, TP),
     bad: [['G1 X10 F1000', { dt: 0 }], ['G1 X10 F1000', { ...TP, tA: -1 }], ['G1 X10 F1000', { ...TP, dt: 0 }], ['G1 X1e9 F1', { ...TP, dt: 1e-6 }],
-      ['G1 X10 F1000', { ...TP, T: { x: NaN } }], ['G1 X19900 F1000', { ...TP, dt: 6e-5 }], ['G1 X10 F1000', [0.04, 0.015, 0.001]]],
+      ['G1 X10 F1000', { ...TP, T: { x: NaN } }], ['G1 X19900 F1000', { ...TP, dt: 6e-5 }], ['G1 X10 F1000', [0.04, 0.015, 0.001]],
+      ['G0 X0 Y0\nG41 D1 G1 X10 F100\nG3 X10 Y0 I-10 J0\nG40 G1 X0', { ...TP, toolRadii: 'D1=20' }], ['G1 X10 F1000', { ...TP, toolRadii: { D1: Infinity } }]],
   },
   radiusReduction: {
     good: () => mt.radiusReduction({ feed: 2000, radius: 10, tA: 0.04, T: 0.015 }),

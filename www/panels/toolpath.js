@@ -29,6 +29,19 @@ export async function mount(root, api) {
     nc.setSelectionRange(start, end);
     nc.scrollTop = Math.max(0, (line - 3) * (nc.scrollHeight / Math.max(lines.length, 1)));
   }
+  // Cutter compensation: the tool radius per D is a text the core reads
+  // ("D1=3, D8=0.25", program units); the summary says, per G41/G42
+  // stretch, whether the path is offset or the programmed one.
+  const radii = h('input', { type: 'text', id: 'toolpath-radii', placeholder: 'e.g. D1=3, D8=0.25', size: 22, title: 'Tool radius per D number for G41/G42, in program units' });
+  const radiiField = h('label', { class: 'field' }, h('span', {}, 'Tool radii per D (G41/G42)'), radii);
+  const radiiOption = () => (radii.value.trim() ? { toolRadii: radii.value } : undefined);
+  radii.addEventListener('change', () => { programChanged(); checkProgram(); });
+  /** The summary's cutter-compensation lines (none without G41/G42). */
+  const cutterNote = (stretches) => stretches.length ? [h('ul', { id: 'toolpath-cutter' }, ...stretches.map((c) => h('li', {},
+    `${c.code}${c.d ? ` ${c.d}` : ''} (${c.file ? `${c.file}, ` : ''}line ${c.line}): `,
+    c.radius === null
+      ? h('strong', {}, 'simulated path = programmed (un-offset) path; contour errors are those of the programmed path (no tool radius: see the warning)')
+      : `offset tool-centre path computed with tool radius ${fmt(c.radius, 5)} mm`)))] : [];
   const lineLink = (w, cls) => w.file ? h('li', { class: cls }, `${w.file}, line ${w.line}, column ${w.column}: ${w.message}`) : h('li', { class: cls },
     h('a', { href: '#', class: 'nc-line', 'data-line': w.line, onclick: (e) => { e.preventDefault(); selectLine(w.line); } }, `line ${w.line}, column ${w.column}`),
     `: ${w.message}`);
@@ -38,7 +51,7 @@ export async function mount(root, api) {
   async function checkProgram(known) {
     const seq = ++checkSeq;
     try {
-      const c = known ?? (await api.call('checkNc', [nc.value, files.options()]));
+      const c = known ?? (await api.call('checkNc', [nc.value, files.options(radiiOption())]));
       if (seq !== checkSeq) return;
       if (c.errors.length) {
         check.replaceChildren(
@@ -60,7 +73,7 @@ export async function mount(root, api) {
           ['units, arc planes', `${s.units}${s.planes.length ? `, ${s.planes.join(' ')}` : ''}`],
           ['estimated motion time', h('span', {}, h('span', { id: 'toolpath-check-time' }, fmt(s.motionTime, 5)), ` s (Σ length/feed, rapids at ${s.rapidFeed} mm/min, no acc/dec)`)],
         ]),
-        h('p', {}, 'Cutter radius compensation (G41/G42) is not simulated: the simulated path is the programmed path.'),
+        ...cutterNote(s.cutterCompensation),
         c.warnings.length ? h('div', { id: 'toolpath-check-warnings' }, h('p', {}, `${c.warnings.length} warning(s), by kind:`), ...groups) : h('p', {}, 'No warnings.'),
       );
     } catch (e) {
@@ -85,7 +98,7 @@ export async function mount(root, api) {
     if (text.length > LARGE_TEXT) {
       let problem = null;
       try {
-        known = await api.call('checkNc', [text, files.options()]);
+        known = await api.call('checkNc', [text, files.options(radiiOption())]);
         if (known.errors.length && known.errors[0].line <= 1) problem = known.errors[0].message;
       } catch (e) {
         problem = e instanceof Error ? e.message : String(e);
@@ -200,7 +213,7 @@ export async function mount(root, api) {
   async function simulate() {
     const token = simUi.start();
     try {
-      const s = await api.call('simulateToolPath', [nc.value, files.options(cfg())]);
+      const s = await api.call('simulateToolPath', [nc.value, files.options({ ...cfg(), ...radiiOption() })]);
       if (!simUi.current(token)) return;
       last = s;
       const warn = s.warnings.length
@@ -294,7 +307,7 @@ export async function mount(root, api) {
   root.replaceChildren(
     h('div', { class: 'card' },
       h('h3', {}, 'NC program'),
-      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, example.el, drop),
+      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, example.el, drop, radiiField),
       files.note,
       h('div', { style: 'display:grid;grid-template-columns:repeat(auto-fit,minmax(280px,1fr));gap:12px' }, nc, check)),
     h('div', { class: 'card' },
