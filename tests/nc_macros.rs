@@ -173,6 +173,13 @@ fn okuma_programs_are_recognised_at_their_first_mark() {
         ("G90\nGOTO N100", (2, 1)),
         ("G90\nCALL O2000 PX=1", (2, 1)),
         ("G0 X0\nG15 H1\nG0 X1", (2, 1)),
+        // The OSP file header comes before any other mark (the line-4
+        // `CALL` of GCodeWorkShop's OSP5020M example was the first one
+        // seen before the header was recognised).
+        (
+            "$BRACKET.SSB%\r\n(HAND-WRITTEN)\r\nOMAIN\r\nCALL OSUB1",
+            (1, 1),
+        ),
     ];
     for (src, at) in cases {
         let e = parse_all(src, &ParseOptions::default()).unwrap_err();

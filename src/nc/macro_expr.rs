@@ -539,10 +539,27 @@ pub fn is_okuma_word(run: &str) -> bool {
         .any(|k| run.starts_with(k))
 }
 
+/// The Okuma OSP file header alone on its line, `$OKUMA.SSB%` or
+/// `$FLANGE.MIN%`: `$`, a file name (letters, digits, `_`, `-`), a dot, an
+/// extension of one to four letters or digits (MIN, SUB, SSB, LIB, …) and
+/// `%`. The header without its surrounding whitespace, or `None`. Grbl
+/// `$` commands (`$H`, `$J=…`) have no dot and `%` and are not headers.
+pub fn okuma_file_header(line: &str) -> Option<&str> {
+    let t = line.trim();
+    let body = t.strip_prefix('$')?.strip_suffix('%')?;
+    let (name, ext) = body.rsplit_once('.')?;
+    let name_ok = !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+    let ext_ok = (1..=4).contains(&ext.len()) && ext.chars().all(|c| c.is_ascii_alphanumeric());
+    (name_ok && ext_ok).then_some(t)
+}
+
 /// The refusal of an Okuma OSP program.
 pub fn okuma_message(found: &str) -> String {
     format!(
-        "'{found}': this looks like an Okuma OSP program (VC variables, NIF, CALL O…, GOTO N…, G15 H); mtmotion reads ISO/Fanuc, Haas and LinuxCNC programs: post the part for a Fanuc-compatible control"
+        "'{found}': this looks like an Okuma OSP program ($NAME.MIN% header, VC variables, NIF, CALL O…, GOTO N…, G15 H); mtmotion reads ISO/Fanuc, Haas and LinuxCNC programs: post the part for a Fanuc-compatible control"
     )
 }
 

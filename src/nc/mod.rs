@@ -350,7 +350,8 @@ fn control_char(c: char) -> bool {
 /// [`Block::program_name`]. A Fanuc `:0097` program number is read as
 /// `O0097`; a named program `O<NAME>` sets [`Block::program_name`]. Fanuc
 /// `,R` / `,C` (corner rounding / chamfer on G01) are kept in
-/// [`Block::comma_words`].
+/// [`Block::comma_words`]. An Okuma OSP file header (`$OKUMA.SSB%`, see
+/// [`macro_expr::okuma_file_header`]) is refused as an Okuma program.
 pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
     if macro_line::is_macro_line(src) && !src.chars().any(control_char) {
         return macro_line::lex_macro(src, line);
@@ -371,6 +372,9 @@ pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
         ));
     }
     let mut i = skip_ws(&chars, 0);
+    if let Some(header) = macro_expr::okuma_file_header(src) {
+        return Err(NcError::new(line, i + 1, macro_expr::okuma_message(header)));
+    }
     if i < chars.len() && chars[i] == '%' {
         block.percent = true;
         i += 1;
@@ -755,6 +759,29 @@ mod tests {
         assert_eq!(e.column, 4);
         let e = lex("G1 X1 $").unwrap_err();
         assert!(e.message.contains("unexpected character '$' (U+0024)"));
+    }
+
+    #[test]
+    fn an_okuma_file_header_is_refused_as_okuma_and_grbl_dollar_lines_are_not() {
+        // The first line of an Okuma OSP file (GCodeWorkShop's OSP5020M
+        // example starts with `$OKUMA.SSB%`, its lathe one `$FLANGE.MIN%`).
+        for (src, col) in [
+            ("$BRACKET.SSB%\r\nOMAIN", 1),
+            ("  $PLATE.MIN% \nG0 X1", 3),
+            ("$O1234-A_2.MIN%", 1),
+        ] {
+            let e = lex(src).unwrap_err();
+            assert_eq!((e.line, e.column), (1, col), "{src}: {e}");
+            assert!(
+                e.message.contains("this looks like an Okuma OSP program"),
+                "{e}"
+            );
+        }
+        // Grbl system commands and a stray `$` keep the plain error.
+        for src in ["$H", "$J=G91 X1 F100", "$OKUMA.SSB", "$.MIN%", "$A.LONGX%"] {
+            let e = lex(src).unwrap_err();
+            assert!(e.message.contains("unexpected character '$'"), "{src}: {e}");
+        }
     }
 
     #[test]
