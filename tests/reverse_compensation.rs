@@ -325,3 +325,60 @@ fn a_line_diff_shows_only_the_compensation() {
         assert!(feeds(&c.nc) >= feeds(&src), "{name}: feeds lost");
     }
 }
+
+/// New lines of a program that numbers its blocks get N numbers of their
+/// own between their neighbours' (zero-padded like them), so a diff shows
+/// numbered lines as the original has; where the numbers leave no room
+/// (N1 then N2), or the program does not number its blocks, new lines
+/// have none.
+#[test]
+fn new_lines_are_numbered_like_the_program() {
+    let with_dwells = |src: &str, after: &[usize]| {
+        let p = parse(src).unwrap();
+        let mut segs = Vec::new();
+        for (k, s) in p.segments.iter().enumerate() {
+            segs.push(s.clone());
+            if after.contains(&k) {
+                let mut d = s.clone();
+                d.block = None;
+                d.start = s.end;
+                d.motion = Motion::Dwell { seconds: 0.1 };
+                segs.push(d);
+            }
+        }
+        write_source(src, &p, &segs)
+    };
+    assert_eq!(
+        with_dwells("N10 G0 X0 Y0\nN20 G1 X10 F600\nN30 G1 Y10\n", &[1]),
+        "N10 G0 X0 Y0\nN20 G1 X10 F600\nN21 G4 P0.1\nN30 G1 Y10\n"
+    );
+    assert_eq!(
+        with_dwells("N0010 G0 X0 Y0\nN0020 G1 X10 F600\nN0030 G1 Y10\n", &[1, 2]),
+        "N0010 G0 X0 Y0\nN0020 G1 X10 F600\nN0021 G4 P0.1\nN0030 G1 Y10\nN0031 G4 P0.1\n"
+    );
+    assert_eq!(
+        with_dwells("N1 G0 X0 Y0\nN2 G1 X10 F600\nN3 G1 Y10\n", &[1]),
+        "N1 G0 X0 Y0\nN2 G1 X10 F600\nG4 P0.1\nN3 G1 Y10\n"
+    );
+    assert_eq!(
+        with_dwells("G0 X0 Y0\nG1 X10 F600\nN30 G1 Y10\n", &[1]),
+        "G0 X0 Y0\nG1 X10 F600\nG4 P0.1\nN30 G1 Y10\n"
+    );
+    // A reverse compensation of a numbered program: every line it adds is
+    // numbered and the numbers still rise.
+    let src = "N10 G21 G90 G17\nN20 G0 X0 Y0 Z1\nN30 G1 Z0 F2000\nN40 G1 X40 F3000\nN50 G1 Y40\nN60 G2 X60 Y20 I0 J-20\nN70 G1 X0 Y0\nN80 G0 Z10\nN90 M30\n";
+    let c = reverse_compensate(src, &ReverseConfig::default()).unwrap();
+    let ns: Vec<u64> =
+        c.nc.lines()
+            .map(|l| {
+                l.strip_prefix('N')
+                    .and_then(|r| r.split(' ').next()?.parse().ok())
+                    .unwrap_or_else(|| panic!("unnumbered line {l:?} in\n{}", c.nc))
+            })
+            .collect();
+    assert!(
+        ns.len() > 9 && ns.windows(2).all(|w| w[0] < w[1]),
+        "{}",
+        c.nc
+    );
+}

@@ -28,6 +28,10 @@
 //!   `G4` of the program, else `P` in seconds with a decimal point, read as
 //!   seconds by LinuxCNC, Haas and [`DwellP::Auto`]; integer milliseconds
 //!   under [`DwellP::Milliseconds`]);
+//! - in a program that numbers its blocks (N words on at least half of
+//!   them) a new line gets the next free number after its predecessor's
+//!   (`N21` between `N20` and `N30`, zero-padded like it), or none where
+//!   the numbers leave no room;
 //! - blocks with several segments (subprogram bodies, cycles, corners) and
 //!   `fixed` segments are never edited.
 //!
@@ -384,6 +388,7 @@ pub fn write_source(text: &str, program: &Program, segments: &[Segment]) -> Stri
         seg_of,
     };
     w.walk(segments);
+    number_new_lines(program, &w.d, &mut w.before, &mut w.after);
     let mut out = String::with_capacity(text.len() + 64);
     out.push_str(lines.head);
     for (i, (c, end)) in lines.lines.iter().enumerate() {
@@ -407,6 +412,92 @@ pub fn write_source(text: &str, program: &Program, segments: &[Segment]) -> Stri
     }
     out.push_str(lines.tail);
     out
+}
+
+/// The N number of each source line of the main file (value and the
+/// width of a zero-padded one, else 0), when the program numbers its
+/// blocks: at least half of its blocks with words carry an N word.
+fn line_numbers(program: &Program, lines: usize) -> Option<Vec<Option<(u64, usize)>>> {
+    let main = program
+        .blocks
+        .iter()
+        .filter(|b| b.file == 0 && !b.words.is_empty());
+    let (mut blocks, mut numbered) = (0usize, 0usize);
+    let mut n_of = vec![None; lines];
+    for b in main {
+        blocks += 1;
+        let Some(w) = b.word('N') else { continue };
+        numbered += 1;
+        if let Some(slot) = n_of.get_mut(b.line.wrapping_sub(1)) {
+            let digits = w.text.trim_start_matches('+');
+            let width = if digits.starts_with('0') {
+                digits.len()
+            } else {
+                0
+            };
+            if w.value >= 0.0 && w.value.fract() == 0.0 {
+                *slot = Some((w.value as u64, width));
+            }
+        }
+    }
+    (numbered > 0 && 2 * numbered >= blocks).then_some(n_of)
+}
+
+/// Gives the new lines of a program that numbers its blocks an N number
+/// of their own: a run of new lines between the source lines numbered `a`
+/// and `b` gets `a + 1`, `a + 2`, … (the width of a zero-padded `a`) when
+/// they fit below `b`, so no number repeats and the order is kept; a run
+/// that does not fit, or comes before the first numbered line, stays
+/// without N numbers (an N number is optional on every control).
+fn number_new_lines(
+    program: &Program,
+    d: &Dialect,
+    before: &mut [Vec<String>],
+    after: &mut [Vec<String>],
+) {
+    let Some(n_of) = line_numbers(program, before.len()) else {
+        return;
+    };
+    let mut prev: Option<(u64, usize)> = None;
+    let mut run: Vec<(bool, usize, usize)> = Vec::new();
+    for (i, n) in n_of.iter().enumerate() {
+        run.extend((0..before[i].len()).map(|j| (false, i, j)));
+        if let Some(n) = *n {
+            number_run(d, &mut run, prev, Some(n.0), before, after);
+            prev = Some(n);
+        }
+        run.extend((0..after[i].len()).map(|j| (true, i, j)));
+    }
+    number_run(d, &mut run, prev, None, before, after);
+}
+
+/// Numbers one run of new lines (see [`number_new_lines`]) and empties it.
+fn number_run(
+    d: &Dialect,
+    run: &mut Vec<(bool, usize, usize)>,
+    prev: Option<(u64, usize)>,
+    next: Option<u64>,
+    before: &mut [Vec<String>],
+    after: &mut [Vec<String>],
+) {
+    if let Some((a, width)) = prev {
+        if next.unwrap_or(u64::MAX).saturating_sub(a) > run.len() as u64 {
+            for (k, &(is_after, i, j)) in run.iter().enumerate() {
+                let line = if is_after {
+                    &mut after[i][j]
+                } else {
+                    &mut before[i][j]
+                };
+                *line = format!(
+                    "{}{:0width$}{}{line}",
+                    d.letter('N'),
+                    a + 1 + k as u64,
+                    d.space
+                );
+            }
+        }
+    }
+    run.clear();
 }
 
 /// A source block being edited to carry `seg` (originally `o`) from `pos`.
