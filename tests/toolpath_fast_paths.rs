@@ -5,6 +5,8 @@
 //! whole filter matches a plain re-implementation of Eqs. 1–2 that
 //! evaluates the timeline directly and divides where the fast one
 //! multiplies by reciprocals (< 1e-9 mm on the built-in examples).
+//! `simulate_stats` (the series-free simulation of reverse compensation's
+//! rounds) gives bit for bit the statistics `simulate` gives.
 #![allow(clippy::needless_range_loop)]
 
 use mtmotion::nc::program::parse;
@@ -136,5 +138,37 @@ fn filter_matches_plain_equations() {
                 }
             }
         }
+    }
+}
+
+/// The statistics-only simulation equals the full one bit for bit on the
+/// built-in examples and a corpus program that revisits itself, and
+/// records none of the series it leaves out.
+#[test]
+fn statistics_only_simulation_equals_the_full_one() {
+    use mtmotion::toolpath::{simulate, simulate_stats, SimConfig};
+    let tort = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/nc_corpus/linuxcnc_tort.ngc"
+    ))
+    .unwrap();
+    for text in [example::arc_example(), example::line_example(), tort] {
+        let p = parse(&text).unwrap();
+        let cfg = SimConfig::default();
+        let full = simulate(&p.segments, &p.segments, &cfg).unwrap();
+        let lean = simulate_stats(&p.segments, &p.segments, &cfg).unwrap();
+        assert_eq!(lean.segments, full.segments);
+        assert_eq!(lean.max_error.to_bits(), full.max_error.to_bits());
+        assert_eq!(lean.max_error_time.to_bits(), full.max_error_time.to_bits());
+        assert_eq!(lean.max_error_line, full.max_error_line);
+        assert_eq!(lean.motion_time.to_bits(), full.motion_time.to_bits());
+        assert_eq!((lean.samples, full.samples), (full.t.len(), full.t.len()));
+        assert_eq!(lean.sim, full.sim);
+        assert!(
+            lean.t.is_empty()
+                && lean.error.is_empty()
+                && lean.near[0].is_empty()
+                && lean.vel_sim[2].is_empty()
+        );
     }
 }

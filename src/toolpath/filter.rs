@@ -93,7 +93,32 @@ impl Lag1 {
 /// assert!((f.sim[0][2000] - 10.0).abs() < 1e-9);
 /// ```
 pub fn filter(tl: &Timeline, t_a: f64, t: [f64; 3], dt: f64, n: usize) -> Filtered {
-    let mut out = Filtered::with_capacity(n);
+    filter_keeping(tl, t_a, t, dt, n, Keep::All)
+}
+
+/// Which series [`filter_keeping`] records.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Keep {
+    /// Every series of [`Filtered`].
+    All,
+    /// The commanded and simulated positions only (`t` and the velocities
+    /// stay empty): what a contour-error measurement needs, at 6 of the 13
+    /// series' memory traffic (reverse compensation's correction rounds).
+    Positions,
+}
+
+/// As [`filter`], recording the series `keep` names; the positions are the
+/// same numbers either way.
+pub fn filter_keeping(
+    tl: &Timeline,
+    t_a: f64,
+    t: [f64; 3],
+    dt: f64,
+    n: usize,
+    keep: Keep,
+) -> Filtered {
+    let all = keep == Keep::All;
+    let mut out = Filtered::with_capacity(n, all);
     let lags = [
         Lag1::new(t[0], dt),
         Lag1::new(t[1], dt),
@@ -138,15 +163,19 @@ pub fn filter(tl: &Timeline, t_a: f64, t: [f64; 3], dt: f64, n: usize) -> Filter
         } else {
             (p, vb)
         };
-        out.t.push(tk);
+        if all {
+            out.t.push(tk);
+        }
         for ax in 0..3 {
             if k > 0 {
                 y[ax] = lags[ax].step(y[ax], u_prev[ax], u[ax]);
             }
             out.cmd[ax].push(p[ax]);
-            out.vel_cmd[ax].push(vb[ax]);
             out.sim[ax].push(y[ax]);
-            out.vel_sim[ax].push(lags[ax].velocity(y[ax], u[ax], fa[ax]));
+            if all {
+                out.vel_cmd[ax].push(vb[ax]);
+                out.vel_sim[ax].push(lags[ax].velocity(y[ax], u[ax], fa[ax]));
+            }
         }
         u_prev = u;
     }
@@ -154,21 +183,17 @@ pub fn filter(tl: &Timeline, t_a: f64, t: [f64; 3], dt: f64, n: usize) -> Filter
 }
 
 impl Filtered {
-    /// Empty series with room for `n` samples each.
-    fn with_capacity(n: usize) -> Self {
-        let mut out = Filtered {
-            t: Vec::with_capacity(n),
-            ..Filtered::default()
-        };
+    /// Empty series with room for `n` samples each (the positions only
+    /// unless `all`).
+    fn with_capacity(n: usize, all: bool) -> Self {
+        let mut out = Filtered::default();
+        let m = if all { n } else { 0 };
+        out.t.reserve_exact(m);
         for ax in 0..3 {
-            for v in [
-                &mut out.cmd[ax],
-                &mut out.vel_cmd[ax],
-                &mut out.sim[ax],
-                &mut out.vel_sim[ax],
-            ] {
-                v.reserve_exact(n);
-            }
+            out.cmd[ax].reserve_exact(n);
+            out.sim[ax].reserve_exact(n);
+            out.vel_cmd[ax].reserve_exact(m);
+            out.vel_sim[ax].reserve_exact(m);
         }
         out
     }

@@ -37,7 +37,8 @@ pub mod timeline;
 use serde::{Deserialize, Serialize};
 
 pub use simulate::{
-    sample_estimate, simulate, simulate_program, simulate_text, SegmentStats, Simulation,
+    sample_estimate, simulate, simulate_program, simulate_stats, simulate_text, SegmentStats,
+    Simulation,
 };
 
 /// The servo time constant: one for all axes or one per axis X, Y, Z.

@@ -21,7 +21,7 @@
 use serde::Serialize;
 
 use super::contour::{Element, Nearest, Path, Tracker};
-use super::filter::{filter, Filtered};
+use super::filter::{filter_keeping, Filtered, Keep};
 use super::timeline::Timeline;
 use super::{SimConfig, ToolpathError, MAX_SAMPLES};
 use crate::nc::program::{parse, Motion, Program, Segment};
@@ -98,6 +98,8 @@ pub struct Simulation {
     pub nominal_time: f64,
     /// Per reference segment with a length.
     pub segments: Vec<SegmentStats>,
+    /// Number of samples simulated.
+    pub samples: usize,
 }
 
 /// Simulates `command` and measures it against `reference`.
@@ -123,6 +125,32 @@ pub fn simulate(
     reference: &[Segment],
     cfg: &SimConfig,
 ) -> Result<Simulation, ToolpathError> {
+    simulate_keeping(command, reference, cfg, Keep::All)
+}
+
+/// As [`simulate()`] without the per-sample series a caller of the
+/// statistics alone never reads: `t`, `near`, `vel_cmd`, `vel_sim` and
+/// `error` are empty, `cmd` and `sim` are kept; every statistic (maximum
+/// error, its time and line, motion time, per-segment statistics,
+/// `samples`) is the same number [`simulate()`] gives. Reverse
+/// compensation's correction rounds use it.
+///
+/// # Errors
+/// As [`simulate()`].
+pub fn simulate_stats(
+    command: &[Segment],
+    reference: &[Segment],
+    cfg: &SimConfig,
+) -> Result<Simulation, ToolpathError> {
+    simulate_keeping(command, reference, cfg, Keep::Positions)
+}
+
+fn simulate_keeping(
+    command: &[Segment],
+    reference: &[Segment],
+    cfg: &SimConfig,
+    keep: Keep,
+) -> Result<Simulation, ToolpathError> {
     cfg.validate()?;
     let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
     let tl = timeline(command, cfg, tmax);
@@ -131,8 +159,8 @@ pub fn simulate(
         return Err(ToolpathError::Empty);
     }
     let n = sample_count(&tl, cfg, tmax)?;
-    let f = filter(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt, n);
-    let tr = track(&path, &f, n);
+    let f = filter_keeping(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt, n, keep);
+    let tr = track(&path, &f, n, keep == Keep::All);
     let end = reference.last().map_or(tl.origin, |s| s.end.p());
     let motion_time = settling_time(&f.sim, end, n, cfg.dt);
     let segments = path
@@ -142,7 +170,13 @@ pub fn simulate(
         .map(|(el, a)| a.stats(el, &reference[el.segment]))
         .collect();
     Ok(Simulation {
-        max_error_time: f.t.get(tr.max_k).copied().unwrap_or(0.0),
+        // The filter's sample times are k·dt.
+        max_error_time: if tr.max_k < n {
+            tr.max_k as f64 * cfg.dt
+        } else {
+            0.0
+        },
+        samples: n,
         max_error_line: reference[path.elements[tr.max_el].segment].line,
         t: f.t,
         cmd: f.cmd,
@@ -218,13 +252,14 @@ struct Tracked {
 
 /// Measures the first `n` simulated samples of `f` against `path`: the
 /// nearest point of each, followed along the path by a [`Tracker`].
-fn track(path: &Path, f: &Filtered, n: usize) -> Tracked {
+fn track(path: &Path, f: &Filtered, n: usize, series: bool) -> Tracked {
     let mut tracker = Tracker::default();
-    let mut error = Vec::with_capacity(n);
+    let m = if series { n } else { 0 };
+    let mut error = Vec::with_capacity(m);
     let mut near: [Vec<f64>; 3] = [
-        Vec::with_capacity(n),
-        Vec::with_capacity(n),
-        Vec::with_capacity(n),
+        Vec::with_capacity(m),
+        Vec::with_capacity(m),
+        Vec::with_capacity(m),
     ];
     let mut acc = vec![Acc::default(); path.elements.len()];
     let (mut max_error, mut max_k, mut max_el) = (0.0f64, 0usize, 0usize);
@@ -238,9 +273,11 @@ fn track(path: &Path, f: &Filtered, n: usize) -> Tracked {
         let Some(nr) = tracker.nearest_within(path, q, lag) else {
             break;
         };
-        error.push(nr.dist);
-        for ax in 0..3 {
-            near[ax].push(nr.point[ax]);
+        if series {
+            error.push(nr.dist);
+            for ax in 0..3 {
+                near[ax].push(nr.point[ax]);
+            }
         }
         let e = nr.element;
         let (Some(a), Some(el)) = (acc.get_mut(e), path.elements.get(e)) else {

@@ -30,7 +30,7 @@ use super::geometry::{rebuild, Edit};
 use super::region::{region_errors, Regions};
 use crate::budget::{BudgetError, MAX_REVERSE_SIMULATED_SAMPLES};
 use crate::nc::program::{Motion, Segment};
-use crate::toolpath::{simulate, SegmentStats, SimConfig, ToolpathError};
+use crate::toolpath::{simulate_stats, SegmentStats, SimConfig, ToolpathError};
 
 /// The outcome of the rounds: per region its best error and the edit that
 /// gave it.
@@ -150,7 +150,7 @@ pub fn copy_region(regions: &Regions, r: usize, from: &Edit, to: &mut Edit) {
 /// errors stay infinite and `start` is returned.
 ///
 /// # Errors
-/// As [`simulate()`].
+/// As [`simulate()`](crate::toolpath::simulate()).
 pub fn run(
     orig: &[Segment],
     regions: &Regions,
@@ -222,7 +222,7 @@ pub fn run(
 /// samples simulated.
 ///
 /// # Errors
-/// As [`simulate()`].
+/// As [`simulate()`](crate::toolpath::simulate()).
 pub fn simulate_windows(
     orig: &[Segment],
     regions: &Regions,
@@ -243,12 +243,12 @@ pub fn simulate_windows(
         };
         let reference = &orig[range.clone()];
         let segs = rebuild(reference, &part);
-        let sim = match simulate(&segs, reference, cfg) {
+        let sim = match simulate_stats(&segs, reference, cfg) {
             Ok(s) => s,
             Err(ToolpathError::Empty) => continue,
             Err(e) => return Err(e),
         };
-        samples += sim.t.len() as u64;
+        samples += sim.samples as u64;
         out.extend(sim.segments.into_iter().map(|mut st| {
             st.segment += range.start;
             st
