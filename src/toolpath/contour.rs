@@ -17,7 +17,13 @@
 //! its nearest part, as an exhaustive search would, and a local search that
 //! followed the wrong pass cannot inflate the error. When two elements are
 //! equally near (a circle programmed twice) the one closer along the path
-//! to the last nearest point wins, so the search moves on.
+//! to the last nearest point on a cutting move wins, so the search moves
+//! on and a return rapid crossing the contour does not carry it to another
+//! pass. Known limit: where the tool passes a point that another pass
+//! shares (LinuxCNC's `comp.ngc`: all six passes meet at the origin), a
+//! pass that is strictly nearer there takes the tracker, and later ties go
+//! to the pass nearest along the path to it; breaking ties towards the
+//! commanded segment would be exact, and is not done.
 //! Each element carries a bounding sphere; an element whose sphere is
 //! farther than the best distance so far (+ 2 nm) cannot win and is skipped
 //! without computing its nearest point — the result is the same as
@@ -359,6 +365,10 @@ pub const EXACT_SLACK: f64 = 1e-6;
 pub struct Tracker {
     cur: usize,
     s: f64,
+    /// Arc length of the last nearest point on a cutting move: ties are
+    /// broken towards it, so a rapid that crosses a contour cut several
+    /// times does not carry the tracker over to another pass.
+    s_cut: f64,
     err: f64,
     last: Option<[f64; 3]>,
     /// The elements that may lie within `near_r` of `near_q` (ascending):
@@ -385,6 +395,7 @@ impl Default for Tracker {
         Self {
             cur: 0,
             s: 0.0,
+            s_cut: 0.0,
             err: 0.0,
             last: None,
             near: Vec::new(),
@@ -396,11 +407,13 @@ impl Default for Tracker {
 
 impl Tracker {
     /// Nearer, or as near (within 1 nm, e.g. a path that repeats itself)
-    /// and closer along the path to the last nearest point.
+    /// and closer along the path to the last nearest point on a cutting
+    /// move.
     #[inline]
     fn better(&self, cand: &Nearest, best: &Nearest) -> bool {
         cand.dist < best.dist - 1e-9
-            || (cand.dist <= best.dist + 1e-9 && (cand.s - self.s).abs() < (best.s - self.s).abs())
+            || (cand.dist <= best.dist + 1e-9
+                && (cand.s - self.s_cut).abs() < (best.s - self.s_cut).abs())
     }
 
     /// The nearest point of `path` to `q`, searched around the last one.
@@ -422,15 +435,18 @@ impl Tracker {
         let _ = known;
         let mut best = self.local(path, q)?;
         if best.dist > EXACT_SLACK {
-            let mut bound = best.dist - EXACT_SLACK;
-            self.cover(path, q, bound);
+            let need = best.dist - EXACT_SLACK;
+            self.cover(path, q, need);
+            // Among the elements nearer than `need`, the nearest; of equally
+            // near ones (a pass programmed twice) the one closer along the
+            // path, as in the local search, whatever the list's order.
             let mut found: Option<Nearest> = None;
             for &i in &self.near {
                 let i = i as usize;
+                let bound = found.map_or(need, |f| f.dist + 2e-9);
                 if !path.farther_than(i, q, bound) {
                     let cand = path.nearest_on(i, q, self.s);
-                    if cand.dist < bound {
-                        bound = cand.dist;
+                    if cand.dist < need && found.is_none_or(|f| self.better(&cand, &f)) {
                         found = Some(cand);
                     }
                 }
@@ -441,6 +457,9 @@ impl Tracker {
         }
         self.cur = best.element;
         self.s = best.s;
+        if !path.elements[best.element].rapid {
+            self.s_cut = best.s;
+        }
         self.err = best.dist;
         self.last = Some(q);
         Some(best)
