@@ -147,9 +147,8 @@ customElements.define(
     ];
     compute(api, v) {
       // The nmv5000 C-axis servo (suzuki Table 1) with the load J1 = (J + J1) − J.
-      const machine = api.machinePreset('nmv5000');
-      const [p] = api.torqueSaturation(machine, {
-        j1: [v.inertia - machine.axes.c.j],
+      const [p] = api.torqueSaturation('nmv5000', {
+        j1: [v.inertia - api.axisInertia('nmv5000', 'c')],
         torqueMax: v['torque-max'],
         accelTime: v['accel-time'],
         feedAtCuttingPoint: v.feed,

@@ -6,10 +6,12 @@
 use js_sys::{Array, Reflect};
 use wasm_bindgen::prelude::*;
 
+use super::args::JsArg;
 use super::convert::{
     count_arg, floats_arg, object, opt_number, opt_number_arg, plain, require_object, string_arg,
     to_js, Obj,
 };
+use super::results::JsResult;
 use crate::alignment::{self, examples, AngleSweepConfig, Section, SweepConfig};
 use crate::ballbar::{self, BallbarTrace, Direction, ParseOptions, Run, SyntheticConfig};
 
@@ -112,8 +114,8 @@ pub fn harmonics(
 pub fn travel_range_sweep(
     #[wasm_bindgen(unchecked_param_type = "TravelRangeSweepConfig")] config: JsValue,
 ) -> Result<JsValue, JsError> {
-    let cfg: SweepConfig = object(config, "config")?;
-    to_js(&alignment::travel_range_sweep(&cfg)?)
+    let cfg = SweepConfig::arg(config, "config")?;
+    alignment::travel_range_sweep(&cfg)?.js()
 }
 
 /// takayama §2.2: angle-error estimate against travel range (Fig. 12).
@@ -178,7 +180,7 @@ fn trace_to_js(t: &BallbarTrace) -> Result<JsValue, JsError> {
     for r in &t.runs {
         runs.push(
             &Obj::new()
-                .ser("direction", &r.direction)?
+                .val("direction", r.direction.js()?)
                 .arr("angleRad", &r.angle)
                 .arr("deviation", &r.deviation)
                 .build(),
@@ -236,7 +238,7 @@ pub fn parse_ballbar_trace(
     let opts: ParseOptions = if options.is_undefined() || options.is_null() {
         ParseOptions::default()
     } else {
-        object(options, "options")?
+        ParseOptions::arg(options, "options")?
     };
     trace_to_js(&ballbar::parse_ballbar_trace(text, opts)?)
 }
@@ -248,7 +250,7 @@ pub fn circular_test(
 ) -> Result<JsValue, JsError> {
     require_object(&trace, "trace")?;
     let trace = plain(&trace, "trace")?;
-    to_js(&ballbar::circular_test(&trace_from_js(&trace)?)?)
+    ballbar::circular_test(&trace_from_js(&trace)?)?.js()
 }
 
 /// A synthetic ball-bar trace with known machine errors.
@@ -295,6 +297,7 @@ export interface AlignmentBand {
 
 /// takayama §2.1–2.2 on measured sections: offsets, angle errors and the
 /// travel-range bias band around them.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = estimateAlignmentBand, unchecked_return_type = "AlignmentBand")]
 pub fn estimate_alignment_band(
     #[wasm_bindgen(unchecked_param_type = "AlignmentBandInput")] input: JsValue,

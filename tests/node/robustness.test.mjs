@@ -76,6 +76,10 @@ const CASES = {
       ['nmv5000', { j1: [1.7], torqueMax: 0, accelTime: 0, feedAtCuttingPoint: -1 }],
       ['nmv5000', { j1: [1.7], torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200, dt: 1e-320 }]],
   },
+  axisInertia: {
+    good: () => mt.axisInertia('nmv5000', 'c'),
+    bad: [['nmv5000', 'q'], ['nope', 'c'], ['nmv5000', 3], [{}, 'c'], [42, 'c'], ['nmv5000', 'x'.repeat(9 << 20)]],
+  },
   identifyPitchError: {
     good: () => mt.identifyPitchError(angles, angles.map((a) => 1e-5 * Math.sin(4 * a)), { maxOrder: 8 }),
     bad: [[f64(), f64()], [f64(0, 1), f64(0)], [angles, angles.map(() => NaN)], ['100', '100'], [angles, angles, { maxOrder: -1 }]],
