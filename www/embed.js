@@ -167,7 +167,7 @@ customElements.define(
     static title = 'ISO 230-4 circular deviation of a ball-bar trace';
     static fields = [{ name: 'trace', label: 'Trace (CSV or TSV: angle and deviation, or X and Y)', text: true, value: '' }];
     compute(api, v) {
-      const result = api.circularTest(api.parseBallbarTrace(v.trace));
+      const result = api.circularDeviation(api.parseBallbarTrace(v.trace));
       const g = Math.max(...result.runs.map((r) => r.gUm));
       const runs = result.runs.map((r) => `${r.direction.toUpperCase()}: G = <b>${num(r.gUm, 2)} µm</b> (F ${num(r.fMinUm, 2)} … ${num(r.fMaxUm, 2)} µm)`).join('; ');
       const h = result.hUm === null ? '' : `; hysteresis H = <b>${num(result.hUm, 2)} µm</b>`;

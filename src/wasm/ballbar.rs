@@ -64,6 +64,8 @@ export interface BallbarDiagnostics {
   servoMismatchMs: number | null; scaleMismatchPpm: number; squarenessUrad: number;
   cyclic: { pitchMm: number; amplitudeXUm: number; amplitudeYUm: number } | null; /** [-] */ runsUsed: number;
 }
+/** circularTest without the diagnostics (the same runs and H). */
+export interface CircularDeviationResult { nominalRadiusMm: number; runs: CircularTestRun[]; hUm: number | null }
 export interface CircularTestResult { nominalRadiusMm: number; runs: CircularTestRun[]; hUm: number | null; diagnostics: BallbarDiagnostics | null }
 /** mm, rad, s, mm/min; every field optional. */
 export interface SyntheticTraceConfig {
@@ -244,6 +246,7 @@ pub fn parse_ballbar_trace(
 }
 
 /// ISO 230-4 G, H, F per direction, plus the ball-bar diagnostics.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = circularTest, unchecked_return_type = "CircularTestResult")]
 pub fn circular_test(
     #[wasm_bindgen(unchecked_param_type = "BallbarTrace")] trace: JsValue,
@@ -251,6 +254,17 @@ pub fn circular_test(
     require_object(&trace, "trace")?;
     let trace = plain(&trace, "trace")?;
     ballbar::circular_test(&trace_from_js(&trace)?)?.js()
+}
+
+/// ISO 230-4 G, H, F per direction without the diagnostics: what the
+/// circularity calculator shows (the embed module has no `circularTest`).
+#[wasm_bindgen(js_name = circularDeviation, unchecked_return_type = "CircularDeviationResult")]
+pub fn circular_deviation(
+    #[wasm_bindgen(unchecked_param_type = "BallbarTrace")] trace: JsValue,
+) -> Result<JsValue, JsError> {
+    require_object(&trace, "trace")?;
+    let trace = plain(&trace, "trace")?;
+    ballbar::circular_deviation(&trace_from_js(&trace)?)?.js()
 }
 
 /// A synthetic ball-bar trace with known machine errors.

@@ -30,7 +30,7 @@ mod by_hand {
 
     use super::JsResult;
     use crate::alignment::SweepPoint;
-    use crate::ballbar::{CircularTest, Cyclic, Diagnostics, Direction, RunResult, Spike};
+    use crate::ballbar::{CircularDeviation, Direction, RunResult};
     use crate::best_kffp::saturation::SaturationPoint;
     use crate::wasm::convert::Obj;
 
@@ -95,49 +95,12 @@ mod by_hand {
             .build()
     }
 
-    fn spike(s: &Spike) -> JsValue {
-        Obj::new()
-            .val("direction", direction(s.direction))
-            .val("axis", JsValue::from_str(s.axis.encode_utf8(&mut [0; 4])))
-            .num("angleDeg", s.angle_deg)
-            .num("heightUm", s.height_um)
-            .build()
-    }
-
-    fn cyclic(c: &Cyclic) -> JsValue {
-        Obj::new()
-            .num("pitchMm", c.pitch_mm)
-            .num("amplitudeXUm", c.amplitude_x_um)
-            .num("amplitudeYUm", c.amplitude_y_um)
-            .build()
-    }
-
-    fn diagnostics(d: &Diagnostics) -> JsValue {
-        Obj::new()
-            .num("centreOffsetXUm", d.centre_offset_x_um)
-            .num("centreOffsetYUm", d.centre_offset_y_um)
-            .num("backlashXUm", d.backlash_x_um)
-            .num("backlashYUm", d.backlash_y_um)
-            .num("backlashXResolutionUm", d.backlash_x_resolution_um)
-            .num("backlashYResolutionUm", d.backlash_y_resolution_um)
-            .val("reversalSpikes", list(&d.reversal_spikes, spike))
-            .num("spikeThresholdUm", d.spike_threshold_um)
-            .val("servoMismatchMs", opt(d.servo_mismatch_ms))
-            .num("scaleMismatchPpm", d.scale_mismatch_ppm)
-            .num("squarenessUrad", d.squareness_urad)
-            .val("cyclic", d.cyclic.as_ref().map_or(JsValue::NULL, cyclic))
-            .num("runsUsed", d.runs_used as f64)
-            .build()
-    }
-
-    impl JsResult for CircularTest {
+    impl JsResult for CircularDeviation {
         fn js(&self) -> Result<JsValue, JsError> {
-            let diag = self.diagnostics.as_ref().map_or(JsValue::NULL, diagnostics);
             Ok(Obj::new()
                 .num("nominalRadiusMm", self.nominal_radius_mm)
                 .val("runs", list(&self.runs, run))
                 .val("hUm", opt(self.h_um))
-                .val("diagnostics", diag)
                 .build())
         }
     }

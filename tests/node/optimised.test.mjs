@@ -24,7 +24,7 @@ function calls(mt, { full = true } = {}) {
     inertia: mt.axisInertia('nmv5000', 'c'),
     torque: mt.torqueSaturation('nmv5000', { j1: [1.7], torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200 }),
     radius: mt.radiusReduction({ feed: 2000, radius: 10, tA: 0.064, T: 0.03 }),
-    circular: mt.circularTest(mt.parseBallbarTrace(trace)),
+    circular: mt.circularDeviation(mt.parseBallbarTrace(trace)),
     sweep: mt.travelRangeSweep({ offset: { z: 0.01, x: -0.02 }, harmonics: [{ order: 2, amplitude: 0.005, phase: 0.3 }], ranges: [90, 180, 360], radius: 100, samples: 1000 }),
   };
   if (!full) return out;
@@ -36,6 +36,7 @@ function calls(mt, { full = true } = {}) {
   return {
     ...out,
     machine: m,
+    circularTest: mt.circularTest(mt.parseBallbarTrace(trace)),
     simulate: mt.simulateAxis(axis, { dt: 1e-4, position }),
     feedVector: mt.feedVectorTest(m, { rc: 5, rw: 8, omega: Math.PI, accelTime: 0.064, j1: 1.7, duration: 1, dt: 1e-4 }).summary,
     bestKffp: mt.bestKffp(m, { rc: 5, rw: 8, omega: 3.2 * Math.PI, accelTime: 0.064, j1: 1.7 }, { method: 'simulated' }),
@@ -59,6 +60,7 @@ test('the embed module exports only the calculators\' functions and gives the fu
   const full = await load('pkg/mtmotion.js', 'pkg/mtmotion_bg.wasm', 'full');
   assert.equal(embed.simulateAxis, undefined);
   assert.equal(embed.coneFrustumTest, undefined);
+  assert.equal(embed.circularTest, undefined); // the calculator shows no diagnostics: circularDeviation
   // Nor the preset registry: the torque calculator names its machine.
   assert.equal(embed.machinePreset, undefined);
   assert.equal(embed.machines, undefined);
@@ -85,13 +87,14 @@ test('the embed module exports only the calculators\' functions and gives the fu
   close(e, f, 'embed');
   // Both directions with backlash, reversal spikes and a cyclic error: every part of the result is filled in.
   const synthetic = full.syntheticBallbarTrace({ bothDirections: true, backlashX: 0.002, spike: 0.003, cyclicAmplitude: 0.001, cyclicPitch: 5, servoMismatch: 0.001 });
-  const c = full.circularTest(synthetic);
-  assert.ok(c.hUm !== null && c.diagnostics.reversalSpikes.length > 0 && c.diagnostics.cyclic !== null && c.diagnostics.servoMismatchMs !== null, 'the synthetic trace fills in H, spikes, the cyclic error and the servo mismatch');
-  close(embed.circularTest(synthetic), c, 'synthetic trace');
+  const { diagnostics, ...c } = full.circularTest(synthetic);
+  assert.ok(c.hUm !== null && c.runs.length === 2 && diagnostics !== null, 'the synthetic trace fills in H and the diagnostics');
+  close(full.circularDeviation(synthetic), c, 'circularDeviation is circularTest without the diagnostics');
+  close(embed.circularDeviation(synthetic), c, 'synthetic trace');
   // The example page's trace.
   const html = readFileSync(new URL('www/embed-example.html', root), 'utf8');
   const text = html.slice(html.indexOf('angle_deg,deviation_um'), html.indexOf('</mt-circularity>'));
-  close(embed.circularTest(embed.parseBallbarTrace(text)), full.circularTest(full.parseBallbarTrace(text)), 'example trace');
+  close(embed.circularDeviation(embed.parseBallbarTrace(text)), full.circularDeviation(full.parseBallbarTrace(text)), 'example trace');
   close(embed.parseBallbarTrace(text, { nominalRadius: 50, feed: 1000 }), full.parseBallbarTrace(text, { nominalRadius: 50, feed: 1000 }), 'options');
   close(embed.travelRangeSweep({ ranges: [120] }), full.travelRangeSweep({ ranges: [120] }), 'sweep defaults');
   close(embed.torqueSaturation('nmv5000', { j1: [0, 3], accelTime: 0.064, feedAtCuttingPoint: 200, reading: 'inertiaOnly' }), full.torqueSaturation('nmv5000', { j1: [0, 3], accelTime: 0.064, feedAtCuttingPoint: 200, reading: 'inertiaOnly' }), 'reading');

@@ -153,6 +153,11 @@ const CASES = {
       [{ nominalRadius: 100, feed: null, runs: [{ direction: 'up', angleRad: f64(0, 1, 2), deviation: f64(0, 0, 0) }] }], [{ nominalRadius: 100, feed: '1000', runs: [] }],
       [{ nominalRadius: 100, feed: null, runs: Array.from({ length: 100 }, () => ({ direction: 'ccw', angleRad: f64(0, 1, 2), deviation: f64(0, 0, 0) })) }]],
   },
+  circularDeviation: {
+    good: () => mt.circularDeviation(mt.syntheticBallbarTrace({ backlashX: 0.004, bothDirections: true })),
+    bad: [[{}], [{ nominalRadius: 100, feed: null, runs: [] }], [{ nominalRadius: 100, feed: null, runs: [{ direction: 'ccw', angleRad: f64(0), deviation: f64(0) }] }],
+      [{ nominalRadius: 100, feed: null, runs: [{ direction: 'up', angleRad: f64(0, 1, 2), deviation: f64(0, 0, 0) }] }], [{ nominalRadius: 100, feed: '1000', runs: [] }]],
+  },
   syntheticBallbarTrace: {
     good: () => mt.syntheticBallbarTrace({ offsetX: 0.003, noise: 0.001 }),
     bad: [[{ samples: 1e12 }], [{ radius: -1 }], [{ rangeDeg: 0 }], [{ noise: NaN }], [{ radius: 1e-320 }], [[]], [{ scaleX: 1e308 }]],
