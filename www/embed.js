@@ -147,9 +147,8 @@ customElements.define(
     ];
     compute(api, v) {
       // The nmv5000 C-axis servo (suzuki Table 1) with the load J1 = (J + J1) − J.
-      const machine = api.machinePreset('nmv5000');
-      const [p] = api.torqueSaturation(machine, {
-        j1: [v.inertia - machine.axes.c.j],
+      const [p] = api.torqueSaturation('nmv5000', {
+        j1: [v.inertia - api.axisInertia('nmv5000', 'c')],
         torqueMax: v['torque-max'],
         accelTime: v['accel-time'],
         feedAtCuttingPoint: v.feed,
@@ -168,7 +167,7 @@ customElements.define(
     static title = 'ISO 230-4 circular deviation of a ball-bar trace';
     static fields = [{ name: 'trace', label: 'Trace (CSV or TSV: angle and deviation, or X and Y)', text: true, value: '' }];
     compute(api, v) {
-      const result = api.circularTest(api.parseBallbarTrace(v.trace));
+      const result = api.circularDeviation(api.parseBallbarTrace(v.trace));
       const g = Math.max(...result.runs.map((r) => r.gUm));
       const runs = result.runs.map((r) => `${r.direction.toUpperCase()}: G = <b>${num(r.gUm, 2)} µm</b> (F ${num(r.fMinUm, 2)} … ${num(r.fMaxUm, 2)} µm)`).join('; ');
       const h = result.hUm === null ? '' : `; hysteresis H = <b>${num(result.hUm, 2)} µm</b>`;

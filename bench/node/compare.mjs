@@ -25,13 +25,14 @@ const cpu = () => {
 };
 
 const full = mods.every((m) => m.simulateAxis);
-const m0 = mods[0].machinePreset('nmv5000');
-const axis = { ...m0.axes.c, j1: 1.7 };
+// The embed module has no machinePreset; only the full calls need it.
+const m0 = full ? mods[0].machinePreset('nmv5000') : null;
+const axis = full ? { ...m0.axes.c, j1: 1.7 } : null;
 const n = 100_000, dt = 1e-4, omega = 4 * Math.PI, ta = 0.064;
 const position = new Float64Array(n).map((_, i) => (i * dt < ta ? (omega * (i * dt) ** 2) / (2 * ta) : omega * (i * dt - ta / 2)));
 const trace = 'angle_deg,deviation_um\n' + Array.from({ length: 720 }, (_, i) => `${i / 2},${(Math.sin(((i / 2) * Math.PI) / 90) * 3).toFixed(4)}`).join('\n');
 const calls = {
-  'circularTest 720 points': [(w) => w.circularTest(w.parseBallbarTrace(trace)), 1],
+  'circularDeviation 720 points': [(w) => w.circularDeviation(w.parseBallbarTrace(trace)), 1],
   'travelRangeSweep 1000 samples': [(w) => w.travelRangeSweep({ offset: { z: 0, x: 0 }, harmonics: [{ order: 2, amplitude: 0.005, phase: 0 }], ranges: [180], radius: 100, samples: 1000 }), 1],
 };
 if (full) {

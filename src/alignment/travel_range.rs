@@ -76,10 +76,12 @@ pub struct Offset {
     pub x: f64,
 }
 
-fn default_radius() -> f64 {
+/// The default ball-bar radius, mm (the paper's 100 mm bar).
+pub(crate) fn default_radius() -> f64 {
     100.0
 }
-fn default_samples() -> usize {
+/// The default samples per revolution (the paper's 1000).
+pub(crate) fn default_samples() -> usize {
     1000
 }
 

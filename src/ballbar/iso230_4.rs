@@ -99,6 +99,19 @@ pub struct CircularTest {
     pub diagnostics: Option<Diagnostics>,
 }
 
+/// The ISO 230-4 part of the circular-test report alone (no diagnostics):
+/// what the documentation calculator shows.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct CircularDeviation {
+    /// Nominal radius, mm.
+    pub nominal_radius_mm: f64,
+    /// One result per run, in trace order.
+    pub runs: Vec<RunResult>,
+    /// Circular hysteresis H, µm (None without both directions).
+    pub h_um: Option<f64>,
+}
+
 /// The points (x, y) of a run about the nominal centre, mm.
 pub(crate) fn run_points(run: &Run, r0: f64) -> (Vec<f64>, Vec<f64>) {
     run.angle
@@ -108,7 +121,8 @@ pub(crate) fn run_points(run: &Run, r0: f64) -> (Vec<f64>, Vec<f64>) {
         .unzip()
 }
 
-/// Evaluates a ball-bar trace per ISO 230-4 and runs the diagnostics.
+/// Evaluates a ball-bar trace per ISO 230-4 ([`circular_deviation`]) and
+/// runs the diagnostics.
 ///
 /// # Units
 /// Trace in rad and mm; report in µm, mm, ms, ppm and µrad as named.
@@ -128,6 +142,33 @@ pub(crate) fn run_points(run: &Run, r0: f64) -> (Vec<f64>, Vec<f64>) {
 /// assert!(r.h_um.unwrap() < 1e-6);
 /// ```
 pub fn circular_test(trace: &BallbarTrace) -> Result<CircularTest, CircularTestError> {
+    let d = circular_deviation(trace)?;
+    Ok(CircularTest {
+        nominal_radius_mm: d.nominal_radius_mm,
+        runs: d.runs,
+        h_um: d.h_um,
+        diagnostics: diagnose(trace),
+    })
+}
+
+/// ISO 230-4 G, F and H of a ball-bar trace, without the diagnostics
+/// (the same values as [`circular_test`]).
+///
+/// # Units
+/// Trace in rad and mm; G, F, H in µm, centre and radius in mm.
+///
+/// # Errors
+/// As [`circular_test`].
+///
+/// # Examples
+/// ```
+/// use mtmotion::ballbar::{circular_deviation, circular_test, synthetic_trace, SyntheticConfig};
+/// let t = synthetic_trace(&SyntheticConfig { both_directions: true, backlash_x: 0.002, ..Default::default() }).unwrap();
+/// let (d, full) = (circular_deviation(&t).unwrap(), circular_test(&t).unwrap());
+/// assert_eq!(d.runs, full.runs);
+/// assert!((d.h_um.unwrap() - full.h_um.unwrap()).abs() < 1e-12);
+/// ```
+pub fn circular_deviation(trace: &BallbarTrace) -> Result<CircularDeviation, CircularTestError> {
     let r0 = trace.nominal_radius;
     if !(r0.is_finite() && r0 > 0.0) {
         return Err(CircularTestError::BadRadius(r0));
@@ -192,11 +233,10 @@ pub fn circular_test(trace: &BallbarTrace) -> Result<CircularTest, CircularTestE
         all.1.extend(y);
     }
     let h_um = hysteresis(trace, r0, &all)?;
-    Ok(CircularTest {
+    Ok(CircularDeviation {
         nominal_radius_mm: r0,
         runs,
         h_um,
-        diagnostics: diagnose(trace),
     })
 }
 

@@ -22,7 +22,10 @@ pub mod trace_import;
 pub use circle_fit::{fit_circle, Circle, FitError};
 pub use diagnostics::{Cyclic, Diagnostics, Spike};
 pub use harmonics::{fit_harmonics, Harmonic, HarmonicsError};
-pub use iso230_4::{circular_test, CircularTest, CircularTestError, RunResult};
+pub use iso230_4::{
+    circular_deviation, circular_test, CircularDeviation, CircularTest, CircularTestError,
+    RunResult,
+};
 pub use synthetic::{synthetic_trace, SyntheticConfig, SyntheticError};
 pub use trace_import::{
     parse_ballbar_trace, BallbarTrace, BallbarTraceError, Direction, ParseOptions, Run,

@@ -126,6 +126,11 @@ const PRESETS: &[(&str, Builder)] = &[
     ("trunnion-ac", trunnion_ac::machine),
 ];
 
+/// The presets whose C axis the torque-saturation limit is read on (those
+/// with `saturation_readings`); the embed module's `torqueSaturation` looks
+/// its machine up here only, so it links no other preset.
+const SATURATION_PRESETS: &[(&str, Builder)] = &[("nmv5000", nmv5000::machine)];
+
 /// Names of all presets, in registry order.
 pub fn names() -> Vec<&'static str> {
     PRESETS.iter().map(|(n, _)| *n).collect()
@@ -173,14 +178,38 @@ impl FiveAxis<'_> {
 /// assert!(err.contains("nmv5000"));
 /// ```
 pub fn preset(name: &str) -> Result<Machine, MachineError> {
+    lookup(PRESETS, name)
+}
+
+/// The preset called `name` among those with a torque-saturation reading
+/// (`saturation_readings` not empty): the same machine as [`preset`] gives,
+/// and an error listing only those names for any other.
+///
+/// # Examples
+/// ```
+/// let m = mtmotion::machine::saturation_preset("NMV5000").unwrap();
+/// assert_eq!(m, mtmotion::machine::preset("nmv5000").unwrap());
+/// let err = mtmotion::machine::saturation_preset("trunnion-ac").unwrap_err().to_string();
+/// assert!(err.contains("known presets: nmv5000"), "{err}");
+/// ```
+pub fn saturation_preset(name: &str) -> Result<Machine, MachineError> {
+    lookup(SATURATION_PRESETS, name)
+}
+
+/// The preset of `registry` called `name` (trimmed, any case).
+fn lookup(registry: &[(&str, Builder)], name: &str) -> Result<Machine, MachineError> {
     let wanted = name.trim().to_ascii_lowercase();
-    PRESETS
+    registry
         .iter()
         .find(|(n, _)| *n == wanted)
         .map(|(_, build)| build())
         .ok_or_else(|| MachineError::UnknownPreset {
             name: name.to_string(),
-            known: names().join(", "),
+            known: registry
+                .iter()
+                .map(|(n, _)| *n)
+                .collect::<Vec<_>>()
+                .join(", "),
         })
 }
 
@@ -247,6 +276,19 @@ mod tests {
                 p.validate()
                     .unwrap_or_else(|e| panic!("{name}.{axis}: {e}"));
             }
+        }
+    }
+
+    #[test]
+    fn the_saturation_presets_are_the_presets_with_saturation_readings() {
+        let with_readings: Vec<&str> = names()
+            .into_iter()
+            .filter(|n| !preset(n).unwrap().saturation_readings.is_empty())
+            .collect();
+        let listed: Vec<&str> = SATURATION_PRESETS.iter().map(|(n, _)| *n).collect();
+        assert_eq!(listed, with_readings);
+        for name in listed {
+            assert_eq!(saturation_preset(name).unwrap(), preset(name).unwrap());
         }
     }
 

@@ -6,10 +6,12 @@
 use js_sys::{Array, Reflect};
 use wasm_bindgen::prelude::*;
 
+use super::args::JsArg;
 use super::convert::{
     count_arg, floats_arg, object, opt_number, opt_number_arg, plain, require_object, string_arg,
     to_js, Obj,
 };
+use super::results::JsResult;
 use crate::alignment::{self, examples, AngleSweepConfig, Section, SweepConfig};
 use crate::ballbar::{self, BallbarTrace, Direction, ParseOptions, Run, SyntheticConfig};
 
@@ -62,6 +64,8 @@ export interface BallbarDiagnostics {
   servoMismatchMs: number | null; scaleMismatchPpm: number; squarenessUrad: number;
   cyclic: { pitchMm: number; amplitudeXUm: number; amplitudeYUm: number } | null; /** [-] */ runsUsed: number;
 }
+/** circularTest without the diagnostics (the same runs and H). */
+export interface CircularDeviationResult { nominalRadiusMm: number; runs: CircularTestRun[]; hUm: number | null }
 export interface CircularTestResult { nominalRadiusMm: number; runs: CircularTestRun[]; hUm: number | null; diagnostics: BallbarDiagnostics | null }
 /** mm, rad, s, mm/min; every field optional. */
 export interface SyntheticTraceConfig {
@@ -112,8 +116,8 @@ pub fn harmonics(
 pub fn travel_range_sweep(
     #[wasm_bindgen(unchecked_param_type = "TravelRangeSweepConfig")] config: JsValue,
 ) -> Result<JsValue, JsError> {
-    let cfg: SweepConfig = object(config, "config")?;
-    to_js(&alignment::travel_range_sweep(&cfg)?)
+    let cfg = SweepConfig::arg(config, "config")?;
+    alignment::travel_range_sweep(&cfg)?.js()
 }
 
 /// takayama §2.2: angle-error estimate against travel range (Fig. 12).
@@ -178,7 +182,7 @@ fn trace_to_js(t: &BallbarTrace) -> Result<JsValue, JsError> {
     for r in &t.runs {
         runs.push(
             &Obj::new()
-                .ser("direction", &r.direction)?
+                .val("direction", r.direction.js()?)
                 .arr("angleRad", &r.angle)
                 .arr("deviation", &r.deviation)
                 .build(),
@@ -236,19 +240,31 @@ pub fn parse_ballbar_trace(
     let opts: ParseOptions = if options.is_undefined() || options.is_null() {
         ParseOptions::default()
     } else {
-        object(options, "options")?
+        ParseOptions::arg(options, "options")?
     };
     trace_to_js(&ballbar::parse_ballbar_trace(text, opts)?)
 }
 
 /// ISO 230-4 G, H, F per direction, plus the ball-bar diagnostics.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = circularTest, unchecked_return_type = "CircularTestResult")]
 pub fn circular_test(
     #[wasm_bindgen(unchecked_param_type = "BallbarTrace")] trace: JsValue,
 ) -> Result<JsValue, JsError> {
     require_object(&trace, "trace")?;
     let trace = plain(&trace, "trace")?;
-    to_js(&ballbar::circular_test(&trace_from_js(&trace)?)?)
+    ballbar::circular_test(&trace_from_js(&trace)?)?.js()
+}
+
+/// ISO 230-4 G, H, F per direction without the diagnostics: what the
+/// circularity calculator shows (the embed module has no `circularTest`).
+#[wasm_bindgen(js_name = circularDeviation, unchecked_return_type = "CircularDeviationResult")]
+pub fn circular_deviation(
+    #[wasm_bindgen(unchecked_param_type = "BallbarTrace")] trace: JsValue,
+) -> Result<JsValue, JsError> {
+    require_object(&trace, "trace")?;
+    let trace = plain(&trace, "trace")?;
+    ballbar::circular_deviation(&trace_from_js(&trace)?)?.js()
 }
 
 /// A synthetic ball-bar trace with known machine errors.
@@ -295,6 +311,7 @@ export interface AlignmentBand {
 
 /// takayama §2.1–2.2 on measured sections: offsets, angle errors and the
 /// travel-range bias band around them.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = estimateAlignmentBand, unchecked_return_type = "AlignmentBand")]
 pub fn estimate_alignment_band(
     #[wasm_bindgen(unchecked_param_type = "AlignmentBandInput")] input: JsValue,

@@ -87,6 +87,7 @@ export interface MachinePreset {
 /// when given (one of its `loopReadings`; absent or null: the preset as
 /// is, its default reading); throws an `Error` listing the
 /// known names when there is none.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = machinePreset, unchecked_return_type = "MachinePreset")]
 pub fn machine_preset(
     #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
@@ -101,6 +102,7 @@ pub fn machine_preset(
 }
 
 /// The names of all machine presets.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = machines, unchecked_return_type = "string[]")]
 pub fn machines() -> Result<JsValue, JsError> {
     to_js(&machine::names())

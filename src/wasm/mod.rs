@@ -16,6 +16,7 @@
 //! exported: the small embed module (docs/performance.md).
 
 // Helpers that only `full` bindings use are unused without it.
+pub mod args;
 #[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod ballbar;
 pub mod convert;
@@ -23,6 +24,7 @@ pub mod convert;
 pub mod kinematics;
 #[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod machine;
+pub mod results;
 #[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod servo;
 #[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
@@ -46,6 +48,7 @@ pub fn version() -> String {
 /// `bytes` bytes is over the core's text budget ([`crate::budget::check_bytes`]),
 /// naming the file. The page asks this first, so a 50 MB file it would
 /// refuse is never read into the page or copied to the worker.
+#[cfg(feature = "full")]
 #[wasm_bindgen(js_name = checkFileSize)]
 pub fn check_file_size(
     #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,

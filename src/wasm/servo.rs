@@ -6,7 +6,9 @@
 use js_sys::Reflect;
 use wasm_bindgen::prelude::*;
 
+use super::args::JsArg;
 use super::convert::{floats_arg, object, plain, require_object, string_arg, to_js, Obj};
+use super::results::JsResult;
 use crate::best_kffp::{self, saturation};
 use crate::feed_vector::{self, trace_analysis, Condition, FeedVectorResult};
 use crate::machine::{self, Machine};
@@ -73,11 +75,21 @@ export interface IdentifiedAxis {
 "#;
 
 /// A machine given as a preset name or as a full machine object.
+#[cfg(feature = "full")]
 fn machine_arg(value: JsValue) -> Result<Machine, JsError> {
     match value.as_string() {
         Some(name) => Ok(machine::preset(&name)?),
         None => object(value, "machine"),
     }
+}
+
+/// The embed module's machine: a preset name only, among the presets with
+/// a torque-saturation reading ([`machine::saturation_preset`]), so that
+/// neither the other presets nor a machine's deserialiser are linked.
+#[cfg(not(feature = "full"))]
+fn machine_arg(value: JsValue) -> Result<Machine, JsError> {
+    let name = string_arg(&value, "machine")?;
+    Ok(machine::saturation_preset(&name)?)
 }
 
 /// `G(jω)` of `axis` at each ω (rad/s): magnitude and phase (rad).
@@ -211,8 +223,33 @@ pub fn torque_saturation(
     #[wasm_bindgen(unchecked_param_type = "SaturationQuery")] query: JsValue,
 ) -> Result<JsValue, JsError> {
     let m = machine_arg(machine)?;
-    let q: saturation::SaturationQuery = object(query, "query")?;
-    to_js(&saturation::torque_saturation(&m, &q)?)
+    let q = saturation::SaturationQuery::arg(query, "query")?;
+    saturation::torque_saturation(&m, &q)?.js()
+}
+
+/// The inertia J of one axis of a machine (kg·m²; a preset name or a
+/// machine object, as `torqueSaturation` takes it): what a caller subtracts
+/// from a total J + J1 to get the load J1 the query takes.
+#[wasm_bindgen(js_name = axisInertia)]
+pub fn axis_inertia(
+    #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "string")] axis: JsValue,
+) -> Result<f64, JsError> {
+    let m = machine_arg(machine)?;
+    let axis = string_arg(&axis, "axis")?;
+    match m.axes.get(axis.as_str()) {
+        Some(a) => Ok(a.j),
+        None => Err(JsError::new(&format!(
+            "axis: machine '{}' has no axis '{}'; its axes: {}",
+            m.name,
+            crate::budget::clip(&axis, 20),
+            m.axes
+                .keys()
+                .map(String::as_str)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))),
+    }
 }
 
 #[cfg(feature = "full")]

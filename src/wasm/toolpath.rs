@@ -5,6 +5,7 @@
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
+use super::args::JsArg;
 use super::convert::{from_js, object, plain, string_arg, to_js, Obj};
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
 use crate::nc::files::{main_file, parse_files, NcFile};
@@ -279,14 +280,15 @@ pub fn simulate_tool_path(
     sim_obj(&s, &p.warnings)
 }
 
+/// The input of `radiusReduction` (read in [`super::args`]).
 #[derive(serde::Deserialize)]
-struct Eq3In {
-    feed: f64,
-    radius: f64,
+pub(crate) struct Eq3In {
+    pub(crate) feed: f64,
+    pub(crate) radius: f64,
     #[serde(rename = "tA")]
-    t_a: f64,
+    pub(crate) t_a: f64,
     #[serde(rename = "T")]
-    t: f64,
+    pub(crate) t: f64,
 }
 
 /// Δr of Eq. 3, mm (feed in mm/min, radius in mm, tA and T in s).
@@ -294,7 +296,7 @@ struct Eq3In {
 pub fn radius_reduction(
     #[wasm_bindgen(unchecked_param_type = "RadiusReductionInput")] input: JsValue,
 ) -> Result<f64, JsError> {
-    let i: Eq3In = object(input, "radiusReduction")?;
+    let i = Eq3In::arg(input, "radiusReduction")?;
     Ok(eq3(i.feed, i.radius, i.t_a, i.t)?)
 }
 

@@ -76,6 +76,10 @@ const CASES = {
       ['nmv5000', { j1: [1.7], torqueMax: 0, accelTime: 0, feedAtCuttingPoint: -1 }],
       ['nmv5000', { j1: [1.7], torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200, dt: 1e-320 }]],
   },
+  axisInertia: {
+    good: () => mt.axisInertia('nmv5000', 'c'),
+    bad: [['nmv5000', 'q'], ['nope', 'c'], ['nmv5000', 3], [{}, 'c'], [42, 'c'], ['nmv5000', 'x'.repeat(9 << 20)]],
+  },
   identifyPitchError: {
     good: () => mt.identifyPitchError(angles, angles.map((a) => 1e-5 * Math.sin(4 * a)), { maxOrder: 8 }),
     bad: [[f64(), f64()], [f64(0, 1), f64(0)], [angles, angles.map(() => NaN)], ['100', '100'], [angles, angles, { maxOrder: -1 }]],
@@ -148,6 +152,11 @@ const CASES = {
     bad: [[{}], [{ nominalRadius: 100, feed: null, runs: [] }], [{ nominalRadius: 100, feed: null, runs: [{ direction: 'ccw', angleRad: f64(0), deviation: f64(0) }] }],
       [{ nominalRadius: 100, feed: null, runs: [{ direction: 'up', angleRad: f64(0, 1, 2), deviation: f64(0, 0, 0) }] }], [{ nominalRadius: 100, feed: '1000', runs: [] }],
       [{ nominalRadius: 100, feed: null, runs: Array.from({ length: 100 }, () => ({ direction: 'ccw', angleRad: f64(0, 1, 2), deviation: f64(0, 0, 0) })) }]],
+  },
+  circularDeviation: {
+    good: () => mt.circularDeviation(mt.syntheticBallbarTrace({ backlashX: 0.004, bothDirections: true })),
+    bad: [[{}], [{ nominalRadius: 100, feed: null, runs: [] }], [{ nominalRadius: 100, feed: null, runs: [{ direction: 'ccw', angleRad: f64(0), deviation: f64(0) }] }],
+      [{ nominalRadius: 100, feed: null, runs: [{ direction: 'up', angleRad: f64(0, 1, 2), deviation: f64(0, 0, 0) }] }], [{ nominalRadius: 100, feed: '1000', runs: [] }]],
   },
   syntheticBallbarTrace: {
     good: () => mt.syntheticBallbarTrace({ offsetX: 0.003, noise: 0.001 }),
