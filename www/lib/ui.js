@@ -102,13 +102,14 @@ export function checkFilesWith(check) {
  * with `multiple`, onFiles([{ text, name }, …]) once for all dropped files.
  * Each file's size is first checked by the core (checkFilesWith): a file
  * it would refuse is never read, and onRefused(error) shows the core's
- * budget error instead (reading 50 MB into the page stalls it).
+ * budget error instead (reading 50 MB into the page stalls it), with the
+ * dropped files' names.
  * A single-file zone with a `link` key (starting with its panel's name)
  * puts the dropped file in the shared link (linkedDrops).
  * @param {{ label?: string, accept?: string, id?: string, multiple?: boolean, link?: string,
  *   onText?: (text: string, name: string) => unknown,
  *   onFiles?: (files: { text: string, name: string }[]) => unknown,
- *   onRefused: (error: Error) => unknown }} options
+ *   onRefused: (error: Error, names: string) => unknown }} options
  */
 export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, multiple = false, onFiles, onRefused, id, link }) {
   const input = h('input', { type: 'file', accept, hidden: true, multiple, id });
@@ -120,7 +121,7 @@ export function dropZone({ label = 'Drop a file here, or click to choose one', a
     try {
       for (const f of list) await fileCheck(f);
     } catch (e) {
-      return onRefused(e instanceof Error ? e : new Error(String(e)));
+      return onRefused(e instanceof Error ? e : new Error(String(e)), list.map((f) => f.name).join(', '));
     }
     if (multiple) return onFiles(await Promise.all(list.map(async (f) => ({ text: await f.text(), name: f.name }))));
     const file = { text: await list[0].text(), name: list[0].name };

@@ -60,14 +60,14 @@ export async function mount(root, api) {
         source.value = 'file';
         await analyse();
       } catch (e) {
-        notLoaded(e);
+        notLoaded(e, name);
       }
     },
-    onRefused: (e) => notLoaded(e),
+    onRefused: (e, name) => notLoaded(e, name),
   });
-  function notLoaded(e) {
+  function notLoaded(e, name) {
     loaded = null;
-    fileInfo.textContent = 'Not loaded (see the error below). No file loaded.';
+    fileInfo.textContent = `${name}: not loaded (see the error below). No file loaded.`;
     source.value = 'synthetic';
     outUi.fail(e);
   }
@@ -100,7 +100,7 @@ export async function mount(root, api) {
     label: 'Drop one trace per section (two or more for the angle errors), or one file whose runs are the sections',
     accept: '.csv,.tsv,.txt',
     multiple: true,
-    onRefused: (e) => sectionsRefused(e),
+    onRefused: (e, names) => sectionsRefused(e, names),
     onFiles: async (files) => {
       alUi.clear();
       sections = [];
@@ -125,13 +125,13 @@ export async function mount(root, api) {
         }));
         alInfo.textContent = `${sections.length} section(s): ${sections.map((x) => `${x.name} (${x.angleDeg.length} points)`).join(', ')}`;
       } catch (e) {
-        sectionsRefused(e);
+        sectionsRefused(e, files.map((x) => x.name).join(', '));
       }
       renderSections();
     },
   });
-  function sectionsRefused(e) {
-    alInfo.textContent = 'Not loaded (see the error below). No section loaded.';
+  function sectionsRefused(e, names) {
+    alInfo.textContent = `${names}: not loaded (see the error below). No section loaded.`;
     sections = [];
     renderSections();
     alUi.fail(e);

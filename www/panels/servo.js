@@ -248,10 +248,10 @@ export async function mount(root, api) {
   // ---- trace import ----
   const mapBox = h('div', { id: 'servo-trace-mapper' });
   const traceInfo = h('p', { id: 'servo-trace-file', class: 'unit' }, 'No trace loaded. Expected columns: time, X, Y, C (and optionally torque), units in the header such as Time [ms] or X_mm.');
-  const traceRefused = (e) => {
+  const traceRefused = (e, name) => {
     mapBox.replaceChildren();
     if (last) last.trace = null;
-    traceInfo.textContent = 'Not loaded (see the error below).';
+    traceInfo.textContent = `${name}: not loaded (see the error below).`;
     traceUi.fail(e);
   };
   const onTrace = async (text, name) => {
@@ -264,7 +264,7 @@ export async function mount(root, api) {
     try {
       columns = await api.call('traceColumns', [text]);
     } catch (e) {
-      traceRefused(e);
+      traceRefused(e, name);
       return;
     }
     traceInfo.textContent = `${name}: columns ${columns.map((c) => c.name).join(', ')}`;
