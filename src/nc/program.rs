@@ -143,6 +143,14 @@ pub struct ParseOptions {
     /// otherwise (a 3-axis program) `C` on a G01 block is a Fanuc chamfer
     /// and anywhere else an error. A and B are always rotary axes.
     pub c_axis: bool,
+    /// Most blocks the run may execute, loops and repeats included; a
+    /// macro loop may jump back a quarter of it. At most (and by default)
+    /// the product's budget [`MAX_EXECUTED_BLOCKS`]: a larger value is
+    /// read as that, so this can only lower the budget. Rust-only (not
+    /// serialised): for a caller that runs very many programs, such as
+    /// the fuzz targets, which still run macros and loops up to it.
+    #[serde(skip)]
+    pub max_executed_blocks: usize,
 }
 
 impl ParseOptions {
@@ -157,7 +165,24 @@ impl Default for ParseOptions {
             start: Pose::default(),
             skip_block_delete: true,
             c_axis: false,
+            max_executed_blocks: MAX_EXECUTED_BLOCKS,
         }
+    }
+}
+
+impl ParseOptions {
+    /// The executed-block budget in force: [`Self::max_executed_blocks`],
+    /// at most [`MAX_EXECUTED_BLOCKS`].
+    pub fn executed_block_budget(&self) -> usize {
+        self.max_executed_blocks.min(MAX_EXECUTED_BLOCKS)
+    }
+
+    /// The loop-iteration budget in force: a quarter of
+    /// [`Self::executed_block_budget`] (by default
+    /// [`crate::budget::MAX_LOOP_ITERATIONS`]), so that a loop meets it,
+    /// and its error naming the loop's line, before the block budget.
+    pub fn loop_iteration_budget(&self) -> usize {
+        self.executed_block_budget() / 4
     }
 }
 

@@ -14,8 +14,7 @@ use std::collections::HashMap;
 use super::block::interpret_block;
 use super::macro_exec::{has_macros, Macros, Step};
 use super::program::{
-    err, Corner, Ctx, Modal, ParseOptions, Program, Segment, Warning, MAX_EXECUTED_BLOCKS,
-    MAX_NESTING,
+    err, Corner, Ctx, Modal, ParseOptions, Program, Segment, Warning, MAX_NESTING,
 };
 use super::{Block, NcError, NcErrors, Word};
 
@@ -97,7 +96,7 @@ impl<'a> Run<'a> {
             executed: 0,
             pc: 0,
             mac: if needs_macros(blocks) {
-                Some(Macros::new(blocks)?)
+                Some(Macros::new(blocks, opt.loop_iteration_budget())?)
             } else {
                 None
             },
@@ -183,12 +182,13 @@ impl<'a> Run<'a> {
     /// next program's `O` block without M99.
     fn entry_error(&mut self, b: &Block, bi: usize) -> Option<NcError> {
         self.executed += 1;
-        if self.executed > MAX_EXECUTED_BLOCKS {
+        let budget = self.opt.executed_block_budget();
+        if self.executed > budget {
             return Some(NcError::new(
                 b.line,
                 1,
                 format!(
-                    "more than {MAX_EXECUTED_BLOCKS} blocks executed: the subprogram calls, repeats or loops look endless; check the M98 repeat counts, the M99 returns and the loop conditions"
+                    "more than {budget} blocks executed: the subprogram calls, repeats or loops look endless; check the M98 repeat counts, the M99 returns and the loop conditions"
                 ),
             ));
         }
