@@ -335,6 +335,43 @@ fn fuzz_regressions() {
     assert!(mtmotion::nc::program::parse("G90 G21 F100\nG83 X0 Y0 R1 Z-999 Q0.125\n").is_ok());
 }
 
+/// Canned cycles gave segments without limit: libFuzzer (`nc`, a 10 s
+/// "slow unit" of 1.8 GB, minimised below) and one G83 line, now both
+/// stopped by the segment budget (`budget::MAX_SEGMENTS`, lowered by
+/// `ParseOptions::max_executed_blocks`).
+#[test]
+fn cycle_segment_budget_regressions() {
+    use mtmotion::nc::program::{parse_all, ParseOptions};
+    // 9,999 holes of 9,995 pecks: 3·10⁸ segments, 60 GB (the fuzzer's
+    // process was stopped at its 2 GB limit).
+    let text = "G90 G21 F100\nG83 X0 Y0 R1 Z-2099 Q0.21 L9999\n";
+    let e = parse_all(text, &ParseOptions::default()).unwrap_err();
+    assert_eq!(e.errors.len(), 1, "{e}");
+    assert_eq!((e.errors[0].line, e.errors[0].column), (2, 1), "{e}");
+    assert!(
+        e.errors[0]
+            .message
+            .starts_with("more than 1000000 segments:"),
+        "{e}"
+    );
+    // Under G91 each of 800 o-word repeats starts the cycle higher, so its
+    // holes get deeper: 1.8·10⁷ segments from 6 lines (1.8 GB, 8 s).
+    let text = "o100 repeat [800]\nn0240     g91 z1 x0 r0 l3\nn0290 g83 g90 z5 x6 r0.2 y-1.1 q0.21\nn0080     g91 x-2 y2 r0 l4 (four more g82’s)\ng1 z-.1 f24\no100 endrepeat";
+    let e = parse_all(text, &fuzz_targets::nc_fuzz_options()).unwrap_err();
+    let budget = fuzz_targets::FUZZ_EXECUTED_BLOCKS;
+    assert!(
+        e.errors.iter().any(|e| e
+            .message
+            .starts_with(&format!("more than {budget} segments:"))),
+        "{e}"
+    );
+    fuzz_targets::nc_target(text).unwrap();
+    fuzz_targets::nc_write_target(text).unwrap();
+    // A program under the budget still runs: 100 holes of 10 pecks.
+    let text = "G90 G21 F100\nG0 Z5\nG83 X0 Y0 R1 Z-1 Q0.2 L100\n";
+    assert!(parse_all(text, &ParseOptions::default()).is_ok());
+}
+
 /// Writer round trips the fuzz loops found broken (`parse → write → parse`
 /// changed the segments), each with the text it is now written as.
 #[test]

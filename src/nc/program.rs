@@ -144,11 +144,13 @@ pub struct ParseOptions {
     /// and anywhere else an error. A and B are always rotary axes.
     pub c_axis: bool,
     /// Most blocks the run may execute, loops and repeats included; a
-    /// macro loop may jump back a quarter of it. At most (and by default)
-    /// the product's budget [`MAX_EXECUTED_BLOCKS`]: a larger value is
-    /// read as that, so this can only lower the budget. Rust-only (not
-    /// serialised): for a caller that runs very many programs, such as
-    /// the fuzz targets, which still run macros and loops up to it.
+    /// macro loop may jump back a quarter of it, and the program may give
+    /// as many segments. At most (and by default) the product's budgets
+    /// [`MAX_EXECUTED_BLOCKS`] and [`crate::budget::MAX_SEGMENTS`]: a
+    /// larger value is read as those, so this can only lower them.
+    /// Rust-only (not serialised): for a caller that runs very many
+    /// programs, such as the fuzz targets, which still run macros, loops
+    /// and cycles up to it.
     #[serde(skip)]
     pub max_executed_blocks: usize,
 }
@@ -175,6 +177,12 @@ impl ParseOptions {
     /// at most [`MAX_EXECUTED_BLOCKS`].
     pub fn executed_block_budget(&self) -> usize {
         self.max_executed_blocks.min(MAX_EXECUTED_BLOCKS)
+    }
+
+    /// The segment budget in force: [`Self::max_executed_blocks`], at
+    /// most [`crate::budget::MAX_SEGMENTS`].
+    pub fn segment_budget(&self) -> usize {
+        self.max_executed_blocks.min(crate::budget::MAX_SEGMENTS)
     }
 
     /// The loop-iteration budget in force: a quarter of

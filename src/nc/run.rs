@@ -246,6 +246,17 @@ impl<'a> Run<'a> {
                 return false;
             }
         }
+        let budget = self.opt.segment_budget();
+        if self.segments.len() > budget {
+            self.errors.push(NcError::new(
+                b.line,
+                1,
+                format!(
+                    "more than {budget} segments: the canned-cycle holes and pecks, subprogram calls or loops make too many moves; check the K/L hole counts, the Q peck depths, the M98 repeat counts and the loop conditions"
+                ),
+            ));
+            return false;
+        }
         if !self.stack.is_empty() || computed || self.mac.as_ref().is_some_and(|m| m.depth() > 0) {
             for s in &mut self.segments[before..] {
                 s.fixed = true;
