@@ -400,6 +400,25 @@ fn writer_round_trip_regressions() {
     let text = "; dri(Ci\nG0 X1 (a) ; b)c\n";
     fuzz_targets::nc_write_target(text).unwrap();
     assert_eq!(parse(text).unwrap().write(), "; dri(Ci\nG0 X1 (a) ; b)c");
+    // libFuzzer (`nc_write`): a G0 block with only an R word gave a
+    // zero-length rapid, written as a bare `G0` that gives none (10
+    // segments became 9). A G0/G1 block without axis words now moves
+    // nowhere (the R is still warned about); a corner R there is an error.
+    let text = "G17\nG20\nG91\nG01 Z-0.6533 F100. \nG42 D00 \nG01 X0.0235 Y-0.0939 F10.\nG03 X0.0939 Y0.0939 Z0.0179 R0.0939 \nG0R0.0975\n";
+    fuzz_targets::nc_write_target(text).unwrap();
+    let p = parse(text).unwrap();
+    assert_eq!(p.segments.len(), 3);
+    assert!(p
+        .warnings
+        .iter()
+        .any(|w| (w.line, w.column) == (8, 3) && w.message.contains("R0.0975 has no meaning")));
+    let e = parse("G90 G21 F100\nG1 X10\nG1 R2\nG1 Y10\n").unwrap_err();
+    assert_eq!((e.line, e.column), (3, 4), "{e}");
+    assert!(
+        e.message
+            .starts_with("corner word R2 on a G1 block without an end point"),
+        "{e}"
+    );
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/tests/nc_corpus/cncjs_helical-thread-milling.gcode"
