@@ -29,6 +29,14 @@ pub const MAX_LINES: usize = 100_000;
 /// downstream samples every one.
 pub const MAX_EXECUTED_BLOCKS: usize = 1_000_000;
 
+/// Most segments (moves and dwells) one NC program may give: as many as
+/// it may execute blocks, because most blocks give one, but a canned-cycle
+/// block gives several per hole (2–3 per peck, up to
+/// `nc::cycles::MAX_PECKS` pecks, K/L up to 9,999 holes), so without
+/// this one G83 line could ask for 3·10⁸ segments (60 GB). About 200 MB;
+/// the tool path downstream samples every segment.
+pub const MAX_SEGMENTS: usize = MAX_EXECUTED_BLOCKS;
+
 /// Loop iterations (backward jumps: END, endwhile, GOTO back) a macro
 /// program may make before it is stopped as endless. A quarter of
 /// [`MAX_EXECUTED_BLOCKS`], so that a loop (at least its head and its end

@@ -335,6 +335,43 @@ fn fuzz_regressions() {
     assert!(mtmotion::nc::program::parse("G90 G21 F100\nG83 X0 Y0 R1 Z-999 Q0.125\n").is_ok());
 }
 
+/// Canned cycles gave segments without limit: libFuzzer (`nc`, a 10 s
+/// "slow unit" of 1.8 GB, minimised below) and one G83 line, now both
+/// stopped by the segment budget (`budget::MAX_SEGMENTS`, lowered by
+/// `ParseOptions::max_executed_blocks`).
+#[test]
+fn cycle_segment_budget_regressions() {
+    use mtmotion::nc::program::{parse_all, ParseOptions};
+    // 9,999 holes of 9,995 pecks: 3·10⁸ segments, 60 GB (the fuzzer's
+    // process was stopped at its 2 GB limit).
+    let text = "G90 G21 F100\nG83 X0 Y0 R1 Z-2099 Q0.21 L9999\n";
+    let e = parse_all(text, &ParseOptions::default()).unwrap_err();
+    assert_eq!(e.errors.len(), 1, "{e}");
+    assert_eq!((e.errors[0].line, e.errors[0].column), (2, 1), "{e}");
+    assert!(
+        e.errors[0]
+            .message
+            .starts_with("more than 1000000 segments:"),
+        "{e}"
+    );
+    // Under G91 each of 800 o-word repeats starts the cycle higher, so its
+    // holes get deeper: 1.8·10⁷ segments from 6 lines (1.8 GB, 8 s).
+    let text = "o100 repeat [800]\nn0240     g91 z1 x0 r0 l3\nn0290 g83 g90 z5 x6 r0.2 y-1.1 q0.21\nn0080     g91 x-2 y2 r0 l4 (four more g82’s)\ng1 z-.1 f24\no100 endrepeat";
+    let e = parse_all(text, &fuzz_targets::nc_fuzz_options()).unwrap_err();
+    let budget = fuzz_targets::FUZZ_EXECUTED_BLOCKS;
+    assert!(
+        e.errors.iter().any(|e| e
+            .message
+            .starts_with(&format!("more than {budget} segments:"))),
+        "{e}"
+    );
+    fuzz_targets::nc_target(text).unwrap();
+    fuzz_targets::nc_write_target(text).unwrap();
+    // A program under the budget still runs: 100 holes of 10 pecks.
+    let text = "G90 G21 F100\nG0 Z5\nG83 X0 Y0 R1 Z-1 Q0.2 L100\n";
+    assert!(parse_all(text, &ParseOptions::default()).is_ok());
+}
+
 /// Writer round trips the fuzz loops found broken (`parse → write → parse`
 /// changed the segments), each with the text it is now written as.
 #[test]
@@ -363,6 +400,25 @@ fn writer_round_trip_regressions() {
     let text = "; dri(Ci\nG0 X1 (a) ; b)c\n";
     fuzz_targets::nc_write_target(text).unwrap();
     assert_eq!(parse(text).unwrap().write(), "; dri(Ci\nG0 X1 (a) ; b)c");
+    // libFuzzer (`nc_write`): a G0 block with only an R word gave a
+    // zero-length rapid, written as a bare `G0` that gives none (10
+    // segments became 9). A G0/G1 block without axis words now moves
+    // nowhere (the R is still warned about); a corner R there is an error.
+    let text = "G17\nG20\nG91\nG01 Z-0.6533 F100. \nG42 D00 \nG01 X0.0235 Y-0.0939 F10.\nG03 X0.0939 Y0.0939 Z0.0179 R0.0939 \nG0R0.0975\n";
+    fuzz_targets::nc_write_target(text).unwrap();
+    let p = parse(text).unwrap();
+    assert_eq!(p.segments.len(), 3);
+    assert!(p
+        .warnings
+        .iter()
+        .any(|w| (w.line, w.column) == (8, 3) && w.message.contains("R0.0975 has no meaning")));
+    let e = parse("G90 G21 F100\nG1 X10\nG1 R2\nG1 Y10\n").unwrap_err();
+    assert_eq!((e.line, e.column), (3, 4), "{e}");
+    assert!(
+        e.message
+            .starts_with("corner word R2 on a G1 block without an end point"),
+        "{e}"
+    );
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/tests/nc_corpus/cncjs_helical-thread-milling.gcode"

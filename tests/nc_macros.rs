@@ -131,6 +131,53 @@ fn endless_loop_hits_the_budget_at_the_loop_line() {
 }
 
 #[test]
+fn a_lower_block_budget_stops_loops_and_repeats_sooner_and_never_raises_the_budget() {
+    let lower = |n: usize| ParseOptions {
+        max_executed_blocks: n,
+        ..Default::default()
+    };
+    // A loop of 300 iterations (3 blocks each) runs under a 2,000-block
+    // budget (500 iterations) and stops at its line under a 1,000-block
+    // one (250 iterations, 750 blocks).
+    let src = "G90 G21 F100\n#1=0\nN5 WHILE [#1 LT 300] DO1\n#1=#1+1\nEND1\nG1 X#1\nM30";
+    let p = parse_all(src, &lower(2_000)).unwrap();
+    assert_eq!(p.segments.len(), 1);
+    assert_eq!(p.segments[0].end.x, 300.0);
+    let e = parse_all(src, &lower(1_000)).unwrap_err();
+    assert_eq!(e.errors.len(), 1, "{e}");
+    assert_eq!(e.errors[0].line, 3, "{e}");
+    assert!(
+        e.errors[0].message.contains("more than 250 iterations"),
+        "{e}"
+    );
+    // A subprogram repeated 600 times (3 blocks a call) meets the block
+    // budget of 1,000.
+    let src = "O100\nG90 G21 G1 F100\nM98 P200 L600\nM30\nO200\nG91 X1\nM99\n";
+    assert_eq!(parse_all(src, &lower(2_000)).unwrap().segments.len(), 600);
+    let e = parse_all(src, &lower(1_000)).unwrap_err();
+    assert!(
+        e.errors[0]
+            .message
+            .contains("more than 1000 blocks executed"),
+        "{e}"
+    );
+    // A budget above the product's is read as the product's.
+    let o = lower(usize::MAX);
+    assert_eq!(
+        o.executed_block_budget(),
+        mtmotion::budget::MAX_EXECUTED_BLOCKS
+    );
+    assert_eq!(
+        o.loop_iteration_budget(),
+        mtmotion::budget::MAX_LOOP_ITERATIONS
+    );
+    assert_eq!(
+        ParseOptions::default().max_executed_blocks,
+        mtmotion::budget::MAX_EXECUTED_BLOCKS
+    );
+}
+
+#[test]
 fn unknown_system_variables_read_vacant_with_a_warning() {
     // Haas-style tool-life check: #5401 (tool life) is unknown, so vacant.
     let src = "G90 G21 F100\nIF [#5401 GT 100] THEN #3000=1 (WORN)\n#1=#5001\nG1 X[#1+1]";

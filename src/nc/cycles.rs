@@ -249,6 +249,11 @@ pub(super) fn canned_cycle(
             st.pos = last.end;
         }
         cx.segments.extend(segs);
+        if cx.segments.len() > cx.opt.segment_budget() {
+            // The run stops here with the segment-budget error
+            // (`run::Run::run_block`).
+            break;
+        }
     }
     Ok(())
 }

@@ -17,7 +17,9 @@
 //!   Fanuc control.
 //! - Every backward jump (END, endwhile, endrepeat, a `do … while`, a
 //!   backward GOTO, continue) counts as one loop iteration; more than
-//!   [`MAX_LOOP_ITERATIONS`] in one run is an error naming the loop's line.
+//!   [`MAX_LOOP_ITERATIONS`] in one run (or the smaller budget of
+//!   [`ParseOptions::loop_iteration_budget`](super::program::ParseOptions::loop_iteration_budget))
+//!   is an error naming the loop's line.
 //! - `#3000=n (MSG)` stops the program with an error carrying the message
 //!   at its line; `#3006=n (MSG)` is a warning (the operator restarts).
 
@@ -87,6 +89,8 @@ pub struct Macros {
     ocalls: Vec<OFrame>,
     repeats: HashMap<usize, u64>,
     iterations: usize,
+    /// Most loop iterations of the run (at most [`MAX_LOOP_ITERATIONS`]).
+    max_iterations: usize,
     /// Set when the program must stop (alarm, budget).
     pub stop: bool,
 }
@@ -111,12 +115,13 @@ pub fn has_macros(blocks: &[Block]) -> bool {
 }
 
 impl Macros {
-    /// Prepares `blocks` for running: checks the loop and o-word
-    /// structure.
+    /// Prepares `blocks` for running with at most `max_iterations` loop
+    /// iterations (capped at [`MAX_LOOP_ITERATIONS`]): checks the loop and
+    /// o-word structure.
     ///
     /// # Errors
     /// Every unmatched or crossed WHILE/END or o-word pair, at its line.
-    pub fn new(blocks: &[Block]) -> Result<Self, NcErrors> {
+    pub fn new(blocks: &[Block], max_iterations: usize) -> Result<Self, NcErrors> {
         let linuxcnc = blocks.iter().any(|b| {
             matches!(b.macro_line.as_deref().map(|m| &m.stmt), Some(Stmt::O(..)))
                 || b.macro_line.as_ref().is_some_and(|m| m.src.contains("#<"))
@@ -128,6 +133,7 @@ impl Macros {
             ocalls: Vec::new(),
             repeats: HashMap::new(),
             iterations: 0,
+            max_iterations: max_iterations.min(MAX_LOOP_ITERATIONS),
             stop: false,
         })
     }
@@ -315,13 +321,14 @@ impl Macros {
 
     fn jump_back(&mut self, blocks: &[Block], head: usize, col: usize) -> Result<(), NcError> {
         self.iterations += 1;
-        if self.iterations > MAX_LOOP_ITERATIONS {
+        let limit = self.max_iterations;
+        if self.iterations > limit {
             self.stop = true;
             let b = &blocks[head];
             return Err(self.error(
                 b,
                 head_col(b, col),
-                format!("the loop starting at line {} ran more than {MAX_LOOP_ITERATIONS} iterations; check its condition and the variable it changes", b.line),
+                format!("the loop starting at line {} ran more than {limit} iterations; check its condition and the variable it changes", b.line),
             ));
         }
         Ok(())

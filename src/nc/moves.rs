@@ -15,7 +15,8 @@ use super::{Block, NcError, Word};
 
 /// The move of block `b`: one segment from the current pose to the end of
 /// its axis words, and its corner word if any. A block without axis or
-/// centre words does nothing.
+/// centre words does nothing, and so does a G0/G1 block without axis
+/// words (its I/J/K/R are warned about as meaningless).
 ///
 /// # Errors
 /// Axis words before any motion mode, a cutting move without a feed, an
@@ -59,6 +60,9 @@ pub(super) fn move_block(
             "axis words but no motion mode has been programmed; expected G0, G1, G2 or G3 first",
         ));
     };
+    if axis_words.is_empty() && matches!(mode, MotionCode::Rapid | MotionCode::Linear) {
+        return no_move(b, cx, mode, chamfer_c, scale, first);
+    }
     let start = st.pos;
     let end = target(st, &axis_words, scale);
     let feed = move_feed(b, st, mode, first)?;
@@ -75,6 +79,38 @@ pub(super) fn move_block(
         feed,
         fixed: false,
     });
+    Ok(())
+}
+
+/// A G0/G1 block with centre words (`first`) but no axis words: no move
+/// (a zero-length segment would not survive the writer, which writes the
+/// block without the meaningless words); the centre words are warned
+/// about.
+///
+/// # Errors
+/// A corner word (`R` on G01, `,R`, `,C`, a chamfer `C`): it needs the
+/// move it ends.
+fn no_move(
+    b: &Block,
+    cx: &mut Ctx,
+    mode: MotionCode,
+    chamfer_c: Option<&Word>,
+    scale: f64,
+    first: &Word,
+) -> Result<(), NcError> {
+    if let Some((w, _)) = corner_word(b, mode, chamfer_c, scale)? {
+        return Err(err(
+            b,
+            w,
+            format!(
+                "corner word {}{} on a G{} block without an end point; expected the X/Y/Z end of the move it rounds or chamfers",
+                w.letter,
+                w.text,
+                mode.code()
+            ),
+        ));
+    }
+    corner_or_centre_warning(b, cx, mode, None, Some(first));
     Ok(())
 }
 

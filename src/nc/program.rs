@@ -152,6 +152,16 @@ pub struct ParseOptions {
     /// Without a radius for a D the simulated path is the programmed path
     /// (warned).
     pub tool_radii: ToolRadii,
+    /// Most blocks the run may execute, loops and repeats included; a
+    /// macro loop may jump back a quarter of it, and the program may give
+    /// as many segments. At most (and by default) the product's budgets
+    /// [`MAX_EXECUTED_BLOCKS`] and [`crate::budget::MAX_SEGMENTS`]: a
+    /// larger value is read as those, so this can only lower them.
+    /// Rust-only (not serialised): for a caller that runs very many
+    /// programs, such as the fuzz targets, which still run macros, loops
+    /// and cycles up to it.
+    #[serde(skip)]
+    pub max_executed_blocks: usize,
 }
 
 impl ParseOptions {
@@ -168,7 +178,30 @@ impl Default for ParseOptions {
             skip_block_delete: true,
             c_axis: false,
             tool_radii: ToolRadii::default(),
+            max_executed_blocks: MAX_EXECUTED_BLOCKS,
         }
+    }
+}
+
+impl ParseOptions {
+    /// The executed-block budget in force: [`Self::max_executed_blocks`],
+    /// at most [`MAX_EXECUTED_BLOCKS`].
+    pub fn executed_block_budget(&self) -> usize {
+        self.max_executed_blocks.min(MAX_EXECUTED_BLOCKS)
+    }
+
+    /// The segment budget in force: [`Self::max_executed_blocks`], at
+    /// most [`crate::budget::MAX_SEGMENTS`].
+    pub fn segment_budget(&self) -> usize {
+        self.max_executed_blocks.min(crate::budget::MAX_SEGMENTS)
+    }
+
+    /// The loop-iteration budget in force: a quarter of
+    /// [`Self::executed_block_budget`] (by default
+    /// [`crate::budget::MAX_LOOP_ITERATIONS`]), so that a loop meets it,
+    /// and its error naming the loop's line, before the block budget.
+    pub fn loop_iteration_budget(&self) -> usize {
+        self.executed_block_budget() / 4
     }
 }
 

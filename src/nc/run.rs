@@ -17,7 +17,7 @@ use super::block::interpret_block;
 use super::macro_exec::{has_macros, Macros, Step};
 use super::program::{
     err, Corner, Ctx, CutterStretch, Modal, ParseOptions, Program, Segment, Warning,
-    MAX_EXECUTED_BLOCKS, MAX_NESTING,
+    MAX_NESTING,
 };
 use super::{Block, NcError, NcErrors, Word};
 
@@ -103,7 +103,7 @@ impl<'a> Run<'a> {
             executed: 0,
             pc: 0,
             mac: if needs_macros(blocks) {
-                Some(Macros::new(blocks)?)
+                Some(Macros::new(blocks, opt.loop_iteration_budget())?)
             } else {
                 None
             },
@@ -191,12 +191,13 @@ impl<'a> Run<'a> {
     /// next program's `O` block without M99.
     fn entry_error(&mut self, b: &Block, bi: usize) -> Option<NcError> {
         self.executed += 1;
-        if self.executed > MAX_EXECUTED_BLOCKS {
+        let budget = self.opt.executed_block_budget();
+        if self.executed > budget {
             return Some(NcError::new(
                 b.line,
                 1,
                 format!(
-                    "more than {MAX_EXECUTED_BLOCKS} blocks executed: the subprogram calls, repeats or loops look endless; check the M98 repeat counts, the M99 returns and the loop conditions"
+                    "more than {budget} blocks executed: the subprogram calls, repeats or loops look endless; check the M98 repeat counts, the M99 returns and the loop conditions"
                 ),
             ));
         }
@@ -257,6 +258,17 @@ impl<'a> Run<'a> {
             if stop {
                 return false;
             }
+        }
+        let budget = self.opt.segment_budget();
+        if self.segments.len() > budget {
+            self.errors.push(NcError::new(
+                b.line,
+                1,
+                format!(
+                    "more than {budget} segments: the canned-cycle holes and pecks, subprogram calls or loops make too many moves; check the K/L hole counts, the Q peck depths, the M98 repeat counts and the loop conditions"
+                ),
+            ));
+            return false;
         }
         if !self.stack.is_empty() || computed || self.mac.as_ref().is_some_and(|m| m.depth() > 0) {
             for s in &mut self.segments[before..] {

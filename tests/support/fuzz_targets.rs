@@ -26,6 +26,24 @@ use mtmotion::trace::Table;
 /// keeps one execution in milliseconds.
 pub const MAX_NC_BYTES: usize = 16 * 1024;
 
+/// The executed-block budget of the NC targets
+/// ([`NcOptions::max_executed_blocks`]), 1 % of the product's
+/// ([`mtmotion::budget::MAX_EXECUTED_BLOCKS`], 1,000,000): macro loops,
+/// subprogram repeats and o-word calls still run, and still meet their
+/// budget errors (a loop after 2,500 iterations), but an endless loop
+/// costs milliseconds instead of seconds, so the fuzzer reaches a million
+/// executions (`scripts/fuzz`).
+pub const FUZZ_EXECUTED_BLOCKS: usize = 10_000;
+
+/// The interpreter options of the NC targets: the defaults with the
+/// smaller [`FUZZ_EXECUTED_BLOCKS`] budget.
+pub fn nc_fuzz_options() -> NcOptions {
+    NcOptions {
+        max_executed_blocks: FUZZ_EXECUTED_BLOCKS,
+        ..NcOptions::default()
+    }
+}
+
 /// Round-trip tolerance on positions, centres, radii, mm (degrees for
 /// A/B/C): the writer rounds each number to 4 decimals (±0.05 µm); a
 /// centre read back from I/J/K or R and a radius read back from rounded
@@ -53,7 +71,7 @@ pub fn nc_target(text: &str) -> Result<(), String> {
     if text.len() > MAX_NC_BYTES {
         return Ok(());
     }
-    let Ok(p) = parse_all(text, &NcOptions::default()) else {
+    let Ok(p) = parse_all(text, &nc_fuzz_options()) else {
         return Ok(());
     };
     for s in &p.segments {
@@ -134,7 +152,7 @@ pub fn nc_write_target(text: &str) -> Result<(), String> {
     if text.len() > MAX_NC_BYTES {
         return Ok(());
     }
-    let opts = NcOptions::default();
+    let opts = nc_fuzz_options();
     let Ok(p) = parse_all(text, &opts) else {
         return Ok(());
     };
