@@ -412,6 +412,17 @@ fn writer_round_trip_regressions() {
         .warnings
         .iter()
         .any(|w| (w.line, w.column) == (8, 3) && w.message.contains("R0.0975 has no meaning")));
+    // libFuzzer (`nc_write`, run 762,278): a call whose body ends with M30
+    // ends the run inside the subprogram, before the main program's own
+    // M30; the flat writer took the body's block for a main-program block
+    // and wrote the main program's unrun blocks, M30 included, before it,
+    // so the body's move was lost on reading back (5 segments became 4).
+    let text = "O100\rG90 G17 G21\nG0 X1 Y0\nG1 X10 F600\nb4 P500\nM98 P200 D2 X10 F600\nb4 P500\nM98 P200 D2\nM30\nO200\nG91 G1 X1\nM30\nO200\nG91 G1 X1\nM99\n";
+    fuzz_targets::nc_write_target(text).unwrap();
+    assert_eq!(
+        parse(&parse(text).unwrap().write()).unwrap().segments.len(),
+        5
+    );
     let e = parse("G90 G21 F100\nG1 X10\nG1 R2\nG1 Y10\n").unwrap_err();
     assert_eq!((e.line, e.column), (3, 4), "{e}");
     assert!(

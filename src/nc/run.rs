@@ -16,8 +16,7 @@ use std::collections::HashMap;
 use super::block::interpret_block;
 use super::macro_exec::{has_macros, Macros, Step};
 use super::program::{
-    err, Corner, Ctx, CutterStretch, Modal, ParseOptions, Program, Segment, Warning,
-    MAX_NESTING,
+    err, Corner, Ctx, CutterStretch, Modal, ParseOptions, Program, Segment, Warning, MAX_NESTING,
 };
 use super::{Block, NcError, NcErrors, Word};
 

@@ -648,12 +648,23 @@ fn write_passive(program: &Program, bi: usize, out: &mut Out) {
 
 /// The program written flat: the segments in order, each a block; the
 /// blocks of the main program without motion in place, up to its end
-/// (M2/M30), so a subprogram body after it is not read as main program.
+/// (its first M2/M30 in the text, else where the run ended), so a
+/// subprogram body after it is not read as main program — also when the
+/// run ended inside a subprogram (an M30 in a body called before the main
+/// program's own M30: the body's segments are not main-program blocks).
 fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
+    let ends = |b: &Block| {
+        b.file == 0
+            && !b.block_delete
+            && b.words
+                .iter()
+                .any(|w| w.letter == 'M' && matches!(w.value as i64, 2 | 30))
+    };
     let end = program
-        .modal
+        .blocks
         .iter()
-        .position(|m| m.ended)
+        .position(ends)
+        .or_else(|| program.modal.iter().position(|m| m.ended))
         .unwrap_or(program.blocks.len().saturating_sub(1));
     let mut next = 0usize;
     for seg in segments {
