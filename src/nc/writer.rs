@@ -658,7 +658,7 @@ fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
             && !b.block_delete
             && b.words
                 .iter()
-                .any(|w| w.letter == 'M' && matches!(w.value as i64, 2 | 30))
+                .any(|w| w.letter == 'M' && matches!(super::gcodes::code10(w), 20 | 300))
     };
     let end = program
         .blocks
