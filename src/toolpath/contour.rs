@@ -115,8 +115,13 @@ pub struct Path {
     bvh: Bvh,
 }
 
+/// Squared distance, mm².
+fn d2(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
+}
+
 fn d3(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+    d2(a, b).sqrt()
 }
 
 /// A sphere around an element. Lines: about the midpoint, radius half the
@@ -225,7 +230,7 @@ impl Path {
         let e = &self.elements[i];
         let (m, rad) = e.bound;
         let reach = rad + d;
-        if (q[0] - m[0]).powi(2) + (q[1] - m[1]).powi(2) + (q[2] - m[2]).powi(2) > reach * reach {
+        if d2(q, m) > reach * reach {
             return true;
         }
         match e.geo {
@@ -289,10 +294,7 @@ impl ArcGeo {
         let (x, y) = (q[u] - self.c[u], q[v] - self.c[v]);
         let radial = (x * x + y * y).sqrt() - self.r;
         let axial = ((q[n] - self.n0 - 0.5 * self.dn).abs() - 0.5 * self.dn.abs()).max(0.0);
-        let far = |p: [f64; 3]| {
-            (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2) + (q[2] - p[2]).powi(2) > r2
-        };
-        radial * radial + axial * axial > r2 && far(self.p0) && far(self.p1)
+        radial * radial + axial * axial > r2 && d2(q, self.p0) > r2 && d2(q, self.p1) > r2
     }
 
     /// Nearest point to `q` on this arc, element `i` of the path: radial
