@@ -47,9 +47,10 @@ fn simulated_trace_round_trips() {
 }
 
 fn err(text: &str) -> String {
-    analyze_trace(text, &Condition::paper(1.0), &ColumnMap::default())
-        .unwrap_err()
-        .to_string()
+    match analyze_trace(text, &Condition::paper(1.0), &ColumnMap::default()) {
+        Ok(r) => panic!("accepted, summary {:?}", r.summary),
+        Err(e) => e.to_string(),
+    }
 }
 
 #[test]
@@ -70,4 +71,111 @@ fn malformed_traces_name_line_and_column() {
     assert!(e.starts_with("line 3"), "{e}");
     let e = err("time,x,y,c\n0,8,0,0\n0.001,inf,0,0\n");
     assert!(e.starts_with("line 3, column 2 ('x')"), "{e}");
+}
+
+/// A one-second trace at 1 ms, X = 8 mm, Y = C = 0, with `edit` applied to
+/// the line of sample `k` (1-based line `k + 2`).
+fn second_of_trace(k: usize, line: &str) -> String {
+    let mut text = String::from("time,x,y,c\n");
+    for i in 0..1000 {
+        if i == k {
+            text += line;
+            text.push('\n');
+        } else {
+            writeln!(text, "{},8,0,0", i as f64 * 1e-3).unwrap();
+        }
+    }
+    text
+}
+
+/// Numbers outside a physical range are refused at their line and column
+/// (the fuzz loop's 1e308 positions gave an infinite half amplitude).
+#[test]
+fn values_outside_their_physical_range_are_refused() {
+    let e = err(&second_of_trace(7, "0.007,8,1e308,0"));
+    assert_eq!(
+        e,
+        "line 9, column 3 ('y'): 1e308 mm (after scaling) is outside ±1e5 mm; check the column's unit and mapping.linearScale"
+    );
+    let e = err(&second_of_trace(9, "0.009,-2e5,0,0"));
+    assert!(e.starts_with("line 11, column 2 ('x'): -200000 mm"), "{e}");
+    let e = err(&second_of_trace(3, "0.003,8,0,1e8"));
+    assert!(
+        e.starts_with("line 5, column 4 ('c')") && e.contains("±1e6 rad"),
+        "{e}"
+    );
+    let e = err(&second_of_trace(999, "2e7,8,0,0"));
+    assert!(
+        e.starts_with("line 1001, column 1 ('time')") && e.contains("±1e7 s"),
+        "{e}"
+    );
+    // the unit factor counts: 99 m in µm is fine, 1 km is not
+    let cond = Condition::paper(1.0);
+    let um = ColumnMap {
+        linear_scale: 1e-3,
+        ..ColumnMap::default()
+    };
+    assert!(analyze_trace(&second_of_trace(5, "0.005,8,99e6,0"), &cond, &um).is_ok());
+    let e = analyze_trace(&second_of_trace(5, "0.005,8,1e9,0"), &cond, &um).unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("line 7, column 3 ('y'): 1e6 mm (after scaling)"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_sample_step_below_a_tenth_of_a_microsecond_is_refused() {
+    let e = err(&second_of_trace(1, "1e-9,8,0,0"));
+    assert_eq!(
+        e,
+        "line 3, column 1 ('time'): time 1e-9 s is 1e-9 s after the line before, less than the shortest sample interval of 1e-7 s; check the time unit (mapping.timeScale)"
+    );
+    // 1 µs steps are a fast oscilloscope's, and fine
+    let mut text = String::from("time,x,y,c\n");
+    for i in 0..2000 {
+        writeln!(text, "{},8,0,0", i as f64 * 1e-6).unwrap();
+    }
+    let map = ColumnMap {
+        steady_from: Some(0.0),
+        ..ColumnMap::default()
+    };
+    if let Err(e) = analyze_trace(&text, &Condition::paper(1.0), &map) {
+        panic!("{e}");
+    }
+}
+
+/// A trace that ends before the steady window gave a summary of zeros.
+#[test]
+fn an_empty_steady_window_is_an_error_not_zeros() {
+    let text = "time,x,y,c\n0,8,0,0\n0.001,8,0,0\n0.002,8,0,0\n";
+    let e = err(text);
+    assert!(
+        e.starts_with("condition `mapping.steadyFrom` = 0.464: the steady window starts 0.464 s after the motion start (accel time + 0.4 s, the default of mapping.steadyFrom), but the trace ends 0.002 s after it"),
+        "{e}"
+    );
+    let cond = Condition::paper(1.0);
+    let late = ColumnMap {
+        motion_start: Some(0.0015),
+        steady_from: Some(0.0),
+        ..ColumnMap::default()
+    };
+    let e = analyze_trace(text, &cond, &late).err().unwrap().to_string();
+    assert!(e.contains("holds 1 sample(s), at least 2"), "{e}");
+    let far = ColumnMap {
+        motion_start: Some(1e300),
+        ..ColumnMap::default()
+    };
+    let e = analyze_trace(text, &cond, &far).err().unwrap().to_string();
+    assert_eq!(
+        e,
+        "condition `mapping.motionStart` = 1e300: must be a time in s within ±1e7 s"
+    );
+    let whole = ColumnMap {
+        steady_from: Some(0.0),
+        ..ColumnMap::default()
+    };
+    let r = analyze_trace(text, &cond, &whole).unwrap();
+    assert_eq!(r.summary.radius_decrease, 0.0);
+    assert_eq!(r.summary.periods, 0);
 }

@@ -437,3 +437,50 @@ fn writer_round_trip_regressions() {
     .unwrap();
     fuzz_targets::nc_write_target(&text).unwrap();
 }
+
+/// The stable loop (`servo`, seed 1, 50,000 runs: 11 failures): a SERVO
+/// GUIDE-style trace with a position of ~1e305 mm gave a feed-vector
+/// summary with an infinite half amplitude (the shape error's span
+/// overflowed). Each column now has a physical range, refused at its line.
+#[test]
+fn servo_trace_magnitude_regressions() {
+    use mtmotion::feed_vector::{trace_analysis, Condition};
+    let seed = &fuzz_targets::servo_seeds()[0];
+    let map = trace_analysis::ColumnMap::default();
+    let cond = Condition::paper(1.0);
+    for (old, new, at) in [
+        // run 37,900: Y [um] 1e308 on the second sample
+        (
+            "1;0.993833508538892;110.88262850995298;",
+            "1;0.993833508538892;1e308;",
+            "line 5, column 3 ('Y [um]'): 1e308 mm",
+        ),
+        // run 10,588: X = -0.69e308 mm
+        (
+            "21;-0.6907581397498764;",
+            "21;-0.69075813974987641e308;",
+            "line 25, column 2 ('X(mm)'): -6.90758e307 mm",
+        ),
+        // no overflow, but 1e20 mm is no machine's
+        (
+            "35;-0.7335291829995831;",
+            "35;-099999999999999999999;",
+            "line 39, column 2 ('X(mm)'): -1e20 mm",
+        ),
+    ] {
+        assert!(seed.contains(old), "{old}");
+        let text = seed.replacen(old, new, 1);
+        fuzz_targets::servo_target(&text).unwrap();
+        let e = trace_analysis::analyze_trace(&text, &cond, &map)
+            .err()
+            .unwrap();
+        assert!(
+            e.to_string()
+                .starts_with(&format!("{at} (after scaling) is outside ±1e5 mm")),
+            "{e}"
+        );
+    }
+    // the seed itself is analysed, and its summary is finite
+    let r = trace_analysis::analyze_trace(seed, &cond, &map).unwrap();
+    assert!(r.summary.half_amplitude.is_finite() && r.summary.half_amplitude > 0.0);
+}

@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use super::analysis::{derive, summarize, Series};
 use super::{command, Condition, FeedVectorError, FeedVectorResult};
+use crate::numeric::compact;
 use crate::trace::Table;
 
 /// Column names and units of a trace (the JS `mapping`).
@@ -70,12 +71,54 @@ impl Default for ColumnMap {
     }
 }
 
-/// The 0-based index and scaled values of a column.
+/// The physical range of one column after scaling: |value| ≤ `max`.
+struct Range {
+    /// Largest magnitude, in `unit`.
+    max: f64,
+    /// Core unit after scaling.
+    unit: &'static str,
+    /// The mapping field whose unit factor scales the column.
+    scale: &'static str,
+}
+
+/// Times: |t| ≤ 1e7 s (116 days of recording).
+const TIME: Range = Range {
+    max: 1e7,
+    unit: "s",
+    scale: "mapping.timeScale",
+};
+/// X, Y: |x| ≤ 1e5 mm (100 m, beyond any machine's stroke).
+const LINEAR: Range = Range {
+    max: 1e5,
+    unit: "mm",
+    scale: "mapping.linearScale",
+};
+/// C: |c| ≤ 1e6 rad (160,000 turns).
+const ANGLE: Range = Range {
+    max: 1e6,
+    unit: "rad",
+    scale: "mapping.angleScale",
+};
+/// Torque: |τ| ≤ 1e7 N·m.
+const TORQUE: Range = Range {
+    max: 1e7,
+    unit: "N·m",
+    scale: "mapping.torqueScale",
+};
+
+/// Shortest sample interval, s: 0.1 µs (SERVO GUIDE samples every 1 ms;
+/// a shorter step is a wrong time unit, and differences of positions over
+/// it would lose every digit).
+pub const MIN_STEP: f64 = 1e-7;
+
+/// The 0-based index and scaled values of a column, each finite and
+/// inside `range`.
 fn column(
     table: &Table,
     name: &Option<String>,
     aliases: &[&str],
     scale: f64,
+    range: &Range,
 ) -> Result<(usize, Vec<f64>), FeedVectorError> {
     let names: Vec<&str> = match name {
         Some(n) => vec![n.as_str()],
@@ -83,13 +126,27 @@ fn column(
     };
     let values = table.column(&names, scale)?;
     let index = table.find(&names).unwrap_or(0);
+    let at = |i: usize, why: String| FeedVectorError::TraceValue {
+        line: table.lines.get(i).copied().unwrap_or(0),
+        column: index + 1,
+        name: table.names.get(index).cloned().unwrap_or_default(),
+        why,
+    };
     if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-        return Err(FeedVectorError::TraceValue {
-            line: table.lines.get(i).copied().unwrap_or(0),
-            column: index + 1,
-            name: table.names.get(index).cloned().unwrap_or_default(),
-            why: format!("'{}' is not a finite number", values[i]),
-        });
+        return Err(at(i, format!("'{}' is not a finite number", values[i])));
+    }
+    if let Some(i) = values.iter().position(|v| v.abs() > range.max) {
+        return Err(at(
+            i,
+            format!(
+                "{} {} (after scaling) is outside ±{:e} {}; check the column's unit and {}",
+                compact(values[i]),
+                range.unit,
+                range.max,
+                range.unit,
+                range.scale
+            ),
+        ));
     }
     Ok((index, values))
 }
@@ -110,8 +167,12 @@ pub const MAX_SCALE: f64 = 1e6;
 /// use mtmotion::feed_vector::{trace_analysis::{analyze_trace, ColumnMap}, Condition};
 /// let cond = Condition::paper(1.0);
 /// let text = "time,x,y,c\n0,8,0,0\n0.001,8,0.001,0.0573\n0.002,8,0.002,0.1146\n";
-/// let r = analyze_trace(text, &cond, &ColumnMap::default()).unwrap();
+/// let whole = ColumnMap { steady_from: Some(0.0), ..ColumnMap::default() };
+/// let r = analyze_trace(text, &cond, &whole).unwrap();
 /// assert_eq!(r.series.t.len(), 3);
+/// // 2 ms of trace hold no sample of the default steady window (0.464 s on)
+/// let e = analyze_trace(text, &cond, &ColumnMap::default()).unwrap_err();
+/// assert!(e.to_string().contains("at least 2 are needed"));
 /// let e = analyze_trace("time,x,y,c\n0,8,0,0\n0.001,8,oops,0\n", &cond, &ColumnMap::default());
 /// assert!(e.unwrap_err().to_string().starts_with("line 3, column 3"));
 /// ```
@@ -125,12 +186,22 @@ pub fn analyze_trace(
     validate_map(map)?;
     let table = Table::parse(text)?;
     let t = time_column(&table, map)?;
-    let (_, mut x) = column(&table, &map.x, &["x", "pos_x", "x_pos"], map.linear_scale)?;
-    let (_, y) = column(&table, &map.y, &["y", "pos_y", "y_pos"], map.linear_scale)?;
-    let (_, c) = column(&table, &map.c, &["c", "pos_c", "c_pos"], map.angle_scale)?;
+    let xs = ["x", "pos_x", "x_pos"];
+    let (_, mut x) = column(&table, &map.x, &xs, map.linear_scale, &LINEAR)?;
+    let ys = ["y", "pos_y", "y_pos"];
+    let (_, y) = column(&table, &map.y, &ys, map.linear_scale, &LINEAR)?;
+    let cs = ["c", "pos_c", "c_pos"];
+    let (_, c) = column(&table, &map.c, &cs, map.angle_scale, &ANGLE)?;
     let torque_aliases = ["torque", "tcmd", "torque_c", "tq"];
     let torque = if map.torque.is_some() || table.find(&torque_aliases).is_some() {
-        column(&table, &map.torque, &torque_aliases, map.torque_scale)?.1
+        column(
+            &table,
+            &map.torque,
+            &torque_aliases,
+            map.torque_scale,
+            &TORQUE,
+        )?
+        .1
     } else {
         Vec::new()
     };
@@ -162,6 +233,7 @@ pub fn analyze_trace(
     // the trace's own steady window: same rule as the simulation, from the
     // machine-independent part (accel time + 0.4 s)
     let t_ss = map.steady_from.unwrap_or(cond.accel_time + 0.4);
+    steady_window_holds_samples(&series.t, t_ss, map.steady_from.is_some())?;
     let summary = summarize(&series, cond.omega, t_ss, saturated);
     Ok(FeedVectorResult { series, summary })
 }
@@ -186,28 +258,61 @@ fn validate_map(map: &ColumnMap) -> Result<(), FeedVectorError> {
         ("mapping.motionStart", map.motion_start),
         ("mapping.steadyFrom", map.steady_from),
     ] {
-        if let Some(v) = v.filter(|v| !v.is_finite()) {
-            return Err(super::bad(field, v, "must be a finite time in s"));
+        if let Some(v) = v.filter(|v| !(v.is_finite() && v.abs() <= TIME.max)) {
+            return Err(super::bad(field, v, "must be a time in s within ±1e7 s"));
         }
     }
     Ok(())
 }
 
+/// The steady window (times from `t_ss` after the motion start on) must
+/// hold two samples or more: an empty one would give a summary of zeros.
+fn steady_window_holds_samples(tt: &[f64], t_ss: f64, given: bool) -> Result<(), FeedVectorError> {
+    let inside = tt.len() - tt.partition_point(|&t| t < t_ss);
+    if inside >= 2 {
+        return Ok(());
+    }
+    let end = tt.last().copied().unwrap_or(0.0);
+    let rule = if given {
+        "mapping.steadyFrom"
+    } else {
+        "accel time + 0.4 s, the default of mapping.steadyFrom"
+    };
+    Err(super::bad(
+        "mapping.steadyFrom",
+        t_ss,
+        &format!(
+            "the steady window starts {} s after the motion start ({rule}), but the trace ends {} s after it and the window holds {inside} sample(s), at least 2 are needed: record a longer trace, or set mapping.steadyFrom or mapping.motionStart",
+            compact(t_ss),
+            compact(end)
+        ),
+    ))
+}
+
 /// The time column in s, which must increase strictly from row to row.
 fn time_column(table: &Table, map: &ColumnMap) -> Result<Vec<f64>, FeedVectorError> {
-    let (tcol, t) = column(table, &map.time, &["time", "t", "time_s"], map.time_scale)?;
+    let names = ["time", "t", "time_s"];
+    let (tcol, t) = column(table, &map.time, &names, map.time_scale, &TIME)?;
     for i in 1..t.len() {
-        if t[i] <= t[i - 1] {
-            return Err(FeedVectorError::TraceValue {
-                line: table.lines.get(i).copied().unwrap_or(0),
-                column: tcol + 1,
-                name: table.names.get(tcol).cloned().unwrap_or_default(),
-                why: format!(
-                    "time {} does not increase after {} on the line before; sort the trace or pick the right time column",
-                    t[i], t[i - 1]
-                ),
-            });
+        let (now, before) = (t[i], t[i - 1]);
+        if now - before >= MIN_STEP {
+            continue;
         }
+        let (now_s, before_s) = (compact(now), compact(before));
+        let why = if now > before {
+            format!(
+                "time {now_s} s is {} s after the line before, less than the shortest sample interval of {MIN_STEP:e} s; check the time unit (mapping.timeScale)",
+                compact(now - before)
+            )
+        } else {
+            format!("time {now_s} does not increase after {before_s} on the line before; sort the trace or pick the right time column")
+        };
+        return Err(FeedVectorError::TraceValue {
+            line: table.lines.get(i).copied().unwrap_or(0),
+            column: tcol + 1,
+            name: table.names.get(tcol).cloned().unwrap_or_default(),
+            why,
+        });
     }
     Ok(t)
 }

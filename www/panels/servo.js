@@ -283,9 +283,14 @@ export async function mount(root, api) {
     cols.x.input.addEventListener('change', () => unitOf(cols.x) in LEN && (lUnit.value = LEN[unitOf(cols.x)]));
     cols.c.input.addEventListener('change', () => unitOf(cols.c) in ANG && (aUnit.value = ANG[unitOf(cols.c)]));
     const rel = h('input', { type: 'checkbox', id: 'servo-map-relative' });
+    // Blank: the first sample, and accel time + 0.4 s after it (the core's defaults).
+    const start = numberField({ label: 'motion start', unit: 's, trace time; blank: first sample', value: '', id: 'servo-map-start' });
+    const steady = numberField({ label: 'steady window from', unit: 's after the start; blank: accel time + 0.4 s', value: '', id: 'servo-map-steady', min: 0 });
     const go = h('button', { id: 'servo-trace-run', onclick: async () => {
       const mapping = { timeScale: Number(tUnit.value), linearScale: Number(lUnit.value), angleScale: Number(aUnit.value), relative: rel.checked };
       for (const [k, s] of Object.entries(cols)) if (s.value) mapping[k] = s.value;
+      if (start.input.value !== '') mapping.motionStart = start.value;
+      if (steady.input.value !== '') mapping.steadyFrom = steady.value;
       traceUi.start();
       try {
         const trace = await api.call('analyzeFeedVectorTrace', [text, condition(), mapping]);
@@ -304,7 +309,7 @@ export async function mount(root, api) {
         traceUi.fail(e);
       }
     } }, 'Analyse the trace');
-    mapBox.replaceChildren(h('div', { class: 'row' }, ...Object.values(cols).map((c) => c.el), tUnit.el, lUnit.el, aUnit.el, h('label', { class: 'field' }, h('span', {}, 'displacements from the start'), rel)), go);
+    mapBox.replaceChildren(h('div', { class: 'row' }, ...Object.values(cols).map((c) => c.el), tUnit.el, lUnit.el, aUnit.el, h('label', { class: 'field' }, h('span', {}, 'displacements from the start'), rel), start.el, steady.el), go);
   };
 
   // ---- downloads ----

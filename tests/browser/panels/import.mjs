@@ -3,7 +3,8 @@
 // menus are set from the header and the result equals the same samples
 // written in seconds (analysed by the core in Node, a second path); a PNG
 // is refused by both imports with "this is not a text trace (it looks like
-// a PNG image)" and fills no column menu; an empty ball-bar file's hint
+// a PNG image)" and fills no column menu; a trace shorter than the steady
+// window is refused until the steady window is set in the page; an empty ball-bar file's hint
 // names the ball-bar columns, not the servo ones.
 import { readFileSync } from 'node:fs';
 import * as mt from '../../../pkg/mtmotion.js';
@@ -36,6 +37,23 @@ export default async function (page, check) {
     const got = Number(await page.textContent('#servo-trace-angle-diff'));
     check(Math.abs(got - want) <= 1e-4 + 1e-3 * Math.abs(want), `mean α − β of the ms trace ${got} mrad should equal the seconds trace's ${want} mrad`);
   }
+
+  // A trace that ends before the steady window (the first 0.3 s): refused
+  // with what to set; with the steady window from 0.1 s it is analysed as
+  // the core analyses it with that mapping.
+  const short = ['time,x,y,c', ...rows(1).slice(0, 301)].join('\n') + '\n';
+  const shortWant = mt.analyzeFeedVectorTrace(short, cond, { steadyFrom: 0.1 }).summary.meanAngleDiff * 1e3;
+  await servoInput.setInputFiles({ name: 'short.csv', mimeType: 'text/csv', buffer: Buffer.from(short) });
+  await page.waitForFunction(() => /short\.csv/.test(document.querySelector('#servo-trace-file').textContent));
+  await page.click('#servo-trace-run');
+  await page.waitForSelector('#servo-trace-results .error-box');
+  const shortMsg = await page.textContent('#servo-trace-results .error-box');
+  check(/steady window starts 0\.464 s after the motion start.*mapping\.steadyFrom/.test(shortMsg), `a 0.3 s trace should be refused for its empty steady window, says "${shortMsg}"`);
+  await page.fill('#servo-map-steady', '0.1');
+  await page.click('#servo-trace-run');
+  await page.waitForSelector('#servo-trace-angle-diff');
+  const shortGot = Number(await page.textContent('#servo-trace-angle-diff'));
+  check(Math.abs(shortGot - shortWant) <= 1e-4 + 1e-3 * Math.abs(shortWant), `the 0.3 s trace from 0.1 s: ${shortGot} mrad, the core gives ${shortWant} mrad`);
 
   // A PNG: refused in words, and no column menus full of junk.
   await servoInput.setInputFiles({ name: 'photo.png', mimeType: 'image/png', buffer: png });
