@@ -221,6 +221,24 @@ pub fn servo_target(text: &str) -> Result<(), String> {
                 "a feed-vector summary with a non-finite value: {summary:?}"
             ));
         }
+        let s = &r.series;
+        for (name, v) in [
+            ("t", &s.t),
+            ("c_cmd", &s.c_cmd),
+            ("shape_error", &s.shape_error),
+            ("alpha", &s.alpha),
+            ("beta", &s.beta),
+            ("angle_diff", &s.angle_diff),
+            ("radius_error", &s.radius_error),
+            ("omega_c", &s.omega_c),
+            ("omega_l", &s.omega_l),
+        ] {
+            if !finite(v) {
+                return Err(format!(
+                    "a feed-vector series {name} with a non-finite value"
+                ));
+            }
+        }
     }
     Ok(())
 }
