@@ -62,7 +62,7 @@ const CASES = {
       ['nmv5000', [5, 8, 3, 0.064, 1.7]]],
   },
   analyzeFeedVectorTrace: {
-    good: () => mt.analyzeFeedVectorTrace(servoTrace, COND, { time: 'time', timeScale: 1e-3 }),
+    good: () => mt.analyzeFeedVectorTrace(servoTrace, COND, { time: 'time', timeScale: 1e-3, steadyFrom: 0 }),
     bad: [['', {}], ['time,x\n0,abc\n', COND], ['a,b,c,d\n1,2,3,4\n', COND, { x: 'zz' }], [servoTrace, COND, { timeScale: 1e300 }],
       [servoTrace, COND, { motionStart: NaN }], ['x'.repeat(9 << 20), COND]],
   },
