@@ -62,6 +62,11 @@ pub const MAX_FEED_VECTOR_SAMPLES: usize = 1_000_000;
 /// each harmonic costs one `sin` per simulation step.
 pub const MAX_PITCH_HARMONICS: usize = 64;
 
+/// Most resampled points × orders of one pitch-error identification
+/// (`samples` per revolution × whole revolutions × (`maxOrder` + 1)): each
+/// is one multiply-add of the DFT at the integer orders.
+pub const MAX_PITCH_DFT_TERMS: usize = 1_000_000_000;
+
 /// Most (travel ranges × samples per revolution) of one travel-range or
 /// angle sweep: each sample enters one least-squares fit.
 pub const MAX_SWEEP_POINTS: usize = 10_000_000;

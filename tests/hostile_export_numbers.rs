@@ -159,3 +159,134 @@ fn trace_times_must_be_finite() {
         );
     }
 }
+
+/// The export-by-export probe of this session (every numeric leaf of each
+/// export's good call set to NaN, ±∞, ±1e308, subnormals, 2⁵³, 1e18 …):
+/// each finding below returned NaN/∞ or trapped, and is now refused naming
+/// the field, the value and the range.
+#[test]
+fn tool_path_time_constants_below_a_microsecond_are_refused() {
+    use mtmotion::toolpath::{simulate_text, Lag, SimConfig};
+    let text = "G1 X10 F600\nG1 Y10\n";
+    // tA = 1e-15 s gave a 312 mm contour error; 5e-324 gave NaN positions
+    for (cfg, want) in [
+        (
+            SimConfig { t_a: 1e-15, ..SimConfig::default() },
+            "tA: expected 0 (no acc/dec) or an acc/dec time constant from 1e-6 to 10 s, got 1e-15",
+        ),
+        (
+            SimConfig { t_a: 5e-324, ..SimConfig::default() },
+            "tA: expected 0 (no acc/dec) or an acc/dec time constant from 1e-6 to 10 s, got 4.94066e-324",
+        ),
+        (
+            SimConfig { t: Lag::PerAxis([0.015, 1e-300, 0.015]), ..SimConfig::default() },
+            "T: expected 0 (no lag) or servo time constants from 1e-6 to 10 s, got 1e-300",
+        ),
+    ] {
+        assert_eq!(err(simulate_text(text, &cfg).map(|s| s.max_error)), want);
+    }
+    // 0 (none) and the edges are still simulated, with finite numbers
+    for (t_a, t) in [(0.0, 0.0), (1e-6, 1e-6), (10.0, 10.0)] {
+        let cfg = SimConfig {
+            t_a,
+            t: Lag::All(t),
+            ..SimConfig::default()
+        };
+        let s = simulate_text(text, &cfg).unwrap();
+        assert!(s.max_error.is_finite() && s.sim.iter().all(|p| p.iter().all(|v| v.is_finite())));
+    }
+}
+
+#[test]
+fn servo_traces_and_frequencies_beyond_their_range_are_refused() {
+    use mtmotion::servo::identify::{identify_axis, MeasuredTrace};
+    use mtmotion::servo::response::frequency_response;
+    use mtmotion::servo::simulate::simulate_axis;
+    let axis = preset("nmv5000").unwrap().axes["c"].clone();
+    // identifyAxis: a 1e308 sample gave an infinite RMS
+    let command: Vec<f64> = (0..50).map(|i| i as f64 * 1e-3).collect();
+    let mut position = command.clone();
+    position[7] = 1e308;
+    let trace = MeasuredTrace {
+        dt: 1e-3,
+        command: command.clone(),
+        position,
+        torque: None,
+    };
+    assert_eq!(
+        err(identify_axis(&axis, &trace).map(|r| r.rms_position)),
+        "`position[7]`: 1e308 is outside ±1e6 mm or rad; check the trace's units"
+    );
+    // simulateAxis: a 1e308 command gave positions of NaN
+    let mut cmd = command.clone();
+    cmd[3] = -1e308;
+    let e = err(simulate_axis(&axis, 1e-3, &cmd).map(|r| r.position.len()));
+    assert!(
+        e.contains("sample 3") && e.contains("within ±1e6 mm or rad"),
+        "{e}"
+    );
+    // frequencyResponse: ω = 1e308 gave NaN magnitude and phase
+    let e = err(frequency_response(&axis, &[1.0, 1e308]).map(|r| r.magnitude));
+    assert!(
+        e.contains("1e308") && e.contains("from 0 to 1e7 rad/s"),
+        "{e}"
+    );
+    let r = frequency_response(&axis, &[1e7]).unwrap();
+    assert!(r.magnitude[0].is_finite() && r.phase[0].is_finite());
+}
+
+#[test]
+fn pitch_error_identification_refuses_huge_angles_instead_of_trapping() {
+    use mtmotion::servo::pitch_identify::{identify_pitch_error, PitchIdentifyOptions};
+    let th: Vec<f64> = (0..720).map(|i| (i as f64).to_radians()).collect();
+    let e: Vec<f64> = th.iter().map(|t| 2e-5 * (3.0 * t).sin()).collect();
+    let opts = PitchIdentifyOptions::default();
+    // the last angle at 1e308 rad: 1e307 revolutions, a capacity overflow
+    // panic (a trap in wasm)
+    let mut far = th.clone();
+    far[719] = 1e308;
+    assert_eq!(
+        err(identify_pitch_error(&far, &e, &opts).map(|r| r.revolutions)),
+        "`angle[719]`: 1e308 rad is outside ±1e6 rad; check the trace's units"
+    );
+    // within the range but past the work budget
+    let long: Vec<f64> = (0..720).map(|i| i as f64 * 1e3).collect();
+    let err_long = err(identify_pitch_error(&long, &e, &opts).map(|r| r.revolutions));
+    assert!(
+        err_long.contains("more than the limit of 1000000000"),
+        "{err_long}"
+    );
+    let mut big = e.clone();
+    big[5] = 1e308;
+    assert_eq!(
+        err(identify_pitch_error(&th, &big, &opts).map(|r| r.revolutions)),
+        "`error[5]`: 1e308 rad is outside ±1 rad; check the trace's units"
+    );
+    assert!(identify_pitch_error(&th, &e, &opts).is_ok());
+}
+
+#[test]
+fn harmonic_fits_and_circular_tests_refuse_out_of_range_numbers() {
+    use mtmotion::ballbar::{circular_test, fit_harmonics, synthetic_trace, SyntheticConfig};
+    let th: Vec<f64> = (0..360).map(|i| (i as f64).to_radians()).collect();
+    let dr: Vec<f64> = th.iter().map(|t| 0.005 * (2.0 * t).sin()).collect();
+    let mut far = th.clone();
+    far[0] = 1e308;
+    assert_eq!(
+        err(fit_harmonics(&far, &dr, 4).map(|h| h.len())),
+        "sample 0: angle 1e308 is outside ±1e6 rad; check the trace's units"
+    );
+    let mut big = dr.clone();
+    big[9] = -1e308;
+    assert_eq!(
+        err(fit_harmonics(&th, &big, 4).map(|h| h.len())),
+        "sample 9: deviation -1e308 is outside ±1e9; check the trace's units"
+    );
+    // a subnormal nominal radius gave an infinite scale mismatch
+    let mut t = synthetic_trace(&SyntheticConfig::default()).unwrap();
+    t.nominal_radius = 5e-324;
+    assert_eq!(
+        err(circular_test(&t).map(|r| r.runs.len())),
+        "nominalRadius: expected a bar length from 0.001 to 1e6 mm, got 4.94066e-324"
+    );
+}

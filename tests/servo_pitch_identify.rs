@@ -98,5 +98,8 @@ fn bad_traces_are_named() {
         ..o
     };
     let full: Vec<f64> = (0..1000).map(|i| i as f64 * 0.01).collect();
-    assert!(msg(identify_pitch_error(&full, &full, &o2)).contains("maxOrder"));
+    let small: Vec<f64> = full.iter().map(|v| v * 1e-5).collect();
+    assert!(msg(identify_pitch_error(&full, &small, &o2)).contains("maxOrder"));
+    // an error of 10 rad is no pitch error (at most 1 rad)
+    assert!(msg(identify_pitch_error(&full, &full, &o)).contains("outside ±1 rad"));
 }

@@ -56,6 +56,21 @@ pub enum HarmonicsError {
         /// Its deviation.
         deviation: f64,
     },
+    /// A value is finite but outside its range ([`MAX_ANGLE`],
+    /// [`MAX_DEVIATION`]).
+    #[error("sample {index}: {what} {} is outside ±{}{unit}; check the trace's units", crate::numeric::compact(*.value), crate::numeric::compact(*.limit))]
+    OutOfRange {
+        /// 0-based sample index.
+        index: usize,
+        /// "angle" or "deviation".
+        what: &'static str,
+        /// The value.
+        value: f64,
+        /// The largest magnitude allowed.
+        limit: f64,
+        /// " rad" or "".
+        unit: &'static str,
+    },
     /// The order is too high for the angular span (columns nearly dependent).
     #[error(
         "harmonics up to order {order} cannot be separated over this angular span; lower maxOrder"
@@ -101,6 +116,12 @@ pub fn synthesize(harmonics: &[Harmonic], theta: f64) -> f64 {
     harmonics.iter().map(|h| h.eval(theta)).sum()
 }
 
+/// Largest |angle| of a fitted sample, rad (160,000 turns).
+pub const MAX_ANGLE: f64 = 1e6;
+/// Largest |deviation| of a fitted sample, in its unit: 1 km in µm; far
+/// larger values overflow the fit's sums (1e308 gave an infinite amplitude).
+pub const MAX_DEVIATION: f64 = 1e9;
+
 /// Fits Δr(θ) = Σₙ₌₀ᴺ Aₙ sin(nθ + φₙ) by least squares and returns orders
 /// 0 … `max_order`.
 ///
@@ -109,7 +130,7 @@ pub fn synthesize(harmonics: &[Harmonic], theta: f64) -> f64 {
 /// that unit, phases in rad.
 ///
 /// # Errors
-/// [`HarmonicsError`] for unequal lengths, non-finite values, too few
+/// [`HarmonicsError`] for unequal lengths, non-finite or out-of-range values, too few
 /// samples, or an order that the angular span cannot resolve.
 ///
 /// # Examples
@@ -157,6 +178,20 @@ pub fn fit_harmonics(
                 angle: a,
                 deviation: d,
             });
+        }
+        for (what, value, limit, unit) in [
+            ("angle", a, MAX_ANGLE, " rad"),
+            ("deviation", d, MAX_DEVIATION, ""),
+        ] {
+            if value.abs() > limit {
+                return Err(HarmonicsError::OutOfRange {
+                    index: i,
+                    what,
+                    value,
+                    limit,
+                    unit,
+                });
+            }
         }
     }
     let design = DMatrix::from_fn(n, m, |i, j| {

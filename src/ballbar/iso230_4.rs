@@ -47,7 +47,7 @@ pub enum CircularTestError {
         deviation: usize,
     },
     /// Bad nominal radius.
-    #[error("nominalRadius: expected a radius > 0 mm, got {0}")]
+    #[error("nominalRadius: expected a bar length from 0.001 to 1e6 mm, got {}", crate::numeric::compact(*.0))]
     BadRadius(f64),
     /// The LSC of a run cannot be fitted.
     #[error("runs[{run}] ({direction:?}): {source}")]
@@ -170,7 +170,7 @@ pub fn circular_test(trace: &BallbarTrace) -> Result<CircularTest, CircularTestE
 /// ```
 pub fn circular_deviation(trace: &BallbarTrace) -> Result<CircularDeviation, CircularTestError> {
     let r0 = trace.nominal_radius;
-    if !(r0.is_finite() && r0 > 0.0) {
+    if !(super::synthetic::MIN_RADIUS..=super::synthetic::MAX_RADIUS).contains(&r0) {
         return Err(CircularTestError::BadRadius(r0));
     }
     if trace.runs.is_empty() {

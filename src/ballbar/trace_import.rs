@@ -210,13 +210,17 @@ pub fn parse_ballbar_trace(
     })
 }
 
-/// The options' radius and feed, when given, are finite and positive.
+/// The options' radius (a bar length from 0.001 to 1e6 mm) and feed, when
+/// given, are finite and positive.
 fn check_options(opts: ParseOptions) -> Result<(), BallbarTraceError> {
     if let Some(r) = opts.nominal_radius {
-        if !(r.is_finite() && r > 0.0) {
+        if !(super::synthetic::MIN_RADIUS..=super::synthetic::MAX_RADIUS).contains(&r) {
             return Err(BallbarTraceError::BadOption {
                 field: "nominalRadius",
-                message: format!("expected a radius > 0 mm, got {r}"),
+                message: format!(
+                    "expected a bar length from 0.001 to 1e6 mm, got {}",
+                    crate::numeric::compact(r)
+                ),
             });
         }
     }

@@ -105,6 +105,12 @@ fn rms(v: impl Iterator<Item = f64>) -> f64 {
     (s / n.max(1) as f64).sqrt()
 }
 
+/// Largest |command| or |position| of a trace, mm or rad: beyond it the
+/// squared residuals overflow (a 1e308 sample gave an infinite RMS).
+pub const MAX_POSITION: f64 = 1e6;
+/// Largest |torque| of a trace, N·m.
+pub const MAX_TORQUE: f64 = 1e7;
+
 fn check(tr: &MeasuredTrace) -> Result<(), IdentifyError> {
     if !(tr.dt.is_finite() && tr.dt > 0.0) {
         return Err(bad("dt", format!("{}: expected a time step > 0 s", tr.dt)));
@@ -128,6 +134,21 @@ fn check(tr: &MeasuredTrace) -> Result<(), IdentifyError> {
             return Err(bad(
                 format!("{name}[{i}]"),
                 format!("{} is not a finite number", v[i]),
+            ));
+        }
+        let (limit, unit) = if name == "torque" {
+            (MAX_TORQUE, "N·m")
+        } else {
+            (MAX_POSITION, "mm or rad")
+        };
+        if let Some(i) = v.iter().position(|x| x.abs() > limit) {
+            return Err(bad(
+                format!("{name}[{i}]"),
+                format!(
+                    "{} is outside ±{} {unit}; check the trace's units",
+                    crate::numeric::compact(v[i]),
+                    crate::numeric::compact(limit)
+                ),
             ));
         }
     }

@@ -165,13 +165,28 @@ pub fn identify_pitch_error(
     check_options(opts)?;
     let tau = std::f64::consts::TAU;
     let span = angle[angle.len() - 1] - angle[0];
+    // span ≤ 2e6 rad (check_trace), so the count fits a usize
     let revolutions = (span / tau + 1e-9).floor() as usize;
     if revolutions == 0 {
         return Err(bad(
             "angle",
-            format!("covers {span} rad; the FFT needs at least one whole revolution (2π rad)"),
+            format!(
+                "covers {} rad; the FFT needs at least one whole revolution (2π rad)",
+                crate::numeric::compact(span)
+            ),
         ));
     }
+    let terms = (opts.samples as u64)
+        .saturating_mul(revolutions as u64)
+        .saturating_mul(opts.max_order as u64 + 1);
+    crate::budget::check(
+        "pitch-error identification",
+        terms,
+        crate::budget::MAX_PITCH_DFT_TERMS,
+        "DFT terms (samples × revolutions × (maxOrder + 1))",
+        "lower samples or maxOrder, or give fewer revolutions",
+    )
+    .map_err(|e| bad("angle", e.to_string()))?;
     let y = resample(angle, error, opts.samples, revolutions);
     let (spectrum, mut peaks) = spectrum_at_orders(&y, angle[0], opts, revolutions);
     // 3. the peaks
@@ -187,7 +202,14 @@ pub fn identify_pitch_error(
     })
 }
 
-/// The trace: equal lengths, at least 8 finite samples, strictly increasing angle.
+/// Largest |angle| of a trace, rad (160,000 turns): a larger span asked for
+/// a resampled record beyond any memory (1e308 rad trapped the module).
+pub const MAX_ANGLE: f64 = 1e6;
+/// Largest |error| of a trace, rad (57°: far beyond any pitch error).
+pub const MAX_ERROR: f64 = 1.0;
+
+/// The trace: equal lengths, at least 8 finite samples within ±[`MAX_ANGLE`]
+/// and ±[`MAX_ERROR`], strictly increasing angle.
 fn check_trace(angle: &[f64], error: &[f64]) -> Result<(), PitchIdentifyError> {
     if angle.len() != error.len() {
         return Err(bad(
@@ -213,6 +235,21 @@ fn check_trace(angle: &[f64], error: &[f64]) -> Result<(), PitchIdentifyError> {
             return Err(bad(
                 format!("{name}[{i}]"),
                 format!("{} is not a finite number", v[i]),
+            ));
+        }
+        let limit = if name == "angle" {
+            MAX_ANGLE
+        } else {
+            MAX_ERROR
+        };
+        if let Some(i) = v.iter().position(|x| x.abs() > limit) {
+            return Err(bad(
+                format!("{name}[{i}]"),
+                format!(
+                    "{} rad is outside ±{} rad; check the trace's units",
+                    crate::numeric::compact(v[i]),
+                    crate::numeric::compact(limit)
+                ),
             ));
         }
     }

@@ -102,14 +102,18 @@ pub fn closed_loop(axis: &AxisParams, omega: f64) -> Result<C64, ServoError> {
     )
 }
 
+/// Highest angular frequency, rad/s (1.6 MHz, far above any feed drive's
+/// bandwidth; at 1e308 the delay terms' phase was no longer a number).
+pub const MAX_OMEGA: f64 = 1e7;
+
 fn check_omega(omega: f64) -> Result<(), ServoError> {
-    if omega.is_finite() && omega >= 0.0 {
+    if (0.0..=MAX_OMEGA).contains(&omega) {
         Ok(())
     } else {
         Err(ServoError::BadParameter {
             field: "omega",
             value: omega,
-            expected: "angular frequencies must be finite and ≥ 0 rad/s",
+            expected: "angular frequencies must be from 0 to 1e7 rad/s",
         })
     }
 }

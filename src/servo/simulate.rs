@@ -52,6 +52,10 @@ pub struct AxisResponse {
 /// setting, and smaller steps only turn the window lengths into overflow.
 pub const MIN_DT: f64 = 1e-7;
 
+/// Largest |position command|, mm or rad (1 km; 160,000 turns): a 1e308
+/// command gave positions of NaN.
+pub const MAX_COMMAND: f64 = 1e6;
+
 /// Checks `dt` and the command samples.
 fn check_input(dt: f64, command: &[f64]) -> Result<(), ServoError> {
     if !(dt.is_finite() && (MIN_DT..=1.0).contains(&dt)) {
@@ -71,6 +75,12 @@ fn check_input(dt: f64, command: &[f64]) -> Result<(), ServoError> {
         return Err(ServoError::BadCommand {
             index: i,
             why: "the position command must be a finite number",
+        });
+    }
+    if let Some(i) = command.iter().position(|v| v.abs() > MAX_COMMAND) {
+        return Err(ServoError::BadCommand {
+            index: i,
+            why: "the position command must be within ±1e6 mm or rad; check its units",
         });
     }
     Ok(())

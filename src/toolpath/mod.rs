@@ -137,6 +137,10 @@ pub enum ToolpathError {
 /// [`crate::budget::MAX_TOOLPATH_SAMPLES`]).
 pub const MAX_SAMPLES: usize = crate::budget::MAX_TOOLPATH_SAMPLES;
 
+/// Smallest positive `tA` or `T`, s: below 1 µs the acc/dec's accelerations
+/// lose every digit of the path.
+pub const MIN_TIME_CONSTANT: f64 = 1e-6;
+
 impl SimConfig {
     /// Checks every field.
     ///
@@ -149,16 +153,27 @@ impl SimConfig {
                 message: message.to_string(),
             })
         };
-        if !(self.t_a.is_finite() && self.t_a >= 0.0 && self.t_a <= 10.0) {
-            return bad("tA", "expected an acc/dec time constant between 0 and 10 s");
+        // 0 is "none"; a positive time constant below 1 µs is no machine's
+        // and its huge accelerations lose every digit of the path (tA = 1e-15 s
+        // gave a 312 mm contour error).
+        let time_constant = |v: f64| v == 0.0 || (MIN_TIME_CONSTANT..=10.0).contains(&v);
+        if !time_constant(self.t_a) {
+            return bad(
+                "tA",
+                &format!(
+                    "expected 0 (no acc/dec) or an acc/dec time constant from 1e-6 to 10 s, got {}",
+                    crate::numeric::compact(self.t_a)
+                ),
+            );
         }
-        if self
-            .t
-            .per_axis()
-            .iter()
-            .any(|t| !(t.is_finite() && *t >= 0.0 && *t <= 10.0))
-        {
-            return bad("T", "expected servo time constants between 0 and 10 s");
+        if let Some(t) = self.t.per_axis().into_iter().find(|t| !time_constant(*t)) {
+            return bad(
+                "T",
+                &format!(
+                    "expected 0 (no lag) or servo time constants from 1e-6 to 10 s, got {}",
+                    crate::numeric::compact(t)
+                ),
+            );
         }
         if !(self.dt.is_finite() && self.dt > 0.0 && self.dt <= 0.1) {
             return bad(
