@@ -58,6 +58,7 @@ use serde::{Deserialize, Serialize};
 pub use super::cutter::{Cutter, CutterStretch, Side, ToolRadii};
 use super::cycles::Cycle;
 pub use super::files::{parse_files, NcFile};
+pub use super::rotation::Rotation;
 use super::run::{needs_macros, Run};
 pub use super::segment::{dist, Arc, Motion, MotionCode, Plane, Pose, Segment, AXES};
 use super::{Block, NcError, NcErrors, Word};
@@ -239,6 +240,9 @@ pub struct Modal {
     pub cycle_return_r: bool,
     /// Cutter radius compensation in force (G41/G42 until G40).
     pub cutter: Option<Cutter>,
+    /// Coordinate system rotation in force (G68 until G69,
+    /// [`super::rotation`]); `pos` stays in the un-rotated frame.
+    pub rotation: Option<Rotation>,
 }
 
 /// An interpreted program.
