@@ -331,14 +331,22 @@ fn g68(b: &Block, st: &mut Modal, gw: &GWords, w: &Word, scale: f64) -> Result<(
         };
     }
     let before = st.rotation.map_or(0.0, |r| r.angle);
+    let angle = if st.incremental {
+        before + rw.value
+    } else {
+        rw.value
+    };
+    if !angle.is_finite() || !center.iter().all(|c| c.is_finite()) {
+        return Err(err(
+            b,
+            rw,
+            "G68: the rotation's angle or centre is not a finite number",
+        ));
+    }
     st.rotation = Some(Rotation {
         plane: st.plane,
         center,
-        angle: if st.incremental {
-            before + rw.value
-        } else {
-            rw.value
-        },
+        angle,
         line: b.line,
     });
     Ok(())
