@@ -407,3 +407,35 @@ fn reverse_compensation_of_a_rotated_program_matches_the_unrotated_one() {
     assert!((rot.after.max_error_um - flat.after.max_error_um).abs() < 1.0);
     assert!(rot.nc.contains("G68 X20 Y10 R25"), "{}", rot.nc);
 }
+
+#[test]
+fn both_writers_round_trip_rotations_in_every_plane() {
+    // (plane code, its two axis letters, the normal's letter, the centre
+    // letters of its two axes)
+    let planes = [
+        (17, 'X', 'Y', 'Z', 'I', 'J'),
+        (18, 'Z', 'X', 'Y', 'K', 'I'),
+        (19, 'Y', 'Z', 'X', 'J', 'K'),
+    ];
+    for (g, u, v, n, cu, cv) in planes {
+        for angle in [0.0, 17.3, 90.0, -135.0, 400.0] {
+            let src = format!(
+                "G{g} G0 {u}1 {v}2 {n}3\nG68 {u}4 {v}-1 R{angle}\nG1 {u}10 {v}0 F800\nG91 {v}5 {n}-1\nG90 G3 {u}0 {v}5 R5\nG2 {u}0 {v}5 {cu}3 {cv}0\nG91 G68 R-20\nG90 G1 {u}2\nG69 G0 {u}0 {v}0\nM30\n"
+            );
+            let p = prog(&src);
+            assert_eq!(write_source(&src, &p, &p.segments), src);
+            let flat = mtmotion::nc::writer::write(&p, &p.segments);
+            let q = prog(&flat);
+            assert!(max_end_gap(&p, &q) < 1e-4, "{src}\n{flat}");
+            for (a, b) in p.segments.iter().zip(&q.segments) {
+                if let (Motion::Arc(x), Motion::Arc(y)) = (a.motion, b.motion) {
+                    let d = mtmotion::nc::program::dist(x.center, y.center);
+                    assert!(
+                        d < 1e-4 && (x.sweep - y.sweep).abs() < 1e-4,
+                        "{src}\n{flat}"
+                    );
+                }
+            }
+        }
+    }
+}
