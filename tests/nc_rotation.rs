@@ -439,3 +439,12 @@ fn both_writers_round_trip_rotations_in_every_plane() {
         }
     }
 }
+
+#[test]
+fn macro_position_variables_are_rotated_frame_positions() {
+    // #5001/#5002 give the position in the rotated frame, so writing them
+    // back is no move along that axis.
+    let e = ends("G0 X0 Y0\nG68 X0 Y0 R90\nG1 X5 Y0 F100\n#1=#5001\n#2=#5002\nG1 X#1 Y[#2+3]");
+    close(e[1], [0.0, 5.0, 0.0], "X5 Y0 turned");
+    close(e[2], [-3.0, 5.0, 0.0], "X#5001 Y[#5002+3] turned");
+}
