@@ -2,7 +2,8 @@
 //! the G codes by group ([`super::gcodes`]), the M codes that end the
 //! program, the F word and the words the motion model ignores, cutter
 //! compensation ([`super::cutter`]; refused around the moves it does not
-//! simulate), then what
+//! simulate), the coordinate rotation G68/G69 ([`super::rotation`]: a G68
+//! block does nothing else), then what
 //! the block does: G10 data setting (nothing), a G4 dwell, a canned-cycle
 //! block ([`super::cycles`]), a non-modal move ([`super::non_modal`]) or a
 //! move ([`super::moves`]). The readings are those of the interpreter's
@@ -16,6 +17,7 @@ use super::gcodes::{code10, read_g_words, GWords};
 use super::moves::move_block;
 use super::non_modal::non_modal_move;
 use super::program::{err, Ctx, Modal, Warning, MAX_PLAUSIBLE_FEED};
+use super::rotation::rotation_block;
 use super::segment::{Motion, Segment};
 use super::{Block, NcError, Word};
 
@@ -46,6 +48,9 @@ pub(super) fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result
         cutter_word(b, st, cx, w, g)?;
     }
     read_other_words(b, st, &gw, cx.warnings)?;
+    if rotation_block(b, st, &gw, cx.stretches, scale)? {
+        return Ok(());
+    }
     if gw.is_g10() {
         if let Some((w, _)) = gw.non_modal {
             cx.warnings.push(Warning::at(

@@ -4,7 +4,9 @@
 //! the canned-cycle return level, the non-modal codes (G10, G28, G30, G53,
 //! the G92 family), the canned-cycle codes, and the codes that are refused
 //! (not simulated, and they would change the path) or warned about and
-//! ignored, and the cutter-compensation codes ([`super::cutter`]). The readings are those of the interpreter's header
+//! ignored, the cutter-compensation codes ([`super::cutter`]) and the
+//! coordinate-rotation codes G68/G69 ([`super::rotation`]). The readings
+//! are those of the interpreter's header
 //! ([`super::program`]).
 //!
 //! A G code is handled as its value ×10, rounded (G91.1 → 911).
@@ -28,6 +30,9 @@ pub(super) struct GWords<'a> {
     /// The cutter-compensation code (G40, G41, G42, G41.1, G42.1) and its
     /// code ×10.
     pub cutter: Option<(&'a Word, i64)>,
+    /// The coordinate-rotation code (G68, G69) and its code ×10
+    /// ([`super::rotation`]).
+    pub rotation: Option<(&'a Word, i64)>,
 }
 
 impl GWords<'_> {
@@ -157,6 +162,14 @@ fn grouped_or_other<'a>(
             "cutter-compensation codes",
             "; expected one of G40, G41, G42",
         ),
+        680 | 690 => only_one(
+            &mut gw.rotation,
+            b,
+            w,
+            g,
+            "coordinate-rotation codes",
+            "; expected G68 or G69",
+        ),
         _ => {
             if let Some(e) = refused(b, w, g) {
                 return Err(e);
@@ -172,6 +185,7 @@ fn grouped_or_other<'a>(
 /// The error for a code that is not simulated and would change the path:
 /// splines, threading, the cycles without a model (G74.1, G80.1–G89.9 other
 /// than the modelled ones, G87, G88), inverse-time and per-revolution feed,
+/// 3D coordinate conversion (G68.1–G68.4),
 /// Okuma `G15 H`, modal macro calls. `None` for any other code.
 fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
     let msg = match g {
@@ -194,6 +208,10 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
             w.text,
             if g == 930 { "inverse-time feed" } else { "feed per revolution" }
         ),
+        681..=684 => format!(
+            "G{}: 3D coordinate conversion / tilted working plane is not simulated; post the program in work coordinates (G68 in the plane is simulated)",
+            w.text
+        ),
         150 if b.word('H').is_some() => super::macro_expr::okuma_message("G15 H"),
         660 | 661 => format!(
             "G{}: modal macro calls are not supported; call the macro with G65 at each position",
@@ -206,7 +224,7 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
 
 /// The warning for an ignored code: work offsets (G54–G59, G54.1), tool
 /// length compensation (G43, G44, G43.1, G43.4) and any code not modelled.
-/// `None` for the codes that do not affect the path (G49, G94, G15, G69,
+/// `None` for the codes that do not affect the path (G49, G94, G15,
 /// G61–G64).
 fn warned(w: &Word, g: i64) -> Option<String> {
     Some(match g {
@@ -214,7 +232,7 @@ fn warned(w: &Word, g: i64) -> Option<String> {
             "work offset G{}: its offset values are unknown here, so the program frame is kept (all work offsets coincide)",
             w.text
         ),
-        490 | 940 | 150 | 690 | 610..=649 => return None,
+        490 | 940 | 150 | 610..=649 => return None,
         430 | 440 | 431 | 434 => format!(
             "G{}: tool length compensation is ignored (Z is the programmed Z)",
             w.text

@@ -188,9 +188,14 @@ impl Variables {
         }
     }
 
-    /// Position axis `i` in program coordinates and units.
+    /// Position axis `i` in program coordinates and units (under G68 in
+    /// the rotated frame, so `X#5001` names the current position).
     fn pos(&self, i: usize) -> f64 {
-        let raw = self.modal.pos.get(i) - self.modal.offset[i];
+        let pos = match self.modal.rotation {
+            Some(r) => r.pose_to_program(self.modal.pos),
+            None => self.modal.pos,
+        };
+        let raw = pos.get(i) - self.modal.offset[i];
         if i < 3 {
             raw / self.unit()
         } else {

@@ -31,6 +31,7 @@ mod moves;
 mod non_modal;
 pub mod patch;
 pub mod program;
+pub mod rotation;
 mod run;
 pub mod segment;
 pub mod summary;

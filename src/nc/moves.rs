@@ -1,5 +1,5 @@
 //! The move of one block in the active motion mode (G0–G3): its end point
-//! (G90/G91, the G92 shift, the inch scale), its feed, its motion (a line,
+//! (G90/G91, the G92 shift, the inch scale, the G68 rotation), its feed, its motion (a line,
 //! or an arc with I/J/K or R centres, G90.1 absolute centres converted),
 //! and the Fanuc corner word it carries (`,R`/`,C`, or a plain `R`/`C` on
 //! G01; applied later by [`super::corner`]). The readings are those of the
@@ -10,6 +10,7 @@
 use super::arc::arc;
 use super::block::axis_words;
 use super::program::{err, Corner, CornerKind, Ctx, Modal, Warning};
+use super::rotation::end_to_machine;
 use super::segment::{Motion, MotionCode, Pose, Segment, AXES};
 use super::{Block, NcError, Word};
 
@@ -175,7 +176,8 @@ fn move_feed(b: &Block, st: &Modal, mode: MotionCode, first: &Word) -> Result<f6
 }
 
 /// The motion from `start` to `end` in `mode`: a rapid, a line, or the arc
-/// of the block's centre words (I/J/K made incremental first under G90.1).
+/// of the block's centre words (I/J/K made incremental first under G90.1;
+/// under G68 computed in the rotated frame and its centre turned back).
 fn move_motion(
     b: &Block,
     st: &Modal,
@@ -189,6 +191,10 @@ fn move_motion(
         MotionCode::Rapid => Motion::Rapid,
         MotionCode::Linear => Motion::Linear,
         MotionCode::Cw | MotionCode::Ccw => {
+            let (start, end) = match st.rotation {
+                Some(r) => (r.pose_to_program(start), r.pose_to_program(end)),
+                None => (start, end),
+            };
             let abs_block;
             let blk = if st.arc_center_absolute {
                 abs_block = absolute_centre_block(b, start, scale, &st.offset);
@@ -196,7 +202,7 @@ fn move_motion(
             } else {
                 b
             };
-            Motion::Arc(arc(
+            let a = arc(
                 blk,
                 first,
                 st.plane,
@@ -204,7 +210,8 @@ fn move_motion(
                 start,
                 end,
                 scale,
-            )?)
+            )?;
+            Motion::Arc(st.rotation.map_or(a, |r| r.arc_to_machine(a)))
         }
     })
 }
@@ -271,9 +278,20 @@ fn corner_word<'a>(
 }
 
 /// The end pose of a move with `axis_words` from `st` (G90/G91, G92 shift,
-/// inch scale).
+/// inch scale), in the un-rotated frame: under G68 the words are read in
+/// the rotated frame ([`super::rotation`]).
 pub(super) fn target(st: &Modal, axis_words: &[&Word], scale: f64) -> Pose {
-    let mut end = st.pos;
+    let from = match st.rotation {
+        Some(r) => r.pose_to_program(st.pos),
+        None => st.pos,
+    };
+    end_to_machine(st, st.pos, program_target(st, from, axis_words, scale))
+}
+
+/// The end pose of a move with `axis_words` from `from` in the program's
+/// frame (G90/G91, G92 shift, inch scale).
+fn program_target(st: &Modal, from: Pose, axis_words: &[&Word], scale: f64) -> Pose {
+    let mut end = from;
     for w in axis_words {
         let (i, v) = axis_value(w, scale);
         end.set(

@@ -3,8 +3,9 @@
 //! simulated, the return is not), G53 (a move in machine coordinates, not
 //! simulated) and G92/G92.1/G92.2 (coordinate shift, kept as an offset so
 //! the path stays continuous). Each is warned about with what was and was
-//! not simulated. The readings are those of the interpreter's header
-//! ([`super::program`]).
+//! not simulated. Under a G68 rotation all of them are refused before
+//! they get here ([`super::rotation`]: Fanuc requires G69 first). The
+//! readings are those of the interpreter's header ([`super::program`]).
 //!
 //! Units: mm, degrees for A/B/C.
 

@@ -12,6 +12,13 @@
 //! - units and modes are the block's own: a G20 block gets inch values, a
 //!   G91 block incremental values, a G90.1 block absolute centres, a G92
 //!   shift is subtracted; feeds are never touched;
+//! - under a G68 rotation ([`super::rotation`]) the segments (un-rotated,
+//!   as simulated and corrected) are turned back into the block's rotated
+//!   frame before its words are written: end points and absolute centres
+//!   as points about the rotation centre, incremental I/J/K and G91
+//!   increments as vectors, R unchanged; the read-back end is turned
+//!   forward again, so the next block starts from what the control will
+//!   compute;
 //! - numbers follow the program's style ([`NumStyle`]): its number of
 //!   decimals (raised to 3 in mm or 4 in inch — 1 µm, 2.5 µm — when the
 //!   program is coarser, so a compensation is not rounded away), padded or
@@ -576,17 +583,19 @@ impl Writer<'_> {
             None => self.p.modal.last().copied().unwrap_or_default(),
         };
         let mut parts = vec![self.d.g(1)];
+        let (to, pos) = (program_point(&m, seg.end.p()), program_point(&m, pos));
         let mut out = pos;
         for (k, letter) in ['X', 'Y', 'Z'].into_iter().enumerate() {
-            if (seg.end.p()[k] - pos[k]).abs() <= SAME {
+            if (to[k] - pos[k]).abs() <= SAME {
                 continue;
             }
-            let (t, v) = self.coord(&m, seg.end.p()[k], pos[k], k);
+            let (t, v) = self.coord(&m, to[k], pos[k], k);
             if (v - pos[k]).abs() > SAME {
                 parts.push(format!("{}{t}", self.d.letter(letter)));
                 out[k] = v;
             }
         }
+        let out = machine_point(&m, out);
         if m.feed.is_none_or(|f| (f - seg.feed).abs() > 1e-9) && seg.feed > 0.0 {
             let u = if m.inch { 25.4 } else { 1.0 };
             parts.push(format!(
@@ -678,12 +687,18 @@ impl Writer<'_> {
         (end, changed)
     }
 
-    /// The splices of the X/Y/Z words of an edited block; returns the end
-    /// position read back.
+    /// The splices of the X/Y/Z words of an edited block, worked out in
+    /// the block's program frame (under G68 the rotated one); returns the
+    /// end position read back, in the un-rotated frame.
     fn axis_splices(&self, e: &Edit, splices: &mut Vec<Splice>) -> [f64; 3] {
-        let (m, pos) = (&e.m, e.pos);
+        let m = &e.m;
+        let pos = program_point(m, e.pos);
         let mut end = pos;
-        let (t1, s0, o1) = (e.seg.end.p(), e.seg.start.p(), e.o.end.p());
+        let (t1, s0, o1) = (
+            program_point(m, e.seg.end.p()),
+            program_point(m, e.seg.start.p()),
+            program_point(m, e.o.end.p()),
+        );
         for (k, letter) in ['X', 'Y', 'Z'].into_iter().enumerate() {
             // An axis the segment does not move is written as the start's
             // written value (full circles, helix plane axes).
@@ -718,7 +733,11 @@ impl Writer<'_> {
                 }
             }
         }
-        end
+        if m.rotation.is_some() && end == o1 {
+            // The original end exactly, not its image through two rotations.
+            return e.o.end.p();
+        }
+        machine_point(m, end)
     }
 
     /// The splices of the motion code of an edited block: a changed G0–G3,
@@ -839,16 +858,19 @@ impl Writer<'_> {
             return;
         }
         let (pu, pv, _) = a.plane.axes();
+        let (c, oc) = (program_point(m, a.center), program_point(m, oa.center));
+        let rel = [0, 1, 2].map(|k| a.center[k] - pos[k]);
+        let rel = m.rotation.map_or(rel, |r| r.vector_to_program(rel));
         for k in [pu, pv] {
             let letter = ['I', 'J', 'K'][k];
-            let keep = a.center[k] == oa.center[k] && (m.arc_center_absolute || same_start);
+            let keep = c[k] == oc[k] && (m.arc_center_absolute || same_start);
             if keep {
                 continue;
             }
             let v = if m.arc_center_absolute {
-                (a.center[k] - m.offset[k]) / u
+                (c[k] - m.offset[k]) / u
             } else {
-                (a.center[k] - pos[k]) / u
+                rel[k] / u
             };
             let t = st.format(v);
             match block.word(letter) {
@@ -863,6 +885,17 @@ impl Writer<'_> {
             }
         }
     }
+}
+
+/// Machine-frame point `p` in the program frame of the modal state `m`:
+/// under G68 turned back into the rotated frame ([`super::rotation`]).
+fn program_point(m: &Modal, p: [f64; 3]) -> [f64; 3] {
+    m.rotation.map_or(p, |r| r.to_program(p))
+}
+
+/// Program-frame point `p` of the modal state `m` in the machine frame.
+fn machine_point(m: &Modal, p: [f64; 3]) -> [f64; 3] {
+    m.rotation.map_or(p, |r| r.to_machine(p))
 }
 
 /// The separator between words on this line: a space when its first two

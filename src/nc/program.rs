@@ -28,6 +28,13 @@
 //!   motion); G28/G30 (the rapid to the intermediate point is simulated, the
 //!   return to the machine reference is not: warned); G53 (not simulated:
 //!   warned); G54–G59/G54.1 (warned, program frame kept).
+//! - Fanuc coordinate system rotation `G68 α β R` / G69 in G17, G18, G19
+//!   ([`super::rotation`]): every point programmed in the plane (line and
+//!   arc ends, arc centres, G91 increments, canned-cycle holes) is turned
+//!   by R degrees about the centre; the segments are the un-rotated path.
+//!   Refused with a located error: a plane change, G28/G30/G52/G53/
+//!   G54–G59/G92 under G68, G68 (or a G69 that cancels one) under G41/G42,
+//!   G68 in cycle mode, G68 with Z or I/J/K or without R, G68.1–G68.4.
 //!
 //! Readings chosen: the program starts at [`ParseOptions::start`] (the origin
 //! by default) in G90 G21 G17 with no motion mode and no feed, so an axis
@@ -41,7 +48,8 @@
 //! stretch says so. G43 length compensation is ignored (warned). What is not simulated and would change the path is a
 //! located error: G33/G33.1 threading, G84.x, G87/G88, G93/G95 feeds, M97,
 //! G65/G66 macro calls, macro `#` variables and `[ ]` expressions, LinuxCNC
-//! o-words and polar words; an `E` word stops the program as "this looks
+//! o-words and polar words, the G68 cases above and G68.1–G68.4 (3D
+//! coordinate conversion); an `E` word stops the program as "this looks
 //! like a 3D-printer program". Every error of a program is collected
 //! ([`parse_all`]). Arc radius consistency: the end radius must match the
 //! start radius within 0.005 mm + 1e-5·R; the arc radius is their mean.
@@ -49,7 +57,8 @@
 //! Where the parts live (files under `src/nc/`): the run over the blocks,
 //! calls and returns in `run.rs`; one block's passes in `block.rs`, its G
 //! codes by group in `gcodes.rs`, its move in `moves.rs`, G28/G30/G53/G92
-//! in `non_modal.rs`; canned cycles in [`super::cycles`].
+//! in `non_modal.rs`, G68/G69 in `rotation.rs`; canned cycles in
+//! [`super::cycles`].
 //!
 //! Units: mm, s, degrees for A/B/C, feed in mm/min.
 
@@ -58,6 +67,7 @@ use serde::{Deserialize, Serialize};
 pub use super::cutter::{Cutter, CutterStretch, Side, ToolRadii};
 use super::cycles::Cycle;
 pub use super::files::{parse_files, NcFile};
+pub use super::rotation::Rotation;
 use super::run::{needs_macros, Run};
 pub use super::segment::{dist, Arc, Motion, MotionCode, Plane, Pose, Segment, AXES};
 use super::{Block, NcError, NcErrors, Word};
@@ -239,6 +249,9 @@ pub struct Modal {
     pub cycle_return_r: bool,
     /// Cutter radius compensation in force (G41/G42 until G40).
     pub cutter: Option<Cutter>,
+    /// Coordinate system rotation in force (G68 until G69,
+    /// [`super::rotation`]); `pos` stays in the un-rotated frame.
+    pub rotation: Option<Rotation>,
 }
 
 /// An interpreted program.

@@ -22,7 +22,11 @@
 //!
 //! - a program whose blocks cannot be rewritten one by one is written flat,
 //!   as the path it runs: one block per segment, in execution order. That
-//!   is a program with macro code, with a G92 shift, or with `fixed`
+//!   is a program with macro code, with a G92 shift, with a G68 rotation
+//!   (the segments are already in the un-rotated frame, so writing them
+//!   as plain coordinates reads back to the same segments with no
+//!   transform in between; G68 kept would turn every written, rounded
+//!   number once more), or with `fixed`
 //!   segments (a subprogram body — a `G91` body called twice moves from
 //!   two different starts —, a canned cycle, a corner `,R`/`,C`). Blocks
 //!   without motion keep their N numbers, comments and M/S/T/D/H words in
@@ -595,8 +599,8 @@ fn write_new(program: &Program, seg: &Segment, passive: Option<&Block>, out: &mu
 }
 
 /// True when `program`'s blocks cannot be rewritten one by one (see the
-/// module header): macro code, a G92 shift, `fixed` segments, or segments
-/// out of block order.
+/// module header): macro code, a G92 shift, a G68 rotation, `fixed`
+/// segments, or segments out of block order.
 fn needs_flat(program: &Program) -> bool {
     let mut last = None;
     let out_of_order = program.segments.iter().any(|s| {
@@ -610,7 +614,7 @@ fn needs_flat(program: &Program) -> bool {
         || program
             .modal
             .iter()
-            .any(|m| m.offset.iter().any(|&o| o != 0.0))
+            .any(|m| m.offset.iter().any(|&o| o != 0.0) || m.rotation.is_some())
 }
 
 /// The words of `block` that neither move nor change a mode: N, S, T, D,

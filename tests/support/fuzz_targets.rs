@@ -434,7 +434,8 @@ pub fn targets() -> Vec<(&'static str, Target, Vec<String>)> {
 }
 
 /// The repo's NC corpus (a window of each file's first 4 kB), the
-/// tool-path examples and a program with a subprogram called twice.
+/// tool-path examples, a program with a subprogram called twice, an inch
+/// program and one with G68/G69 coordinate rotations.
 pub fn nc_seeds() -> Vec<String> {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/nc_corpus");
     let mut out: Vec<String> = std::fs::read_dir(dir)
@@ -455,6 +456,10 @@ pub fn nc_seeds() -> Vec<String> {
     out.push("O100\nG90 G17 G21\nG0 X0 Y0\nG1 X10 F600\nG2 X20 Y0 R5\nG3 X10 Y0 I-5 J0\nG4 P500\nM98 P200 L2\nM30\nO200\nG91 G1 X1\nM99\n".into());
     out.push(
         "G20 G90 G17\nG0 X0 Y0\nG2 X0.5 Y0.5 R0.5 F20\nG3 X1.0 Y0 R-0.5\nG18 G2 X1.2 Z0.2 R0.2\n"
+            .into(),
+    );
+    out.push(
+        "G90 G17 G21\nG0 X0 Y0 Z5\nG68 X5 Y5 R30\nG1 X10 F600\nG2 X20 Y0 R5\nG91 G3 X-10 Y0 I-5 J0\nG68 R15\nG90 G81 X3 Y3 Z-1 R1\nG80\nG69 G0 X0 Y0\nG19 G68 Y1 Z2 R-45\nG1 Y4 Z4\nG69\nM30\n"
             .into(),
     );
     out
