@@ -33,6 +33,7 @@ pub mod patch;
 pub mod program;
 mod run;
 pub mod segment;
+pub mod sequence;
 pub mod summary;
 pub mod writer;
 
