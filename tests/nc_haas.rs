@@ -13,7 +13,9 @@
 mod fuzz_targets;
 
 use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
-use mtmotion::nc::program::{parse, parse_with, Motion, ParseOptions, Program, MAX_NESTING};
+use mtmotion::nc::program::{
+    parse, parse_all, parse_with, Motion, ParseOptions, Program, MAX_NESTING,
+};
 
 /// A Haas-style program as a Haas post writes it: `%`, an O number, N
 /// numbers, G187/G103 settings, tool change, work offset, length
@@ -274,10 +276,19 @@ fn m99_p_returns_to_a_sequence_number_of_the_caller() {
             .starts_with("M99 P77: no block N77 in the calling program"),
         "{e}"
     );
-    let e = parse("G0 X0\nM98 P100\nM30\nO100\nM99 P1.5").unwrap_err();
+    // A bad P is one error at it; the M99 still returns (no second error).
+    let e = parse_all(
+        "G0 X0\nM98 P100\nM30\nO100\nM99 P1.5",
+        &ParseOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!(e.errors.len(), 1, "{e:?}");
+    assert_eq!((e.errors[0].line, e.errors[0].column), (5, 5));
     assert!(
-        e.message.contains("expected a whole sequence number"),
-        "{e}"
+        e.errors[0]
+            .message
+            .contains("expected a whole sequence number"),
+        "{e:?}"
     );
 }
 

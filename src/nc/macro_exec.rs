@@ -9,8 +9,9 @@
 //! `#3006` message stop), and the LinuxCNC G-code reference, "O Codes".
 //!
 //! Readings chosen:
-//! - `GOTO n` looks for `N n` in the same program (between `O` headers)
-//!   as the GOTO; a missing target is an error.
+//! - `GOTO n` looks for `N n` in the same program (between `O` headers,
+//!   or from the start of a file; [`super::sequence`]) as the GOTO; a
+//!   missing target is an error.
 //! - Structure (WHILE/END, o-word pairs) is checked before the run; an
 //!   unmatched or crossed pair is an error at its line.
 //! - A vacant word value (`X#24` with #24 vacant) drops the word, as on a

@@ -349,16 +349,20 @@ impl<'a> Run<'a> {
         }
     }
 
-    /// M99 (`P n`: to the block numbered N n, see the module header): the
-    /// next repeat of the subprogram, or the return to the caller (a G65
-    /// call's locals dropped); in the main program it ends the run or
-    /// jumps forwards.
+    /// M99 (`P n`: to the block numbered N n, see the module header; a
+    /// bad P is an error and the M99 acts as a plain one): the next repeat
+    /// of the subprogram, or the return to the caller (a G65 call's locals
+    /// dropped); in the main program it ends the run or jumps forwards.
     fn m99(&mut self, b: &Block, bi: usize, w: &Word) {
-        let n = match b.word('P').map(|p| sequence_number(b, p, "M99")) {
-            Some(Err(e)) => return self.errors.push(e),
-            Some(Ok(n)) => b.word('P').map(|p| (p, n)),
-            None => None,
-        };
+        let n = b
+            .word('P')
+            .and_then(|p| match sequence_number(b, p, "M99") {
+                Ok(n) => Some((p, n)),
+                Err(e) => {
+                    self.errors.push(e);
+                    None
+                }
+            });
         let Some(f) = self.stack.last_mut() else {
             return self.m99_main(b, bi, w, n);
         };

@@ -1,7 +1,7 @@
 //! Sequence numbers (`N…`) and program regions of a lexed program, for the
 //! jumps that name a block by its N number: Fanuc Macro B `GOTO n`
 //! ([`super::macro_exec`]), Haas `M97 P n` local subprogram calls and
-//! Fanuc/Haas `M99 P n` returns ([`super::run`]).
+//! Fanuc/Haas `M99 P n` returns (the run over the blocks, `run.rs`).
 //!
 //! A program region runs from an `O` header (an `O` number first in its
 //! block, or a named `O<NAME>` program) or from the start of a file to the
