@@ -400,3 +400,33 @@ fn reverse_compensation_keeps_m97_bodies_fixed() {
     sorted.dedup();
     assert_eq!(sorted.len(), ns.len(), "{}", c.nc);
 }
+
+/// With the subprogram in its own file: its M97 finds N10 in that file,
+/// and its M99 P50 returns to N50 of the main program's file.
+#[test]
+fn m97_and_m99_p_across_files() {
+    use mtmotion::nc::files::{parse_files, NcFile};
+    let sub = NcFile {
+        name: "O2000.nc".into(),
+        text: "O2000\nG91 G1 Y1 F100\nM97 P10\nG90\nM99 P50\nN10 G91 G1 Z-1\nG90\nM99".into(),
+    };
+    let main = "G0 X0 Y0\nM98 P2000\nG0 X1\nN50 G0 X2\nM30";
+    let p = parse_files(main, &[sub], &ParseOptions::default()).unwrap();
+    assert_eq!(
+        ends(&p),
+        vec![
+            [0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 1.0, -1.0],
+            [2.0, 1.0, -1.0]
+        ]
+    );
+    // The main program's M97 does not reach N10 of the other file.
+    let sub = NcFile {
+        name: "O2000.nc".into(),
+        text: "O2000\nN10 G1 X1 F100\nM99".into(),
+    };
+    let e = parse_files("M97 P10\nM30", &[sub], &ParseOptions::default()).unwrap_err();
+    assert_eq!((e.errors[0].line, e.errors[0].column), (1, 5));
+    assert_eq!(e.errors[0].file, None);
+}
