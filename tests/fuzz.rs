@@ -105,8 +105,11 @@ const TOKENS: &[&str] = &[
     "G81",
     "G90",
     "G91",
+    "M97",
     "M98",
     "M99",
+    "G103",
+    "G187",
     "O1",
     "P",
     "L",
@@ -425,6 +428,16 @@ fn writer_round_trip_regressions() {
         parse(&parse(text).unwrap().write()).unwrap().segments.len(),
         5
     );
+    // The stable loop (`nc_write`, FUZZ_SEED=12345): a flat-written
+    // dwell of 5.01e19 s became `G04 P9223372036854775807` (the
+    // milliseconds saturated as an i64), read back as 9.2e15 s. Whole
+    // milliseconds are now written with every digit (of the f64 nearest
+    // 5.01e22 ms, which reads back as itself).
+    let text =
+        "O100\nG0 X0\nG4 P50099999999999999999999\nM98 P200 L2\nM30\nO200\nG91 G1 X1 F100\nM99\n";
+    fuzz_targets::nc_write_target(text).unwrap();
+    let w = parse(text).unwrap().write();
+    assert!(w.contains("\nG04 P50100000000000003145728\n"), "{w}");
     let e = parse("G90 G21 F100\nG1 X10\nG1 R2\nG1 Y10\n").unwrap_err();
     assert_eq!((e.line, e.column), (3, 4), "{e}");
     assert!(

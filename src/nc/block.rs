@@ -13,7 +13,7 @@
 
 use super::cutter::{cutter_word, refused_during};
 use super::cycles::{canned_cycle, Cycle};
-use super::gcodes::{code10, read_g_words, GWords};
+use super::gcodes::{code10, has_g187, read_g_words, GWords};
 use super::moves::move_block;
 use super::non_modal::non_modal_move;
 use super::program::{err, Ctx, Modal, Warning, MAX_PLAUSIBLE_FEED};
@@ -42,7 +42,7 @@ pub(super) fn length_scale(st: &Modal) -> f64 {
 pub(super) fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcError> {
     reject_extruder(b)?;
     let gw = read_g_words(b, st, cx.warnings)?;
-    read_m_words(b, st)?;
+    read_m_words(b, st);
     let scale = length_scale(st);
     if let Some((w, g)) = gw.cutter {
         cutter_word(b, st, cx, w, g)?;
@@ -90,10 +90,11 @@ pub(super) fn axis_words<'a>(b: &'a Block, cx: &Ctx) -> Vec<&'a Word> {
         .collect()
 }
 
-/// An `E` word stops the program: it drives a 3D printer's extruder.
+/// An `E` word stops the program: it drives a 3D printer's extruder
+/// (except on a Haas G187 block, where it is the corner tolerance).
 fn reject_extruder(b: &Block) -> Result<(), NcError> {
     match b.word('E') {
-        Some(e) => Err(err(
+        Some(e) if !has_g187(b) => Err(err(
             b,
             e,
             format!(
@@ -101,26 +102,19 @@ fn reject_extruder(b: &Block) -> Result<(), NcError> {
                 e.text
             ),
         )),
-        None => Ok(()),
+        _ => Ok(()),
     }
 }
 
-/// M2/M30 end the program; M97 (a local call by N number) is refused.
-fn read_m_words(b: &Block, st: &mut Modal) -> Result<(), NcError> {
-    for w in b.words.iter().filter(|w| w.letter == 'M') {
-        match code10(w) {
-            20 | 300 => st.ended = true,
-            970 => {
-                return Err(err(
-                    b,
-                    w,
-                    "M97 (local subprogram call by N number) is not supported yet; use M98 with an O-numbered subprogram",
-                ))
-            }
-            _ => {}
-        }
+/// M2/M30 end the program (the calls and returns M97, M98, M99 are run
+/// after the block, [`super::run`]).
+fn read_m_words(b: &Block, st: &mut Modal) {
+    if b.words
+        .iter()
+        .any(|w| w.letter == 'M' && matches!(code10(w), 20 | 300))
+    {
+        st.ended = true;
     }
-    Ok(())
 }
 
 /// Reads the F word into `st` and warns about every word the motion model
@@ -132,7 +126,10 @@ fn read_other_words(
     warnings: &mut Vec<Warning>,
 ) -> Result<(), NcError> {
     let g10 = gw.is_g10();
-    let m98 = b.words.iter().any(|w| w.letter == 'M' && w.value == 98.0);
+    let call = b
+        .words
+        .iter()
+        .any(|w| w.letter == 'M' && matches!(code10(w), 970 | 980 | 990));
     for w in &b.words {
         let ignored = match w.letter {
             'F' => {
@@ -143,8 +140,10 @@ fn read_other_words(
             'C' => continue,
             'P' | 'U' if gw.dwell.is_some() => continue,
             'L' | 'P' if g10 => continue,
-            'P' | 'L' if m98 => continue,
-            'M' if matches!(code10(w), 20 | 300 | 980 | 990) => continue,
+            'P' | 'L' if call => continue,
+            'P' if gw.setting.is_some() => continue,
+            'E' if gw.setting == Some(1870) => continue,
+            'M' if matches!(code10(w), 20 | 300 | 970 | 980 | 990) => continue,
             'L' | 'P' | 'Q' if st.cycle.is_some() || gw.cycle.is_some() => continue,
             'D' if gw.cutter.is_some_and(|(_, g)| g != 400) => continue,
             'M' | 'S' | 'T' | 'H' | 'D' => format!(

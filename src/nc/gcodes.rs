@@ -33,6 +33,9 @@ pub(super) struct GWords<'a> {
     /// The coordinate-rotation code (G68, G69) and its code ×10
     /// ([`super::rotation`]).
     pub rotation: Option<(&'a Word, i64)>,
+    /// A Haas machining-setting code (G187 smoothness, G103 look-ahead),
+    /// ×10: its `P` (and G187's `E`) words are its own, not ignored words.
+    pub setting: Option<i64>,
 }
 
 impl GWords<'_> {
@@ -170,6 +173,11 @@ fn grouped_or_other<'a>(
             "coordinate-rotation codes",
             "; expected G68 or G69",
         ),
+        1870 | 1030 => {
+            gw.setting = Some(g);
+            warnings.push(Warning::at(b.line, w.column, setting_message(b, w, g)));
+            Ok(())
+        }
         _ => {
             if let Some(e) = refused(b, w, g) {
                 return Err(e);
@@ -180,6 +188,38 @@ fn grouped_or_other<'a>(
             Ok(())
         }
     }
+}
+
+/// True when block `b` holds Haas G187 (its `E` word is a corner
+/// tolerance, not an extruder).
+pub(super) fn has_g187(b: &Block) -> bool {
+    b.words.iter().any(|w| w.letter == 'G' && code10(w) == 1870)
+}
+
+/// The warning for Haas G187 (smoothness/accuracy: `P1` rough, `P2`
+/// medium, `P3` finish, `E` corner tolerance) and G103 (block look-ahead
+/// limit `P`, 0–15): the control's path smoothing and look-ahead are not
+/// modelled, so the simulated acc/dec (tA, T) does not change.
+fn setting_message(b: &Block, w: &Word, g: i64) -> String {
+    let words: Vec<String> = ['P', 'E']
+        .iter()
+        .filter_map(|&c| b.word(c).filter(|_| c == 'P' || g == 1870))
+        .map(|x| format!("{}{}", x.letter, x.text))
+        .collect();
+    let what = if g == 1870 {
+        "Haas smoothness/accuracy setting"
+    } else {
+        "Haas block look-ahead limit"
+    };
+    let with = if words.is_empty() {
+        String::new()
+    } else {
+        format!(" {}", words.join(" "))
+    };
+    format!(
+        "G{}{with} ({what}) is not modelled: the simulated acc/dec and servo lag do not change",
+        w.text
+    )
 }
 
 /// The error for a code that is not simulated and would change the path:

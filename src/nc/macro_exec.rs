@@ -9,8 +9,9 @@
 //! `#3006` message stop), and the LinuxCNC G-code reference, "O Codes".
 //!
 //! Readings chosen:
-//! - `GOTO n` looks for `N n` in the same program (between `O` headers)
-//!   as the GOTO; a missing target is an error.
+//! - `GOTO n` looks for `N n` in the same program (between `O` headers,
+//!   or from the start of a file; [`super::sequence`]) as the GOTO; a
+//!   missing target is an error.
 //! - Structure (WHILE/END, o-word pairs) is checked before the run; an
 //!   unmatched or crossed pair is an error at its line.
 //! - A vacant word value (`X#24` with #24 vacant) drops the word, as on a
@@ -29,6 +30,7 @@ use super::macro_expr::{eval, key, Expr, VarKey, Vars};
 use super::macro_line::{Assign, MWord, OKw, OLabel, Stmt};
 use super::macro_vars::Variables;
 use super::program::{Modal, Warning};
+use super::sequence::Sequences;
 use super::{Block, NcError, NcErrors, Word};
 
 pub use crate::budget::MAX_LOOP_ITERATIONS;
@@ -75,10 +77,8 @@ struct Index {
     enclosing: HashMap<usize, usize>,
     /// o-label → its `sub` block.
     subs: HashMap<OLabel, usize>,
-    /// N number → blocks (for GOTO).
-    seq: HashMap<i64, Vec<usize>>,
-    /// Program region (index of the last `O` header) of each block.
-    region: Vec<usize>,
+    /// N numbers and program regions (for GOTO).
+    seq: Sequences,
 }
 
 /// A running macro program.
@@ -347,15 +347,7 @@ impl Macros {
             .value(b, target, col)?
             .ok_or_else(|| NcError::new(b.line, col, "GOTO to a vacant sequence number"))?;
         let r = n.round();
-        let found = self
-            .idx
-            .seq
-            .get(&(r as i64))
-            .and_then(|v| {
-                v.iter()
-                    .find(|&&i| self.idx.region[i] == self.idx.region[bi])
-            })
-            .copied();
+        let found = self.idx.seq.first_in_region(r as i64, bi);
         let Some(t) = found.filter(|_| (n - r).abs() < 1e-6) else {
             return Err(self.error(b, col, format!("GOTO {}: no block N{} in this program; expected a sequence number of a block in the same O-program", number_text(n), number_text(r))));
         };
@@ -698,15 +690,8 @@ fn index(blocks: &[Block]) -> Result<Index, NcErrors> {
         truncated: false,
     };
     let mut stack: Vec<Open> = Vec::new();
-    let mut region = 0;
+    idx.seq = Sequences::new(blocks);
     for (i, b) in blocks.iter().enumerate() {
-        if b.words.first().is_some_and(|w| w.letter == 'O') || b.program_name.is_some() {
-            region = i;
-        }
-        idx.region.push(region);
-        if let Some(n) = b.word('N') {
-            idx.seq.entry(n.value.round() as i64).or_default().push(i);
-        }
         let Some(m) = &b.macro_line else { continue };
         let r = match &m.stmt {
             Stmt::While(_, id, _) => {

@@ -34,6 +34,7 @@ pub mod program;
 pub mod rotation;
 mod run;
 pub mod segment;
+pub mod sequence;
 pub mod summary;
 pub mod writer;
 

@@ -453,7 +453,9 @@ fn line_numbers(program: &Program, lines: usize) -> Option<Vec<Option<(u64, usiz
 /// Gives the new lines of a program that numbers its blocks an N number
 /// of their own: a run of new lines between the source lines numbered `a`
 /// and `b` gets `a + 1`, `a + 2`, … (the width of a zero-padded `a`) when
-/// they fit below `b`, so no number repeats and the order is kept; a run
+/// they fit below `b` and no block of the program already carries one of
+/// them (an `M97 P`, `M99 P` or `GOTO` finds its block by the number, so
+/// it must stay unique), so no number repeats and the order is kept; a run
 /// that does not fit, or comes before the first numbered line, stays
 /// without N numbers (an N number is optional on every control).
 fn number_new_lines(
@@ -465,30 +467,39 @@ fn number_new_lines(
     let Some(n_of) = line_numbers(program, before.len()) else {
         return;
     };
+    let used: std::collections::HashSet<u64> = program
+        .blocks
+        .iter()
+        .filter_map(|b| b.word('N'))
+        .filter(|w| w.value >= 0.0 && w.value.fract() == 0.0)
+        .map(|w| w.value as u64)
+        .collect();
     let mut prev: Option<(u64, usize)> = None;
     let mut run: Vec<(bool, usize, usize)> = Vec::new();
     for (i, n) in n_of.iter().enumerate() {
         run.extend((0..before[i].len()).map(|j| (false, i, j)));
         if let Some(n) = *n {
-            number_run(d, &mut run, prev, Some(n.0), before, after);
+            number_run(d, &mut run, (prev, Some(n.0)), &used, before, after);
             prev = Some(n);
         }
         run.extend((0..after[i].len()).map(|j| (true, i, j)));
     }
-    number_run(d, &mut run, prev, None, before, after);
+    number_run(d, &mut run, (prev, None), &used, before, after);
 }
 
 /// Numbers one run of new lines (see [`number_new_lines`]) and empties it.
 fn number_run(
     d: &Dialect,
     run: &mut Vec<(bool, usize, usize)>,
-    prev: Option<(u64, usize)>,
-    next: Option<u64>,
+    (prev, next): (Option<(u64, usize)>, Option<u64>),
+    used: &std::collections::HashSet<u64>,
     before: &mut [Vec<String>],
     after: &mut [Vec<String>],
 ) {
     if let Some((a, width)) = prev {
-        if next.unwrap_or(u64::MAX).saturating_sub(a) > run.len() as u64 {
+        let n = run.len() as u64;
+        let free = (1..=n).all(|k| !used.contains(&a.saturating_add(k)));
+        if next.unwrap_or(u64::MAX).saturating_sub(a) > n && free {
             for (k, &(is_after, i, j)) in run.iter().enumerate() {
                 let line = if is_after {
                     &mut after[i][j]

@@ -21,8 +21,17 @@
 //! - canned cycles G73, G74, G76, G81–G86, G89 expanded into motion
 //!   ([`super::cycles`]); Fanuc corner `,R`/`,C` ([`super::corner`]);
 //!   subprograms `M98 P… (L…/K…)` to an `O…` block of the same text ended by
-//!   `M99`, nested up to [`MAX_NESTING`] levels, every segment of a body
-//!   `fixed`; M2/M30 end the main program.
+//!   `M99`, and Haas local subprograms `M97 P… (L…/K…)` to the block
+//!   numbered `N…` of the calling O-program (usually after M30), nested in
+//!   each other up to [`MAX_NESTING`] levels, every segment of a body
+//!   `fixed`; `M99 P…` returns to the block numbered `N…` of the calling
+//!   program (in the main program: a forward jump, or, backwards, warned
+//!   and the run ends as for a plain M99; see `run.rs`); M2/M30 end the
+//!   main program.
+//! - Haas G187 (smoothness/accuracy, `P1`–`P3`, `E` corner tolerance) and
+//!   G103 (look-ahead limit, `P`): one warning each that they are not
+//!   modelled (the simulated acc/dec does not change); their words are
+//!   theirs.
 //! - G90.1/G91.1 arc-centre modes; G92 (and G92.1/G92.2) coordinate shift,
 //!   kept as an offset so the path stays continuous; G10 data setting (no
 //!   motion); G28/G30 (the rapid to the intermediate point is simulated, the
@@ -46,16 +55,17 @@
 //! tool-centre path ([`super::cutter`], [`super::cutter_path`]); without
 //! one the simulated path is the programmed path, and one warning per
 //! stretch says so. G43 length compensation is ignored (warned). What is not simulated and would change the path is a
-//! located error: G33/G33.1 threading, G84.x, G87/G88, G93/G95 feeds, M97,
-//! G65/G66 macro calls, macro `#` variables and `[ ]` expressions, LinuxCNC
-//! o-words and polar words, the G68 cases above and G68.1–G68.4 (3D
-//! coordinate conversion); an `E` word stops the program as "this looks
-//! like a 3D-printer program". Every error of a program is collected
+//! located error: G33/G33.1 threading, G84.x, G87/G88, G93/G95 feeds,
+//! G66 modal macro calls, splines, LinuxCNC polar words, the G68 cases
+//! above and G68.1–G68.4 (3D coordinate conversion); an `E` word (not on a
+//! G187 block) stops the program as "this looks like a 3D-printer
+//! program". (G65 macro calls, macro `#` variables and `[ ]` expressions
+//! and LinuxCNC o-words run in [`super::macro_exec`].) Every error of a program is collected
 //! ([`parse_all`]). Arc radius consistency: the end radius must match the
 //! start radius within 0.005 mm + 1e-5·R; the arc radius is their mean.
 //!
 //! Where the parts live (files under `src/nc/`): the run over the blocks,
-//! calls and returns in `run.rs`; one block's passes in `block.rs`, its G
+//! calls and returns in `run.rs` (sequence numbers in `sequence.rs`); one block's passes in `block.rs`, its G
 //! codes by group in `gcodes.rs`, its move in `moves.rs`, G28/G30/G53/G92
 //! in `non_modal.rs`, G68/G69 in `rotation.rs`; canned cycles in
 //! [`super::cycles`].

@@ -2,22 +2,47 @@
 //! order): the program counter; the program end (M2/M30, the end of the
 //! main file) and the blocks after it; block delete; the executed-block
 //! budget; macro steps (Fanuc Macro B, LinuxCNC o-words, G65 calls with
-//! their own local variables); subprogram calls `M98 P… (L…/K…)` and
-//! returns `M99` with repeat counts and nesting up to
-//! [`super::program::MAX_NESTING`] levels. After the last block it gives
+//! their own local variables); subprogram calls and returns with repeat
+//! counts and nesting up to [`super::program::MAX_NESTING`] levels. After
+//! the last block it gives
 //! every block its modal state, marks the segments of blocks run more than
 //! once `fixed`, applies the Fanuc corners ([`super::corner`]) and then
 //! the cutter-compensation offsets ([`super::cutter_path`], each segment
 //! tagged with the G41/G42 stretch in force after its block). The
 //! readings are those of the interpreter's header ([`super::program`]).
+//!
+//! Calls and returns (one machinery for both call targets, [`Target`]):
+//! - `M98 P… (L…/K…)` calls the `O` program P (Fanuc: a P of more than
+//!   four digits holds the repeat count before the program number);
+//! - `M97 P… (L…/K…)` (Haas) calls the block numbered N P of the calling
+//!   O-program, its "local subprogram" (usually after M30), which runs
+//!   until M99; the repeat count, the budgets and the nesting limit are
+//!   those of M98, and the two nest inside each other;
+//! - `M99` repeats the called body while repeats are left, then returns to
+//!   the block after the call;
+//! - `M99 P n` in a called body returns, after the last repeat, to the
+//!   block numbered N n of the calling program instead (Fanuc's operator's
+//!   manual, "Subprogram call": control returns to the block with the
+//!   sequence number P, not to the block after the call). The manual does
+//!   not give the search order; the reading here is Fanuc's forward
+//!   sequence-number search: from the block after the call to the end of
+//!   the calling O-program, then from its start. A missing N is an error
+//!   at the P word, and the run returns to the block after the call;
+//! - `M99` in the main program restarts it endlessly on a control: warned
+//!   and simulated once (the run ends there). `M99 P n` in the main program
+//!   jumps to N n: forwards (N n after the M99) the run goes on there;
+//!   backwards (N n at or before the M99) it would repeat endlessly, so it
+//!   is warned about and the run ends, as for a plain M99.
 
 use std::collections::HashMap;
 
 use super::block::interpret_block;
+use super::gcodes::code10;
 use super::macro_exec::{has_macros, Macros, Step};
 use super::program::{
     err, Corner, Ctx, CutterStretch, Modal, ParseOptions, Program, Segment, Warning, MAX_NESTING,
 };
+use super::sequence::Sequences;
 use super::{Block, NcError, NcErrors, Word};
 
 /// The state of one run over a program's blocks.
@@ -36,6 +61,8 @@ pub(super) struct Run<'a> {
     after_end_warned: bool,
     /// O-number → index of its `O` block.
     subs: HashMap<u32, usize>,
+    /// N numbers and program regions (M97 targets, M99 P returns).
+    seqs: Sequences,
     /// Active subprogram and macro calls, innermost last.
     stack: Vec<Frame>,
     /// Blocks executed so far (repeats counted).
@@ -52,16 +79,35 @@ pub(super) struct Run<'a> {
     tags: Vec<Option<usize>>,
 }
 
+/// What a call runs: an `O` program (M98, G65) or the block numbered N…
+/// of the calling program (Haas M97).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Target {
+    /// The program `O` number.
+    Program(u32),
+    /// The local subprogram starting at block `N` number.
+    Sequence(u32),
+}
+
+impl std::fmt::Display for Target {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Target::Program(n) => write!(f, "subprogram O{n}"),
+            Target::Sequence(n) => write!(f, "local subprogram N{n} (M97)"),
+        }
+    }
+}
+
 /// An active subprogram or macro call.
 struct Frame {
     /// Index of the block to return to.
     ret: usize,
-    /// Index of the called program's `O` block.
+    /// Index of the called body's first block (its `O` or `N` block).
     start: usize,
     /// Runs of the called program still to go, this one included.
     left: u32,
-    /// The called program's O number.
-    number: u32,
+    /// What was called.
+    target: Target,
     /// A G65 call: its own local variables, dropped at M99.
     locals: bool,
 }
@@ -98,6 +144,7 @@ impl<'a> Run<'a> {
             modal: vec![None; blocks.len()],
             after_end_warned: false,
             subs: subprogram_index(blocks),
+            seqs: Sequences::new(blocks),
             stack: Vec::new(),
             executed: 0,
             pc: 0,
@@ -162,7 +209,7 @@ impl<'a> Run<'a> {
             return false;
         }
         self.modal[bi] = Some(self.st);
-        self.call_or_return(b);
+        self.call_or_return(b, bi);
         if self.st.ended {
             self.stack.clear();
         }
@@ -170,9 +217,9 @@ impl<'a> Run<'a> {
     }
 
     /// A block after M2/M30: not run; the first non-empty one (other than
-    /// a program number or `%`) is warned about.
+    /// a program number, `%` or a block an M97 call ran) is warned about.
     fn after_end(&mut self, b: &Block, bi: usize) {
-        if !self.after_end_warned && !b.is_empty() && !b.percent {
+        if !self.after_end_warned && !b.is_empty() && !b.percent && self.runs[bi] == 0 {
             self.after_end_warned = true;
             if b.word('O').is_none() && b.program_name.is_none() {
                 self.warnings.push(Warning::at(
@@ -196,7 +243,7 @@ impl<'a> Run<'a> {
                 b.line,
                 1,
                 format!(
-                    "more than {budget} blocks executed: the subprogram calls, repeats or loops look endless; check the M98 repeat counts, the M99 returns and the loop conditions"
+                    "more than {budget} blocks executed: the subprogram calls, repeats or loops look endless; check the M97/M98 repeat counts, the M99 returns and the loop conditions"
                 ),
             ));
         }
@@ -209,8 +256,8 @@ impl<'a> Run<'a> {
                 b,
                 o,
                 format!(
-                    "subprogram O{} reaches the next program O{} without an M99; expected M99 at the end of each subprogram",
-                    f.number, o.text
+                    "{} reaches the next program O{} without an M99; expected M99 at the end of each subprogram",
+                    f.target, o.text
                 ),
             )
         })
@@ -264,7 +311,7 @@ impl<'a> Run<'a> {
                 b.line,
                 1,
                 format!(
-                    "more than {budget} segments: the canned-cycle holes and pecks, subprogram calls or loops make too many moves; check the K/L hole counts, the Q peck depths, the M98 repeat counts and the loop conditions"
+                    "more than {budget} segments: the canned-cycle holes and pecks, subprogram calls or loops make too many moves; check the K/L hole counts, the Q peck depths, the M97/M98 repeat counts and the loop conditions"
                 ),
             ));
             return false;
@@ -277,18 +324,19 @@ impl<'a> Run<'a> {
         true
     }
 
-    /// M98 calls a subprogram, M99 returns from one (or repeats it).
-    fn call_or_return(&mut self, b: &Block) {
-        let m = |v: f64| b.words.iter().find(|w| w.letter == 'M' && w.value == v);
-        if let Some(w) = m(98.0) {
-            match call(b, w, &self.subs, self.stack.len()) {
-                Ok((start, number, times)) => {
+    /// M98 (an `O` program) and M97 (an N block) call a subprogram, M99
+    /// returns from one (or repeats it); `bi` is the block's index.
+    fn call_or_return(&mut self, b: &Block, bi: usize) {
+        let m = |v: i64| b.words.iter().find(|w| w.letter == 'M' && code10(w) == v);
+        if let Some(w) = m(980).or_else(|| m(970)) {
+            match call(b, bi, w, &self.subs, &self.seqs, self.stack.len()) {
+                Ok((start, target, times)) => {
                     if times > 0 {
                         self.stack.push(Frame {
                             ret: self.pc,
                             start,
                             left: times,
-                            number,
+                            target,
                             locals: false,
                         });
                         self.pc = start;
@@ -296,40 +344,78 @@ impl<'a> Run<'a> {
                 }
                 Err(e) => self.errors.push(e),
             }
-        } else if let Some(w) = m(99.0) {
-            self.m99(b, w);
+        } else if let Some(w) = m(990) {
+            self.m99(b, bi, w);
         }
     }
 
-    /// M99: the next repeat of the subprogram, or the return to the caller
-    /// (a G65 call's locals dropped); in the main program it ends the run.
-    fn m99(&mut self, b: &Block, w: &Word) {
-        if b.word('P').is_some() {
-            self.errors.push(err(
-                b,
-                w,
-                "M99 P (return to a sequence number) is not supported yet",
-            ));
-        } else if let Some(f) = self.stack.last_mut() {
-            if f.left > 1 {
-                f.left -= 1;
-                self.pc = f.start;
-            } else {
-                self.pc = f.ret;
-                if f.locals {
-                    if let Some(m) = self.mac.as_mut() {
-                        m.vars.pop_level();
-                    }
+    /// M99 (`P n`: to the block numbered N n, see the module header; a
+    /// bad P is an error and the M99 acts as a plain one): the next repeat
+    /// of the subprogram, or the return to the caller (a G65 call's locals
+    /// dropped); in the main program it ends the run or jumps forwards.
+    fn m99(&mut self, b: &Block, bi: usize, w: &Word) {
+        let n = b
+            .word('P')
+            .and_then(|p| match sequence_number(b, p, "M99") {
+                Ok(n) => Some((p, n)),
+                Err(e) => {
+                    self.errors.push(e);
+                    None
                 }
-                self.stack.pop();
+            });
+        let Some(f) = self.stack.last_mut() else {
+            return self.m99_main(b, bi, w, n);
+        };
+        if f.left > 1 {
+            f.left -= 1;
+            self.pc = f.start;
+            return;
+        }
+        let (ret, locals) = (f.ret, f.locals);
+        self.stack.pop();
+        if locals {
+            if let Some(m) = self.mac.as_mut() {
+                m.vars.pop_level();
             }
-        } else {
+        }
+        self.pc = ret;
+        if let Some((p, n)) = n {
+            let caller = ret.saturating_sub(1);
+            match self.seqs.forward_in_region(i64::from(n), caller, ret) {
+                Some(t) => self.pc = t,
+                None => self
+                    .errors
+                    .push(missing_sequence(b, p, n, "M99", "the calling program")),
+            }
+        }
+    }
+
+    /// M99 in the main program: `P n` jumps forwards to N n; a plain M99,
+    /// or a jump back, repeats the program endlessly on the control, so it
+    /// is warned about and the run ends.
+    fn m99_main(&mut self, b: &Block, bi: usize, w: &Word, n: Option<(&Word, u32)>) {
+        let Some((p, n)) = n else {
             self.warnings.push(Warning::at(
                 b.line,
                 w.column,
                 "M99 in the main program repeats it endlessly on the control; it is simulated once",
             ));
             self.st.ended = true;
+            return;
+        };
+        match self.seqs.forward_in_region(i64::from(n), bi, bi + 1) {
+            Some(t) if t > bi => self.pc = t,
+            Some(_) => {
+                self.warnings.push(Warning::at(
+                    b.line,
+                    p.column,
+                    format!("M99 P{}: in the main program it jumps back to N{n} and repeats from there endlessly on the control; it is simulated once (the run ends here)", p.text),
+                ));
+                self.st.ended = true;
+            }
+            None => self
+                .errors
+                .push(missing_sequence(b, p, n, "M99", "this program")),
         }
     }
 
@@ -358,7 +444,7 @@ impl<'a> Run<'a> {
             errors.push(NcError::new(
                 blocks.last().map_or(1, |b| b.line),
                 1,
-                format!("subprogram O{} ends without M99", f.number),
+                format!("{} ends without M99", f.target),
             ));
         }
         let mut last = Modal {
@@ -423,8 +509,8 @@ fn left_file(
             blocks[f.start].line,
             1,
             format!(
-                "subprogram O{} runs to the end of its file without M99; expected M99 at its end",
-                f.number
+                "{} runs to the end of its file without M99; expected M99 at its end",
+                f.target
             ),
         ))),
         None if b.file != 0 && mac.is_none_or(|m| m.depth() == 0) => Some(None),
@@ -449,7 +535,7 @@ pub(super) fn needs_macros(blocks: &[Block]) -> bool {
 fn macro_flow(
     r: Result<Step, NcError>,
     m: &mut Macros,
-    subs: &std::collections::HashMap<u32, usize>,
+    subs: &HashMap<u32, usize>,
     stack: &mut Vec<Frame>,
     pc: &mut usize,
     errors: &mut NcErrors,
@@ -494,7 +580,7 @@ fn macro_flow(
         ret: *pc,
         start,
         left: times,
-        number,
+        target: Target::Program(number),
         locals: true,
     });
     *pc = start;
@@ -502,8 +588,8 @@ fn macro_flow(
 }
 
 /// O-number → index of its `O` block.
-fn subprogram_index(blocks: &[Block]) -> std::collections::HashMap<u32, usize> {
-    let mut m = std::collections::HashMap::new();
+fn subprogram_index(blocks: &[Block]) -> HashMap<u32, usize> {
+    let mut m = HashMap::new();
     for (i, b) in blocks.iter().enumerate() {
         if let Some(o) = b.words.first().filter(|w| w.letter == 'O') {
             if o.value >= 0.0 && o.value.fract() == 0.0 {
@@ -514,34 +600,37 @@ fn subprogram_index(blocks: &[Block]) -> std::collections::HashMap<u32, usize> {
     m
 }
 
-/// The target of `M98 P… (L…/K…)`: Fanuc `P` with more than four digits
-/// holds the repeat count before the four-digit program number
-/// (`P30010` = O0010 three times); `L` or `K` gives the count otherwise.
+/// The target of `M98 P… (L…/K…)` or `M97 P… (L…/K…)` (block `bi`, call
+/// word `m`): its first block, what it is and how often it runs. M98:
+/// Fanuc `P` with more than four digits holds the repeat count before the
+/// four-digit program number (`P30010` = O0010 three times). M97: `P` is
+/// the sequence number of a block of the calling O-program. `L` or `K`
+/// gives the count otherwise.
 fn call(
     b: &Block,
-    m98: &Word,
-    subs: &std::collections::HashMap<u32, usize>,
+    bi: usize,
+    m: &Word,
+    subs: &HashMap<u32, usize>,
+    seqs: &Sequences,
     depth: usize,
-) -> Result<(usize, u32, u32), NcError> {
-    let Some(p) = b.word('P') else {
-        return Err(err(b, m98, "M98 without P; expected M98 P<program number>"));
+) -> Result<(usize, Target, u32), NcError> {
+    let local = code10(m) == 970;
+    let (name, what) = if local {
+        ("M97", "sequence number")
+    } else {
+        ("M98", "program number")
     };
-    if p.value < 0.0 || p.value.fract() != 0.0 {
+    let Some(p) = b.word('P') else {
         return Err(err(
             b,
-            p,
-            format!("M98 P{}: expected a whole program number", p.text),
+            m,
+            format!("{name} without P; expected {name} P<{what}>"),
         ));
-    }
-    let digits = p.text.trim_start_matches('+');
-    let (mut times, number) = if digits.len() > 4 {
-        let (rep, num) = digits.split_at(digits.len() - 4);
-        (
-            rep.parse::<u32>().unwrap_or(1).max(1),
-            num.parse::<u32>().unwrap_or(0),
-        )
+    };
+    let (mut times, target) = if local {
+        (1, Target::Sequence(sequence_number(b, p, name)?))
     } else {
-        (1, p.value as u32)
+        program_number(b, p)?
     };
     if let Some(l) = b.word('L').or(b.word('K')) {
         if l.value < 0.0 || l.value.fract() != 0.0 || l.value > 9999.0 {
@@ -559,19 +648,80 @@ fn call(
     if depth >= MAX_NESTING {
         return Err(err(
             b,
-            m98,
+            m,
             format!("subprogram nesting deeper than {MAX_NESTING} levels"),
         ));
     }
-    let start = subs.get(&number).copied().ok_or_else(|| {
-        err(
+    let start = match target {
+        Target::Program(n) => subs.get(&n).copied().ok_or_else(|| {
+            err(
+                b,
+                p,
+                format!(
+                    "M98 P{}: subprogram O{n:04} is not in this program; paste the subprogram (O{n:04} … M99) after M30, or drop its file together with the program",
+                    p.text
+                ),
+            )
+        }),
+        Target::Sequence(n) => seqs
+            .first_in_region(i64::from(n), bi)
+            .ok_or_else(|| missing_sequence(b, p, n, "M97", "this program")),
+    }?;
+    Ok((start, target, times))
+}
+
+/// The program and repeat count of M98 `p` (see [`call`]).
+fn program_number(b: &Block, p: &Word) -> Result<(u32, Target), NcError> {
+    if p.value < 0.0 || p.value.fract() != 0.0 {
+        return Err(err(
+            b,
+            p,
+            format!("M98 P{}: expected a whole program number", p.text),
+        ));
+    }
+    let digits = p.text.trim_start_matches('+');
+    Ok(if digits.len() > 4 {
+        let (rep, num) = digits.split_at(digits.len() - 4);
+        (
+            rep.parse::<u32>().unwrap_or(1).max(1),
+            Target::Program(num.parse::<u32>().unwrap_or(0)),
+        )
+    } else {
+        (1, Target::Program(p.value as u32))
+    })
+}
+
+/// Largest sequence number (N) accepted in an M97 or M99 `P` word (Haas
+/// allows N99999, Fanuc N99999 or N99999999 by option).
+const MAX_SEQUENCE: f64 = 99_999_999.0;
+
+/// The sequence number of `name`'s (M97, M99) `P` word: whole, from 0 to
+/// [`MAX_SEQUENCE`].
+fn sequence_number(b: &Block, p: &Word, name: &str) -> Result<u32, NcError> {
+    if p.value < 0.0 || p.value.fract() != 0.0 || p.value > MAX_SEQUENCE {
+        return Err(err(
             b,
             p,
             format!(
-                "M98 P{}: subprogram O{number:04} is not in this program; paste the subprogram (O{number:04} … M99) after M30, or drop its file together with the program",
+                "{name} P{}: expected a whole sequence number (the N number of a block) from 0 to 99999999",
                 p.text
             ),
-        )
-    })?;
-    Ok((start, number, times))
+        ));
+    }
+    Ok(p.value as u32)
+}
+
+/// The error for `name`'s (M97, M99) `P` word naming a sequence number
+/// N `n` that `whose` (this program, the calling program) does not have.
+fn missing_sequence(b: &Block, p: &Word, n: u32, name: &str, whose: &str) -> NcError {
+    let hint = if name == "M97" {
+        format!("a local subprogram starts at a block numbered N{n} in the same O-program as the M97 (usually after M30) and ends with M99; add that block or correct the P number")
+    } else {
+        format!("expected a block numbered N{n} in {whose} (the same O-program); add it or correct the P number")
+    };
+    err(
+        b,
+        p,
+        format!("{name} P{}: no block N{n} in {whose}; {hint}", p.text),
+    )
 }

@@ -444,11 +444,18 @@ fn dwell_word(program: &Program, orig: Option<&Word>, seconds: f64) -> Word {
     let whole = (ms - ms.round()).abs() < 1e-9;
     match program.options.dwell_p {
         DwellP::Seconds => word('P', fmt_feed(seconds)),
-        DwellP::Milliseconds if whole => word('P', format!("{}", ms.round() as i64)),
+        DwellP::Milliseconds if whole => word('P', whole_ms(ms)),
         DwellP::Milliseconds => word('P', fmt_feed(ms)),
-        DwellP::Auto if whole => word('P', format!("{}", ms.round() as i64)),
+        DwellP::Auto if whole => word('P', whole_ms(ms)),
         DwellP::Auto => word('P', fmt_feed(seconds)),
     }
+}
+
+/// A whole number of milliseconds without a decimal point, every digit
+/// written (an `i64` would saturate above 9.2e18 ms and change the dwell
+/// read back); `-0` is written `0`.
+fn whole_ms(ms: f64) -> String {
+    format!("{:.0}", ms.round() + 0.0)
 }
 
 fn insert_front(words: &mut Vec<Word>, w: Word) {

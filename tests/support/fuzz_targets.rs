@@ -435,7 +435,8 @@ pub fn targets() -> Vec<(&'static str, Target, Vec<String>)> {
 
 /// The repo's NC corpus (a window of each file's first 4 kB), the
 /// tool-path examples, a program with a subprogram called twice, an inch
-/// program and one with G68/G69 coordinate rotations.
+/// program, one with G68/G69 coordinate rotations and a Haas-style one
+/// (M97 local subprograms with repeats, M99 P, G187, G103).
 pub fn nc_seeds() -> Vec<String> {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/nc_corpus");
     let mut out: Vec<String> = std::fs::read_dir(dir)
@@ -454,6 +455,7 @@ pub fn nc_seeds() -> Vec<String> {
     out.push(mtmotion::toolpath::example::arc_example());
     out.push(mtmotion::toolpath::example::line_example());
     out.push("O100\nG90 G17 G21\nG0 X0 Y0\nG1 X10 F600\nG2 X20 Y0 R5\nG3 X10 Y0 I-5 J0\nG4 P500\nM98 P200 L2\nM30\nO200\nG91 G1 X1\nM99\n".into());
+    out.push("%\nO1234\nN10 G187 P1 E0.01\nN20 G103 P1\nN30 G0 X0 Y0\nN40 M97 P1000 L2\nN50 M98 P200\nN60 G1 X5 F600\nN70 M30\nN1000 G91 G1 X1 F500\nY1\nG90\nM99\nO200\nG91 G2 X0 Y0 I2 J0\nG90\nM99 P60\n%\n".into());
     out.push(
         "G20 G90 G17\nG0 X0 Y0\nG2 X0.5 Y0.5 R0.5 F20\nG3 X1.0 Y0 R-0.5\nG18 G2 X1.2 Z0.2 R0.2\n"
             .into(),
