@@ -499,3 +499,50 @@ fn servo_trace_magnitude_regressions() {
     let r = trace_analysis::analyze_trace(seed, &cond, &map).unwrap();
     assert!(r.summary.half_amplitude.is_finite() && r.summary.half_amplitude > 0.0);
 }
+
+/// The stable loop (`nc_write`, seeds 2024, 4242 and 31337): a program read
+/// as multi-axis only because of a `B0` on a G4 block (the flat writer
+/// does not write it back, so `G1 C1` became a chamfer), and inch numbers
+/// of 2e22 written in mm with more characters than an NC number has.
+#[test]
+fn writer_multi_axis_and_huge_number_regressions() {
+    use mtmotion::nc::program::parse;
+    let text = "O100\nG90 G17 G21\nG0 X0 Y0\nG1 X10 F600\nG4 P5b0\nM98 P200 L2\nM30\nO200\nG91 G1 C1\nM99\n";
+    fuzz_targets::nc_write_target(text).unwrap();
+    // a B word on a dwell says nothing of the machine: C1 is a chamfer
+    let e = parse(text).unwrap_err();
+    assert!(e.message.contains("C1"), "{e}");
+    // with a B axis moved somewhere, C is an axis
+    assert!(parse("G0 B0\nG1 C1 F100\n").is_ok());
+    for (text, line, what) in [
+        (
+            "G20 G17 G90\nG0 X19999999999999999999999 Y0 Z0\nM2\n",
+            2,
+            "end point X (mm) 5.08e23 is beyond ±1e9",
+        ),
+        (
+            "G21 G90\nG1 X1 F600\nY-1 F100099999999999999999999\n",
+            3,
+            "feed (mm/min) 1.001e23 is beyond ±1e9",
+        ),
+        (
+            "G21 G90\nG0 X0 Y0\nG2 X1 Y0 R100000000000000000000 F100\n",
+            3,
+            "arc centre (mm)",
+        ),
+    ] {
+        fuzz_targets::nc_write_target(text).unwrap();
+        let e = parse(text).unwrap_err();
+        assert_eq!(e.line, line, "{e}");
+        assert!(
+            e.message.starts_with(what) && e.message.contains("check the units"),
+            "{e}"
+        );
+    }
+    // seed 4242: a Fanuc corner R0.4322 at a near-reversal (a 173° arc)
+    // written as an R arc read back 0.2 µm further along; now written with I/J
+    let text = "G90 G17 G21\nG0 X201.3501 Y31.3929\nG1 X203.0498 Y29.9465 F600\nN690 G1 X204.6894 Y2R.4322\nN700 G1 X206.2694 Y26.8558\nG1 X207.9896 Y25.0172\n";
+    fuzz_targets::nc_write_target(text).unwrap();
+    // a long but real path is still read
+    assert!(parse("G21 G91 G1 X999999 F600\nX999999\n").is_ok());
+}

@@ -367,13 +367,19 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
 }
 
 /// True when the program is evidently multi-axis, so C is a rotary axis
-/// even without [`ParseOptions::c_axis`]: an A or B word anywhere, or a C
+/// even without [`ParseOptions::c_axis`]: an A or B word on any block but
+/// a G4 dwell, or a C
 /// word in a block with G0, G2 or G3 or with an A/B word. (A 3-axis Fanuc
 /// program writes C only on G01 blocks, as a chamfer.)
 fn multi_axis(blocks: &[Block]) -> bool {
+    let dwell = |b: &Block| {
+        b.words_of('G')
+            .any(|g| (g.value * 10.0).round() as i64 == 40)
+    };
     blocks.iter().any(|b| {
-        b.word('A').is_some()
-            || b.word('B').is_some()
+        // an A/B word on a G4 block moves nothing (it is warned about and
+        // not written back), so it says nothing about the machine
+        (!dwell(b) && (b.word('A').is_some() || b.word('B').is_some()))
             || (b.word('C').is_some()
                 && b.words_of('G')
                     .any(|g| matches!((g.value * 10.0).round() as i64, 0 | 20 | 30)))

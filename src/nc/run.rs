@@ -305,6 +305,17 @@ impl<'a> Run<'a> {
                 return false;
             }
         }
+        if let Some(why) = self.segments[before..]
+            .iter()
+            .find_map(|s| s.out_of_range())
+        {
+            self.errors.push(NcError::new(
+                b.line,
+                1,
+                format!("{why}: no machine moves there; check the units (G20/G21), the numbers and G91 increments"),
+            ));
+            return false;
+        }
         let budget = self.opt.segment_budget();
         if self.segments.len() > budget {
             self.errors.push(NcError::new(

@@ -246,3 +246,45 @@ impl Segment {
 pub fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
+
+/// Largest |coordinate| of a segment's poses and arc centre: 1e9 mm for
+/// X/Y/Z (1,000 km), 1e9° for A/B/C (2.8 million turns). Beyond it a
+/// position is no machine's, and written back in mm it needs more
+/// characters than an NC number has (an inch X of 2e22 was 5e23 mm).
+pub const MAX_COORDINATE: f64 = 1e9;
+
+/// Largest feed, mm/min (1,000 km/min): far above the implausible-feed
+/// warning, the limit of what is still a number to write.
+pub const MAX_FEED: f64 = 1e9;
+
+impl Segment {
+    /// The first of the segment's numbers beyond [`MAX_COORDINATE`] or
+    /// [`MAX_FEED`], said in words ("end point X 5.08e23 mm is beyond
+    /// ±1e9"), or `None`.
+    pub fn out_of_range(&self) -> Option<String> {
+        let mut numbers: Vec<(String, f64, f64)> = Vec::with_capacity(16);
+        for (pose, which) in [(&self.start, "start"), (&self.end, "end point")] {
+            for (i, letter) in AXES.iter().enumerate() {
+                let unit = if i < 3 { "mm" } else { "°" };
+                let what = format!("{which} {letter} ({unit})");
+                numbers.push((what, pose.get(i), MAX_COORDINATE));
+            }
+        }
+        if let Motion::Arc(a) = &self.motion {
+            for c in a.center {
+                numbers.push(("arc centre (mm)".into(), c, MAX_COORDINATE));
+            }
+        }
+        numbers.push(("feed (mm/min)".into(), self.feed, MAX_FEED));
+        numbers
+            .into_iter()
+            .find(|(_, v, limit)| !(v.abs() <= *limit))
+            .map(|(what, v, limit)| {
+                format!(
+                    "{what} {} is beyond ±{}",
+                    crate::numeric::compact(v),
+                    crate::numeric::compact(limit)
+                )
+            })
+    }
+}
