@@ -278,7 +278,7 @@ impl Segment {
         numbers.push(("feed (mm/min)".into(), self.feed, MAX_FEED));
         numbers
             .into_iter()
-            .find(|(_, v, limit)| !(v.abs() <= *limit))
+            .find(|(_, v, limit)| v.is_nan() || v.abs() > *limit)
             .map(|(what, v, limit)| {
                 format!(
                     "{what} {} is beyond ±{}",
