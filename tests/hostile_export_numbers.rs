@@ -290,3 +290,34 @@ fn harmonic_fits_and_circular_tests_refuse_out_of_range_numbers() {
         "nominalRadius: expected a bar length from 0.001 to 1e6 mm, got 4.94066e-324"
     );
 }
+
+#[test]
+fn circular_tests_refuse_huge_angles_deviations_and_feeds() {
+    use mtmotion::ballbar::{circular_test, synthetic_trace, SyntheticConfig};
+    let good = synthetic_trace(&SyntheticConfig::default()).unwrap();
+    let run = |f: &dyn Fn(&mut mtmotion::ballbar::BallbarTrace)| {
+        let mut t = good.clone();
+        f(&mut t);
+        err(circular_test(&t).map(|r| r.runs.len()))
+    };
+    // 2⁵³ rad: a capacity overflow (a trap in wasm); 1e308: an infinite span
+    for v in [2f64.powi(53), 1e308] {
+        let e = run(&|t| t.runs[0].angle[0] = v);
+        assert!(
+            e.starts_with("runs[0].angleRad[0]: ") && e.contains("outside ±1e6 rad"),
+            "{e}"
+        );
+    }
+    let e = run(&|t| t.runs[0].deviation[3] = -100.0);
+    assert_eq!(
+        e,
+        "runs[0].deviation[3]: -100 is outside ±100 mm (the bar length); check the trace's units"
+    );
+    // a subnormal feed made the servo-mismatch time infinite
+    let e = run(&|t| t.feed = Some(5e-324));
+    assert_eq!(
+        e,
+        "feed: expected a feed from 0.001 to 1e6 mm/min, got 4.94066e-324"
+    );
+    assert!(circular_test(&good).is_ok());
+}

@@ -49,6 +49,24 @@ pub enum CircularTestError {
     /// Bad nominal radius.
     #[error("nominalRadius: expected a bar length from 0.001 to 1e6 mm, got {}", crate::numeric::compact(*.0))]
     BadRadius(f64),
+    /// A sample outside its range ([`crate::ballbar::MAX_ANGLE`], the bar
+    /// length for the deviation).
+    #[error("runs[{run}].{what}[{index}]: {} is outside {range}; check the trace's units", crate::numeric::compact(*.value))]
+    BadSample {
+        /// Run index.
+        run: usize,
+        /// "angleRad" or "deviation".
+        what: &'static str,
+        /// 0-based sample index.
+        index: usize,
+        /// The value.
+        value: f64,
+        /// The range, in words.
+        range: String,
+    },
+    /// Bad feed.
+    #[error("feed: expected a feed from 0.001 to 1e6 mm/min, got {}", crate::numeric::compact(*.0))]
+    BadFeed(f64),
     /// The LSC of a run cannot be fitted.
     #[error("runs[{run}] ({direction:?}): {source}")]
     Fit {
@@ -113,6 +131,53 @@ pub struct CircularDeviation {
 }
 
 /// The points (x, y) of a run about the nominal centre, mm.
+/// Equal lengths per run; every angle within ±[`super::harmonics::MAX_ANGLE`]
+/// rad (2⁵³ rad overflowed a capacity: a trap) and every deviation smaller
+/// in magnitude than the bar (a larger one puts the ball past the centre);
+/// a feed, when given, from 0.001 to 1e6 mm/min (a subnormal one made the
+/// servo-mismatch time infinite).
+fn check_samples(trace: &BallbarTrace) -> Result<(), CircularTestError> {
+    if let Some(f) = trace.feed {
+        if !(super::synthetic::MIN_FEED..=super::synthetic::MAX_FEED).contains(&f) {
+            return Err(CircularTestError::BadFeed(f));
+        }
+    }
+    let r0 = trace.nominal_radius;
+    for (k, run) in trace.runs.iter().enumerate() {
+        if run.angle.len() != run.deviation.len() {
+            return Err(CircularTestError::LengthMismatch {
+                run: k,
+                angle: run.angle.len(),
+                deviation: run.deviation.len(),
+            });
+        }
+        let max_angle = super::harmonics::MAX_ANGLE;
+        let bad = |what, index, value, range: String| CircularTestError::BadSample {
+            run: k,
+            what,
+            index,
+            value,
+            range,
+        };
+        if let Some(i) = run
+            .angle
+            .iter()
+            .position(|a| a.is_nan() || a.abs() > max_angle)
+        {
+            return Err(bad("angleRad", i, run.angle[i], "±1e6 rad".into()));
+        }
+        if let Some(i) = run
+            .deviation
+            .iter()
+            .position(|d| d.is_nan() || d.abs() >= r0)
+        {
+            let range = format!("±{} mm (the bar length)", crate::numeric::compact(r0));
+            return Err(bad("deviation", i, run.deviation[i], range));
+        }
+    }
+    Ok(())
+}
+
 pub(crate) fn run_points(run: &Run, r0: f64) -> (Vec<f64>, Vec<f64>) {
     run.angle
         .iter()
@@ -190,16 +255,10 @@ pub fn circular_deviation(trace: &BallbarTrace) -> Result<CircularDeviation, Cir
         "points",
         "thin the trace (a few thousand points per revolution are enough)",
     )?;
+    check_samples(trace)?;
     let mut runs = Vec::with_capacity(trace.runs.len());
     let mut all = (Vec::new(), Vec::new());
     for (k, run) in trace.runs.iter().enumerate() {
-        if run.angle.len() != run.deviation.len() {
-            return Err(CircularTestError::LengthMismatch {
-                run: k,
-                angle: run.angle.len(),
-                deviation: run.deviation.len(),
-            });
-        }
         let (x, y) = run_points(run, r0);
         let c = fit_circle(&x, &y).map_err(|e| CircularTestError::Fit {
             run: k,

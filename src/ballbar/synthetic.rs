@@ -154,6 +154,9 @@ pub const MIN_RADIUS: f64 = 1e-3;
 pub const MAX_RADIUS: f64 = 1e6;
 /// Highest feed, mm/min (1 km/min).
 pub const MAX_FEED: f64 = 1e6;
+/// Lowest feed a measured trace may state, mm/min (a subnormal feed made
+/// the circular test's servo-mismatch time infinite).
+pub const MIN_FEED: f64 = 1e-3;
 /// Most harmonics of the radial error: orders above a few hundred are
 /// below any ball bar's resolution, and each costs one `sin` per sample.
 pub const MAX_HARMONICS: usize = 256;
