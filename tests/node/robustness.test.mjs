@@ -10,12 +10,31 @@
 //   free of NaN/Infinity.
 // - Good calls: every export on the paper's examples and presets returns a
 //   result whose every number is finite.
+// - Hostile numbers: every number of each good call's arguments (a typed or
+//   number array's first and last element) replaced in turn by NaN, ±∞,
+//   ±1e308, a subnormal, 2⁵³ or −1 must give an Error in words or a finite
+//   result, never a trap.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import * as mt from '../../pkg/mtmotion.js';
+import * as mtModule from '../../pkg/mtmotion.js';
 
-mt.initSync({ module: readFileSync(new URL('../../pkg/mtmotion_bg.wasm', import.meta.url)) });
+// While `recording` is an array, every export call through `mt` appends
+// [name, arguments] to it: the good calls' own arguments seed the
+// hostile-numbers test below.
+let recording = null;
+const mt = new Proxy(mtModule, {
+  get(target, name) {
+    const f = target[name];
+    if (typeof f !== 'function' || name === 'initSync') return f;
+    return (...args) => {
+      if (recording) recording.push([name, args]);
+      return f(...args);
+    };
+  },
+});
+
+mtModule.initSync({ module: readFileSync(new URL('../../pkg/mtmotion_bg.wasm', import.meta.url)) });
 
 const f64 = (...v) => new Float64Array(v);
 const axis = () => mt.machinePreset('nmv5000').axes.c;
@@ -277,4 +296,69 @@ test('checkFileSize: the core names the file, its size and the limit; at the lim
   assert.equal(mt.checkFileSize('part.nc', 8 * 2 ** 20), undefined);
   assert.throws(() => mt.checkFileSize('part.nc', 8 * 2 ** 20 + 1), /8388609 bytes/);
   assert.throws(() => mt.checkFileSize('x'.repeat(500), 1e9), (e) => e.message.length < 250);
+});
+
+/** Paths to every number of `v` (a number array's first and last element). */
+function numberPaths(v, path = [], out = [], depth = 0) {
+  if (typeof v === 'number') out.push(path);
+  else if (ArrayBuffer.isView(v) || (Array.isArray(v) && v.length > 4 && v.every((x) => typeof x === 'number'))) {
+    if (v.length) out.push([...path, 0], [...path, v.length - 1]);
+  } else if (v && typeof v === 'object' && depth < 8) for (const [k, x] of Object.entries(v)) numberPaths(x, [...path, k], out, depth + 1);
+  return out;
+}
+
+/** A deep copy of `args` with the number at `path` set to `value`. */
+function withNumber(args, path, value) {
+  const copy = structuredClone(args);
+  let o = copy;
+  for (const k of path.slice(0, -1)) o = o[k];
+  o[path[path.length - 1]] = value;
+  return copy;
+}
+
+const HOSTILE = [NaN, Infinity, -Infinity, 1e308, -1e308, 5e-324, 2 ** 53, -1];
+
+for (const [name, { good }] of Object.entries(CASES)) {
+  test(`${name}: each number of the good call made hostile gives an Error in words or a finite result`, () => {
+    recording = [];
+    const t0 = performance.now();
+    good();
+    const ms = performance.now() - t0;
+    const own = recording.find(([n]) => n === name);
+    recording = null;
+    if (!own) return; // no arguments to vary (start, version, machines)
+    let args;
+    try {
+      args = structuredClone(own[1]);
+    } catch {
+      return; // a function argument (progress callbacks) cannot be cloned
+    }
+    const paths = numberPaths(args);
+    // at most about 3 s per export: the slow calls vary every k-th number
+    const k = Math.max(1, Math.ceil((paths.length * HOSTILE.length * Math.max(ms, 0.05)) / 3000));
+    const problems = [];
+    for (const path of paths.filter((_, i) => i % k === 0)) {
+      for (const h of HOSTILE) {
+        const a = withNumber(args, path, h);
+        let result;
+        try {
+          result = mtModule[name](...a);
+        } catch (e) {
+          if (!(e instanceof Error) || e instanceof WebAssembly.RuntimeError || TRAP.test(e.message)) problems.push(`${name} ${path.join('.')} = ${h}: threw ${e}`);
+          continue;
+        }
+        const bad = nonFinite(result);
+        if (bad.length) problems.push(`${name} ${path.join('.')} = ${h}: returned ${bad.join(', ')}`);
+      }
+    }
+    assert.deepEqual(problems.slice(0, 10), []);
+    assert.deepEqual(nonFinite(good()), [], 'the instance still works');
+    // HOSTILE_COUNT=1 node --test … prints how much of each export was varied
+    if (process.env.HOSTILE_COUNT) console.log(`${name}: ${paths.length} numbers, every ${k}th varied, good call ${ms.toFixed(1)} ms`);
+  });
+}
+
+test('the hostile-numbers check can fail: it finds the number paths it varies', () => {
+  assert.deepEqual(numberPaths([{ a: 1, b: [2, 3], c: new Float64Array(9) }, 'x']), [['0', 'a'], ['0', 'b', '0'], ['0', 'b', '1'], ['0', 'c', 0], ['0', 'c', 8]]);
+  assert.deepEqual(withNumber([{ a: [1, 2] }], [0, 'a', 1], NaN), [{ a: [1, NaN] }]);
 });
