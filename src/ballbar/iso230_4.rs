@@ -49,7 +49,7 @@ pub enum CircularTestError {
     /// Bad nominal radius.
     #[error("nominalRadius: expected a bar length from 0.001 to 1e6 mm, got {}", crate::numeric::compact(*.0))]
     BadRadius(f64),
-    /// A sample outside its range ([`crate::ballbar::MAX_ANGLE`], the bar
+    /// A sample outside its range ([`crate::ballbar::harmonics::MAX_ANGLE`], the bar
     /// length for the deviation).
     #[error("runs[{run}].{what}[{index}]: {} is outside {range}; check the trace's units", crate::numeric::compact(*.value))]
     BadSample {
