@@ -239,9 +239,82 @@ pub fn string_arg(value: &JsValue, what: &str) -> Result<String, JsError> {
 /// A config argument that must be a plain object (not an array, a string
 /// or a number, which serde would otherwise read as a struct's fields in
 /// order or ignore), converted from its snapshot.
+///
+/// A key the struct does not name is an `Error` naming it:
+/// serde-wasm-bindgen reads only the keys a struct names, so a misspelt
+/// `omgea` would otherwise leave ω at its default without a word.
 pub fn object<T: DeserializeOwned>(value: JsValue, what: &str) -> Result<T, JsError> {
     require_object(&value, what)?;
-    from_js(value, what)
+    // the keys are read from the plain snapshot: a Proxy's traps or a
+    // throwing getter never run inside the check
+    let copy = plain(&value, what)?;
+    if let Some(fields) = struct_fields::<T>() {
+        known_keys(&copy, fields, &[], what)?;
+    }
+    from_js(copy, what)
+}
+
+/// An `Error` naming the first own key of `obj` (a [`plain`] snapshot,
+/// whose keys are data) that is neither in `fields` nor in `more`.
+pub fn known_keys(
+    obj: &JsValue,
+    fields: &[&str],
+    more: &[&str],
+    what: &str,
+) -> Result<(), JsError> {
+    let Some(o) = obj.dyn_ref::<Object>() else {
+        return Ok(());
+    };
+    for k in Object::keys(o).iter() {
+        let k = k.as_string().unwrap_or_default();
+        if !fields.contains(&k.as_str()) && !more.contains(&k.as_str()) {
+            let mut all: Vec<&str> = fields.iter().chain(more).copied().collect();
+            all.sort_unstable();
+            return Err(JsError::new(&format!(
+                "{what}: unknown key '{}'; expected one of {}",
+                budget::clip(&k, 40),
+                all.join(", ")
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The field names serde's derive gives struct `T`, or `None` for a type
+/// not read as a plain struct (a map, an enum, a struct with a flattened
+/// field, which serde reads as a map).
+pub fn struct_fields<T: DeserializeOwned>() -> Option<&'static [&'static str]> {
+    let mut fields = None;
+    let _ = T::deserialize(FieldsProbe(&mut fields));
+    fields
+}
+
+/// A deserializer that only records the field list of the struct asked
+/// of it, then stops.
+struct FieldsProbe<'a>(&'a mut Option<&'static [&'static str]>);
+
+impl<'de> serde::Deserializer<'de> for FieldsProbe<'_> {
+    type Error = serde::de::value::Error;
+
+    fn deserialize_any<V: serde::de::Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
+        Err(serde::de::Error::custom("not a struct"))
+    }
+
+    fn deserialize_struct<V: serde::de::Visitor<'de>>(
+        self,
+        _name: &'static str,
+        fields: &'static [&'static str],
+        _visitor: V,
+    ) -> Result<V::Value, Self::Error> {
+        *self.0 = Some(fields);
+        Err(serde::de::Error::custom("fields recorded"))
+    }
+
+    serde::forward_to_deserialize_any! {
+        bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string
+        bytes byte_buf option unit unit_struct newtype_struct seq tuple
+        tuple_struct map enum identifier ignored_any
+    }
 }
 
 /// An `Error` unless `value` is a non-array object.

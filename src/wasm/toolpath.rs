@@ -6,7 +6,9 @@ use serde::Serialize;
 use wasm_bindgen::prelude::*;
 
 use super::args::JsArg;
-use super::convert::{from_js, object, plain, string_arg, to_js, Obj};
+use super::convert::{
+    from_js, known_keys, object, plain, require_object, string_arg, struct_fields, to_js, Obj,
+};
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
 use crate::nc::files::{main_file, parse_files, NcFile};
 use crate::nc::program::{ParseOptions, Program, Segment, ToolRadii, Warning};
@@ -329,7 +331,26 @@ pub fn reverse_compensate_js(
     let cfg: ReverseConfig = if config.is_undefined() || config.is_null() {
         ReverseConfig::default()
     } else {
-        object(config, "config")?
+        require_object(&config, "config")?;
+        let config = plain(&config, "config")?;
+        if !js_sys::Reflect::get(&config, &JsValue::from_str("toolRadii"))
+            .unwrap_or(JsValue::UNDEFINED)
+            .is_undefined()
+        {
+            return Err(JsError::new(
+                "config.toolRadii: reverseCompensate corrects the programmed path and does not offset it for cutter compensation; leave toolRadii out (the G41/G42 offset is applied by the control to the corrected program)",
+            ));
+        }
+        // ReverseConfig flattens SimConfig, which serde reads as a map: its
+        // keys are checked here
+        let sim = struct_fields::<SimConfig>().unwrap_or(&[]);
+        known_keys(
+            &config,
+            sim,
+            &["dwell", "iterations", "timeBudget"],
+            "config",
+        )?;
+        from_js(config, "config")?
     };
     let mut progress = |f: f64, stage: &str| match &on_progress {
         Some(cb) => cb

@@ -362,3 +362,20 @@ test('the hostile-numbers check can fail: it finds the number paths it varies', 
   assert.deepEqual(numberPaths([{ a: 1, b: [2, 3], c: new Float64Array(9) }, 'x']), [['0', 'a'], ['0', 'b', '0'], ['0', 'b', '1'], ['0', 'c', 0], ['0', 'c', 8]]);
   assert.deepEqual(withNumber([{ a: [1, 2] }], [0, 'a', 1], NaN), [{ a: [1, NaN] }]);
 });
+
+test('a misspelt config key is an Error naming it, not a default used in silence', () => {
+  const a = mt.toolpathExample('arcs');
+  const cone = { machine: 'trunnion-ac', halfApexDeg: 45, inclinationDeg: 10, method: 'perpendicular', barLength: 100, feed: 1000 };
+  for (const [call, key] of [
+    [() => mt.simulateToolPath(a, { tA: 0.04, Tx: 0.3 }), 'Tx'],
+    [() => mt.reverseCompensate(a, { timebudget: 0.2 }), 'timebudget'],
+    [() => mt.feedVectorTest('nmv5000', { ...COND, omgea: 4 }), 'omgea'],
+    [() => mt.coneFrustumTest({ ...cone, pionts: 5 }), 'pionts'],
+  ]) {
+    assert.throws(call, (e) => e instanceof Error && e.message.includes(`unknown key '${key}'; expected one of`), key);
+  }
+  assert.throws(() => mt.reverseCompensate(a, { toolRadii: { D1: 3 } }), /config\.toolRadii: reverseCompensate corrects the programmed path/);
+  // the right keys still work
+  assert.ok(mt.reverseCompensate(a, { timeBudget: 0.05, tA: 0.04, dt: 0.002 }).after.maxErrorUm >= 0);
+  assert.ok(mt.coneFrustumTest({ ...cone, points: 90 }).angle.length > 0);
+});
