@@ -543,6 +543,11 @@ fn writer_multi_axis_and_huge_number_regressions() {
     // written as an R arc read back 0.2 µm further along; now written with I/J
     let text = "G90 G17 G21\nG0 X201.3501 Y31.3929\nG1 X203.0498 Y29.9465 F600\nN690 G1 X204.6894 Y2R.4322\nN700 G1 X206.2694 Y26.8558\nG1 X207.9896 Y25.0172\n";
     fuzz_targets::nc_write_target(text).unwrap();
+    // libFuzzer (`nc_write`, run 216,6xx): a G92 naming the current
+    // position (no shift) in an inch block was written block by block,
+    // its X10.5 kept under G21, so the read back shifted X by 256 mm
+    let text = "G21\nG0 X0 Y0 Z20\nF100\nG1 X2 Y-4 Z16\nG1 X10.5 G20\nG1 X10.5 G20 G92 G17\nG0 X-.2 Y-.2\n";
+    fuzz_targets::nc_write_target(text).unwrap();
     // a long but real path is still read
     assert!(parse("G21 G91 G1 X999999 F600\nX999999\n").is_ok());
 }

@@ -610,7 +610,8 @@ fn write_new(program: &Program, seg: &Segment, passive: Option<&Block>, out: &mu
 }
 
 /// True when `program`'s blocks cannot be rewritten one by one (see the
-/// module header): macro code, a G92 shift, a G68 rotation, `fixed`
+/// module header): macro code, a G92 block (even one that shifts nothing),
+/// a G68 rotation, `fixed`
 /// segments, or segments out of block order.
 fn needs_flat(program: &Program) -> bool {
     let mut last = None;
@@ -626,6 +627,13 @@ fn needs_flat(program: &Program) -> bool {
             .modal
             .iter()
             .any(|m| m.offset.iter().any(|&o| o != 0.0) || m.rotation.is_some())
+        // a G92 that happens to shift nothing (it names the current
+        // position) still holds words in the source's units, which the
+        // block writer would keep as they are under G21
+        || program.blocks.iter().any(|b| {
+            b.words_of('G')
+                .any(|g| matches!((g.value * 10.0).round() as i64, 920..=923))
+        })
 }
 
 /// The words of `block` that neither move nor change a mode: N, S, T, D,
