@@ -122,6 +122,35 @@ pub const MAX_ANGLE: f64 = 1e6;
 /// larger values overflow the fit's sums (1e308 gave an infinite amplitude).
 pub const MAX_DEVIATION: f64 = 1e9;
 
+/// Every sample finite, its angle within ±[`MAX_ANGLE`] rad and its
+/// deviation within ±[`MAX_DEVIATION`].
+fn check_samples(angle: &[f64], deviation: &[f64]) -> Result<(), HarmonicsError> {
+    for (i, (&a, &d)) in angle.iter().zip(deviation).enumerate() {
+        if !a.is_finite() || !d.is_finite() {
+            return Err(HarmonicsError::NotFinite {
+                index: i,
+                angle: a,
+                deviation: d,
+            });
+        }
+        for (what, value, limit, unit) in [
+            ("angle", a, MAX_ANGLE, " rad"),
+            ("deviation", d, MAX_DEVIATION, ""),
+        ] {
+            if value.abs() > limit {
+                return Err(HarmonicsError::OutOfRange {
+                    index: i,
+                    what,
+                    value,
+                    limit,
+                    unit,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Fits Δr(θ) = Σₙ₌₀ᴺ Aₙ sin(nθ + φₙ) by least squares and returns orders
 /// 0 … `max_order`.
 ///
@@ -171,29 +200,7 @@ pub fn fit_harmonics(
             coefficients: m,
         });
     }
-    for (i, (&a, &d)) in angle.iter().zip(deviation).enumerate() {
-        if !a.is_finite() || !d.is_finite() {
-            return Err(HarmonicsError::NotFinite {
-                index: i,
-                angle: a,
-                deviation: d,
-            });
-        }
-        for (what, value, limit, unit) in [
-            ("angle", a, MAX_ANGLE, " rad"),
-            ("deviation", d, MAX_DEVIATION, ""),
-        ] {
-            if value.abs() > limit {
-                return Err(HarmonicsError::OutOfRange {
-                    index: i,
-                    what,
-                    value,
-                    limit,
-                    unit,
-                });
-            }
-        }
-    }
+    check_samples(angle, deviation)?;
     let design = DMatrix::from_fn(n, m, |i, j| {
         let k = j.div_ceil(2) as f64;
         match j {
