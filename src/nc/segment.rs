@@ -260,31 +260,29 @@ pub const MAX_FEED: f64 = 1e9;
 impl Segment {
     /// The first of the segment's numbers beyond [`MAX_COORDINATE`] or
     /// [`MAX_FEED`], said in words ("end point X 5.08e23 mm is beyond
-    /// ±1e9"), or `None`.
+    /// ±1e9"), or `None`. Checked for every segment the interpreter
+    /// makes, so the words are only formatted for a number out of range.
     pub fn out_of_range(&self) -> Option<String> {
-        let mut numbers: Vec<(String, f64, f64)> = Vec::with_capacity(16);
+        let beyond = |v: f64, limit: f64| v.is_nan() || v.abs() > limit;
+        let say = |what: &str, v: f64, limit: f64| {
+            format!(
+                "{what} {} is beyond ±{}",
+                crate::numeric::compact(v),
+                crate::numeric::compact(limit)
+            )
+        };
         for (pose, which) in [(&self.start, "start"), (&self.end, "end point")] {
-            for (i, letter) in AXES.iter().enumerate() {
+            if let Some(i) = (0..AXES.len()).find(|&i| beyond(pose.get(i), MAX_COORDINATE)) {
                 let unit = if i < 3 { "mm" } else { "°" };
-                let what = format!("{which} {letter} ({unit})");
-                numbers.push((what, pose.get(i), MAX_COORDINATE));
+                let what = format!("{which} {} ({unit})", AXES[i]);
+                return Some(say(&what, pose.get(i), MAX_COORDINATE));
             }
         }
         if let Motion::Arc(a) = &self.motion {
-            for c in a.center {
-                numbers.push(("arc centre (mm)".into(), c, MAX_COORDINATE));
+            if let Some(&c) = a.center.iter().find(|&&c| beyond(c, MAX_COORDINATE)) {
+                return Some(say("arc centre (mm)", c, MAX_COORDINATE));
             }
         }
-        numbers.push(("feed (mm/min)".into(), self.feed, MAX_FEED));
-        numbers
-            .into_iter()
-            .find(|(_, v, limit)| v.is_nan() || v.abs() > *limit)
-            .map(|(what, v, limit)| {
-                format!(
-                    "{what} {} is beyond ±{}",
-                    crate::numeric::compact(v),
-                    crate::numeric::compact(limit)
-                )
-            })
+        beyond(self.feed, MAX_FEED).then(|| say("feed (mm/min)", self.feed, MAX_FEED))
     }
 }
