@@ -149,7 +149,11 @@ pub fn to_js<T: Serialize + ?Sized>(value: &T) -> Result<JsValue, JsError> {
 /// names the argument in the message, e.g. `"axis"` gives
 /// `axis: missing field `kpp``.
 pub fn from_js<T: DeserializeOwned>(value: JsValue, what: &str) -> Result<T, JsError> {
-    let copy = plain(&value, what)?;
+    from_plain(plain(&value, what)?, what)
+}
+
+/// Deserialises a config that is already a [`plain`] snapshot.
+pub fn from_plain<T: DeserializeOwned>(copy: JsValue, what: &str) -> Result<T, JsError> {
     serde_wasm_bindgen::from_value(copy).map_err(|e| {
         JsError::new(&format!(
             "{what}: {}",
@@ -251,7 +255,7 @@ pub fn object<T: DeserializeOwned>(value: JsValue, what: &str) -> Result<T, JsEr
     if let Some(fields) = struct_fields::<T>() {
         known_keys(&copy, fields, &[], what)?;
     }
-    from_js(copy, what)
+    from_plain(copy, what)
 }
 
 /// An `Error` naming the first own key of `obj` (a [`plain`] snapshot,

@@ -7,7 +7,8 @@ use wasm_bindgen::prelude::*;
 
 use super::args::JsArg;
 use super::convert::{
-    from_js, known_keys, object, plain, require_object, string_arg, struct_fields, to_js, Obj,
+    from_js, from_plain, known_keys, object, plain, require_object, string_arg, struct_fields,
+    to_js, Obj,
 };
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
 use crate::nc::files::{main_file, parse_files, NcFile};
@@ -350,7 +351,7 @@ pub fn reverse_compensate_js(
             &["dwell", "iterations", "timeBudget"],
             "config",
         )?;
-        from_js(config, "config")?
+        from_plain(config, "config")?
     };
     let mut progress = |f: f64, stage: &str| match &on_progress {
         Some(cb) => cb
