@@ -126,12 +126,7 @@ fn column(
     };
     let values = table.column(&names, scale)?;
     let index = table.find(&names).unwrap_or(0);
-    let at = |i: usize, why: String| FeedVectorError::TraceValue {
-        line: table.lines.get(i).copied().unwrap_or(0),
-        column: index + 1,
-        name: table.names.get(index).cloned().unwrap_or_default(),
-        why,
-    };
+    let at = |i: usize, why: String| value_error(table, index, i, why);
     if let Some(i) = values.iter().position(|v| !v.is_finite()) {
         return Err(at(i, format!("'{}' is not a finite number", values[i])));
     }
@@ -149,6 +144,17 @@ fn column(
         ));
     }
     Ok((index, values))
+}
+
+/// The error for the value of column `col` (0-based) in data row `row`,
+/// located at its line and named by its header.
+fn value_error(table: &Table, col: usize, row: usize, why: String) -> FeedVectorError {
+    FeedVectorError::TraceValue {
+        line: table.lines.get(row).copied().unwrap_or(0),
+        column: col + 1,
+        name: table.names.get(col).cloned().unwrap_or_default(),
+        why,
+    }
 }
 
 /// Smallest |unit factor| of a mapping (ns → s is 1e-9).
@@ -307,12 +313,7 @@ fn time_column(table: &Table, map: &ColumnMap) -> Result<Vec<f64>, FeedVectorErr
         } else {
             format!("time {now_s} does not increase after {before_s} on the line before; sort the trace or pick the right time column")
         };
-        return Err(FeedVectorError::TraceValue {
-            line: table.lines.get(i).copied().unwrap_or(0),
-            column: tcol + 1,
-            name: table.names.get(tcol).cloned().unwrap_or_default(),
-            why,
-        });
+        return Err(value_error(table, tcol, i, why));
     }
     Ok(t)
 }
