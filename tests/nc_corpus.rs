@@ -12,7 +12,8 @@
 //! 40,306-line pocket (5176 s, 5.2 M samples) and the CAMotics
 //! `botomata_bottom` pocket (5567 s), are parsed and summarised here; the
 //! pocket is simulated by the `#[ignore]`d test below
-//! (`cargo test --release --test nc_corpus -- --ignored`).
+//! (`cargo test --release --test nc_corpus -- --ignored`) and, through the
+//! built package, by `tests/node/large-program.test.mjs`.
 
 use mtmotion::nc::program::{parse_all, Motion, ParseOptions, Segment};
 use mtmotion::nc::summary::summarize;

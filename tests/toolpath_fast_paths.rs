@@ -143,32 +143,89 @@ fn filter_matches_plain_equations() {
 
 /// The statistics-only simulation equals the full one bit for bit on the
 /// built-in examples and a corpus program that revisits itself, and
-/// records none of the series it leaves out.
+/// records none of the series.
 #[test]
 fn statistics_only_simulation_equals_the_full_one() {
     use mtmotion::toolpath::{simulate, simulate_stats, SimConfig};
-    let tort = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/nc_corpus/linuxcnc_tort.ngc"
-    ))
-    .unwrap();
-    for text in [example::arc_example(), example::line_example(), tort] {
+    for text in [example::arc_example(), example::line_example(), tort()] {
         let p = parse(&text).unwrap();
         let cfg = SimConfig::default();
         let full = simulate(&p.segments, &p.segments, &cfg).unwrap();
         let lean = simulate_stats(&p.segments, &p.segments, &cfg).unwrap();
-        assert_eq!(lean.segments, full.segments);
-        assert_eq!(lean.max_error.to_bits(), full.max_error.to_bits());
-        assert_eq!(lean.max_error_time.to_bits(), full.max_error_time.to_bits());
-        assert_eq!(lean.max_error_line, full.max_error_line);
-        assert_eq!(lean.motion_time.to_bits(), full.motion_time.to_bits());
+        same_statistics(&lean, &full);
         assert_eq!((lean.samples, full.samples), (full.t.len(), full.t.len()));
-        assert_eq!(lean.sim, full.sim);
+        assert_eq!(full.series_stride, 1);
         assert!(
             lean.t.is_empty()
                 && lean.error.is_empty()
+                && lean.sim[0].is_empty()
+                && lean.cmd[1].is_empty()
                 && lean.near[0].is_empty()
                 && lean.vel_sim[2].is_empty()
         );
     }
+}
+
+/// A run longer than its series budget keeps, of each group of `stride`
+/// consecutive samples, exactly the sample of the full run with the
+/// largest error (the first of equals), every series at that sample; the
+/// statistics are bit for bit the full run's. Oracle: the same run with
+/// every sample kept. Budgets that divide the run evenly and unevenly, and
+/// a budget of 1 (one group).
+#[test]
+fn a_thinned_run_keeps_the_largest_error_of_each_group_and_the_same_statistics() {
+    use mtmotion::toolpath::{simulate, simulate_thinned, SimConfig};
+    for text in [example::arc_example(), tort()] {
+        let p = parse(&text).unwrap();
+        let cfg = SimConfig::default();
+        let full = simulate(&p.segments, &p.segments, &cfg).unwrap();
+        let n = full.samples;
+        for budget in [n, n / 2, n / 7 + 3, 1000, 1] {
+            let thin = simulate_thinned(&p.segments, &p.segments, &cfg, budget).unwrap();
+            same_statistics(&thin, &full);
+            let stride = n.div_ceil(budget);
+            assert_eq!(thin.series_stride, stride, "budget {budget}");
+            assert_eq!(thin.t.len(), n.div_ceil(stride), "budget {budget}");
+            for (j, group) in (0..n).step_by(stride).enumerate() {
+                let end = (group + stride).min(n);
+                let mut k = group;
+                for i in group..end {
+                    if full.error[i] > full.error[k] {
+                        k = i;
+                    }
+                }
+                let pairs = [
+                    (&thin.t, &full.t),
+                    (&thin.error, &full.error),
+                    (&thin.sim[0], &full.sim[0]),
+                    (&thin.sim[2], &full.sim[2]),
+                    (&thin.cmd[1], &full.cmd[1]),
+                    (&thin.near[1], &full.near[1]),
+                    (&thin.vel_cmd[0], &full.vel_cmd[0]),
+                    (&thin.vel_sim[1], &full.vel_sim[1]),
+                ];
+                for (a, b) in pairs {
+                    assert_eq!(a[j].to_bits(), b[k].to_bits(), "budget {budget}, group {j}");
+                }
+            }
+        }
+    }
+}
+
+fn tort() -> String {
+    std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/nc_corpus/linuxcnc_tort.ngc"
+    ))
+    .unwrap()
+}
+
+fn same_statistics(a: &mtmotion::toolpath::Simulation, b: &mtmotion::toolpath::Simulation) {
+    assert_eq!(a.segments, b.segments);
+    assert_eq!(a.max_error.to_bits(), b.max_error.to_bits());
+    assert_eq!(a.max_error_time.to_bits(), b.max_error_time.to_bits());
+    assert_eq!(a.max_error_line, b.max_error_line);
+    assert_eq!(a.motion_time.to_bits(), b.motion_time.to_bits());
+    assert_eq!(a.nominal_time.to_bits(), b.nominal_time.to_bits());
+    assert_eq!(a.samples, b.samples);
 }

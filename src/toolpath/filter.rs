@@ -93,109 +93,154 @@ impl Lag1 {
 /// assert!((f.sim[0][2000] - 10.0).abs() < 1e-9);
 /// ```
 pub fn filter(tl: &Timeline, t_a: f64, t: [f64; 3], dt: f64, n: usize) -> Filtered {
-    filter_keeping(tl, t_a, t, dt, n, Keep::All)
+    let mut out = Filtered::with_capacity(n);
+    let mut stepper = Stepper::new(tl, t_a, t, dt);
+    for _ in 0..n {
+        out.push(&stepper.next_sample());
+    }
+    out
 }
 
-/// Which series [`filter_keeping`] records.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Keep {
-    /// Every series of [`Filtered`].
-    All,
-    /// The commanded and simulated positions only (`t` and the velocities
-    /// stay empty): what a contour-error measurement needs, at 6 of the 13
-    /// series' memory traffic (reverse compensation's correction rounds).
-    Positions,
+/// One sample of the filtered command.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    /// Sample time `k·dt`, s.
+    pub t: f64,
+    /// Commanded position, mm.
+    pub cmd: [f64; 3],
+    /// Commanded velocity `f_b`, mm/s.
+    pub vel_cmd: [f64; 3],
+    /// Simulated (servo output) position, mm.
+    pub sim: [f64; 3],
+    /// Simulated velocity `ou`, mm/s.
+    pub vel_sim: [f64; 3],
 }
 
-/// As [`filter`], recording the series `keep` names; the positions are the
-/// same numbers either way.
-pub fn filter_keeping(
-    tl: &Timeline,
+/// The filter run sample by sample, so a caller can measure each sample
+/// as it comes and keep only what it needs (a long program's simulation
+/// holds no per-sample series it does not return).
+pub struct Stepper<'a> {
+    now: Sampler<'a>,
+    back: Sampler<'a>,
+    lags: [Lag1; 3],
+    origin: [f64; 3],
     t_a: f64,
-    t: [f64; 3],
+    inv_ta: f64,
     dt: f64,
-    n: usize,
-    keep: Keep,
-) -> Filtered {
-    let all = keep == Keep::All;
-    let mut out = Filtered::with_capacity(n, all);
-    let lags = [
-        Lag1::new(t[0], dt),
-        Lag1::new(t[1], dt),
-        Lag1::new(t[2], dt),
-    ];
-    let o = tl.origin;
-    let mut now = Sampler::new(tl, dt, 0.0);
-    let mut back = Sampler::new(tl, dt, t_a);
-    let inv_ta = if t_a > 0.0 { 1.0 / t_a } else { 0.0 };
-    let mut ring = delay_ring(o, t_a, dt);
-    let mut slot = 0usize;
-    let mut y = o;
-    let mut u_prev = o;
-    for k in 0..n {
-        let tk = k as f64 * dt;
-        let (p, vb, q1) = now.at(k);
-        let (u, fa) = if t_a > 0.0 {
-            let (pb, q0) = match ring.get_mut(slot) {
-                Some(held) => {
-                    // Before the first m samples the ring holds the start
-                    // (t − tA < 0: origin, Q = 0).
-                    let back_value = *held;
-                    *held = (p, q1);
-                    slot += 1;
-                    if slot == ring.len() {
-                        slot = 0;
-                    }
-                    back_value
-                }
-                None => {
-                    let (pb, _, q0) = back.at(k);
-                    (pb, q0)
-                }
-            };
+    ring: Vec<([f64; 3], [f64; 3])>,
+    slot: usize,
+    y: [f64; 3],
+    u_prev: [f64; 3],
+    k: usize,
+}
+
+impl<'a> Stepper<'a> {
+    /// The filter of `tl` by the moving average `t_a` and the lags `t`
+    /// (per axis), sampled at `dt`; all in s.
+    pub fn new(tl: &'a Timeline, t_a: f64, t: [f64; 3], dt: f64) -> Self {
+        let o = tl.origin;
+        Self {
+            now: Sampler::new(tl, dt, 0.0),
+            back: Sampler::new(tl, dt, t_a),
+            lags: [
+                Lag1::new(t[0], dt),
+                Lag1::new(t[1], dt),
+                Lag1::new(t[2], dt),
+            ],
+            origin: o,
+            t_a,
+            inv_ta: if t_a > 0.0 { 1.0 / t_a } else { 0.0 },
+            dt,
+            ring: delay_ring(o, t_a, dt),
+            slot: 0,
+            y: o,
+            u_prev: o,
+            k: 0,
+        }
+    }
+
+    /// The next sample (the first is at t = 0).
+    pub fn next_sample(&mut self) -> Sample {
+        let k = self.k;
+        self.k += 1;
+        let (p, vb, q1) = self.now.at(k);
+        let (u, fa) = if self.t_a > 0.0 {
+            let (pb, q0) = self.back_end(k, p, q1);
             let mut u = [0.0; 3];
             let mut fa = [0.0; 3];
             for ax in 0..3 {
-                u[ax] = o[ax] + (q1[ax] - q0[ax]) * inv_ta;
-                fa[ax] = (p[ax] - pb[ax]) * inv_ta;
+                u[ax] = self.origin[ax] + (q1[ax] - q0[ax]) * self.inv_ta;
+                fa[ax] = (p[ax] - pb[ax]) * self.inv_ta;
             }
             (u, fa)
         } else {
             (p, vb)
         };
-        if all {
-            out.t.push(tk);
-        }
+        let mut vel_sim = [0.0; 3];
         for ax in 0..3 {
             if k > 0 {
-                y[ax] = lags[ax].step(y[ax], u_prev[ax], u[ax]);
+                self.y[ax] = self.lags[ax].step(self.y[ax], self.u_prev[ax], u[ax]);
             }
-            out.cmd[ax].push(p[ax]);
-            out.sim[ax].push(y[ax]);
-            if all {
-                out.vel_cmd[ax].push(vb[ax]);
-                out.vel_sim[ax].push(lags[ax].velocity(y[ax], u[ax], fa[ax]));
+            vel_sim[ax] = self.lags[ax].velocity(self.y[ax], u[ax], fa[ax]);
+        }
+        self.u_prev = u;
+        Sample {
+            t: k as f64 * self.dt,
+            cmd: p,
+            vel_cmd: vb,
+            sim: self.y,
+            vel_sim,
+        }
+    }
+
+    /// Position and `Q` at `t − tA` for sample `k`, whose own are `p`, `q1`:
+    /// from the delay ring when `tA` is a whole number of samples (before
+    /// the first m samples it holds the start: t − tA < 0, origin, Q = 0),
+    /// else from the timeline.
+    #[inline]
+    fn back_end(&mut self, k: usize, p: [f64; 3], q1: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+        match self.ring.get_mut(self.slot) {
+            Some(held) => {
+                let back_value = *held;
+                *held = (p, q1);
+                self.slot += 1;
+                if self.slot == self.ring.len() {
+                    self.slot = 0;
+                }
+                back_value
+            }
+            None => {
+                let (pb, _, q0) = self.back.at(k);
+                (pb, q0)
             }
         }
-        u_prev = u;
     }
-    out
 }
 
 impl Filtered {
-    /// Empty series with room for `n` samples each (the positions only
-    /// unless `all`).
-    fn with_capacity(n: usize, all: bool) -> Self {
+    /// Empty series with room for `n` samples each.
+    pub fn with_capacity(n: usize) -> Self {
         let mut out = Filtered::default();
-        let m = if all { n } else { 0 };
-        out.t.reserve_exact(m);
+        out.t.reserve_exact(n);
         for ax in 0..3 {
             out.cmd[ax].reserve_exact(n);
             out.sim[ax].reserve_exact(n);
-            out.vel_cmd[ax].reserve_exact(m);
-            out.vel_sim[ax].reserve_exact(m);
+            out.vel_cmd[ax].reserve_exact(n);
+            out.vel_sim[ax].reserve_exact(n);
         }
         out
+    }
+
+    /// Appends one sample to every series.
+    #[inline]
+    pub fn push(&mut self, s: &Sample) {
+        self.t.push(s.t);
+        for ax in 0..3 {
+            self.cmd[ax].push(s.cmd[ax]);
+            self.sim[ax].push(s.sim[ax]);
+            self.vel_cmd[ax].push(s.vel_cmd[ax]);
+            self.vel_sim[ax].push(s.vel_sim[ax]);
+        }
     }
 }
 

@@ -37,8 +37,8 @@ pub mod timeline;
 use serde::{Deserialize, Serialize};
 
 pub use simulate::{
-    sample_estimate, simulate, simulate_program, simulate_stats, simulate_text, SegmentStats,
-    Simulation,
+    sample_estimate, simulate, simulate_program, simulate_stats, simulate_text, simulate_thinned,
+    simulate_with_progress, SegmentStats, Simulation, PROGRESS_EVERY,
 };
 
 /// The servo time constant: one for all axes or one per axis X, Y, Z.
@@ -136,6 +136,11 @@ pub enum ToolpathError {
 /// At most this many samples per simulation (the work budget
 /// [`crate::budget::MAX_TOOLPATH_SAMPLES`]).
 pub const MAX_SAMPLES: usize = crate::budget::MAX_TOOLPATH_SAMPLES;
+
+/// At most this many samples in a simulation's series (the budget
+/// [`crate::budget::MAX_TOOLPATH_SERIES`]); a longer run keeps, of each
+/// group of consecutive samples, the one with the largest error.
+pub const MAX_SERIES: usize = crate::budget::MAX_TOOLPATH_SERIES;
 
 /// Smallest positive `tA` or `T`, s: below 1 µs the acc/dec's accelerations
 /// lose every digit of the path.

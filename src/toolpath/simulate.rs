@@ -21,9 +21,9 @@
 use serde::Serialize;
 
 use super::contour::{Element, Nearest, Path, Tracker};
-use super::filter::{filter_keeping, Filtered, Keep};
+use super::filter::{Filtered, Sample, Stepper};
 use super::timeline::Timeline;
-use super::{SimConfig, ToolpathError, MAX_SAMPLES};
+use super::{SimConfig, ToolpathError, MAX_SAMPLES, MAX_SERIES};
 use crate::nc::program::{parse, Motion, Program, Segment};
 
 /// Statistics of one reference segment.
@@ -100,6 +100,11 @@ pub struct Simulation {
     pub segments: Vec<SegmentStats>,
     /// Number of samples simulated.
     pub samples: usize,
+    /// The series hold every sample when 1; for a run of more than
+    /// [`MAX_SERIES`] samples, of each `series_stride` consecutive samples
+    /// the one with the largest contour error (drawing and export only:
+    /// every statistic uses every sample).
+    pub series_stride: usize,
 }
 
 /// Simulates `command` and measures it against `reference`.
@@ -125,13 +130,55 @@ pub fn simulate(
     reference: &[Segment],
     cfg: &SimConfig,
 ) -> Result<Simulation, ToolpathError> {
-    simulate_keeping(command, reference, cfg, Keep::All)
+    simulate_thinned(command, reference, cfg, MAX_SERIES)
 }
 
+/// As [`simulate()`] with at most `max_series` samples in the series
+/// (at least 1): a run of `n` samples keeps every sample when
+/// `n ≤ max_series`, else, of each group of `⌈n / max_series⌉`
+/// consecutive samples, the one with the largest contour error (the first
+/// of equals; every series at that sample, `t` included). The statistics
+/// are the same numbers either way. [`simulate()`] keeps
+/// [`MAX_SERIES`].
+///
+/// # Errors
+/// As [`simulate()`].
+pub fn simulate_thinned(
+    command: &[Segment],
+    reference: &[Segment],
+    cfg: &SimConfig,
+    max_series: usize,
+) -> Result<Simulation, ToolpathError> {
+    simulate_keeping(
+        command,
+        reference,
+        cfg,
+        Some(max_series.max(1)),
+        &mut |_| true,
+    )
+}
+
+/// As [`simulate()`], calling `progress(fraction done)` every
+/// [`PROGRESS_EVERY`] samples; a `false` from it stops the run with
+/// [`ToolpathError::Cancelled`].
+///
+/// # Errors
+/// As [`simulate()`], and [`ToolpathError::Cancelled`].
+pub fn simulate_with_progress(
+    command: &[Segment],
+    reference: &[Segment],
+    cfg: &SimConfig,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<Simulation, ToolpathError> {
+    simulate_keeping(command, reference, cfg, Some(MAX_SERIES), progress)
+}
+
+/// How often, in samples, [`simulate_with_progress`] reports.
+pub const PROGRESS_EVERY: usize = 1 << 18;
+
 /// As [`simulate()`] without the per-sample series a caller of the
-/// statistics alone never reads: `t`, `near`, `vel_cmd`, `vel_sim` and
-/// `error` are empty, `cmd` and `sim` are kept; every statistic (maximum
-/// error, its time and line, motion time, per-segment statistics,
+/// statistics alone never reads: every series is empty; every statistic
+/// (maximum error, its time and line, motion time, per-segment statistics,
 /// `samples`) is the same number [`simulate()`] gives. Reverse
 /// compensation's correction rounds use it.
 ///
@@ -142,14 +189,15 @@ pub fn simulate_stats(
     reference: &[Segment],
     cfg: &SimConfig,
 ) -> Result<Simulation, ToolpathError> {
-    simulate_keeping(command, reference, cfg, Keep::Positions)
+    simulate_keeping(command, reference, cfg, None, &mut |_| true)
 }
 
 fn simulate_keeping(
     command: &[Segment],
     reference: &[Segment],
     cfg: &SimConfig,
-    keep: Keep,
+    max_series: Option<usize>,
+    progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Simulation, ToolpathError> {
     cfg.validate()?;
     let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
@@ -159,34 +207,46 @@ fn simulate_keeping(
         return Err(ToolpathError::Empty);
     }
     let n = sample_count(&tl, cfg, tmax)?;
-    let f = filter_keeping(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt, n, keep);
-    let tr = track(&path, &f, n, keep == Keep::All);
     let end = reference.last().map_or(tl.origin, |s| s.end.p());
-    let motion_time = settling_time(&f.sim, end, n, cfg.dt);
+    let stride = max_series.map_or(0, |m| n.div_ceil(m));
+    let mut run = Run::new(&path, n, stride);
+    let mut stepper = Stepper::new(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt);
+    for k in 0..n {
+        if k % PROGRESS_EVERY == 0 && k > 0 && !progress(k as f64 / n as f64) {
+            return Err(ToolpathError::Cancelled);
+        }
+        let s = stepper.next_sample();
+        run.sample(&path, k, &s, end);
+    }
     let segments = path
         .elements
         .iter()
-        .zip(&tr.acc)
+        .zip(&run.acc)
         .map(|(el, a)| a.stats(el, &reference[el.segment]))
         .collect();
+    let rec = run
+        .series
+        .map(|mut r| {
+            r.flush();
+            r
+        })
+        .unwrap_or_default();
     Ok(Simulation {
         // The filter's sample times are k·dt.
-        max_error_time: if tr.max_k < n {
-            tr.max_k as f64 * cfg.dt
-        } else {
-            0.0
-        },
+        max_error_time: run.max_k as f64 * cfg.dt,
         samples: n,
-        max_error_line: reference[path.elements[tr.max_el].segment].line,
-        t: f.t,
-        cmd: f.cmd,
-        sim: f.sim,
-        near: tr.near,
-        vel_cmd: f.vel_cmd,
-        vel_sim: f.vel_sim,
-        error: tr.error,
-        max_error: tr.max_error,
-        motion_time,
+        series_stride: stride.max(1),
+        max_error_line: reference[path.elements[run.max_el].segment].line,
+        t: rec.f.t,
+        cmd: rec.f.cmd,
+        sim: rec.f.sim,
+        near: rec.near,
+        vel_cmd: rec.f.vel_cmd,
+        vel_sim: rec.f.vel_sim,
+        error: rec.error,
+        max_error: run.max_error,
+        // The end of the last sample farther than 1 µm from the end point.
+        motion_time: run.last_far as f64 * cfg.dt,
         nominal_time: tl.end_time,
         segments,
     })
@@ -236,83 +296,135 @@ fn sample_count(tl: &Timeline, cfg: &SimConfig, tmax: f64) -> Result<usize, Tool
     Ok(n_f as usize)
 }
 
-/// The contour error of every sample and its statistics per element.
-struct Tracked {
-    /// Contour error per sample, mm.
-    error: Vec<f64>,
-    /// Nearest reference-path point X/Y/Z per sample, mm.
-    near: [Vec<f64>; 3],
+/// The measurement of a run, sample by sample: the nearest reference point
+/// of each simulated sample, followed along the path by a [`Tracker`], its
+/// statistics per element, the motion time, and the series kept.
+struct Run {
+    tracker: Tracker,
     /// Running statistics per element of the reference path.
     acc: Vec<Acc>,
     /// Largest contour error on cutting moves, mm, its sample and element.
     max_error: f64,
     max_k: usize,
     max_el: usize,
+    /// One past the last sample farther than 1 µm from the end point.
+    last_far: usize,
+    series: Option<Series>,
 }
 
-/// Measures the first `n` simulated samples of `f` against `path`: the
-/// nearest point of each, followed along the path by a [`Tracker`].
-fn track(path: &Path, f: &Filtered, n: usize, series: bool) -> Tracked {
-    let mut tracker = Tracker::default();
-    let m = if series { n } else { 0 };
-    let mut error = Vec::with_capacity(m);
-    let mut near: [Vec<f64>; 3] = [
-        Vec::with_capacity(m),
-        Vec::with_capacity(m),
-        Vec::with_capacity(m),
-    ];
-    let mut acc = vec![Acc::default(); path.elements.len()];
-    let (mut max_error, mut max_k, mut max_el) = (0.0f64, 0usize, 0usize);
-    let (sx, sy, sz) = (&f.sim[0][..n], &f.sim[1][..n], &f.sim[2][..n]);
-    let (cx, cy, cz) = (&f.cmd[0][..n], &f.cmd[1][..n], &f.cmd[2][..n]);
-    for k in 0..n {
-        let q = [sx[k], sy[k], sz[k]];
+/// The series a run returns: every sample, or for a run longer than
+/// [`MAX_SERIES`] samples, of each `stride` consecutive samples the one
+/// with the largest contour error (the first of equals), so a plot keeps
+/// every peak; the statistics always use every sample.
+#[derive(Default)]
+struct Series {
+    stride: usize,
+    f: Filtered,
+    /// Contour error per kept sample, mm.
+    error: Vec<f64>,
+    /// Nearest reference-path point X/Y/Z per kept sample, mm.
+    near: [Vec<f64>; 3],
+    /// The candidate of the current group of `stride` samples.
+    held: Option<(Sample, Nearest)>,
+}
+
+impl Run {
+    /// A run of `n` samples on `path`, keeping series at `stride` (none
+    /// when 0).
+    fn new(path: &Path, n: usize, stride: usize) -> Self {
+        Self {
+            tracker: Tracker::default(),
+            acc: vec![Acc::default(); path.elements.len()],
+            max_error: 0.0,
+            max_k: 0,
+            max_el: 0,
+            last_far: 0,
+            series: (stride > 0).then(|| Series::with_capacity(n.div_ceil(stride), stride)),
+        }
+    }
+
+    /// Measures sample `k`, `s`, against `path`, whose end point is `end`.
+    #[inline]
+    fn sample(&mut self, path: &Path, k: usize, s: &Sample, end: [f64; 3]) {
+        let q = s.sim;
+        if d3(q, end) > 1e-3 {
+            self.last_far = k + 1;
+        }
         // The commanded point: on the reference path when the reference is
         // the command, close to it otherwise (reverse compensation).
-        let lag = ((cx[k] - q[0]).powi(2) + (cy[k] - q[1]).powi(2) + (cz[k] - q[2]).powi(2)).sqrt();
-        let Some(nr) = tracker.nearest_within(path, q, lag) else {
-            break;
+        let lag = d3(s.cmd, q);
+        // `None` only for an empty path, which the caller refuses.
+        let Some(nr) = self.tracker.nearest_within(path, q, lag) else {
+            return;
         };
-        if series {
-            error.push(nr.dist);
-            for ax in 0..3 {
-                near[ax].push(nr.point[ax]);
-            }
+        if let Some(series) = &mut self.series {
+            series.offer(k, s, &nr);
         }
         let e = nr.element;
-        let (Some(a), Some(el)) = (acc.get_mut(e), path.elements.get(e)) else {
-            continue;
+        let (Some(a), Some(el)) = (self.acc.get_mut(e), path.elements.get(e)) else {
+            return;
         };
         a.add(el, &nr, q);
-        if !el.rapid && nr.dist > max_error {
-            max_error = nr.dist;
-            max_k = k;
-            max_el = e;
+        if !el.rapid && nr.dist > self.max_error {
+            self.max_error = nr.dist;
+            self.max_k = k;
+            self.max_el = e;
         }
-    }
-    Tracked {
-        error,
-        near,
-        acc,
-        max_error,
-        max_k,
-        max_el,
     }
 }
 
-/// The motion time: the end of the last of the first `n` samples of `sim`
-/// farther than 1 µm from `end`, s (0 when every sample is within it).
-fn settling_time(sim: &[Vec<f64>; 3], end: [f64; 3], n: usize, dt: f64) -> f64 {
-    for k in (0..n).rev() {
-        let d = ((sim[0][k] - end[0]).powi(2)
-            + (sim[1][k] - end[1]).powi(2)
-            + (sim[2][k] - end[2]).powi(2))
-        .sqrt();
-        if d > 1e-3 {
-            return (k + 1) as f64 * dt;
+impl Series {
+    fn with_capacity(m: usize, stride: usize) -> Self {
+        Self {
+            stride,
+            f: Filtered::with_capacity(m),
+            error: Vec::with_capacity(m),
+            near: [
+                Vec::with_capacity(m),
+                Vec::with_capacity(m),
+                Vec::with_capacity(m),
+            ],
+            held: None,
         }
     }
-    0.0
+
+    /// Sample `k`, `s`, whose nearest reference point is `nr`: kept at
+    /// once when every sample is kept, else held while it is the largest
+    /// error of its group and kept at the group's last sample.
+    #[inline]
+    fn offer(&mut self, k: usize, s: &Sample, nr: &Nearest) {
+        if self.stride == 1 {
+            self.keep(s, nr);
+            return;
+        }
+        if self.held.as_ref().is_none_or(|(_, h)| nr.dist > h.dist) {
+            self.held = Some((*s, *nr));
+        }
+        if (k + 1) % self.stride == 0 {
+            self.flush();
+        }
+    }
+
+    /// Keeps the held sample of an unfinished last group.
+    fn flush(&mut self) {
+        if let Some((s, nr)) = self.held.take() {
+            self.keep(&s, &nr);
+        }
+    }
+
+    fn keep(&mut self, s: &Sample, nr: &Nearest) {
+        self.f.push(s);
+        self.error.push(nr.dist);
+        for ax in 0..3 {
+            self.near[ax].push(nr.point[ax]);
+        }
+    }
+}
+
+/// Distance between two points, mm.
+#[inline]
+fn d3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
 impl Acc {

@@ -63,8 +63,9 @@ export interface SegmentStats {
   maxErrorUm: number; /** [mm] */ meanDeviation: number | null; /** [mm] */ halfDeviation: [number | null, number | null];
   /** [mm] mean contour-error vector of each half */ halfVector: [[number, number, number] | null, [number, number, number] | null]; /** [-] */ samples: number;
 }
-/** Time series (Float64Array, mm, mm/s, µm) and summary of one simulation. */
+/** Time series (Float64Array, mm, mm/s, µm) and summary of one simulation. The series hold every sample when seriesStride is 1; a run of more than 1,000,000 samples keeps, of each seriesStride consecutive samples, the one with the largest contour error (t gives its time). The statistics always use every sample. */
 export interface ToolPathSimulation {
+  /** [-] samples simulated */ samples: number; /** [-] */ seriesStride: number;
   /** [s] */ t: Float64Array;
   /** [mm] */ cmdX: Float64Array; /** [mm] */ cmdY: Float64Array; /** [mm] */ cmdZ: Float64Array;
   /** [mm] */ simX: Float64Array; /** [mm] */ simY: Float64Array; /** [mm] */ simZ: Float64Array;
@@ -228,6 +229,8 @@ pub fn check_nc(
 fn sim_obj(s: &Simulation, warnings: &[Warning]) -> Result<JsValue, JsError> {
     let err_um: Vec<f64> = s.error.iter().map(|e| e * 1e3).collect();
     Ok(Obj::new()
+        .num("samples", s.samples as f64)
+        .num("seriesStride", s.series_stride as f64)
         .arr("t", &s.t)
         .arr("cmdX", &s.cmd[0])
         .arr("cmdY", &s.cmd[1])
@@ -255,12 +258,31 @@ fn sim_obj(s: &Simulation, warnings: &[Warning]) -> Result<JsValue, JsError> {
         .build())
 }
 
+/// `onProgress(fraction, stage)` as a Rust callback: `false` from it
+/// cancels; no callback never cancels.
+#[cfg(feature = "full")]
+fn js_progress(cb: &Option<js_sys::Function>) -> impl FnMut(f64, &str) -> bool + '_ {
+    move |f: f64, stage: &str| match cb {
+        Some(cb) => cb
+            .call2(
+                &JsValue::NULL,
+                &JsValue::from_f64(f),
+                &JsValue::from_str(stage),
+            )
+            .map_or(true, |v| v.as_bool() != Some(false)),
+        None => true,
+    }
+}
+
 /// Simulates the program (Eqs. 1–2) and its contour error (§4-2).
+/// `onProgress(fraction, 'simulating')` is called every 262,144 samples;
+/// returning `false` cancels.
 #[cfg(feature = "full")]
 #[wasm_bindgen(js_name = simulateToolPath, unchecked_return_type = "ToolPathSimulation")]
 pub fn simulate_tool_path(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ToolPathConfig")] config: JsValue,
+    on_progress: Option<js_sys::Function>,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let (files, config) = take_files(config)?;
@@ -279,7 +301,10 @@ pub fn simulate_tool_path(
         ..ParseOptions::default()
     };
     let p = parse_files(text, &files, &opts).map_err(|e| JsError::new(&e.first().to_string()))?;
-    let s = crate::toolpath::simulate_program(&p, &cfg)?;
+    let mut progress = js_progress(&on_progress);
+    let s = crate::toolpath::simulate_with_progress(&p.segments, &p.segments, &cfg, &mut |f| {
+        progress(f, "simulating")
+    })?;
     sim_obj(&s, &p.warnings)
 }
 
@@ -353,16 +378,7 @@ pub fn reverse_compensate_js(
         )?;
         from_plain(config, "config")?
     };
-    let mut progress = |f: f64, stage: &str| match &on_progress {
-        Some(cb) => cb
-            .call2(
-                &JsValue::NULL,
-                &JsValue::from_f64(f),
-                &JsValue::from_str(stage),
-            )
-            .map_or(true, |v| v.as_bool() != Some(false)),
-        None => true,
-    };
+    let mut progress = js_progress(&on_progress);
     let c = reverse_compensate_with(text, &cfg, &mut progress)?;
     Ok(Obj::new()
         .val("nc", JsValue::from_str(&c.nc))

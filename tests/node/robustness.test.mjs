@@ -118,7 +118,7 @@ const CASES = {
   simulateToolPath: {
     good: () => mt.simulateToolPath(arcs, TP),
     bad: [['G1 X10 F1000', { dt: 0 }], ['G1 X10 F1000', { ...TP, tA: -1 }], ['G1 X10 F1000', { ...TP, dt: 0 }], ['G1 X1e9 F1', { ...TP, dt: 1e-6 }],
-      ['G1 X10 F1000', { ...TP, T: { x: NaN } }], ['G1 X19900 F1000', { ...TP, dt: 6e-5 }], ['G1 X10 F1000', [0.04, 0.015, 0.001]],
+      ['G1 X10 F1000', { ...TP, T: { x: NaN } }], ['G1 X199000 F1000', { ...TP, dt: 6e-5 }], ['G1 X10 F1000', [0.04, 0.015, 0.001]],
       ['G0 X0 Y0\nG41 D1 G1 X10 F100\nG3 X10 Y0 I-10 J0\nG40 G1 X0', { ...TP, toolRadii: 'D1=20' }], ['G1 X10 F1000', { ...TP, toolRadii: { D1: Infinity } }]],
   },
   radiusReduction: {

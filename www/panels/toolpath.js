@@ -130,6 +130,12 @@ export async function mount(root, api) {
   const compProgress = progressBar();
   let compAbort = null;
   cancel.addEventListener('click', () => compAbort?.abort());
+  // A long program simulates for seconds: progress and Cancel, as for
+  // reverse compensation.
+  const simCancel = h('button', { id: 'toolpath-sim-cancel', hidden: true }, 'Cancel');
+  const simProgress = progressBar();
+  let simAbort = null;
+  simCancel.addEventListener('click', () => simAbort?.abort());
   const out = h('div', { id: 'toolpath-out' });
   const pathBox = h('div', { class: 'plot', id: 'toolpath-path' });
   const velBox = h('div', { class: 'plot', id: 'toolpath-velocity' });
@@ -212,36 +218,63 @@ export async function mount(root, api) {
 
   async function simulate() {
     const token = simUi.start();
+    simAbort?.abort();
+    const abort = new AbortController();
+    simAbort = abort;
     try {
-      const s = await api.call('simulateToolPath', [nc.value, files.options({ ...cfg(), ...radiiOption() })]);
+      const s = await api.call('simulateToolPath', [nc.value, files.options({ ...cfg(), ...radiiOption() })], {
+        signal: abort.signal,
+        onProgress: (f) => {
+          simCancel.hidden = false;
+          simProgress.set(f, `simulating: ${Math.round(f * 100)} %`);
+        },
+      });
       if (!simUi.current(token)) return;
       last = s;
-      const warn = s.warnings.length
-        ? h('details', { class: 'warn-box' }, h('summary', {}, `${s.warnings.length} warning(s)`), h('ul', {}, ...s.warnings.map((w) => h('li', {}, `${w.file ? `${w.file}, ` : ''}line ${w.line}, column ${w.column}: ${w.message}`))))
-        : '';
-      const worst = [...s.segments].sort((a, b) => b.maxErrorUm - a.maxErrorUm).slice(0, 8);
-      out.replaceChildren(
-        table(['quantity', 'value'], [
-          ['maximum contour error', h('span', { id: 'toolpath-max-error' }, `${fmt(s.maxErrorUm, 4)} µm`)],
-          ['at line / time', `${s.maxErrorLine} / ${fmt(s.maxErrorTime, 4)} s`],
-          ['motion time', h('span', { id: 'toolpath-motion-time' }, `${fmt(s.motionTime, 5)} s`)],
-          ['nominal time (Σ length / feed)', `${fmt(s.nominalTime, 5)} s`],
-        ]),
-        warn,
-        h('h4', {}, 'Segments with the largest error'),
-        table(['line', 'kind', 'length mm', 'radius mm', 'max error µm', 'mean deviation µm'], worst.map((g) => [g.line, g.kind, fmt(g.length, 4), g.radius ? fmt(g.radius, 4) : '—', fmt(g.maxErrorUm, 4), g.meanDeviation == null ? '—' : fmt(g.meanDeviation * 1e3, 3)])),
-        h('button', { id: 'toolpath-csv', onclick: () => downloadText('toolpath-simulation.csv', toCsv({ t_s: s.t, cmd_x_mm: s.cmdX, cmd_y_mm: s.cmdY, cmd_z_mm: s.cmdZ, sim_x_mm: s.simX, sim_y_mm: s.simY, sim_z_mm: s.simZ, vel_x_mm_s: s.velSimX, vel_y_mm_s: s.velSimY, vel_z_mm_s: s.velSimZ, error_um: s.errorUm }), 'text/csv') }, 'Download CSV'),
-      );
-      pathBox.replaceChildren();
-      velBox.replaceChildren();
-      pathChart = xyChart(pathBox, { title: 'Commanded and simulated path (colour: contour error µm)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(s, Number(mag.value), 'simulated'), colorLabel: 'µm', height: 420 });
-      lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY].map(thinned), height: 260 });
+      showSimulation(s);
       simUi.ok();
     } catch (e) {
       last = null;
       pathChart = null;
-      if (simUi.current(token)) simUi.fail(e);
+      if (simUi.current(token)) {
+        if (abort.signal.aborted) showError(out, new Error('Simulation cancelled.'));
+        else simUi.fail(e);
+      }
+    } finally {
+      if (simAbort === abort) {
+        simAbort = null;
+        simCancel.hidden = true;
+        simProgress.done();
+      }
     }
+  }
+
+  /** The table, warnings, CSV button and charts of one simulation. */
+  function showSimulation(s) {
+    const warn = s.warnings.length
+      ? h('details', { class: 'warn-box' }, h('summary', {}, `${s.warnings.length} warning(s)`), h('ul', {}, ...s.warnings.map((w) => h('li', {}, `${w.file ? `${w.file}, ` : ''}line ${w.line}, column ${w.column}: ${w.message}`))))
+      : '';
+    const thinnedNote = s.seriesStride > 1
+      ? h('p', { class: 'note', id: 'toolpath-series-note' }, `${s.samples.toLocaleString('en')} samples simulated; the plots and the CSV keep the sample with the largest error of each ${s.seriesStride} (${s.t.length.toLocaleString('en')} rows). Every number above uses all samples.`)
+      : '';
+    const worst = [...s.segments].sort((a, b) => b.maxErrorUm - a.maxErrorUm).slice(0, 8);
+    out.replaceChildren(
+      table(['quantity', 'value'], [
+        ['maximum contour error', h('span', { id: 'toolpath-max-error' }, `${fmt(s.maxErrorUm, 4)} µm`)],
+        ['at line / time', `${s.maxErrorLine} / ${fmt(s.maxErrorTime, 4)} s`],
+        ['motion time', h('span', { id: 'toolpath-motion-time' }, `${fmt(s.motionTime, 5)} s`)],
+        ['nominal time (Σ length / feed)', `${fmt(s.nominalTime, 5)} s`],
+      ]),
+      thinnedNote,
+      warn,
+      h('h4', {}, 'Segments with the largest error'),
+      table(['line', 'kind', 'length mm', 'radius mm', 'max error µm', 'mean deviation µm'], worst.map((g) => [g.line, g.kind, fmt(g.length, 4), g.radius ? fmt(g.radius, 4) : '—', fmt(g.maxErrorUm, 4), g.meanDeviation == null ? '—' : fmt(g.meanDeviation * 1e3, 3)])),
+      h('button', { id: 'toolpath-csv', onclick: () => downloadText('toolpath-simulation.csv', toCsv({ t_s: s.t, cmd_x_mm: s.cmdX, cmd_y_mm: s.cmdY, cmd_z_mm: s.cmdZ, sim_x_mm: s.simX, sim_y_mm: s.simY, sim_z_mm: s.simZ, vel_x_mm_s: s.velSimX, vel_y_mm_s: s.velSimY, vel_z_mm_s: s.velSimZ, error_um: s.errorUm }), 'text/csv') }, 'Download CSV'),
+    );
+    pathBox.replaceChildren();
+    velBox.replaceChildren();
+    pathChart = xyChart(pathBox, { title: 'Commanded and simulated path (colour: contour error µm)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(s, Number(mag.value), 'simulated'), colorLabel: 'µm', height: 420 });
+    lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY].map(thinned), height: 260 });
   }
 
   async function compensate() {
@@ -313,8 +346,8 @@ export async function mount(root, api) {
     h('div', { class: 'card' },
       h('h3', {}, 'Model (Eq. 1 moving average tA, Eq. 2 first-order lag T per axis)'),
       h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, tA.el, tx.el, ty.el, tz.el, ovr.el, dt.el),
-      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, run, budget.el, comp, cancel, h('label', {}, 'Error magnification ', mag, ' ', magLabel))),
-    h('div', { class: 'card' }, h('h3', {}, 'Simulation'), out, pathBox, velBox),
+      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, run, simCancel, budget.el, comp, cancel, h('label', {}, 'Error magnification ', mag, ' ', magLabel))),
+    h('div', { class: 'card' }, h('h3', {}, 'Simulation'), simProgress.el, out, pathBox, velBox),
     h('div', { class: 'card' }, h('h3', {}, 'Reverse compensation (§4-3)'), compProgress.el, compOut),
   );
   checkProgram();

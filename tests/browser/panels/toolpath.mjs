@@ -5,7 +5,10 @@
 // and that the corrected program is offered for download, with the
 // per-region notes; then start the compensation of a real program
 // (LinuxCNC cds.ngc, seconds), cancel it, and check that the page says so
-// and the engine still simulates.
+// and the engine still simulates. Last, a real 40,306-line CAM pocket
+// (5.2 M samples): its simulation shows progress and can be cancelled,
+// and run to the end shows the core's maximum error (the built package in
+// Node gives the same number) with a note that the plots are thinned.
 import { readFileSync } from 'node:fs';
 
 export default async function (page, check) {
@@ -47,4 +50,27 @@ export default async function (page, check) {
   await page.click('#toolpath-run');
   await page.waitForFunction(() => document.querySelector('#toolpath-max-error')?.textContent, null, { timeout: 60_000 });
   check(parseFloat(await page.textContent('#toolpath-max-error')) > 0, 'engine works after the cancel');
+
+  const pocket = readFileSync(new URL('../../nc_corpus/cncjs_tball-pocket.gcode', import.meta.url), 'utf8');
+  // page.fill types into the editor too slowly for 1.2 MB; set it as a
+  // paste would.
+  await page.$eval('#toolpath-nc', (el, text) => {
+    el.value = text;
+    el.dispatchEvent(new Event('input', { bubbles: true }));
+  }, pocket);
+  await page.click('#toolpath-run');
+  await page.waitForSelector('#toolpath-sim-cancel', { state: 'visible', timeout: 20_000 });
+  await page.click('#toolpath-sim-cancel');
+  await page.waitForFunction(() => /Simulation cancelled/.test(document.querySelector('#toolpath-out')?.textContent ?? ''), null, { timeout: 20_000 });
+  check(true, 'simulation of the pocket cancelled');
+  await page.click('#toolpath-run');
+  await page.waitForSelector('#toolpath-series-note', { timeout: 90_000 });
+  const mt = await import('../../../pkg/mtmotion.js');
+  mt.initSync({ module: readFileSync(new URL('../../../pkg/mtmotion_bg.wasm', import.meta.url)) });
+  const core = mt.simulateToolPath(pocket, { tA: 0.04, T: [0.015, 0.015, 0.015], dt: 0.001, feedOverride: 1 });
+  const pocketShown = parseFloat(await page.textContent('#toolpath-max-error'));
+  check(Math.abs(pocketShown - core.maxErrorUm) < 1e-3 * core.maxErrorUm, `pocket max error ${pocketShown} µm vs core ${core.maxErrorUm.toFixed(3)} µm`);
+  const note = await page.textContent('#toolpath-series-note');
+  check(note.includes(`each ${core.seriesStride} `) && note.includes(core.samples.toLocaleString('en')), `thinning note: ${note}`);
+  check(!(await page.isVisible('#toolpath-sim-cancel')), 'simulation cancel hidden when done');
 }
