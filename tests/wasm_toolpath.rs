@@ -53,6 +53,7 @@ fn simulate_returns_arrays_and_summary() {
     let r = tp::simulate_tool_path(
         JsValue::from_str("G0 X10 Y0\nG3 X10 Y0 I-10 J0 F2000"),
         cfg(r#"{"tA":0.04,"T":[0.015,0.015,0.015],"dt":0.001}"#),
+        None,
     )
     .unwrap();
     let err: Float64Array = get(&r, &["errorUm"]).dyn_into().unwrap();
@@ -109,8 +110,8 @@ fn bad_input_throws_the_core_message() {
         message(e),
         "line 2, column 4: arc (G2) without a centre in the G17 plane; expected I/J or R"
     );
-    let e =
-        tp::simulate_tool_path(JsValue::from_str("G1 X1 F100"), cfg(r#"{"dt":0}"#)).unwrap_err();
+    let e = tp::simulate_tool_path(JsValue::from_str("G1 X1 F100"), cfg(r#"{"dt":0}"#), None)
+        .unwrap_err();
     assert!(message(e).starts_with("dt: expected a sampling interval"));
     let e =
         tp::radius_reduction(cfg(r#"{"feed":2000,"radius":-1,"tA":0.04,"T":0.01}"#)).unwrap_err();
