@@ -178,7 +178,7 @@ fn augmented(axis: &AxisParams) -> SMatrix<f64, 7, 7> {
 /// Replaces nalgebra's general `Matrix::exp` (a 13th-order Padé with an LU
 /// solve), which alone took about 60 KB of the wasm; the unit test checks the
 /// two agree to 1e-13 of the result's norm.
-fn expm<const N: usize>(m: &SMatrix<f64, N, N>) -> SMatrix<f64, N, N> {
+pub(crate) fn expm<const N: usize>(m: &SMatrix<f64, N, N>) -> SMatrix<f64, N, N> {
     let norm = (0..N)
         .map(|j| m.column(j).iter().map(|x| x.abs()).sum::<f64>())
         .fold(0.0, f64::max);
