@@ -7,6 +7,7 @@
 import { writeFileSync, mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { worstDelay } from '../event-loop.mjs';
 
 const MB50 = 50 * 1024 * 1024;
 
@@ -16,26 +17,6 @@ function bigFile(name, header, line, bytes) {
   const path = join(mkdtempSync(join(tmpdir(), 'mtmotion-huge-')), name);
   writeFileSync(path, header + line.repeat(Math.ceil(bytes / line.length)));
   return path;
-}
-
-/** Largest event-loop delay seen while `work` runs, in ms (a 20 ms probe). */
-async function worstDelay(page, work) {
-  await page.evaluate(() => {
-    const w = /** @type {any} */ (window);
-    w.__worst = 0;
-    w.__last = performance.now();
-    w.__probe = setInterval(() => {
-      const now = performance.now();
-      w.__worst = Math.max(w.__worst, now - w.__last - 20);
-      w.__last = now;
-    }, 20);
-  });
-  await work();
-  return page.evaluate(() => {
-    const w = /** @type {any} */ (window);
-    clearInterval(w.__probe);
-    return w.__worst;
-  });
 }
 
 /** Drops `file` on the tab's drop zone and checks the page answered and
