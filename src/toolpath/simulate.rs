@@ -46,11 +46,16 @@ pub struct SegmentStats {
     /// loss, positive inside; lines in XY: positive to the left), mm.
     pub mean_deviation: Option<f64>,
     /// The same over the first and the second half of the segment's
-    /// length (used to shift the vertices of line programs), mm.
+    /// length (used to shift the vertices of line programs), mm. Not
+    /// serialised: reverse compensation's own input, and four JS objects
+    /// per segment that a 40,000-segment program's result would carry.
+    #[serde(skip)]
     pub half_deviation: [Option<f64>; 2],
     /// The mean contour-error vector `near − simulated` per axis X, Y, Z
     /// over the first and the second half (any plane; used to shift the
-    /// vertices of line chains per axis), mm.
+    /// vertices of line chains per axis), mm. Not serialised (as
+    /// `half_deviation`).
+    #[serde(skip)]
     pub half_vector: [Option<[f64; 3]>; 2],
     /// Number of samples nearest to this segment.
     pub samples: usize,

@@ -60,8 +60,7 @@ export interface ToolPathConfig {
 }
 export interface SegmentStats {
   /** [-] */ segment: number; /** [-] */ line: number; kind: 'line' | 'arc' | 'rapid'; /** [mm] */ length: number; /** [mm] */ radius: number;
-  maxErrorUm: number; /** [mm] */ meanDeviation: number | null; /** [mm] */ halfDeviation: [number | null, number | null];
-  /** [mm] mean contour-error vector of each half */ halfVector: [[number, number, number] | null, [number, number, number] | null]; /** [-] */ samples: number;
+  maxErrorUm: number; /** [mm] */ meanDeviation: number | null; /** [-] */ samples: number;
 }
 /** Time series (Float64Array, mm, mm/s, µm) and summary of one simulation. The series hold every sample when seriesStride is 1; a run of more than 1,000,000 samples keeps, of each seriesStride consecutive samples, the one with the largest contour error (t gives its time). The statistics always use every sample. */
 export interface ToolPathSimulation {
