@@ -382,3 +382,36 @@ fn new_lines_are_numbered_like_the_program() {
         c.nc
     );
 }
+
+/// A program none of whose cutting moves can be rewritten is returned as
+/// it is with one note saying why, and no correction round is reported:
+/// with macro variables (every word computed), and with every cut in a
+/// subprogram body.
+#[test]
+fn a_program_with_nothing_to_move_says_why_as_a_whole() {
+    let macro_prog =
+        "#1=20\n#2=0\nG0 X0 Y0 Z1\nG1 Z#2 F600\nG1 X#1 F2000\nG1 Y#1\nG1 X#2\nG1 Y[#1-20]\nG0 Z5\nM30\n";
+    let sub_prog = "G0 X0 Y0 Z1\nM98 P100\nG0 Z5\nM30\nO100\nG1 Z0 F600\nG1 X20 F2000\nG1 Y20\nG1 X0\nG1 Y0\nM99\n";
+    for (text, phrase, lines) in [
+        (macro_prog, "macro variables or expressions", (4, 8)),
+        (sub_prog, "subprogram or macro body", (6, 10)),
+    ] {
+        let c = reverse_compensate(text, &ReverseConfig::default()).unwrap();
+        assert_eq!(c.nc, text);
+        assert!(c.before.max_error_um > 1.0, "{}", c.before.max_error_um);
+        assert_eq!(c.after.max_error_um, c.before.max_error_um);
+        assert!(c.history_um.is_empty(), "{:?}", c.history_um);
+        assert_eq!(c.regions.len(), 1, "{:?}", c.regions);
+        let n = &c.regions[0];
+        assert!(!n.changed);
+        assert_eq!((n.first_line, n.last_line), lines);
+        assert_eq!((n.arcs, n.lines), (0, 5));
+        assert_eq!(n.before_um, c.before.max_error_um);
+        assert!(
+            n.reason.starts_with("no cutting move can be rewritten: "),
+            "{}",
+            n.reason
+        );
+        assert!(n.reason.contains(phrase), "{}", n.reason);
+    }
+}

@@ -32,20 +32,89 @@ const LARGE: &[(&str, f64)] = &[
 /// every region's error is at sharp corners whose dwells would exceed the
 /// +5 % time budget, so nothing is changed (121 and 323 µm kept). The
 /// CAMotics pocket `camotics_botomata_bottom.nc` (5567 s) is not here: at
-/// dt 1 ms it needs 5.67 M samples, over the 2 M limit, and is refused;
-/// at dt 3 ms it runs (5.5 s native) and is left unchanged too, 214.6 µm,
-/// 0 of 186 regions ("no correction round lowered its error").
+/// dt 1 ms its compensation needs 22.7 M simulated samples, over the 8 M
+/// work budget, and is refused (see `REFUSED`); at dt 3 ms it runs (5.5 s
+/// native) and is left unchanged too, 214.6 µm, 0 of 186 regions ("no
+/// correction round lowered its error").
 const CAM: &[(&str, f64)] = &[
     ("ledfloor_1003.nc", 1.0),
     ("ledfloor_1112_tab_test_29bit_715_tab_thickness.nc", 1.0),
 ];
 
-fn ratio(name: &str) -> f64 {
-    let text = std::fs::read_to_string(format!(
+/// Programs that parse but are left as they are as a whole, with the
+/// phrase of the one note that says why.
+const UNCHANGED: &[(&str, &str)] = &[("linuxcnc_3D_Chips.ngc", "macro variables or expressions")];
+
+/// Programs that parse but whose compensation is refused before any
+/// simulation, with the phrase of the error (tA 40 ms, T 15 ms, dt 1 ms).
+const REFUSED: &[(&str, &str)] = &[
+    (
+        "camotics_botomata_bottom.nc",
+        "more than the limit of 8000000",
+    ),
+    ("cncjs_tball-pocket.gcode", "more than the limit of 8000000"),
+];
+
+fn read(name: &str) -> String {
+    std::fs::read_to_string(format!(
         "{}/tests/nc_corpus/{name}",
         env!("CARGO_MANIFEST_DIR")
     ))
-    .unwrap();
+    .unwrap()
+}
+
+/// Every file of the corpus has a pinned reverse-compensation outcome: a
+/// ratio above, left unchanged with its note, refused by the work budget,
+/// or — for every other file — refused with exactly the error that
+/// parsing it gives (so a corpus file added without a pin fails here
+/// unless it is refused by the parser too).
+#[test]
+fn every_corpus_program_has_a_pinned_reverse_outcome() {
+    let pinned: Vec<&str> = SMALL
+        .iter()
+        .chain(LARGE)
+        .chain(CAM)
+        .map(|(n, _)| *n)
+        .chain(UNCHANGED.iter().chain(REFUSED).map(|(n, _)| *n))
+        .collect();
+    let dir = format!("{}/tests/nc_corpus", env!("CARGO_MANIFEST_DIR"));
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n != "SOURCES.md")
+        .collect();
+    names.sort();
+    assert!(names.len() >= 28, "{names:?}");
+    let cfg = ReverseConfig::default();
+    for (name, phrase) in UNCHANGED {
+        let text = read(name);
+        let c = reverse_compensate(&text, &cfg).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(c.nc, text, "{name}");
+        assert!(
+            c.regions.len() == 1 && c.regions[0].reason.contains(phrase),
+            "{name}: {:?}",
+            c.regions
+        );
+    }
+    for (name, phrase) in REFUSED {
+        let e = reverse_compensate(&read(name), &cfg)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(phrase), "{name}: {e}");
+    }
+    for name in names.iter().filter(|n| !pinned.contains(&n.as_str())) {
+        let text =
+            String::from_utf8_lossy(&std::fs::read(format!("{dir}/{name}")).unwrap()).into_owned();
+        let parsed = parse(&text)
+            .err()
+            .unwrap_or_else(|| panic!("{name}: parses but has no reverse pin"));
+        let refused = reverse_compensate(&text, &cfg).unwrap_err().to_string();
+        assert_eq!(refused, parsed.to_string(), "{name}");
+    }
+}
+
+fn ratio(name: &str) -> f64 {
+    let text = read(name);
     let cfg = ReverseConfig::default();
     let c = reverse_compensate(&text, &cfg).unwrap_or_else(|e| panic!("{name}: {e}"));
     parse(&c.nc).unwrap_or_else(|e| panic!("{name}: result does not read back: {e}"));

@@ -300,7 +300,7 @@ export async function mount(root, api) {
           ['original', h('span', { id: 'toolpath-before-error' }, fmt(c.before.maxErrorUm, 4)), fmt(c.before.motionTime, 5)],
           ['compensated', h('span', { id: 'toolpath-after-error' }, fmt(c.after.maxErrorUm, 4)), h('span', { id: 'toolpath-after-time' }, fmt(c.after.motionTime, 5))],
         ]),
-        h('p', {}, `Error ${pct >= 0 ? 'reduced' : 'increased'} by ${fmt(Math.abs(pct), 3)} %; rounds: ${c.historyUm.map((e) => fmt(e, 3)).join(' → ')} µm; dwells: ${c.dwells.length ? c.dwells.map((d) => `${d.seconds} s after line ${d.afterLine}`).join(', ') : 'none'}.`),
+        h('p', {}, `Error ${pct >= 0 ? 'reduced' : 'increased'} by ${fmt(Math.abs(pct), 3)} %; rounds: ${c.historyUm.length ? `${c.historyUm.map((e) => fmt(e, 3)).join(' → ')} µm` : 'none (nothing to move)'}; dwells: ${c.dwells.length ? c.dwells.map((d) => `${d.seconds} s after line ${d.afterLine}`).join(', ') : 'none'}.`),
         ...(c.budgetNote ? [h('p', { class: 'note', id: 'toolpath-budget-note' }, `Cut short: ${c.budgetNote}.`)] : []),
         h('button', { id: 'toolpath-download', class: 'primary', onclick: () => downloadText(`${base}-compensated.nc`, c.nc, 'text/plain') }, 'Download compensated .nc'),
         h('details', { id: 'toolpath-regions', open: c.regions.some((r) => !r.changed) },

@@ -701,7 +701,7 @@ fn finish(
     let orig = &program.segments;
     let id = identity(orig, vec![0.0; orig.len()]);
     let line = |i: usize| orig[i].line;
-    let regions = (0..rg.members.len())
+    let mut regions: Vec<RegionNote> = (0..rg.members.len())
         .map(|r| {
             let ch = changed(rg, r, &c.edit, &id);
             let m = &rg.members[r];
@@ -724,6 +724,9 @@ fn finish(
             }
         })
         .collect();
+    if regions.is_empty() {
+        regions.extend(nothing_movable(program, sim_before));
+    }
     let dwells = c
         .edit
         .dwell_after
@@ -747,6 +750,42 @@ fn finish(
         sim_after: c.sim,
         budget_note: None,
     }
+}
+
+/// The note of a program none of whose cutting moves can be rewritten
+/// (no region at all): one entry over its cutting moves saying why it was
+/// left as it is. `None` for a program without cutting moves.
+fn nothing_movable(program: &Program, sim_before: &Simulation) -> Option<RegionNote> {
+    let cutting: Vec<&Segment> = program.segments.iter().filter(|s| s.is_cutting()).collect();
+    let (first, last) = (cutting.first()?, cutting.last()?);
+    let arcs = cutting
+        .iter()
+        .filter(|s| matches!(s.motion, Motion::Arc(_)))
+        .count();
+    let why = if program.has_macros() {
+        "its cutting moves take their coordinates from macro variables or expressions \
+         (Macro B, o-words, G65 arguments) or lie in subprogram or macro bodies, cycles or \
+         cutter-compensated stretches"
+    } else {
+        "every cutting move lies in a subprogram or macro body, a canned cycle, a corner \
+         rounding or a cutter-compensated stretch, whose end points are not literal words of \
+         their own block"
+    };
+    let max_um = sim_before.max_error * 1e3;
+    Some(RegionNote {
+        first_line: first.line,
+        last_line: last.line,
+        arcs,
+        lines: cutting.len() - arcs,
+        before_um: max_um,
+        after_um: max_um,
+        changed: false,
+        reason: format!(
+            "no cutting move can be rewritten: {why}; reverse compensation moves only literal \
+             coordinate words. Post the path with literal coordinates (a CAM post, or the \
+             control's expanded program) to compensate it"
+        ),
+    })
 }
 
 fn summary(s: &Simulation) -> Summary {

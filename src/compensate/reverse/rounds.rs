@@ -180,7 +180,10 @@ pub fn run(
                 errs[r] = fresh[r];
             }
         }
-        history.push(errs.iter().copied().fold(0.0, f64::max) * 1e3);
+        // No region, no round to report (the page would show "0 µm").
+        if nr > 0 {
+            history.push(errs.iter().copied().fold(0.0, f64::max) * 1e3);
+        }
         let mut active = false;
         for r in 0..nr {
             if errs[r] < best_err[r] {
