@@ -367,3 +367,34 @@ fn unbracketed_macro_arithmetic_and_macro_corner_words_are_named() {
         "{first}"
     );
 }
+
+/// LinuxCNC's `G64 P.1` (and `G64 P0.02 Q0.01`): P and Q are the
+/// path-blending tolerances of G64, one warning naming them (not
+/// "unknown word"), and the path is the programmed one; a plain G64 or
+/// G61 is silent, and a P on a block without G64 is still unknown.
+#[test]
+fn g64_blending_tolerance_is_named_not_unknown() {
+    let p = parse("G21 G90\nG64 P.1\nG64 P0.02 Q0.01\nG64\nG61\nG1 X10 F600\nG0 X0 P3").unwrap();
+    let msgs: Vec<(usize, String)> = p
+        .warnings
+        .iter()
+        .map(|w| (w.line, w.message.clone()))
+        .collect();
+    assert_eq!(msgs.len(), 3, "{msgs:?}");
+    assert_eq!(msgs[0].0, 2);
+    assert!(
+        msgs[0]
+            .1
+            .starts_with("G64 P.1 (path-blending tolerance) is not modelled"),
+        "{msgs:?}"
+    );
+    assert_eq!(msgs[1].0, 3);
+    assert!(
+        msgs[1]
+            .1
+            .starts_with("G64 P0.02 Q0.01 (path-blending tolerance)"),
+        "{msgs:?}"
+    );
+    assert_eq!(msgs[2], (7, "unknown word P3 was ignored".to_string()));
+    assert_eq!(ends(&p.segments), vec![[10.0, 0.0, 0.0], [0.0, 0.0, 0.0]]);
+}

@@ -143,6 +143,7 @@ fn read_other_words(
             'P' | 'L' if call => continue,
             'P' if gw.setting.is_some() => continue,
             'E' if gw.setting == Some(1870) => continue,
+            'Q' if gw.setting == Some(640) => continue,
             'M' if matches!(code10(w), 20 | 300 | 970 | 980 | 990) => continue,
             'L' | 'P' | 'Q' if st.cycle.is_some() || gw.cycle.is_some() => continue,
             'D' if gw.cutter.is_some_and(|(_, g)| g != 400) => continue,

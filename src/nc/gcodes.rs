@@ -173,6 +173,11 @@ fn grouped_or_other<'a>(
             "coordinate-rotation codes",
             "; expected G68 or G69",
         ),
+        640 if b.word('P').is_some() || b.word('Q').is_some() => {
+            gw.setting = Some(g);
+            warnings.push(Warning::at(b.line, w.column, setting_message(b, w, g)));
+            Ok(())
+        }
         1870 | 1030 => {
             gw.setting = Some(g);
             warnings.push(Warning::at(b.line, w.column, setting_message(b, w, g)));
@@ -198,18 +203,25 @@ pub(super) fn has_g187(b: &Block) -> bool {
 
 /// The warning for Haas G187 (smoothness/accuracy: `P1` rough, `P2`
 /// medium, `P3` finish, `E` corner tolerance) and G103 (block look-ahead
-/// limit `P`, 0–15): the control's path smoothing and look-ahead are not
-/// modelled, so the simulated acc/dec (tA, T) does not change.
+/// limit `P`, 0–15), and LinuxCNC's G64 with its path-blending tolerance
+/// `P` and naive-CAM tolerance `Q`: the control's path smoothing and
+/// look-ahead are not modelled, so the simulated acc/dec (tA, T) does not
+/// change.
 fn setting_message(b: &Block, w: &Word, g: i64) -> String {
-    let words: Vec<String> = ['P', 'E']
+    let letters: &[char] = match g {
+        1870 => &['P', 'E'],
+        640 => &['P', 'Q'],
+        _ => &['P'],
+    };
+    let words: Vec<String> = letters
         .iter()
-        .filter_map(|&c| b.word(c).filter(|_| c == 'P' || g == 1870))
+        .filter_map(|&c| b.word(c))
         .map(|x| format!("{}{}", x.letter, x.text))
         .collect();
-    let what = if g == 1870 {
-        "Haas smoothness/accuracy setting"
-    } else {
-        "Haas block look-ahead limit"
+    let what = match g {
+        1870 => "Haas smoothness/accuracy setting",
+        640 => "path-blending tolerance",
+        _ => "Haas block look-ahead limit",
     };
     let with = if words.is_empty() {
         String::new()
