@@ -90,18 +90,14 @@ const CORPUS: &[(&str, Outcome)] = &[
         "linuxcnc_daisy.ngc",
         Outcome::Err(26, 1, "inverse-time feed", 1),
     ),
-    (
-        "linuxcnc_hole-circle.ngc",
-        Outcome::Err(10, 18, "polar coordinate", 1),
-    ),
+    // LinuxCNC polar coordinates (G91 ^60 L6 in a G81 cycle; tests/nc_polar.rs).
+    ("linuxcnc_hole-circle.ngc", Outcome::Ok(25)),
     (
         "linuxcnc_mmount.ngc",
         Outcome::Err(314, 1, "G33.1: spindle-synchronised", 6),
     ),
-    (
-        "linuxcnc_spiral.ngc",
-        Outcome::Err(9, 8, "polar coordinate", 1),
-    ),
+    // Three moves before the loop, 800 polar steps, the retract.
+    ("linuxcnc_spiral.ngc", Outcome::Ok(804)),
     (
         "linuxcnc_systems.ngc",
         Outcome::Err(15, 1, "G5.1: spline interpolation", 100),

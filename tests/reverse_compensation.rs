@@ -394,7 +394,7 @@ fn a_program_with_nothing_to_move_says_why_as_a_whole() {
     let sub_prog = "G0 X0 Y0 Z1\nM98 P100\nG0 Z5\nM30\nO100\nG1 Z0 F600\nG1 X20 F2000\nG1 Y20\nG1 X0\nG1 Y0\nM99\n";
     for (text, phrase, lines) in [
         (macro_prog, "macro variables or expressions", (4, 8)),
-        (sub_prog, "subprogram or macro body", (6, 10)),
+        (sub_prog, "subprogram or macro bodies", (6, 10)),
     ] {
         let c = reverse_compensate(text, &ReverseConfig::default()).unwrap();
         assert_eq!(c.nc, text);

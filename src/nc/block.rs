@@ -48,6 +48,7 @@ pub(super) fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result
         cutter_word(b, st, cx, w, g)?;
     }
     read_other_words(b, st, &gw, cx.warnings)?;
+    super::polar::check(b, st.plane)?;
     if rotation_block(b, st, &gw, cx.stretches, scale)? {
         return Ok(());
     }
@@ -77,16 +78,30 @@ pub(super) fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result
         return canned_cycle(b, st, cx, gw.cycle.map(|(w, _)| w), scale);
     }
     if let Some((w, g)) = gw.non_modal {
+        if let Some(p) = super::polar::polar_word(b) {
+            return Err(err(
+                b,
+                p,
+                format!(
+                    "polar word {}{} on a G{} block: write its point as X/Y",
+                    p.letter, p.text, w.text
+                ),
+            ));
+        }
         return non_modal_move(b, st, cx, w, g, &axis_words(b, cx), scale);
     }
     move_block(b, st, cx, scale)
 }
 
-/// The axis words of `b` (X Y Z A B, and C when it is an axis).
+/// The axis words of `b` (X Y Z A B, C when it is an axis, and the
+/// polar `@`/`^` of [`super::polar`]).
 pub(super) fn axis_words<'a>(b: &'a Block, cx: &Ctx) -> Vec<&'a Word> {
     b.words
         .iter()
-        .filter(|w| super::segment::AXES.contains(&w.letter) && (w.letter != 'C' || cx.opt.c_axis))
+        .filter(|w| {
+            (super::segment::AXES.contains(&w.letter) && (w.letter != 'C' || cx.opt.c_axis))
+                || super::polar::is_polar(w.letter)
+        })
         .collect()
 }
 
@@ -136,7 +151,9 @@ fn read_other_words(
                 read_feed(b, w, st, warnings)?;
                 continue;
             }
-            'G' | 'N' | 'O' | 'X' | 'Y' | 'Z' | 'A' | 'B' | 'I' | 'J' | 'K' | 'R' => continue,
+            'G' | 'N' | 'O' | 'X' | 'Y' | 'Z' | 'A' | 'B' | 'I' | 'J' | 'K' | 'R' | '@' | '^' => {
+                continue
+            }
             'C' => continue,
             'P' | 'U' if gw.dwell.is_some() => continue,
             'L' | 'P' if g10 => continue,

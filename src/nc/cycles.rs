@@ -213,7 +213,13 @@ pub(super) fn canned_cycle(
     let (u, v, n) = st.plane.axes();
     let (wu, wv) = (b.word(AXES[u]), b.word(AXES[v]));
     let (wn, wr) = (b.word(AXES[n]), b.word('R'));
-    let Some(anchor) = cycle_word.or(wu).or(wv).or(wn).or(wr) else {
+    let Some(anchor) = cycle_word
+        .or(wu)
+        .or(wv)
+        .or(super::polar::polar_word(b))
+        .or(wn)
+        .or(wr)
+    else {
         return Ok(());
     };
     check_cycle_axes(b, st, cx)?;
@@ -228,7 +234,13 @@ pub(super) fn canned_cycle(
             "G76 fine boring: the tool shift at the bottom (direction set by a machine parameter) is not simulated",
         ));
     }
-    let plane_words: Vec<&Word> = [wu, wv].into_iter().flatten().collect();
+    // The hole position: the plane's words, or LinuxCNC polar words
+    // (G17 only, checked by `polar::check`).
+    let plane_words: Vec<&Word> = [wu, wv]
+        .into_iter()
+        .flatten()
+        .chain(b.words.iter().filter(|w| super::polar::is_polar(w.letter)))
+        .collect();
     for _ in 0..holes.repeats {
         let at = target(st, &plane_words, scale);
         let (pu, pv) = (at.get(u), at.get(v));

@@ -30,6 +30,7 @@ pub mod macro_vars;
 mod moves;
 mod non_modal;
 pub mod patch;
+pub mod polar;
 pub mod program;
 pub mod rotation;
 mod run;
@@ -532,6 +533,9 @@ fn lex_item(
         block.comma_words.push(Word { column: col, ..w });
     } else if c.is_ascii_alphabetic() {
         lex_address(chars, i, line, block)?;
+    } else if polar::is_polar(c) {
+        let w = lex_word(chars, i, line)?;
+        block.words.push(w);
     } else {
         return Err(stray_char_error(c, line, col));
     }
@@ -600,8 +604,7 @@ fn lex_address(
 }
 
 /// The error for a character that cannot start anything here: a macro
-/// `#`/`[`, a number without a letter, a LinuxCNC polar `@`/`^`, or any
-/// other character.
+/// `#`/`[`, a number without a letter, or any other character.
 fn stray_char_error(c: char, line: usize, col: usize) -> NcError {
     let msg = if c == '#' || c == '[' {
         format!(
@@ -610,10 +613,6 @@ fn stray_char_error(c: char, line: usize, col: usize) -> NcError {
         )
     } else if c.is_ascii_digit() || c == '.' || c == '-' || c == '+' {
         format!("number '{c}…' has no address letter; expected a word such as X{c}")
-    } else if c == '@' || c == '^' {
-        format!(
-            "'{c}' is a LinuxCNC polar coordinate (@ radius, ^ angle), not supported yet; write the end point as X/Y"
-        )
     } else {
         format!(
             "unexpected character '{c}' (U+{:04X}); expected an address word, '(' or ';'",

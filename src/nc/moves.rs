@@ -78,7 +78,8 @@ pub(super) fn move_block(
         start,
         end,
         feed,
-        fixed: false,
+        // A polar end point is not a literal X/Y word.
+        fixed: super::polar::polar_word(b).is_some(),
     });
     Ok(())
 }
@@ -292,7 +293,15 @@ pub(super) fn target(st: &Modal, axis_words: &[&Word], scale: f64) -> Pose {
 /// frame (G90/G91, G92 shift, inch scale).
 fn program_target(st: &Modal, from: Pose, axis_words: &[&Word], scale: f64) -> Pose {
     let mut end = from;
-    for w in axis_words {
+    let origin = [st.offset[0], st.offset[1]];
+    if let Some([x, y]) = super::polar::end_xy(axis_words, from, origin, st.incremental, scale) {
+        end.set(0, x);
+        end.set(1, y);
+    }
+    for w in axis_words
+        .iter()
+        .filter(|w| !super::polar::is_polar(w.letter))
+    {
         let (i, v) = axis_value(w, scale);
         end.set(
             i,

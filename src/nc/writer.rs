@@ -116,7 +116,7 @@ fn g_code(w: &Word) -> i64 {
 }
 
 fn is_move_word(c: char) -> bool {
-    AXES.contains(&c) || matches!(c, 'I' | 'J' | 'K' | 'R')
+    AXES.contains(&c) || matches!(c, 'I' | 'J' | 'K' | 'R') || super::polar::is_polar(c)
 }
 
 struct Out {

@@ -724,9 +724,7 @@ fn finish(
             }
         })
         .collect();
-    if regions.is_empty() {
-        regions.extend(nothing_movable(program, sim_before));
-    }
+    regions.extend(fixed_moves_note(program, rg, sim_before, &c.sim));
     let dwells = c
         .edit
         .dwell_after
@@ -752,38 +750,59 @@ fn finish(
     }
 }
 
-/// The note of a program none of whose cutting moves can be rewritten
-/// (no region at all): one entry over its cutting moves saying why it was
-/// left as it is. `None` for a program without cutting moves.
-fn nothing_movable(program: &Program, sim_before: &Simulation) -> Option<RegionNote> {
-    let cutting: Vec<&Segment> = program.segments.iter().filter(|s| s.is_cutting()).collect();
-    let (first, last) = (cutting.first()?, cutting.last()?);
-    let arcs = cutting
+/// The note of the cutting moves that belong to no region because they
+/// cannot be rewritten (macro-computed or polar end points, subprogram or
+/// macro bodies, cycles, corner roundings, cutter-compensated stretches):
+/// one entry over them, with their largest error before and after and why
+/// they were left as they are, so an error peak there is never unexplained.
+/// `None` when every cutting move belongs to a region.
+fn fixed_moves_note(
+    program: &Program,
+    rg: &Regions,
+    sim_before: &Simulation,
+    sim_after: &Simulation,
+) -> Option<RegionNote> {
+    let segs = &program.segments;
+    let fixed: Vec<usize> = (0..segs.len())
+        .filter(|&i| segs[i].is_cutting() && rg.of[i].is_none())
+        .collect();
+    let (first, last) = (*fixed.first()?, *fixed.last()?);
+    let arcs = fixed
         .iter()
-        .filter(|s| matches!(s.motion, Motion::Arc(_)))
+        .filter(|&&i| matches!(segs[i].motion, Motion::Arc(_)))
         .count();
-    let why = if program.has_macros() {
-        "its cutting moves take their coordinates from macro variables or expressions \
-         (Macro B, o-words, G65 arguments) or lie in subprogram or macro bodies, cycles or \
-         cutter-compensated stretches"
-    } else {
-        "every cutting move lies in a subprogram or macro body, a canned cycle, a corner \
-         rounding or a cutter-compensated stretch, whose end points are not literal words of \
-         their own block"
+    let worst = |sim: &Simulation| {
+        sim.segments
+            .iter()
+            .filter(|st| fixed.binary_search(&st.segment).is_ok())
+            .map(|st| st.max_error_um)
+            .fold(0.0, f64::max)
     };
-    let max_um = sim_before.max_error * 1e3;
+    let macros = if program.has_macros() {
+        "the program computes words with macro variables or expressions (Macro B, o-words, \
+         G65), and "
+    } else {
+        ""
+    };
+    let every = if rg.members.is_empty() {
+        "no cutting move can be rewritten"
+    } else {
+        "these cutting moves cannot be rewritten"
+    };
     Some(RegionNote {
-        first_line: first.line,
-        last_line: last.line,
+        first_line: segs[first].line,
+        last_line: segs[last].line,
         arcs,
-        lines: cutting.len() - arcs,
-        before_um: max_um,
-        after_um: max_um,
+        lines: fixed.len() - arcs,
+        before_um: worst(sim_before),
+        after_um: worst(sim_after),
         changed: false,
         reason: format!(
-            "no cutting move can be rewritten: {why}; reverse compensation moves only literal \
-             coordinate words. Post the path with literal coordinates (a CAM post, or the \
-             control's expanded program) to compensate it"
+            "{every}: {macros}their end points are not literal words of their \
+             own block (macro-computed or LinuxCNC polar words, subprogram or macro bodies, \
+             canned cycles, corner roundings, cutter-compensated stretches); reverse \
+             compensation moves only literal coordinate words. Post the path with literal \
+             coordinates (a CAM post, or the control's expanded program) to compensate it"
         ),
     })
 }
