@@ -57,6 +57,7 @@ mod native {
             points: 3600,
             clockwise: false,
             lead_in_deg: 0.0,
+            sensitivities: true,
         };
         cfg.drives.backlash.insert("c".into(), 1.745e-4);
         let mut g = c.benchmark_group("cone_frustum");

@@ -27,6 +27,7 @@ fn rms_tilt(machine: &str, tilt: &str, theta: f64, beta: f64, method: Method) ->
         points: 360,
         clockwise: false,
         lead_in_deg: 0.0,
+        sensitivities: true,
     };
     let r = cone_frustum_test(&cfg).unwrap();
     let s = r.axis_sensitivity.iter().find(|s| s.name == tilt).unwrap();

@@ -30,6 +30,7 @@ fn cfg(machine: &str, theta: f64, beta: f64, method: Method) -> ConeFrustumConfi
         points: 720,
         clockwise: false,
         lead_in_deg: 30.0,
+        sensitivities: true,
     }
 }
 
@@ -272,4 +273,28 @@ fn drive_errors_are_checked_and_named() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("unknown field `backlash`"), "{e}");
+}
+
+/// `sensitivities: false` leaves both sensitivity lists empty and changes
+/// nothing else: every reading, the path and the axis series are the same
+/// numbers, bit for bit, as with them (servo models, C backlash, an error).
+#[test]
+fn without_sensitivities_the_readings_are_unchanged() {
+    let mut with = cfg("trunnion-ac", 45.0, 10.0, Method::Perpendicular);
+    with.ideal_servo = false;
+    with.points = 720;
+    with.drives.backlash.insert("c".into(), 1.745e-4);
+    let a = cone_frustum_test(&with).unwrap();
+    let b = cone_frustum_test(&ConeFrustumConfig {
+        sensitivities: false,
+        ..with.clone()
+    })
+    .unwrap();
+    assert!(!a.axis_sensitivity.is_empty() && !a.error_sensitivity.is_empty());
+    assert!(b.axis_sensitivity.is_empty() && b.error_sensitivity.is_empty());
+    assert_eq!(a.deviation, b.deviation);
+    assert_eq!(a.path, b.path);
+    assert_eq!(a.angle_deg, b.angle_deg);
+    assert_eq!(a.axes, b.axes);
+    assert_eq!(a.max_deviation.to_bits(), b.max_deviation.to_bits());
 }

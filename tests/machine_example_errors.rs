@@ -34,6 +34,7 @@ fn worst(machine: &str, errors: GeometricErrors, drives: DriveErrors) -> f64 {
         points: 720,
         clockwise: false,
         lead_in_deg: 30.0,
+        sensitivities: true,
     })
     .unwrap_or_else(|e| panic!("{machine}: {e}"));
     r.deviation.iter().fold(0.0_f64, |m, d| m.max(d.abs()))

@@ -45,6 +45,9 @@ fn n3600() -> usize {
 fn thirty() -> f64 {
     30.0
 }
+fn yes() -> bool {
+    true
+}
 
 /// The test configuration (the JS `coneFrustumTest` argument).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -91,6 +94,11 @@ pub struct ConeFrustumConfig {
     /// Lead-in arc before the measured revolution, degrees.
     #[serde(default = "thirty")]
     pub lead_in_deg: f64,
+    /// Compute the sensitivity coefficients along the path (to each axis
+    /// and each location error); `false` leaves both lists empty and saves
+    /// about a quarter of the run (default `true`).
+    #[serde(default = "yes")]
+    pub sensitivities: bool,
 }
 
 /// Command and actual position of one axis.
@@ -203,7 +211,8 @@ fn placeholder_axis(kind: AxisKind) -> AxisParams {
 ///     inclination_deg: 10.0, method: Method::Perpendicular, bar_length: 100.0,
 ///     feed: 1000.0, radius: None, centre: Some([0.0, 50.0, 0.0]), errors: GeometricErrors::default(),
 ///     drives: Default::default(),
-///     ideal_servo: true, tool_length: 0.0, points: 360, clockwise: false, lead_in_deg: 0.0 };
+///     ideal_servo: true, tool_length: 0.0, points: 360, clockwise: false, lead_in_deg: 0.0,
+///     sensitivities: true };
 /// let r = cone_frustum_test(&cfg).unwrap();
 /// assert!(r.deviation.iter().all(|d| d.abs() < 1e-9)); // ideal machine, ideal servo
 /// ```
@@ -467,7 +476,12 @@ fn bar_readings(
     let n = s.n;
     let model = Model::new(chain, &cfg.errors, cfg.tool_length)?;
     let nominal = Model::new(chain, &GeometricErrors::default(), cfg.tool_length)?;
-    let symbols = crate::kinematics::errors::error_symbols(chain);
+    let symbols = if cfg.sensitivities {
+        crate::kinematics::errors::error_symbols(chain)
+    } else {
+        Vec::new()
+    };
+    let sens_axes: &[usize] = if cfg.sensitivities { present } else { &[] };
     let perturbed = symbols
         .iter()
         .map(|e| sensitivity::perturbed(chain, &GeometricErrors::default(), cfg.tool_length, e))
@@ -481,7 +495,7 @@ fn bar_readings(
             Vec::with_capacity(n),
             Vec::with_capacity(n),
         ],
-        axis_sens: vec![Vec::with_capacity(n); present.len()],
+        axis_sens: vec![Vec::with_capacity(n); sens_axes.len()],
         err_sens: vec![Vec::with_capacity(n); symbols.len()],
         symbols,
     };
@@ -495,12 +509,14 @@ fn bar_readings(
         for (c, v) in r.path.iter_mut().zip(pt.tip.iter()) {
             c.push(*v);
         }
-        for (a, v) in r
-            .axis_sens
-            .iter_mut()
-            .zip(sensitivity::axes(&nominal, qc, &pt.bar, present))
-        {
-            a.push(v);
+        if cfg.sensitivities {
+            for (a, v) in r
+                .axis_sens
+                .iter_mut()
+                .zip(sensitivity::axes(&nominal, qc, &pt.bar, sens_axes))
+            {
+                a.push(v);
+            }
         }
         for (e, m) in r.err_sens.iter_mut().zip(&perturbed) {
             e.push(sensitivity::error(m, qc, &pt.bar));

@@ -83,7 +83,8 @@ impl<'a> Interpolant<'a> {
     }
 
     /// `x_s(u)`: the moving average over `w` samples ending at `u`
-    /// (`c(u)` itself when `w` = 0).
+    /// (`c(u)` itself when `w` = 0). The tests' oracle of [`shape`].
+    #[cfg(test)]
     pub(crate) fn smoothed(&self, u: f64, w: f64) -> f64 {
         if w <= 0.0 {
             self.value(u)
@@ -156,16 +157,62 @@ pub(crate) fn shape(command: &[f64], dt: f64, ts: f64, ta: f64, tp: f64) -> Shap
             window.round() as usize,
         );
     }
+    // The six window ends sit at fixed offsets from the sample, so each
+    // keeps one fractional position and its integral is read without a
+    // float-to-index conversion per sample (`Offset::at`).
+    let at = |a: f64| Offset::new(a);
+    let (x1, x0) = (at(0.0), at(-ns));
+    let (e1, e0) = (at(end_offset), at(end_offset - ns));
+    let (w1, w0) = (at(end_offset - window), at(end_offset - window - ns));
+    let smooth = |i: usize, hi: &Offset, lo: &Offset| {
+        if ns <= 0.0 {
+            c.value(i as f64 + hi.a)
+        } else {
+            (hi.integral(&c, i) - lo.integral(&c, i)) / ns
+        }
+    };
     let mut xs = Vec::with_capacity(n);
     let mut vff = Vec::with_capacity(n);
     for i in 0..n {
-        let u = i as f64;
-        xs.push(c.smoothed(u, ns));
-        let end = u + end_offset;
-        let v = (c.smoothed(end, ns) - c.smoothed(end - window, ns)) / (window * dt);
-        vff.push(v);
+        xs.push(smooth(i, &x1, &x0));
+        vff.push((smooth(i, &e1, &e0) - smooth(i, &w1, &w0)) / (window * dt));
     }
     Shaped::Samples { xs, vff }
+}
+
+/// A fixed offset `a` (in samples) from the sample index, split once into
+/// its whole part `k` and fraction `f` (0 ≤ f < 1).
+struct Offset {
+    a: f64,
+    k: i64,
+    f: f64,
+}
+
+impl Offset {
+    fn new(a: f64) -> Self {
+        let k = a.floor();
+        Self {
+            a,
+            k: k as i64,
+            f: a - k,
+        }
+    }
+
+    /// `Q(i + a)`: inside the command the piecewise-quadratic running
+    /// integral at index `i + k` and fraction `f` (as
+    /// [`Interpolant::integral`], without rounding `i + a` first); before
+    /// the start or past the end, `Interpolant::integral` itself.
+    #[inline]
+    fn integral(&self, c: &Interpolant, i: usize) -> f64 {
+        let j = i as i64 + self.k;
+        if j >= 0 && (j as usize) < c.last() {
+            let j = j as usize;
+            let f = self.f;
+            c.q[j] + f * c.c[j] + 0.5 * f * f * (c.c[j + 1] - c.c[j])
+        } else {
+            c.integral(i as f64 + self.a)
+        }
+    }
 }
 
 /// The same as the general path when `Ts`, the window and its end offset
@@ -238,6 +285,50 @@ mod tests {
                 assert!(
                     (gx - xs).abs() < 1e-9 && (gv - v).abs() < 1e-6,
                     "{ts} {ta} {tp} @{i}"
+                );
+            }
+        }
+    }
+
+    /// The general (non-grid) path, whose six window ends are read at
+    /// fixed fractional offsets, equals the per-sample `smoothed` reading
+    /// of the module header to 1e-12 of the command's size (x_s) and its
+    /// rate (v_ff): times that are not whole steps, with and without Ts,
+    /// windows reaching before the start and past the end.
+    #[test]
+    fn general_path_equals_per_sample_reading() {
+        let dt = 0.7e-3;
+        let c: Vec<f64> = (0..900)
+            .map(|i| 40.0 * (i as f64 * 0.013).sin() + 0.001 * (i * i) as f64)
+            .collect();
+        let size = 850.0; // |c| stays below this
+        for (ts, ta, tp) in [
+            (0.0643, 0.0151, 0.0077),
+            (0.0, 0.0151, 0.0077),
+            (0.0643, 0.0, 0.0),
+            (0.2, 0.03, 0.4),
+            (0.00035, 0.0002, 0.0001),
+        ] {
+            let Shaped::Samples { xs, vff } = shape(&c, dt, ts, ta, tp) else {
+                panic!("{ts} {ta} {tp}: expected the general path");
+            };
+            let it = Interpolant::new(&c);
+            let (ns, np, na) = (ts / dt, tp / dt, ta / dt);
+            let window = na.max(1.0);
+            let end_offset = np - 0.5 * na + 0.5 * window;
+            for i in 0..c.len() {
+                let u = i as f64;
+                let want_x = it.smoothed(u, ns);
+                let end = u + end_offset;
+                let want_v = (it.smoothed(end, ns) - it.smoothed(end - window, ns)) / (window * dt);
+                assert!(
+                    (xs[i] - want_x).abs() < 1e-12 * size,
+                    "{ts} {ta} {tp} x @{i}"
+                );
+                assert!(
+                    (vff[i] - want_v).abs() < 1e-12 * size / (window * dt),
+                    "{ts} {ta} {tp} v @{i}: {} vs {want_v}",
+                    vff[i]
                 );
             }
         }

@@ -30,6 +30,7 @@ export interface ConeFrustumOptions {
   /** [mm] spindle-ball circle */ radius?: number; /** [mm] table ball */ centre?: [number, number, number]; errors?: GeometricErrors;
   /** backlash and worm-gear pitch error per axis */ drives?: DriveErrors;
   idealServo?: boolean; /** [mm] */ toolLength?: number; /** [-] samples per revolution */ points?: number; clockwise?: boolean; leadInDeg?: number;
+  /** false: no sensitivity coefficients (both lists empty; about a quarter faster) */ sensitivities?: boolean;
 }
 export interface ConeFrustumResult {
   /** [deg] path angle */ angle: Float64Array; /** [s] */ time: Float64Array; /** [mm] change of bar length */ deviation: Float64Array;

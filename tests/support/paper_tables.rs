@@ -111,6 +111,7 @@ fn kato(r: &mut Rows) {
                     points: 360,
                     clockwise: false,
                     lead_in_deg: 0.0,
+                    sensitivities: true,
                 };
                 let res = cone_frustum_test(&cfg).unwrap();
                 let s = res

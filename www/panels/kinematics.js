@@ -3,6 +3,9 @@
 // 5-axis NC program (thasana). All numbers come from the core.
 import { h, numberField, selectField, table, downloadText, toCsv, progressBar, showError, fmt, runState } from '../lib/ui.js';
 import { lineChart, xyChart, xyzChart, polarChart, barChart } from '../lib/plot.js';
+
+/** The cone-frustum run (45° perpendicular) whose path and sensitivities are drawn. */
+const SENSITIVITY_RUN = 2;
 import { mapCalls } from '../lib/pool.js';
 
 // Cone-frustum centre per machine (workpiece frame, mm) at which the four
@@ -111,10 +114,11 @@ export async function mount(root, api) {
     try {
       // The four runs are independent: on the study pool they run side by
       // side (one per core), in order otherwise; the same results either way.
-      const args = combos.map(([theta, method]) => [{
+      // Only the 45° perpendicular run's sensitivities are drawn (below).
+      const args = combos.map(([theta, method], i) => [{
         machine: machineSel.value, halfApexDeg: theta, inclinationDeg: Number(incl.value), method,
         barLength: bar.value, feed: feed.value, centre: [cx.value, cy.value, cz.value],
-        errors: errors(), drives: drives(), idealServo: ideal.checked, points: 1440,
+        errors: errors(), drives: drives(), idealServo: ideal.checked, points: 1440, sensitivities: i === SENSITIVITY_RUN,
       }]);
       progress.set(0, 'simulating the four runs');
       results = await mapCalls(api, 'coneFrustumTest', args, { onProgress: (d, n) => progress.set(d / n, `${d} of ${n} runs`) });
@@ -149,7 +153,7 @@ export async function mount(root, api) {
       circles: [{ r: base, label: '0 µm' }],
     });
     lineChart(dev, { title: 'Bar deviation', xLabel: 'angle [°]', yLabel: 'µm', series: results.map((r, i) => ({ label: `${combos[i][0]}° ${combos[i][1]}`, color: colors[i] })), data: [results[0].angle, ...results.map((r) => Float64Array.from(r.deviation, (d) => d * 1e3))] });
-    const r0 = results[2];
+    const r0 = results[SENSITIVITY_RUN];
     xyChart(xy, { title: 'Spindle-ball path, XY (workpiece frame, 45° perpendicular)', xLabel: 'x [mm]', yLabel: 'y [mm]', traces: [{ x: r0.path.x, y: r0.path.y, label: 'path', values: r0.deviation }], colorLabel: 'deviation [mm]' });
     xyChart(xz, { title: 'Spindle-ball path, XZ', xLabel: 'x [mm]', yLabel: 'z [mm]', traces: [{ x: r0.path.x, y: r0.path.z, label: 'path' }] });
     xyzChart(xyz, { title: 'Spindle-ball path in 3D (workpiece frame)', traces: [0, 2].map((i) => ({ x: results[i].path.x, y: results[i].path.y, z: results[i].path.z, label: `${combos[i][0]}° ${combos[i][1]}`, color: colors[i] })) });
