@@ -400,6 +400,19 @@ fn writer_round_trip_regressions() {
         w,
         "G21 G17 G90\nG0 X0. Y0.\nG2 X6.035 Y0. I3.0175 J-0.2146 F406.4\nG90 G3 X8.4201 Y2.3851 Z0.4547 R2.3851"
     );
+    // Stable loop (`nc_write`, seed 21, on the corpus's bolt circle): a
+    // canned-cycle block that also ends the program (`… L6 F1M2`) was
+    // written flat with its M2 in front of the first hole, so the read
+    // back stopped there (25 segments became 2). Its M2 now follows its
+    // last segment; with X words as with polar ones.
+    for text in [
+        "G0 X1.5 Y0 Z0\nG91 G81 R.1 Z-.5 ^60 L6 F1M2\n",
+        "G0 X1.5 Y0 Z0\nG91 G81 R.1 Z-.5 X1 L3 F1M30\n",
+    ] {
+        fuzz_targets::nc_write_target(text).unwrap();
+        let w = parse(text).unwrap().write();
+        assert!(w.ends_with("\nM2") || w.ends_with("\nM30"), "{w}");
+    }
     // A `;` comment with an unpaired parenthesis was written as `( … )`,
     // which does not read back: it stays a `;` comment.
     let text = "; dri(Ci\nG0 X1 (a) ; b)c\n";

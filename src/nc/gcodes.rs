@@ -265,8 +265,8 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
             w.text
         ),
         150 if b.word('H').is_some() => super::macro_expr::okuma_message("G15 H"),
-        660 | 661 => format!(
-            "G{}: modal macro calls are not supported; call the macro with G65 at each position",
+        661 => format!(
+            "G{}: a macro call after every block is not supported; use G66 (a call after each move) or G65 at each position",
             w.text
         ),
         _ => return None,

@@ -57,7 +57,24 @@ pub enum Step {
         args: Vec<(u32, f64)>,
         /// The P word (for errors).
         p: Word,
+        /// The calling code (`"G65"`, or `"G66"` for a modal call), for
+        /// errors.
+        via: &'static str,
     },
+    /// `G66 P… L…`: register this modal call
+    /// ([`super::modal_call`]).
+    Modal {
+        /// The O-number.
+        number: u32,
+        /// Repeat count (L).
+        times: u32,
+        /// Locals of each call.
+        args: Vec<(u32, f64)>,
+        /// The P word (for errors).
+        p: Word,
+    },
+    /// `G67`: cancel the modal call.
+    EndModal,
 }
 
 struct OFrame {
@@ -93,6 +110,8 @@ pub struct Macros {
     max_iterations: usize,
     /// Set when the program must stop (alarm, budget).
     pub stop: bool,
+    /// The G66 modal call in force.
+    pub modal_call: Option<super::modal_call::ModalCall>,
 }
 
 struct Ev<'a>(&'a mut Variables);
@@ -135,6 +154,7 @@ impl Macros {
             iterations: 0,
             max_iterations: max_iterations.min(MAX_LOOP_ITERATIONS),
             stop: false,
+            modal_call: None,
         })
     }
 
@@ -158,11 +178,9 @@ impl Macros {
         warnings: &mut Vec<Warning>,
     ) -> Result<Step, NcError> {
         let b = &blocks[bi];
+        self.vars.line = b.line;
         let Some(m) = &b.macro_line else {
-            return match b.words.iter().find(|w| w.letter == 'G' && w.value == 65.0) {
-                Some(g) => macro_call(b, g),
-                None => Ok(Step::Run(b.clone(), false)),
-            };
+            return call_step(b.clone(), false);
         };
         self.vars.modal = *modal;
         self.vars.line = b.line;
@@ -252,14 +270,7 @@ impl Macros {
             macro_line: None,
             ..b.clone()
         };
-        match block
-            .words
-            .iter()
-            .find(|w| w.letter == 'G' && w.value == 65.0)
-        {
-            Some(g) => macro_call(&block, g),
-            None => Ok(Step::Run(block, computed)),
-        }
+        call_step(block, computed)
     }
 
     /// Evaluates every right-hand side first, then writes (LinuxCNC: the
@@ -370,24 +381,59 @@ pub fn number_text(v: f64) -> String {
     }
 }
 
-/// `G65 P… L… <arguments>`: argument specification I (A→#1, B→#2, C→#3,
+/// The G65 block of the macro-call codes (`w.value` 65, 66 or 67), if any.
+pub fn call_code(b: &Block) -> Option<&Word> {
+    b.words
+        .iter()
+        .find(|w| w.letter == 'G' && matches!(w.value, 65.0 | 66.0 | 67.0))
+}
+
+/// The step of a block as written or evaluated: a G65 call, a G66
+/// registration, a G67 cancel ([`super::modal_call`]), or a block to run.
+fn call_step(block: Block, computed: bool) -> Result<Step, NcError> {
+    let Some(g) = call_code(&block) else {
+        return Ok(Step::Run(block, computed));
+    };
+    if g.value == 67.0 {
+        super::modal_call::check_g67(&block)?;
+        return Ok(Step::EndModal);
+    }
+    match macro_call(&block, g)? {
+        Step::Call {
+            number,
+            times,
+            args,
+            p,
+            ..
+        } if g.value == 66.0 => Ok(Step::Modal {
+            number,
+            times,
+            args,
+            p,
+        }),
+        step => Ok(step),
+    }
+}
+
+/// `G65 P… L… <arguments>` (and G66's, the same words): argument specification I (A→#1, B→#2, C→#3,
 /// I→#4, J→#5, K→#6, D→#7, E→#8, F→#9, H→#11, M→#13, Q→#17, R→#18,
 /// S→#19, T→#20, U→#21, V→#22, W→#23, X→#24, Y→#25, Z→#26); a repeated
 /// I/J/K follows specification II (the k-th I, J, K → #4+3k, #5+3k,
 /// #6+3k).
 fn macro_call(b: &Block, g65: &Word) -> Result<Step, NcError> {
+    let code = if g65.value == 66.0 { "G66" } else { "G65" };
     let p = b.word('P').ok_or_else(|| {
         NcError::new(
             b.line,
             g65.column,
-            "G65 without P; expected G65 P<program number>",
+            format!("{code} without P; expected {code} P<program number>"),
         )
     })?;
     if p.value < 0.0 || p.value.fract() != 0.0 || p.value > 99_999_999.0 {
         return Err(NcError::new(
             b.line,
             p.column,
-            format!("G65 P{}: expected a whole program number", p.text),
+            format!("{code} P{}: expected a whole program number", p.text),
         ));
     }
     let times = match b.word('L') {
@@ -396,7 +442,7 @@ fn macro_call(b: &Block, g65: &Word) -> Result<Step, NcError> {
             return Err(NcError::new(
                 b.line,
                 l.column,
-                format!("G65 L{}: expected a repeat count from 1 to 9999", l.text),
+                format!("{code} L{}: expected a repeat count from 1 to 9999", l.text),
             ))
         }
         None => 1,
@@ -405,7 +451,18 @@ fn macro_call(b: &Block, g65: &Word) -> Result<Step, NcError> {
     let mut ijk = [0u32; 3];
     for w in &b.words {
         let n = match w.letter {
-            'G' | 'P' | 'L' | 'N' | 'O' => continue,
+            'G' if w.value == g65.value => continue,
+            'G' => {
+                return Err(NcError::new(
+                    b.line,
+                    w.column,
+                    format!(
+                        "G{} on a {code} block: a macro-call block takes only P, L and arguments; put G{} on its own block",
+                        w.text, w.text
+                    ),
+                ))
+            }
+            'P' | 'L' | 'N' | 'O' => continue,
             'I' | 'J' | 'K' => {
                 let k = (w.letter as u8 - b'I') as usize;
                 let n = 4 + k as u32 + 3 * ijk[k];
@@ -421,7 +478,7 @@ fn macro_call(b: &Block, g65: &Word) -> Result<Step, NcError> {
                             b.line,
                             w.column,
                             format!(
-                            "{}{} is not a G65 argument (arguments are A–Z except G, L, N, O, P)",
+                            "{}{} is not a {code} argument (arguments are A–Z except G, L, N, O, P)",
                             w.letter, w.text
                         ),
                         ))
@@ -443,6 +500,7 @@ fn macro_call(b: &Block, g65: &Word) -> Result<Step, NcError> {
         times,
         args,
         p: p.clone(),
+        via: code,
     })
 }
 

@@ -27,6 +27,7 @@ pub mod macro_exec;
 pub mod macro_expr;
 pub mod macro_line;
 pub mod macro_vars;
+pub mod modal_call;
 mod moves;
 mod non_modal;
 pub mod patch;

@@ -56,7 +56,7 @@
 //! one the simulated path is the programmed path, and one warning per
 //! stretch says so. G43 length compensation is ignored (warned). What is not simulated and would change the path is a
 //! located error: G33/G33.1 threading, G84.x, G87/G88, G93/G95 feeds,
-//! G66 modal macro calls, splines, the G68 cases
+//! G66.1 and nested G66 modal calls, splines, the G68 cases
 //! above and G68.1–G68.4 (3D coordinate conversion); an `E` word (not on a
 //! G187 block) stops the program as "this looks like a 3D-printer
 //! program". (G65 macro calls, macro `#` variables and `[ ]` expressions

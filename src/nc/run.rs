@@ -210,6 +210,9 @@ impl<'a> Run<'a> {
         }
         self.modal[bi] = Some(self.st);
         self.call_or_return(b, bi);
+        if !self.modal_call_after(b) {
+            return false;
+        }
         if self.st.ended {
             self.stack.clear();
         }
@@ -261,6 +264,36 @@ impl<'a> Run<'a> {
                 ),
             )
         })
+    }
+
+    /// After block `b`: the G66 modal call, when one is in force, `b`
+    /// moves, and `b` runs at the level that set it
+    /// ([`super::modal_call`]). False when the call stops the program.
+    fn modal_call_after(&mut self, b: &Block) -> bool {
+        let Some(m) = self.mac.as_mut() else {
+            return true;
+        };
+        let step = match &m.modal_call {
+            Some(mc)
+                if mc.level == self.stack.len() + m.depth() && super::modal_call::is_move(b) =>
+            {
+                mc.step(b)
+            }
+            _ => return true,
+        };
+        // A missing program is reported at the move that calls it.
+        m.vars.line = b.line;
+        !matches!(
+            macro_flow(
+                Ok(step),
+                m,
+                &self.subs,
+                &mut self.stack,
+                &mut self.pc,
+                &mut self.errors,
+            ),
+            Flow::Stop
+        )
     }
 
     /// The macro interpreter's step on a macro or G65 block (`None` for any
@@ -529,13 +562,14 @@ fn left_file(
     }
 }
 
-/// The block calls a macro (G65).
+/// The block calls a macro (G65) or sets or cancels a modal call
+/// (G66/G67).
 fn has_g65(b: &Block) -> bool {
-    b.words.iter().any(|w| w.letter == 'G' && w.value == 65.0)
+    super::macro_exec::call_code(b).is_some()
 }
 
-/// The program needs the macro interpreter: macro statements, o-words or
-/// G65 calls.
+/// The program needs the macro interpreter: macro statements, o-words,
+/// G65 calls or G66 modal calls.
 pub(super) fn needs_macros(blocks: &[Block]) -> bool {
     has_macros(blocks) || blocks.iter().any(has_g65)
 }
@@ -558,20 +592,51 @@ fn macro_flow(
             errors.push(e);
             return if m.stop { Flow::Stop } else { Flow::Next };
         }
+        Ok(Step::Modal {
+            number,
+            times,
+            args,
+            p,
+        }) => {
+            if let Some(old) = &m.modal_call {
+                errors.push(NcError::new(
+                    m.vars.line,
+                    p.column,
+                    format!(
+                        "G66 P{} while G66 P{} is in force: nested modal calls are not modelled; cancel the first with G67",
+                        p.text, old.p.text
+                    ),
+                ));
+                return Flow::Next;
+            }
+            m.modal_call = Some(super::modal_call::ModalCall {
+                number,
+                times,
+                args,
+                p,
+                level: stack.len() + m.depth(),
+            });
+            return Flow::Next;
+        }
+        Ok(Step::EndModal) => {
+            m.modal_call = None;
+            return Flow::Next;
+        }
         Ok(Step::Call {
             number,
             times,
             args,
             p,
-        }) => (number, times, args, p),
+            via,
+        }) => (number, times, args, p, via),
     };
-    let (number, times, args, p) = call;
+    let (number, times, args, p, via) = call;
     if stack.len() + m.depth() >= MAX_NESTING {
         errors.push(NcError::new(
             m.vars.line,
             p.column,
             format!(
-                "G65 P{}: macro calls nested deeper than {MAX_NESTING} levels",
+                "{via} P{}: macro calls nested deeper than {MAX_NESTING} levels",
                 p.text
             ),
         ));
@@ -582,7 +647,7 @@ fn macro_flow(
         errors.push(NcError::new(
             m.vars.line,
             p.column,
-            format!("G65 P{}: macro program O{number:04} is not in this program; paste it (O{number:04} … M99) after M30, or drop its file together with the program", p.text),
+            format!("{via} P{}: macro program O{number:04} is not in this program; paste it (O{number:04} … M99) after M30, or drop its file together with the program", p.text),
         ));
         return Flow::Next;
     };

@@ -689,17 +689,45 @@ fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
         .position(ends)
         .or_else(|| program.modal.iter().position(|m| m.ended))
         .unwrap_or(program.blocks.len().saturating_sub(1));
+    // The last segment of each block: a block that makes several (a canned
+    // cycle) and ends the program has its M2/M30 written after its last
+    // segment, not with its first, or the rest would not be read back.
+    let mut last_of = std::collections::HashMap::new();
+    for (k, seg) in segments.iter().enumerate() {
+        if let Some(bi) = seg.block {
+            last_of.insert(bi, k);
+        }
+    }
+    let mut held: Option<(usize, Vec<Word>)> = None;
     let mut next = 0usize;
-    for seg in segments {
+    for (k, seg) in segments.iter().enumerate() {
         match seg.block {
             Some(bi) if bi >= next && bi <= end => {
                 for j in next..bi {
                     write_passive(program, j, out);
                 }
                 next = bi + 1;
-                write_new(program, seg, program.blocks.get(bi), out);
+                let block = program.blocks.get(bi);
+                match block.filter(|b| last_of.get(&bi) != Some(&k) && ends(b)) {
+                    Some(b) => {
+                        let (stop, rest): (Vec<Word>, Vec<Word>) =
+                            b.words.iter().cloned().partition(|w| {
+                                w.letter == 'M' && matches!(super::gcodes::code10(w), 20 | 300)
+                            });
+                        held = Some((bi, stop));
+                        let kept = Block {
+                            words: rest,
+                            ..b.clone()
+                        };
+                        write_new(program, seg, Some(&kept), out);
+                    }
+                    None => write_new(program, seg, block, out),
+                }
             }
             _ => write_new(program, seg, None, out),
+        }
+        if let Some((_, stop)) = held.take_if(|(bi, _)| last_of.get(bi) == Some(&k)) {
+            emit(&Block::default(), stop, out);
         }
     }
     for j in next..=end.min(program.blocks.len()) {

@@ -454,6 +454,7 @@ pub fn nc_seeds() -> Vec<String> {
     out.sort();
     out.push(mtmotion::toolpath::example::arc_example());
     out.push(mtmotion::toolpath::example::line_example());
+    out.push("G21 G90\nG0 X0 Y0 Z10\nG66 P9110 R2 Z-5 F100 L2\nX10 Y10\nM8\nG91 X5\nG90 G67\nX30\nG66 P9110 R1 Z-1\nM98 P9110\nG67\nM30\nO9110\nG1 Z#26 F#9\nG0 Z#18 X[#5001+1]\nM99\n".into());
     out.push("G21 G90 G17\nG0 @10 ^30 Z1\nG1 ^90 F600\nG91 G1 @-2 ^45\nG92 X0 Y0\nG90 G1 @5\nG91 G81 R1 Z-2 ^60 L6\nG80 G90 G0 Z5\nM30\n".into());
     out.push("O100\nG90 G17 G21\nG0 X0 Y0\nG1 X10 F600\nG2 X20 Y0 R5\nG3 X10 Y0 I-5 J0\nG4 P500\nM98 P200 L2\nM30\nO200\nG91 G1 X1\nM99\n".into());
     out.push("%\nO1234\nN10 G187 P1 E0.01\nN20 G103 P1\nN30 G0 X0 Y0\nN40 M97 P1000 L2\nN50 M98 P200\nN60 G1 X5 F600\nN70 M30\nN1000 G91 G1 X1 F500\nY1\nG90\nM99\nO200\nG91 G2 X0 Y0 I2 J0\nG90\nM99 P60\n%\n".into());
