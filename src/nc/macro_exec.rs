@@ -447,6 +447,19 @@ fn macro_call(b: &Block, g65: &Word) -> Result<Step, NcError> {
         }
         None => 1,
     };
+    let args = call_args(b, g65, code)?;
+    Ok(Step::Call {
+        number: p.value as u32,
+        times,
+        args,
+        p: p.clone(),
+        via: code,
+    })
+}
+
+/// The arguments of a G65/G66 block `b` (call word `g65`, `code` its
+/// name for errors): specification I, and II for repeated I/J/K.
+fn call_args(b: &Block, g65: &Word, code: &str) -> Result<Vec<(u32, f64)>, NcError> {
     let mut args: Vec<(u32, f64)> = Vec::new();
     let mut ijk = [0u32; 3];
     for w in &b.words {
@@ -495,13 +508,7 @@ fn macro_call(b: &Block, g65: &Word) -> Result<Step, NcError> {
         }
         args.push((n, w.value));
     }
-    Ok(Step::Call {
-        number: p.value as u32,
-        times,
-        args,
-        p: p.clone(),
-        via: code,
-    })
+    Ok(args)
 }
 
 impl Macros {

@@ -598,24 +598,14 @@ fn macro_flow(
             args,
             p,
         }) => {
-            if let Some(old) = &m.modal_call {
-                errors.push(NcError::new(
-                    m.vars.line,
-                    p.column,
-                    format!(
-                        "G66 P{} while G66 P{} is in force: nested modal calls are not modelled; cancel the first with G67",
-                        p.text, old.p.text
-                    ),
-                ));
-                return Flow::Next;
-            }
-            m.modal_call = Some(super::modal_call::ModalCall {
+            let call = super::modal_call::ModalCall {
                 number,
                 times,
                 args,
                 p,
                 level: stack.len() + m.depth(),
-            });
+            };
+            register_modal(m, call, errors);
             return Flow::Next;
         }
         Ok(Step::EndModal) => {
@@ -661,6 +651,23 @@ fn macro_flow(
     });
     *pc = start;
     Flow::Next
+}
+
+/// G66: `call` becomes the modal call in force, unless one already is
+/// (nested modal calls are refused, located at the new P word).
+fn register_modal(m: &mut Macros, call: super::modal_call::ModalCall, errors: &mut NcErrors) {
+    if let Some(old) = &m.modal_call {
+        errors.push(NcError::new(
+            m.vars.line,
+            call.p.column,
+            format!(
+                "G66 P{} while G66 P{} is in force: nested modal calls are not modelled; cancel the first with G67",
+                call.p.text, old.p.text
+            ),
+        ));
+        return;
+    }
+    m.modal_call = Some(call);
 }
 
 /// O-number → index of its `O` block.
