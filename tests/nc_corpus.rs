@@ -19,6 +19,10 @@ use mtmotion::nc::program::{parse_all, Motion, ParseOptions, Segment};
 use mtmotion::nc::summary::summarize;
 use mtmotion::toolpath::{simulate, Lag, SimConfig};
 
+#[path = "support/corpus.rs"]
+mod corpus;
+use corpus::read;
+
 enum Outcome {
     /// Parses into this many segments.
     Ok(usize),
@@ -112,15 +116,6 @@ const CORPUS: &[(&str, Outcome)] = &[
         Outcome::Err(13, 7, "back boring", 10),
     ),
 ];
-
-fn read(name: &str) -> String {
-    let bytes = std::fs::read(format!(
-        "{}/tests/nc_corpus/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap_or_else(|e| panic!("{name}: {e}"));
-    String::from_utf8(bytes).unwrap_or_else(|e| panic!("{name}: not UTF-8: {e}"))
-}
 
 /// Σ length/feed, written independently of `Segment::length`.
 fn independent_time(segs: &[Segment], rapid: f64) -> f64 {

@@ -9,6 +9,10 @@
 use mtmotion::nc::patch::write_source;
 use mtmotion::nc::program::{parse, Program};
 
+#[path = "support/corpus.rs"]
+mod corpus;
+use corpus::read;
+
 const TOL: f64 = 1e-9;
 
 fn prog(src: &str) -> Program {
@@ -25,14 +29,6 @@ fn close_xy(got: [f64; 3], want: [f64; 2], what: &str) {
         (got[0] - want[0]).abs() < TOL && (got[1] - want[1]).abs() < TOL,
         "{what}: got {got:?}, want {want:?}"
     );
-}
-
-fn read(name: &str) -> String {
-    std::fs::read_to_string(format!(
-        "{}/tests/nc_corpus/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap()
 }
 
 #[test]

@@ -15,6 +15,10 @@
 use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
 use mtmotion::nc::program::parse;
 
+#[path = "support/corpus.rs"]
+mod corpus;
+use corpus::read;
+
 /// (file, after/before ratio measured, tA 40 ms, T 15 ms, dt 1 ms).
 const SMALL: &[(&str, f64)] = &[
     ("cncjs_arc-xz-plane.gcode", 0.008),
@@ -67,14 +71,6 @@ const REFUSED: &[(&str, &str)] = &[
     ),
     ("cncjs_tball-pocket.gcode", "more than the limit of 8000000"),
 ];
-
-fn read(name: &str) -> String {
-    std::fs::read_to_string(format!(
-        "{}/tests/nc_corpus/{name}",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap()
-}
 
 /// Every file of the corpus has a pinned reverse-compensation outcome: a
 /// ratio above, left unchanged with its note, refused by the work budget,

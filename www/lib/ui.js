@@ -174,6 +174,35 @@ export function progressBar() {
   };
 }
 
+/**
+ * One cancellable run at a time behind a Cancel `button` and a progress
+ * `bar`: `start()` aborts the run before and returns the new run's
+ * AbortController; `failed(c, e, ui, out, what)` shows "`what` cancelled."
+ * in `out` when `c` was cancelled, else the run state's error;
+ * `finish(c)` hides the button and the bar if `c` is still the current run.
+ */
+export function cancelGuard(button, bar) {
+  let current = null;
+  button.addEventListener('click', () => current?.abort());
+  return {
+    start() {
+      current?.abort();
+      current = new AbortController();
+      return current;
+    },
+    failed(c, e, ui, out, what) {
+      if (c.signal.aborted) showError(out, new Error(`${what} cancelled.`));
+      else ui.fail(e);
+    },
+    finish(c) {
+      if (current !== c) return;
+      current = null;
+      button.hidden = true;
+      bar.done();
+    },
+  };
+}
+
 /** Replaces the content of `container` with an error message. */
 export function showError(container, err) {
   const box = h('div', { class: 'error-box', role: 'alert' }, String((err && err.message) || err));

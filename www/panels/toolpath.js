@@ -3,7 +3,7 @@
 // download a reverse-compensated program. All computation is in the core
 // (simulateToolPath, reverseCompensate, toolpathExample); this file only
 // gathers inputs, calls the API and draws.
-import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState, progressBar, showError } from '../lib/ui.js';
+import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState, progressBar, showError, cancelGuard } from '../lib/ui.js';
 import { xyChart, lineChart } from '../lib/plot.js';
 import { programFiles } from './toolpath-files.js';
 
@@ -128,14 +128,12 @@ export async function mount(root, api) {
   const cancel = h('button', { id: 'toolpath-cancel', hidden: true }, 'Cancel');
   const budget = numberField({ label: 'Time budget', value: 5, unit: '%', step: 1, min: 0, id: 'toolpath-budget' });
   const compProgress = progressBar();
-  let compAbort = null;
-  cancel.addEventListener('click', () => compAbort?.abort());
+  const compRun = cancelGuard(cancel, compProgress);
   // A long program simulates for seconds: progress and Cancel, as for
   // reverse compensation.
   const simCancel = h('button', { id: 'toolpath-sim-cancel', hidden: true }, 'Cancel');
   const simProgress = progressBar();
-  let simAbort = null;
-  simCancel.addEventListener('click', () => simAbort?.abort());
+  const simRun = cancelGuard(simCancel, simProgress);
   const out = h('div', { id: 'toolpath-out' });
   const pathBox = h('div', { class: 'plot', id: 'toolpath-path' });
   const velBox = h('div', { class: 'plot', id: 'toolpath-velocity' });
@@ -218,9 +216,7 @@ export async function mount(root, api) {
 
   async function simulate() {
     const token = simUi.start();
-    simAbort?.abort();
-    const abort = new AbortController();
-    simAbort = abort;
+    const abort = simRun.start();
     try {
       const s = await api.call('simulateToolPath', [nc.value, files.options({ ...cfg(), ...radiiOption() })], {
         signal: abort.signal,
@@ -236,16 +232,9 @@ export async function mount(root, api) {
     } catch (e) {
       last = null;
       pathChart = null;
-      if (simUi.current(token)) {
-        if (abort.signal.aborted) showError(out, new Error('Simulation cancelled.'));
-        else simUi.fail(e);
-      }
+      if (simUi.current(token)) simRun.failed(abort, e, simUi, out, 'Simulation');
     } finally {
-      if (simAbort === abort) {
-        simAbort = null;
-        simCancel.hidden = true;
-        simProgress.done();
-      }
+      simRun.finish(abort);
     }
   }
 
@@ -279,9 +268,7 @@ export async function mount(root, api) {
 
   async function compensate() {
     const token = compUi.start();
-    compAbort?.abort();
-    const abort = new AbortController();
-    compAbort = abort;
+    const abort = compRun.start();
     cancel.hidden = false;
     compProgress.set(0, 'starting');
     try {
@@ -322,16 +309,9 @@ export async function mount(root, api) {
     } catch (e) {
       lastComp = null;
       compCharts.length = 0;
-      if (compUi.current(token)) {
-        if (abort.signal.aborted) showError(compOut, new Error('Reverse compensation cancelled.'));
-        else compUi.fail(e);
-      }
+      if (compUi.current(token)) compRun.failed(abort, e, compUi, compOut, 'Reverse compensation');
     } finally {
-      if (compAbort === abort) {
-        compAbort = null;
-        cancel.hidden = true;
-        compProgress.done();
-      }
+      compRun.finish(abort);
     }
   }
 
