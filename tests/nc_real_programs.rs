@@ -398,3 +398,24 @@ fn g64_blending_tolerance_is_named_not_unknown() {
     assert_eq!(msgs[2], (7, "unknown word P3 was ignored".to_string()));
     assert_eq!(ends(&p.segments), vec![[10.0, 0.0, 0.0], [0.0, 0.0, 0.0]]);
 }
+
+/// An axis or polar word twice on one block is a located error at the
+/// second, naming the first (it had been read silently: the last X, but
+/// the first `@`).
+#[test]
+fn a_repeated_axis_word_is_refused() {
+    for (src, col, phrase) in [
+        ("G1 X1 X2 F100", 7, "X2 repeats X1 on one block"),
+        ("G1 @1 ^30 @2 F100", 11, "@2 repeats @1 on one block"),
+        (
+            "G0 X0\nG1 Z-1 Y2 Z-2 F100",
+            11,
+            "Z-2 repeats Z-1 on one block",
+        ),
+    ] {
+        let e = parse(src).unwrap_err();
+        assert_eq!(e.column, col, "{src}: {e}");
+        assert!(e.message.contains(phrase), "{src}: {e}");
+    }
+    assert!(parse("G1 X1 Y2 Z3 A4 B5 F100").is_ok());
+}

@@ -48,6 +48,7 @@ pub(super) fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result
         cutter_word(b, st, cx, w, g)?;
     }
     read_other_words(b, st, &gw, cx.warnings)?;
+    no_repeated_axis(b)?;
     super::polar::check(b, st.plane)?;
     if rotation_block(b, st, &gw, cx.stretches, scale)? {
         return Ok(());
@@ -103,6 +104,26 @@ pub(super) fn axis_words<'a>(b: &'a Block, cx: &Ctx) -> Vec<&'a Word> {
                 || super::polar::is_polar(w.letter)
         })
         .collect()
+}
+
+/// An axis or polar word given twice on one block is refused: LinuxCNC
+/// refuses it, Fanuc controls differ (an alarm, or the last one taken), and
+/// reading either silently would move somewhere the program may not mean.
+fn no_repeated_axis(b: &Block) -> Result<(), NcError> {
+    let axis = |c: char| super::segment::AXES.contains(&c) || super::polar::is_polar(c);
+    for (k, w) in b.words.iter().enumerate().filter(|(_, w)| axis(w.letter)) {
+        if let Some(first) = b.words[..k].iter().find(|v| v.letter == w.letter) {
+            return Err(err(
+                b,
+                w,
+                format!(
+                    "{}{} repeats {}{} on one block: a block takes each axis once (LinuxCNC refuses it, Fanuc controls differ); keep the one meant",
+                    w.letter, w.text, first.letter, first.text
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// An `E` word stops the program: it drives a 3D printer's extruder
