@@ -110,8 +110,8 @@ pub(super) fn axis_words<'a>(b: &'a Block, cx: &Ctx) -> Vec<&'a Word> {
 /// refuses it, Fanuc controls differ (an alarm, or the last one taken), and
 /// reading either silently would move somewhere the program may not mean.
 fn no_repeated_axis(b: &Block) -> Result<(), NcError> {
-    let axis = |c: char| super::segment::AXES.contains(&c) || super::polar::is_polar(c);
-    for (k, w) in b.words.iter().enumerate().filter(|(_, w)| axis(w.letter)) {
+    let words = b.words.iter().enumerate();
+    for (k, w) in words.filter(|(_, w)| super::polar::is_position(w.letter)) {
         if let Some(first) = b.words[..k].iter().find(|v| v.letter == w.letter) {
             return Err(err(
                 b,
@@ -145,10 +145,7 @@ fn reject_extruder(b: &Block) -> Result<(), NcError> {
 /// M2/M30 end the program (the calls and returns M97, M98, M99 are run
 /// after the block, [`super::run`]).
 fn read_m_words(b: &Block, st: &mut Modal) {
-    if b.words
-        .iter()
-        .any(|w| w.letter == 'M' && matches!(code10(w), 20 | 300))
-    {
+    if b.words.iter().any(super::gcodes::is_program_end) {
         st.ended = true;
     }
 }

@@ -50,6 +50,11 @@ pub(super) fn code10(w: &Word) -> i64 {
     (w.value * 10.0).round() as i64
 }
 
+/// True for a word that ends the program: M2 or M30.
+pub(super) fn is_program_end(w: &Word) -> bool {
+    w.letter == 'M' && matches!(code10(w), 20 | 300)
+}
+
 /// Reads every G word of `b` in order: modal codes update `st` at once,
 /// ignored codes are warned about, and the motion, dwell, non-modal and
 /// cycle words are returned for the rest of the block.

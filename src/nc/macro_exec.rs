@@ -183,7 +183,6 @@ impl Macros {
             return call_step(b.clone(), false);
         };
         self.vars.modal = *modal;
-        self.vars.line = b.line;
         let r = self.run_stmt(blocks, bi, &m.stmt, pc);
         warnings.append(&mut self.vars.warnings);
         r
@@ -381,7 +380,7 @@ pub fn number_text(v: f64) -> String {
     }
 }
 
-/// The G65 block of the macro-call codes (`w.value` 65, 66 or 67), if any.
+/// The macro-call word of `b` (G65, G66 or G67), if any.
 pub fn call_code(b: &Block) -> Option<&Word> {
     b.words
         .iter()

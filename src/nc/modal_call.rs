@@ -46,11 +46,7 @@ impl ModalCall {
     /// error of the call (a missing program, too deep) is located at the
     /// move's first axis word.
     pub(super) fn step(&self, b: &Block) -> Step {
-        let column = b
-            .words
-            .iter()
-            .find(|w| super::segment::AXES.contains(&w.letter) || super::polar::is_polar(w.letter))
-            .map_or(1, |w| w.column);
+        let column = first_move_word(b).map_or(1, |w| w.column);
         Step::Call {
             number: self.number,
             times: self.times,
@@ -64,12 +60,15 @@ impl ModalCall {
     }
 }
 
-/// True when `b` commands axis motion (the blocks after which a G66 call
-/// runs): an X, Y, Z, A, B or C word, or a polar `@`/`^`.
+/// The first word of `b` that commands axis motion (X, Y, Z, A, B, C or
+/// a polar `@`/`^`), if any: the blocks after which a G66 call runs.
+fn first_move_word(b: &Block) -> Option<&Word> {
+    b.words.iter().find(|w| super::polar::is_position(w.letter))
+}
+
+/// True when `b` commands axis motion (see [`first_move_word`]).
 pub(super) fn is_move(b: &Block) -> bool {
-    b.words
-        .iter()
-        .any(|w| super::segment::AXES.contains(&w.letter) || super::polar::is_polar(w.letter))
+    first_move_word(b).is_some()
 }
 
 /// A G67 block must hold nothing but N and G67.

@@ -15,7 +15,9 @@
 //!   counter-clockwise seen from +Z.
 //! - Refused with line and column, as LinuxCNC refuses them: X or Y with
 //!   `@`/`^` on one block, and polar words outside the G17 plane. Also
-//!   refused here: polar words on G10/G28/G30/G52/G53/G92 blocks.
+//!   refused here: polar words on the non-modal moves and shifts (G28,
+//!   G30, G53, G92, …). On a G10 block they are not run, like its other
+//!   words (the G10 warning says so).
 //! - A polar end point is not a literal X/Y word, so the segment is
 //!   `fixed` (reverse compensation does not move it); the writer writes it
 //!   as X/Y.
@@ -28,6 +30,12 @@ use super::{Block, NcError, Word};
 /// True when `c` is a polar address (`@` distance, `^` angle).
 pub(super) fn is_polar(c: char) -> bool {
     matches!(c, '@' | '^')
+}
+
+/// True when `c` gives an end-point coordinate: an axis letter (X Y Z A B
+/// C) or a polar one.
+pub(super) fn is_position(c: char) -> bool {
+    super::segment::AXES.contains(&c) || is_polar(c)
 }
 
 /// The first polar word of `b`, if any.

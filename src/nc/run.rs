@@ -303,7 +303,7 @@ impl<'a> Run<'a> {
         let m = self
             .mac
             .as_mut()
-            .filter(|_| b.macro_line.is_some() || has_g65(b))?;
+            .filter(|_| b.macro_line.is_some() || has_call_code(b))?;
         let r = m.step(blocks, bi, &mut self.pc, &self.st, &mut self.warnings);
         Some(macro_flow(
             r,
@@ -564,14 +564,14 @@ fn left_file(
 
 /// The block calls a macro (G65) or sets or cancels a modal call
 /// (G66/G67).
-fn has_g65(b: &Block) -> bool {
+fn has_call_code(b: &Block) -> bool {
     super::macro_exec::call_code(b).is_some()
 }
 
 /// The program needs the macro interpreter: macro statements, o-words,
 /// G65 calls or G66 modal calls.
 pub(super) fn needs_macros(blocks: &[Block]) -> bool {
-    has_macros(blocks) || blocks.iter().any(has_g65)
+    has_macros(blocks) || blocks.iter().any(has_call_code)
 }
 
 /// Applies a macro step's outcome: a G65 call pushes a frame with its own

@@ -116,7 +116,7 @@ fn g_code(w: &Word) -> i64 {
 }
 
 fn is_move_word(c: char) -> bool {
-    AXES.contains(&c) || matches!(c, 'I' | 'J' | 'K' | 'R') || super::polar::is_polar(c)
+    super::polar::is_position(c) || matches!(c, 'I' | 'J' | 'K' | 'R')
 }
 
 struct Out {
@@ -677,11 +677,7 @@ fn write_passive(program: &Program, bi: usize, out: &mut Out) {
 /// program's own M30: the body's segments are not main-program blocks).
 fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
     let ends = |b: &Block| {
-        b.file == 0
-            && !b.block_delete
-            && b.words
-                .iter()
-                .any(|w| w.letter == 'M' && matches!(super::gcodes::code10(w), 20 | 300))
+        b.file == 0 && !b.block_delete && b.words.iter().any(super::gcodes::is_program_end)
     };
     let end = program
         .blocks
@@ -710,10 +706,11 @@ fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
                 let block = program.blocks.get(bi);
                 match block.filter(|b| last_of.get(&bi) != Some(&k) && ends(b)) {
                     Some(b) => {
-                        let (stop, rest): (Vec<Word>, Vec<Word>) =
-                            b.words.iter().cloned().partition(|w| {
-                                w.letter == 'M' && matches!(super::gcodes::code10(w), 20 | 300)
-                            });
+                        let (stop, rest): (Vec<Word>, Vec<Word>) = b
+                            .words
+                            .iter()
+                            .cloned()
+                            .partition(super::gcodes::is_program_end);
                         held = Some((bi, stop));
                         let kept = Block {
                             words: rest,
