@@ -199,14 +199,23 @@ function canvasChart(el, opts, draw) {
   };
 }
 
-/** Viridis-like colour for t in [0, 1]. */
+/** Viridis-like colour for t in [0, 1], in 256 steps: a table built once,
+ * so a path coloured per point costs no string building per segment, and
+ * neighbouring segments share one colour (one stroke) more often. */
 export function colorScale(t) {
+  const k = Math.round(Math.max(0, Math.min(1, Number.isFinite(t) ? t : 0)) * 255);
+  return (COLOR_TABLE ??= buildColorTable())[k];
+}
+let COLOR_TABLE = null;
+function buildColorTable() {
   const stops = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
-  const x = Math.max(0, Math.min(1, t)) * (stops.length - 1);
-  const i = Math.min(stops.length - 2, Math.floor(x));
-  const f = x - i;
-  const c = stops[i].map((a, k) => Math.round(a + (stops[i + 1][k] - a) * f));
-  return `rgb(${c[0]},${c[1]},${c[2]})`;
+  return Array.from({ length: 256 }, (_, k) => {
+    const x = (k / 255) * (stops.length - 1);
+    const i = Math.min(stops.length - 2, Math.floor(x));
+    const f = x - i;
+    const c = stops[i].map((a, j) => Math.round(a + (stops[i + 1][j] - a) * f));
+    return `rgb(${c[0]},${c[1]},${c[2]})`;
+  });
 }
 
 function axesBox(ctx, w, hgt, xr, yr, o) {

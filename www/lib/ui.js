@@ -156,19 +156,44 @@ export function dropZone({ label = 'Drop a file here, or click to choose one', a
  */
 export const linkedDrops = new Map();
 
-/** A progress bar: set(fraction 0…1, message), done(). */
+/**
+ * How long a run goes before its progress bar and the greying of the
+ * previous results show. A result that comes sooner replaces the old one
+ * with no flash of grey, and without the frames that the fade and the bar
+ * cost while the workers compute (on 2 cores those frames took the cores
+ * from the workers: docs/performance.md §5).
+ */
+export const SHOW_AFTER_MS = 200;
+
+/** A progress bar: set(fraction 0…1, message), done(). It appears only
+ * once a run has lasted SHOW_AFTER_MS, with the latest state. */
 export function progressBar() {
   const bar = h('div');
   const msg = h('div', { class: 'progress-msg' });
   const el = h('div', { hidden: true }, h('div', { class: 'progress' }, bar), msg);
+  let state = null;
+  let timer = null;
+  const render = () => {
+    el.hidden = false;
+    bar.style.width = `${Math.round(Math.max(0, Math.min(1, state[0])) * 100)}%`;
+    msg.textContent = state[1];
+  };
   return {
     el,
     set(fraction, message = '') {
-      el.hidden = false;
-      bar.style.width = `${Math.round(Math.max(0, Math.min(1, fraction)) * 100)}%`;
-      msg.textContent = message;
+      const first = state === null;
+      state = [fraction, message];
+      if (!el.hidden) render();
+      else if (first)
+        timer = setTimeout(() => {
+          timer = null;
+          if (state) render();
+        }, SHOW_AFTER_MS);
     },
     done() {
+      clearTimeout(timer);
+      timer = null;
+      state = null;
       el.hidden = true;
     },
   };
@@ -177,8 +202,8 @@ export function progressBar() {
 /**
  * One cancellable run at a time behind a Cancel `button` and a progress
  * `bar`: `start()` aborts the run before and returns the new run's
- * AbortController; `failed(c, e, ui, out, what)` shows "`what` cancelled."
- * in `out` when `c` was cancelled, else the run state's error;
+ * AbortController; `failed(c, e, ui, what)` ends the run state `ui` with
+ * "`what` cancelled." when `c` was cancelled, else with the error `e`;
  * `finish(c)` hides the button and the bar if `c` is still the current run.
  */
 export function cancelGuard(button, bar) {
@@ -190,9 +215,8 @@ export function cancelGuard(button, bar) {
       current = new AbortController();
       return current;
     },
-    failed(c, e, ui, out, what) {
-      if (c.signal.aborted) showError(out, new Error(`${what} cancelled.`));
-      else ui.fail(e);
+    failed(c, e, ui, what) {
+      ui.fail(c.signal.aborted ? new Error(`${what} cancelled.`) : e);
     },
     finish(c) {
       if (current !== c) return;
@@ -218,27 +242,35 @@ export function fmt(x, digits = 3) {
   return x.toFixed(digits);
 }
 
-/** One run state for a panel's result areas. start() greys the previous
- * results and disables the buttons in them (no download of stale results);
- * ok() shows the new ones; fail(err) empties every area and puts the error
- * in place of the results in the first one. start() returns a token;
- * current(token) says whether a later run has started since. */
+/** One run state for a panel's result areas. start() marks the previous
+ * results stale (class `stale`, `aria-busy`), disables the buttons in them
+ * (no download of stale results) and greys them (class `dimmed`) if the
+ * run lasts SHOW_AFTER_MS; ok() shows the new ones; fail(err) empties every
+ * area and puts the error in place of the results in the first one.
+ * start() returns a token; current(token) says whether a later run has
+ * started since. */
 export function runState(main, ...extra) {
   const areas = [main, ...extra];
   let token = 0;
+  let dim = null;
   const settle = () => {
+    clearTimeout(dim);
     for (const a of areas) {
-      a.classList.remove('stale');
+      a.classList.remove('stale', 'dimmed');
       a.removeAttribute('aria-busy');
     }
   };
   return {
     start() {
+      clearTimeout(dim);
       for (const a of areas) {
         a.classList.add('stale');
         a.setAttribute('aria-busy', 'true');
         for (const b of a.querySelectorAll('button')) b.disabled = true;
       }
+      dim = setTimeout(() => {
+        for (const a of areas) if (a.classList.contains('stale')) a.classList.add('dimmed');
+      }, SHOW_AFTER_MS);
       return ++token;
     },
     current: (t) => t === token,

@@ -232,7 +232,7 @@ export async function mount(root, api) {
     } catch (e) {
       last = null;
       pathChart = null;
-      if (simUi.current(token)) simRun.failed(abort, e, simUi, out, 'Simulation');
+      if (simUi.current(token)) simRun.failed(abort, e, simUi, 'Simulation');
     } finally {
       simRun.finish(abort);
     }
@@ -309,7 +309,7 @@ export async function mount(root, api) {
     } catch (e) {
       lastComp = null;
       compCharts.length = 0;
-      if (compUi.current(token)) compRun.failed(abort, e, compUi, compOut, 'Reverse compensation');
+      if (compUi.current(token)) compRun.failed(abort, e, compUi, 'Reverse compensation');
     } finally {
       compRun.finish(abort);
     }

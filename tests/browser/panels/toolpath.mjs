@@ -64,10 +64,31 @@ export default async function (page, check) {
   await page.click('#toolpath-sim-cancel');
   await page.waitForFunction(() => /Simulation cancelled/.test(document.querySelector('#toolpath-out')?.textContent ?? ''), null, { timeout: 20_000 });
   check(true, 'simulation of the pocket cancelled');
+  // The cancel ends the run: its message is not shown greyed, and no chart
+  // of the run before stays on screen.
+  check(!(await page.$('#toolpath-out.stale, #toolpath-out.dimmed')), 'the cancel message is not left greyed as a stale result');
+  check((await page.$$('#toolpath-path canvas, #toolpath-velocity .uplot')).length === 0, 'no chart of the previous run stays after a cancel');
   const delay = await worstDelay(page, async () => {
-    await page.click('#toolpath-run');
+    // A run marks the old results stale at once, but greys them and shows
+    // its progress bar only once it has lasted SHOW_AFTER_MS (200 ms, lib/ui.js):
+    // quick runs redraw without a flash and without the fade's frames.
+    const early = await page.evaluate(async () => {
+      const out = document.querySelector('#toolpath-out');
+      const bar = out.previousElementSibling;
+      const seen = () => ({ stale: out.classList.contains('stale'), opacity: getComputedStyle(out).opacity, bar: !bar.hidden });
+      document.querySelector('#toolpath-run').click();
+      const atClick = seen();
+      await new Promise((r) => setTimeout(r, 100)); // due before the 200 ms timers
+      return { atClick, after100: seen() };
+    });
+    const plain = (v) => v.stale && v.opacity === '1' && !v.bar;
+    check(plain(early.atClick) && plain(early.after100), `for its first 200 ms a run is stale but not greyed, with no progress bar: ${JSON.stringify(early)}`);
+    await page.waitForFunction(() => getComputedStyle(document.querySelector('#toolpath-out')).opacity !== '1', null, { timeout: 20_000 });
+    await page.waitForFunction(() => !document.querySelector('#toolpath-out').previousElementSibling.hidden, null, { timeout: 20_000 });
+    check(true, 'a long run greys the old results and shows its progress bar');
     await page.waitForSelector('#toolpath-series-note', { timeout: 90_000 });
   });
+  check(!(await page.$('#toolpath-out.dimmed, #toolpath-out.stale')), 'the finished run is neither stale nor greyed');
   console.log(`  pocket: worst event-loop delay ${delay.toFixed(0)} ms while 5.2 M samples were simulated and drawn`);
   check(delay < 500, `the page should stay responsive while the pocket simulates and draws; worst delay ${delay.toFixed(0)} ms`);
   const mt = await import('../../../pkg/mtmotion.js');
