@@ -8,8 +8,8 @@ use wasm_bindgen::prelude::*;
 
 use super::args::JsArg;
 use super::convert::{
-    count_arg, floats_arg, object, opt_number, opt_number_arg, plain, require_object, string_arg,
-    to_js, Obj,
+    count_arg, floats_arg, object, opt_number, opt_number_arg, plain, plain_floats, require_object,
+    string_arg, to_js, Obj,
 };
 use super::results::JsResult;
 use crate::alignment::{self, examples, AngleSweepConfig, Section, SweepConfig};
@@ -140,8 +140,9 @@ fn number(obj: &JsValue, key: &str, what: &str) -> Result<f64, JsError> {
         .ok_or_else(|| JsError::new(&format!("{what}.{key}: expected a number")))
 }
 
+/// `obj.key` as numbers; `obj` is a [`plain`] snapshot.
 fn floats(obj: &JsValue, key: &str, what: &str) -> Result<Vec<f64>, JsError> {
-    floats_arg(&get(obj, key), &format!("{what}.{key}"))
+    plain_floats(&get(obj, key), &format!("{what}.{key}"))
 }
 
 /// The sections of an alignment input (a plain snapshot).

@@ -137,6 +137,19 @@ pub fn floats_arg(value: &JsValue, what: &str) -> Result<Vec<f64>, JsError> {
         .to_vec())
 }
 
+/// A list of numbers read from a [`plain`] snapshot. The snapshot already
+/// holds a fresh `Float64Array` of its own for any typed array that was
+/// passed (and counted it against [`budget::MAX_ARGUMENT_VALUES`]), so it
+/// is copied straight into the `Vec`: [`floats_arg`]'s defensive copy would
+/// be a second copy of the whole input. An array of numbers, or anything
+/// else, goes through [`floats_arg`] (checked and named as there).
+pub fn plain_floats(value: &JsValue, what: &str) -> Result<Vec<f64>, JsError> {
+    match value.dyn_ref::<Float64Array>() {
+        Some(a) => Ok(a.to_vec()),
+        None => floats_arg(value, what),
+    }
+}
+
 /// Serialises a small result to a plain JS object (maps become objects,
 /// not `Map`s).
 pub fn to_js<T: Serialize + ?Sized>(value: &T) -> Result<JsValue, JsError> {

@@ -7,7 +7,9 @@ use js_sys::Reflect;
 use wasm_bindgen::prelude::*;
 
 use super::args::JsArg;
-use super::convert::{floats_arg, object, plain, require_object, string_arg, to_js, Obj};
+use super::convert::{
+    floats_arg, object, plain, plain_floats, require_object, string_arg, to_js, Obj,
+};
 use super::results::JsResult;
 use crate::best_kffp::{self, saturation};
 use crate::feed_vector::{self, trace_analysis, Condition, FeedVectorResult};
@@ -123,7 +125,7 @@ pub fn simulate_axis(
         .and_then(|v| v.as_f64())
         .ok_or_else(|| JsError::new("input.dt: expected the time step in s (a number)"))?;
     let position = Reflect::get(&input, &JsValue::from_str("position")).unwrap_or_default();
-    let command = floats_arg(&position, "input.position")?;
+    let command = plain_floats(&position, "input.position")?;
     let r = simulate::simulate_axis(&axis, dt, &command)?;
     Ok(Obj::new()
         .arr("position", &r.position)

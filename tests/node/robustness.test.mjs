@@ -379,3 +379,33 @@ test('a misspelt config key is an Error naming it, not a default used in silence
   assert.ok(mt.reverseCompensate(a, { timeBudget: 0.05, tA: 0.04, dt: 0.002 }).after.maxErrorUm >= 0);
   assert.ok(mt.coneFrustumTest({ ...cone, points: 90 }).angle.length > 0);
 });
+
+test('a bulk input reads the same from a Float64Array, a plain array or another typed array, and runs no code of the caller', () => {
+  const ax = axis();
+  const position = Float64Array.from({ length: 2000 }, (_, i) => 0.5 * Math.sin(i / 300));
+  const want = mt.simulateAxis(ax, { dt: 1e-3, position });
+  for (const [what, p] of [
+    ['an array', Array.from(position)],
+    ['a Float32Array (converted)', new Float32Array(position)],
+  ]) {
+    const got = mt.simulateAxis(ax, { dt: 1e-3, position: p });
+    const exp = what.startsWith('a Float32') ? mt.simulateAxis(ax, { dt: 1e-3, position: Float64Array.from(new Float32Array(position)) }) : want;
+    assert.deepEqual(got.position, exp.position, what);
+    assert.deepEqual(got.torque, exp.torque, what);
+  }
+  // The snapshot copies a typed array through its internal slots: an own
+  // `length` or `buffer` getter, or a subclass's, is never called.
+  let called = 0;
+  class Sly extends Float64Array {
+    get length() {
+      called++;
+      return 1e9;
+    }
+  }
+  const sly = Sly.from(position);
+  Object.defineProperty(sly, 'buffer', { get: () => (called++, new ArrayBuffer(8)) });
+  const own = Float64Array.from(position);
+  Object.defineProperty(own, 'length', { get: () => (called++, 3) });
+  for (const p of [sly, own]) assert.deepEqual(mt.simulateAxis(ax, { dt: 1e-3, position: p }).position, want.position);
+  assert.equal(called, 0, 'a getter of the caller ran');
+});
