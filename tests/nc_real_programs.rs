@@ -419,3 +419,143 @@ fn a_repeated_axis_word_is_refused() {
     }
     assert!(parse("G1 X1 Y2 Z3 A4 B5 F100").is_ok());
 }
+
+#[test]
+fn codes_that_move_or_transform_the_path_are_refused_at_their_word() {
+    // Ignoring these (as an unknown code is, with a warning) would simulate
+    // another path: a Haas pocket or engraving cut nowhere, a mirrored or
+    // scaled part at its programmed size, a probe move run to its end.
+    for (code, what) in [
+        ("G12 I5 D1 K2 Q1 Z-1 F100", "circular pocket"),
+        ("G13 I5 D1 K2 Q1 Z-1 F100", "circular pocket"),
+        ("G47 P0 E20. I0 J4 R1. Z-0.3 F40 (ABC)", "text engraving"),
+        ("G70 I1 J0 L6 F100", "bolt-hole"),
+        ("G71 I1 J0 K30 L3 F100", "bolt-hole"),
+        ("G72 I1 J45 L4 F100", "bolt-hole"),
+        (
+            "G150 P1000 D0.25 K0.01 G41 J0.3 R0.1 Q0.2 Z-1 F10",
+            "pocket milling",
+        ),
+        ("G51 X0 Y0 P2", "scaling"),
+        ("G51.1 X0", "mirror"),
+        ("G101 X0", "mirror"),
+        ("G31 X20 F50", "probing"),
+        ("G38.2 Z-10 F50", "probing"),
+        ("G37 H1 Z0", "tool measurement"),
+        ("G141 D1 G1 X10 F100", "3D cutter"),
+        ("G107 A0 Y0 R2", "cylindrical"),
+        ("G7.1 C57", "cylindrical"),
+        ("G12.1", "polar coordinate interpolation"),
+        ("G16", "FANUC G16"),
+        ("G6.2 P3 K0 X0 Y0 R1 F100", "NURBS"),
+    ] {
+        let src = format!("G0 X0 Y0\nT1 {code}");
+        let e = parse(&src).unwrap_err();
+        assert_eq!((e.line, e.column), (2, 4), "{code}: {e}");
+        assert!(
+            e.message.contains(what) && e.message.contains("is not simulated"),
+            "{code}: {e}"
+        );
+    }
+    // G47's E is its plunge feed: the program is not taken for a 3D printer's.
+    let e = parse("G0 X0\nG47 P0 E20. I0 J4 R1. Z-0.3 F40 (ABC)").unwrap_err();
+    assert!(!e.message.contains("3D-printer"), "{e}");
+    // Their cancels pass in silence: the modes they cancel are refused.
+    let p = parse("G50 G50.1 G100 G13.1 G15\nG0 X1").unwrap();
+    assert!(p.warnings.iter().all(|w| w.line != 1), "{:?}", p.warnings);
+    assert_eq!(p.segments[0].end.x, 1.0);
+    // Haas G110–G129 and G154 P1–P99 are work offsets, warned as such.
+    let p = parse("G110 G0 X1\nG154 P5 G0 X2").unwrap();
+    let offsets = p
+        .warnings
+        .iter()
+        .filter(|w| w.message.starts_with("work offset"));
+    assert_eq!(offsets.count(), 2, "{:?}", p.warnings);
+}
+
+#[test]
+fn g52_local_coordinate_system_shifts_later_absolute_words() {
+    // FANUC/Haas G52: a program point X is the work point X + the G52 value;
+    // values are absolute (not incremental) and in the program's units, axes
+    // it does not name keep their shift, G52 X0 Y0 cancels.
+    let p = parse(
+        "G90 G0 X0 Y0 Z5\nG52 X100 Y50\nG1 X10 Y0 F1000\nG52 Z-24\nG1 Z1\nG91 G1 X1\nG90 G52 X0 Y0 Z0\nG1 X10 Y0 Z0",
+    )
+    .unwrap();
+    let e = ends(&p.segments);
+    assert!(close(e[1], [110.0, 50.0, 5.0]), "{e:?}");
+    assert!(close(e[2], [110.0, 50.0, -23.0]), "{e:?}");
+    assert!(
+        close(e[3], [111.0, 50.0, -23.0]),
+        "G91 increments are not shifted: {e:?}"
+    );
+    assert!(close(e[4], [10.0, 0.0, 0.0]), "{e:?}");
+    assert!(p
+        .warnings
+        .iter()
+        .any(|w| w.line == 2 && w.message.contains("(100.0000, 50.0000, 0.0000)")));
+    assert!(p
+        .warnings
+        .iter()
+        .any(|w| w.line == 7 && w.message.contains("cancelled")));
+    // Inch: G52 X1 is 25.4 mm.
+    let p = parse("G20 G0 X0 Y0\nG52 X1\nG1 X1 F10").unwrap();
+    assert!(
+        close(p.segments[1].end.p(), [50.8, 0.0, 0.0]),
+        "{:?}",
+        p.segments[1].end.p()
+    );
+    // G92.1 cancels the G92 shift and keeps the G52 one.
+    let p = parse("G0 X10 Y0\nG52 X100\nG92 X0\nG1 X5 F100\nG92.1\nG1 X5").unwrap();
+    let e = ends(&p.segments);
+    assert!(
+        close(e[1], [15.0, 0.0, 0.0]),
+        "G92 at X10 (program X−90): {e:?}"
+    );
+    assert!(
+        close(e[2], [105.0, 0.0, 0.0]),
+        "G52 kept after G92.1: {e:?}"
+    );
+}
+
+#[test]
+fn reverse_compensation_writes_g52_programs_in_their_local_frame() {
+    // Two parts through one contour at two G52 origins: the compensated
+    // words must be written in the local frame (a point written in the work
+    // frame would land 100 mm away when the control adds the shift again).
+    use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
+    let part = "G0 X0 Y0\nG1 X20 F3000\nY20\nG2 X0 Y0 I-10 J-10\nG0 Z5\n";
+    let src = format!("G21 G90 G17\nG52 X100 Y50\n{part}G52 X200 Y50\n{part}G52 X0 Y0\nM30\n");
+    let p = parse(&src).unwrap();
+    let c = reverse_compensate(&src, &ReverseConfig::default()).unwrap();
+    // It did compensate (a result it found worse would be the source unchanged).
+    assert!(
+        c.after.max_error_um < 0.5 * c.before.max_error_um,
+        "{} -> {} µm",
+        c.before.max_error_um,
+        c.after.max_error_um
+    );
+    let q = parse(&c.nc).unwrap();
+    // The compensation may add dwells (G4) at corners: compare the moves.
+    let moves = |p: &mtmotion::nc::program::Program| -> Vec<Segment> {
+        let dwell = |s: &&Segment| matches!(s.motion, Motion::Dwell { .. });
+        p.segments.iter().filter(|s| !dwell(s)).cloned().collect()
+    };
+    let (pm, qm) = (moves(&p), moves(&q));
+    assert_eq!(qm.len(), pm.len(), "{}", c.nc);
+    for (a, b) in pm.iter().zip(&qm) {
+        let d = mtmotion::nc::program::dist(a.end.p(), b.end.p());
+        assert!(
+            d < 0.05,
+            "moved {d} mm: {:?} -> {:?}\n{}",
+            a.end.p(),
+            b.end.p(),
+            c.nc
+        );
+    }
+    assert!(
+        c.nc.contains("G52 X100 Y50") && c.nc.contains("G52 X200 Y50"),
+        "{}",
+        c.nc
+    );
+}

@@ -13,7 +13,7 @@
 
 use super::cutter::{cutter_word, refused_during};
 use super::cycles::{canned_cycle, Cycle};
-use super::gcodes::{code10, has_g187, read_g_words, GWords};
+use super::gcodes::{code10, e_word_is_a_g_argument, read_g_words, GWords};
 use super::moves::move_block;
 use super::non_modal::non_modal_move;
 use super::program::{err, Ctx, Modal, Warning, MAX_PLAUSIBLE_FEED};
@@ -127,10 +127,10 @@ fn no_repeated_axis(b: &Block) -> Result<(), NcError> {
 }
 
 /// An `E` word stops the program: it drives a 3D printer's extruder
-/// (except on a Haas G187 block, where it is the corner tolerance).
+/// (except on a Haas G187 or G47 block, where it is that code's own).
 fn reject_extruder(b: &Block) -> Result<(), NcError> {
     match b.word('E') {
-        Some(e) if !has_g187(b) => Err(err(
+        Some(e) if !e_word_is_a_g_argument(b) => Err(err(
             b,
             e,
             format!(

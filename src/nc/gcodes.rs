@@ -156,7 +156,7 @@ fn grouped_or_other<'a>(
     warnings: &mut Vec<Warning>,
 ) -> Result<(), NcError> {
     match g {
-        280 | 300 | 530 | 100 | 920 | 921 | 922 | 923 => {
+        280 | 300 | 520 | 530 | 100 | 920 | 921 | 922 | 923 => {
             only_one(&mut gw.non_modal, b, w, g, "non-modal codes", "")
         }
         730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 890 => {
@@ -200,10 +200,13 @@ fn grouped_or_other<'a>(
     }
 }
 
-/// True when block `b` holds Haas G187 (its `E` word is a corner
-/// tolerance, not an extruder).
-pub(super) fn has_g187(b: &Block) -> bool {
-    b.words.iter().any(|w| w.letter == 'G' && code10(w) == 1870)
+/// True when block `b` holds a G code whose `E` word is its own, not an
+/// extruder's: Haas G187 (corner tolerance) or G47 (engraving plunge
+/// feed; G47 itself is refused, [`refused`]).
+pub(super) fn e_word_is_a_g_argument(b: &Block) -> bool {
+    b.words
+        .iter()
+        .any(|w| w.letter == 'G' && matches!(code10(w), 1870 | 470))
 }
 
 /// The warning for Haas G187 (smoothness/accuracy: `P1` rough, `P2`
@@ -274,22 +277,67 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
             "G{}: a macro call after every block is not supported; use G66 (a call after each move) or G65 at each position",
             w.text
         ),
-        _ => return None,
+        _ => return moves_not_modelled(w, g).map(|m| err(b, w, m)),
     };
     Some(err(b, w, msg))
 }
 
-/// The warning for an ignored code: work offsets (G54–G59, G54.1), tool
-/// length compensation (G43, G44, G43.1, G43.4) and any code not modelled.
-/// `None` for the codes that do not affect the path (G49, G94, G15,
-/// G61–G64).
+/// The codes that move the tool or transform the path in ways the
+/// interpreter does not model: ignoring them (as an unknown code is, with
+/// a warning) would simulate a different path, so they are refused.
+/// Their cancels (G50 scaling, G50.1 and Haas G100 mirror, G13.1) are harmless
+/// and pass ([`warned`]).
+fn moves_not_modelled(w: &Word, g: i64) -> Option<String> {
+    let (what, instead) = match g {
+        120 | 130 => ("circular pocket milling (Haas)", "post the pocket as G1/G2/G3 moves"),
+        470 => (
+            "text engraving (Haas; it cuts the text of the comment in the control's own font)",
+            "post the engraving as G1/G2/G3 moves, or remove the block",
+        ),
+        700 | 710 | 720 => (
+            "a bolt-hole pattern (Haas: circle, arc, line of holes; G70/G71 as inch/metric on older controls are not read either)",
+            "program each hole's X/Y after the canned cycle (and G20/G21 for the units)",
+        ),
+        1500 => ("general-purpose pocket milling (Haas)", "post the pocket as G1/G2/G3 moves"),
+        510 => ("scaling", "post the program at its final size"),
+        511 | 1010 => ("mirror imaging", "post the mirrored moves themselves"),
+        310..=314 | 382..=385 => (
+            "a probing move (it stops where the probe touches, which the simulation cannot know)",
+            "remove the probing blocks from the program you simulate",
+        ),
+        360 | 370 => (
+            "automatic tool measurement (the move stops at the sensor)",
+            "remove the measuring blocks from the program you simulate",
+        ),
+        1410 => ("3D cutter compensation (Haas)", "post the program with the tool path compensated"),
+        1070 | 71 => ("cylindrical mapping", "post the program in X/Y/Z and the rotary axis"),
+        121 => ("polar coordinate interpolation", "post the program in X/Y and the rotary axis"),
+        160 => (
+            "the polar coordinate command (FANUC G16: X is then a radius and Y an angle)",
+            "post the program in X/Y, or use LinuxCNC's @/^ words",
+        ),
+        62 => ("NURBS interpolation", "post the program with lines and arcs (G1/G2/G3)"),
+        _ => return None,
+    };
+    Some(format!("G{}: {what} is not simulated; {instead}", w.text))
+}
+
+/// The warning for an ignored code: work offsets (G54–G59, G54.1, Haas
+/// G110–G129 and G154), tool length compensation (G43, G44, G43.1,
+/// G43.4) and any code not modelled. `None` for the codes that do not
+/// affect the path (G49, G94, G15, G61–G64, and the cancels G50, G50.1,
+/// G100, G13.1 of the refused scaling, mirror and polar codes).
 fn warned(w: &Word, g: i64) -> Option<String> {
     Some(match g {
         540..=590 => format!(
             "work offset G{}: its offset values are unknown here, so the program frame is kept (all work offsets coincide)",
             w.text
         ),
-        490 | 940 | 150 | 610..=649 => return None,
+        490 | 940 | 150 | 610..=649 | 500 | 501 | 1000 | 131 => return None,
+        1100..=1290 | 1540 => format!(
+            "work offset G{}: its offset values are unknown here, so the program frame is kept (all work offsets coincide)",
+            w.text
+        ),
         430 | 440 | 431 | 434 => format!(
             "G{}: tool length compensation is ignored (Z is the programmed Z)",
             w.text

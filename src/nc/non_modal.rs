@@ -1,8 +1,11 @@
 //! The non-modal codes that touch the position or the frame: G28/G30
 //! (reference return via an intermediate point: the rapid to the point is
 //! simulated, the return is not), G53 (a move in machine coordinates, not
-//! simulated) and G92/G92.1/G92.2 (coordinate shift, kept as an offset so
-//! the path stays continuous). Each is warned about with what was and was
+//! simulated), G92/G92.1/G92.2 (coordinate shift, kept as an offset so
+//! the path stays continuous) and G52 (local coordinate system: absolute
+//! words are shifted by its values, always absolute and in the program's
+//! units; axes it does not name keep their shift; G52 X0 Y0 Z0 cancels;
+//! G92.1 cancels only the G92 part). Each is warned about with what was and was
 //! not simulated. Under a G68 rotation all of them are refused before
 //! they get here ([`super::rotation`]: Fanuc requires G69 first). The
 //! readings are those of the interpreter's header ([`super::program`]).
@@ -70,8 +73,25 @@ pub(super) fn non_modal_move(
             );
         }
         921 | 922 => {
-            st.offset = [0.0; 6];
+            st.offset = st.local;
             warn(cx, format!("G{}: the G92 coordinate shift is cancelled", w.text));
+        }
+        520 => {
+            for aw in axis_words {
+                let (i, v) = axis_value(aw, scale);
+                st.offset[i] += v - st.local[i];
+                st.local[i] = v;
+            }
+            let l = st.local;
+            let m = if l.iter().all(|&v| v == 0.0) {
+                format!("G{}: the local coordinate shift is cancelled", w.text)
+            } else {
+                format!(
+                    "G{}: local coordinate system at ({:.4}, {:.4}, {:.4}) mm from the work origin; later absolute coordinates are shifted by it",
+                    w.text, l[0], l[1], l[2]
+                )
+            };
+            warn(cx, m);
         }
         _ => warn(cx, format!("G{} is not modelled and was ignored", w.text)),
     }

@@ -250,6 +250,9 @@ pub struct Modal {
     /// G92 shift, mm / degrees: an absolute word `w` is the pose `w +
     /// offset` of the continuous path (see the module header).
     pub offset: [f64; 6],
+    /// The G52 local coordinate shift, mm / degrees: the part of `offset`
+    /// that G52 set (a new G52 replaces it axis by axis).
+    pub local: [f64; 6],
     /// M2/M30 has ended the program.
     pub ended: bool,
     /// The active canned cycle (G73–G89 until G80 or a G0–G3).
