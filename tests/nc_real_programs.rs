@@ -559,3 +559,31 @@ fn reverse_compensation_writes_g52_programs_in_their_local_frame() {
         c.nc
     );
 }
+
+#[test]
+fn other_controls_languages_are_refused_by_name() {
+    // Siemens Sinumerik: ISO-looking blocks, then a cycle call.
+    let e = parse("N10 G17 G54 G90\nN20 G0 X0 Y0 Z5\nN80 CYCLE81(5,0,1,-10)\nM30").unwrap_err();
+    assert_eq!((e.line, e.column), (3, 5), "{e}");
+    assert!(e.message.contains("Siemens Sinumerik"), "{e}");
+    // Heidenhain conversational: refused at its first line.
+    let e = parse_all(
+        "0 BEGIN PGM TEST MM\n1 BLK FORM 0.1 Z X+0 Y+0 Z-20\n2 L X+10 R0 FMAX",
+        &ParseOptions::default(),
+    )
+    .unwrap_err();
+    assert_eq!((e.errors[0].line, e.errors[0].column), (1, 1));
+    assert!(
+        e.errors[0].message.contains("Heidenhain conversational"),
+        "{:?}",
+        e.errors
+    );
+    assert_eq!(e.errors.len(), 1, "one refusal for the program: {:?}", e.errors);
+    // A decimal comma is named with the word as it should be.
+    let e = parse("G21 G90\nG1 X1,5 Y2 F100").unwrap_err();
+    assert_eq!((e.line, e.column), (2, 6), "{e}");
+    assert!(
+        e.message.contains("'X1,5': a decimal comma") && e.message.contains("'X1.5'"),
+        "{e}"
+    );
+}

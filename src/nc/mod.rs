@@ -21,6 +21,7 @@ pub mod corner;
 pub mod cutter;
 pub mod cutter_path;
 pub mod cycles;
+pub mod dialect;
 pub mod files;
 mod gcodes;
 pub mod macro_exec;
@@ -379,6 +380,9 @@ pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
     if let Some(header) = macro_expr::okuma_file_header(src) {
         return Err(NcError::new(line, i + 1, macro_expr::okuma_message(header)));
     }
+    if let Some(m) = dialect::heidenhain_line(src) {
+        return Err(NcError::new(line, i + 1, m));
+    }
     if i < chars.len() && chars[i] == '%' {
         block.percent = true;
         i += 1;
@@ -523,11 +527,10 @@ fn lex_item(
     } else if c == ',' {
         let letter = chars.get(*i + 1).map(|c| c.to_ascii_uppercase());
         if !matches!(letter, Some('R' | 'C')) {
-            return Err(NcError::new(
-                line,
-                col,
-                "',' must start a corner word ',R' (rounding) or ',C' (chamfer)",
-            ));
+            let m = dialect::decimal_comma(chars, *i).unwrap_or_else(|| {
+                "',' must start a corner word ',R' (rounding) or ',C' (chamfer)".into()
+            });
+            return Err(NcError::new(line, col, m));
         }
         *i += 1;
         let w = lex_word(chars, i, line)?;
@@ -637,6 +640,8 @@ fn keyword_error(run: &str, line: usize, col: usize, block: &Block) -> NcError {
         )
     } else if macro_expr::is_okuma_word(run) {
         NcError::new(line, col, macro_expr::okuma_message(run))
+    } else if dialect::is_siemens_word(run) {
+        NcError::new(line, col, dialect::siemens_message(run))
     } else if MACRO_B.contains(&run) {
         NcError::new(
             line,
