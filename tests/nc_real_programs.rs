@@ -578,7 +578,12 @@ fn other_controls_languages_are_refused_by_name() {
         "{:?}",
         e.errors
     );
-    assert_eq!(e.errors.len(), 1, "one refusal for the program: {:?}", e.errors);
+    assert_eq!(
+        e.errors.len(),
+        1,
+        "one refusal for the program: {:?}",
+        e.errors
+    );
     // A decimal comma is named with the word as it should be.
     let e = parse("G21 G90\nG1 X1,5 Y2 F100").unwrap_err();
     assert_eq!((e.line, e.column), (2, 6), "{e}");
@@ -586,4 +591,93 @@ fn other_controls_languages_are_refused_by_name() {
         e.message.contains("'X1,5': a decimal comma") && e.message.contains("'X1.5'"),
         "{e}"
     );
+}
+
+#[test]
+fn g95_feed_per_revolution_is_f_times_s() {
+    // FANUC/Haas G95: F is mm (G20: inch) per spindle revolution, so the
+    // feed is F × S mm/min; G94 returns to F in mm/min.
+    let p = parse("G21 G90 G0 X0 Y0\nS1000 M3\nG95 G1 X10 F0.1\nG94 G1 X20 F300").unwrap();
+    assert_eq!(p.segments[1].feed, 0.1 * 1000.0);
+    assert_eq!(p.segments[2].feed, 300.0);
+    // The S word under G94 is warned about; under G95 it is the feed's.
+    assert!(p
+        .warnings
+        .iter()
+        .any(|w| w.line == 2 && w.message.starts_with("S1000: ")));
+    let p = parse("G20 G90 G0 X0\nG95 S500 G1 X1 F0.004").unwrap();
+    assert!((p.segments[1].feed - 0.004 * 25.4 * 500.0).abs() < 1e-9);
+    assert!(p.warnings.iter().all(|w| w.line != 2), "{:?}", p.warnings);
+    // A G84 rigid tap as FreeCAD's Fanuc post writes it: F is the pitch.
+    let p =
+        parse("G21 G90 G0 X10 Y10 Z25\nG95\nM29 S1000\nG84 Z-10 R20 F1 P1 Q1\nG80\nG94").unwrap();
+    let cutting: Vec<f64> = p
+        .segments
+        .iter()
+        .filter(|s| s.feed > 0.0)
+        .map(|s| s.feed)
+        .collect();
+    assert!(
+        !cutting.is_empty() && cutting.iter().all(|&f| f == 1000.0),
+        "{cutting:?}"
+    );
+    // Without S the move says what is missing, at the move.
+    let e = parse("G0 X0\nG95 G1 X10 F0.1").unwrap_err();
+    assert_eq!(e.line, 2, "{e}");
+    assert!(e.message.contains("needs the spindle speed"), "{e}");
+    // Reverse compensation keeps G95 and writes any feed it adds per
+    // revolution: the written program reads back with the same feeds.
+    use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
+    let src = "G21 G90 G0 X0 Y0\nS4000 M3\nG95 G1 X20 F0.5\nG3 X30 Y10 R10\nG1 Y30\nG2 X40 Y40 I10 J0\nG1 X60\nG0 Z5\nG94 M30";
+    let p = parse(src).unwrap();
+    let c = reverse_compensate(src, &ReverseConfig::default()).unwrap();
+    assert!(
+        c.after.max_error_um < 0.5 * c.before.max_error_um,
+        "{} -> {} µm",
+        c.before.max_error_um,
+        c.after.max_error_um
+    );
+    let q = parse(&c.nc).unwrap();
+    let feeds = |p: &mtmotion::nc::program::Program| -> Vec<f64> {
+        let moves = p
+            .segments
+            .iter()
+            .filter(|s| !matches!(s.motion, Motion::Dwell { .. }));
+        moves.map(|s| s.feed).collect()
+    };
+    assert_eq!(feeds(&q), feeds(&p), "{}", c.nc);
+    assert!(c.nc.contains("G95"), "{}", c.nc);
+}
+
+#[test]
+fn the_flat_writer_writes_a_g95_program_in_mm_per_minute() {
+    // writer::write writes each move's feed in mm/min: the G95 of the
+    // source must not be written with it (F0.1 × S1000 → F100, under G94).
+    let p = parse("G21 G90 G0 X0 Y0\nS1000 M3\nG95 G1 X10 F0.1\nY10\nG94 G1 X0 F300").unwrap();
+    let flat = mtmotion::nc::writer::write(&p, &p.segments);
+    let q = parse(&flat).unwrap();
+    let feeds = |p: &mtmotion::nc::program::Program| -> Vec<f64> {
+        p.segments.iter().map(|s| s.feed).collect()
+    };
+    assert_eq!(feeds(&q), feeds(&p), "{flat}");
+}
+
+#[test]
+fn the_patcher_writes_a_new_move_under_g95_per_revolution() {
+    // A move the rewrite adds (no source block) before a block that sets a
+    // new feed takes that feed: under G95 S4000 its 1000 mm/min is written
+    // F0.25 (per revolution), not F1000 (which would read as 4 m/min × 1000).
+    let src = "G21 G90 G0 X0 Y0\nS4000 M3\nG95 G1 X20 F0.5\nG1 Y20 F0.25\nM30";
+    let p = parse(src).unwrap();
+    let mut segs = p.segments.clone();
+    let mut extra = segs[2].clone();
+    extra.block = None;
+    extra.end.y = 5.0;
+    segs[2].start = extra.end;
+    segs.insert(2, extra);
+    let text = mtmotion::nc::patch::write_source(src, &p, &segs);
+    let q = parse(&text).unwrap();
+    let feeds: Vec<f64> = q.segments.iter().map(|s| s.feed).collect();
+    assert_eq!(feeds, [0.0, 2000.0, 1000.0, 1000.0], "{text}");
+    assert!(text.contains("Y5 F0.25"), "{text}");
 }

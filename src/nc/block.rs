@@ -169,6 +169,16 @@ fn read_other_words(
                 read_feed(b, w, st, warnings)?;
                 continue;
             }
+            'S' => {
+                st.spindle = Some(w.value);
+                if st.per_rev {
+                    continue;
+                }
+                format!(
+                    "S{}: the spindle speed does not affect the motion model (it sets the feed only under G95, feed per revolution)",
+                    w.text
+                )
+            }
             'G' | 'N' | 'O' | 'X' | 'Y' | 'Z' | 'A' | 'B' | 'I' | 'J' | 'K' | 'R' | '@' | '^' => {
                 continue
             }
@@ -182,7 +192,7 @@ fn read_other_words(
             'M' if matches!(code10(w), 20 | 300 | 970 | 980 | 990) => continue,
             'L' | 'P' | 'Q' if st.cycle.is_some() || gw.cycle.is_some() => continue,
             'D' if gw.cutter.is_some_and(|(_, g)| g != 400) => continue,
-            'M' | 'S' | 'T' | 'H' | 'D' => format!(
+            'M' | 'T' | 'H' | 'D' => format!(
                 "{}{} does not affect the motion model and was ignored",
                 w.letter, w.text
             ),
@@ -212,7 +222,7 @@ fn read_feed(
         ));
     }
     let f = w.value * length_scale(st);
-    if f > MAX_PLAUSIBLE_FEED {
+    if f > MAX_PLAUSIBLE_FEED && !st.per_rev {
         warnings.push(Warning::at(
             b.line,
             w.column,

@@ -364,15 +364,13 @@ fn hole_data(b: &Block, st: &Modal, c: &Cycle, anchor: &Word) -> Result<Holes, N
             format!("{code} (peck drilling) needs a peck depth Q greater than 0"),
         ));
     }
-    let feed = match st.feed {
+    let feed = match st.feed_mm_min() {
         Some(f) if f > 0.0 => f,
         _ => {
             return Err(err(
                 b,
                 anchor,
-                format!(
-                    "{code} without a feed; expected an F word (mm/min) on this or an earlier block"
-                ),
+                format!("{code} without a feed; {}", st.no_feed_reason()),
             ))
         }
     };

@@ -135,6 +135,8 @@ fn set_modal(st: &mut Modal, g: i64) -> bool {
         210 => st.inch = false,
         900 => st.incremental = false,
         910 => st.incremental = true,
+        940 => st.per_rev = false,
+        950 => st.per_rev = true,
         901 => st.arc_center_absolute = true,
         911 => st.arc_center_absolute = false,
         800 => st.cycle = None,
@@ -244,7 +246,8 @@ fn setting_message(b: &Block, w: &Word, g: i64) -> String {
 
 /// The error for a code that is not simulated and would change the path:
 /// splines, threading, the cycles without a model (G74.1, G80.1–G89.9 other
-/// than the modelled ones, G87, G88), inverse-time and per-revolution feed,
+/// than the modelled ones, G87, G88), inverse-time feed (G93; G95 feed per
+/// revolution is read: F × S),
 /// 3D coordinate conversion (G68.1–G68.4),
 /// Okuma `G15 H`, modal macro calls. `None` for any other code.
 fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
@@ -263,7 +266,7 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
                 _ => "this canned cycle",
             }
         ),
-        930 | 950 | 951 => format!(
+        930 | 951 => format!(
             "G{}: {} changes the meaning of F and is not simulated; expected G94 (feed per minute)",
             w.text,
             if g == 930 { "inverse-time feed" } else { "feed per revolution" }
@@ -333,7 +336,7 @@ fn warned(w: &Word, g: i64) -> Option<String> {
             "work offset G{}: its offset values are unknown here, so the program frame is kept (all work offsets coincide)",
             w.text
         ),
-        490 | 940 | 150 | 610..=649 | 500 | 501 | 1000 | 131 => return None,
+        490 | 150 | 610..=649 | 500 | 501 | 1000 | 131 => return None,
         1100..=1290 | 1540 => format!(
             "work offset G{}: its offset values are unknown here, so the program frame is kept (all work offsets coincide)",
             w.text

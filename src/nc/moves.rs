@@ -153,24 +153,24 @@ fn corner_or_centre_warning(
 }
 
 /// The feed of a move in `mode`, mm/min: 0 for a rapid, the modal feed
-/// (which must be positive) for a cutting move.
+/// (under G95 F × S; it must be positive) for a cutting move.
 fn move_feed(b: &Block, st: &Modal, mode: MotionCode, first: &Word) -> Result<f64, NcError> {
     match mode {
         MotionCode::Rapid => Ok(0.0),
-        _ => match st.feed {
+        _ => match st.feed_mm_min() {
             Some(f) if f > 0.0 => Ok(f),
             Some(_) => {
-                let fw = b.word('F').unwrap_or(first);
+                let fw = b.word('F').or(b.word('S')).unwrap_or(first);
                 Err(err(
                     b,
                     fw,
-                    "feed is zero on a cutting move; expected F greater than 0 (mm/min)",
+                    "feed is zero on a cutting move; expected F (and under G95 S) greater than 0",
                 ))
             }
             None => Err(err(
                 b,
                 first,
-                "cutting move without a feed; expected an F word (mm/min) on this or an earlier block",
+                format!("cutting move without a feed; {}", st.no_feed_reason()),
             )),
         },
     }

@@ -607,8 +607,10 @@ impl Writer<'_> {
             }
         }
         let out = machine_point(&m, out);
-        if m.feed.is_none_or(|f| (f - seg.feed).abs() > 1e-9) && seg.feed > 0.0 {
-            let u = if m.inch { 25.4 } else { 1.0 };
+        if m.feed_mm_min().is_none_or(|f| (f - seg.feed).abs() > 1e-9) && seg.feed > 0.0 {
+            // mm/min, or under G95 mm per revolution (F × S is the feed)
+            let per_rev = m.spindle.filter(|_| m.per_rev).unwrap_or(1.0);
+            let u = if m.inch { 25.4 } else { 1.0 } * per_rev;
             parts.push(format!(
                 "{}{}",
                 self.d.letter('F'),

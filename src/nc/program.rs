@@ -240,8 +240,12 @@ pub struct Modal {
     pub incremental: bool,
     /// G20 in force.
     pub inch: bool,
-    /// Modal feed, mm/min.
+    /// Modal feed: mm/min, or under G95 mm per revolution.
     pub feed: Option<f64>,
+    /// G95 (feed per revolution) in force; G94 cancels it.
+    pub per_rev: bool,
+    /// The last spindle speed S, rpm (the feed of a G95 move is F × S).
+    pub spindle: Option<f64>,
     /// Position, mm / degrees.
     pub pos: Pose,
     /// G90.1 in force: arc centres I/J/K are absolute (G91.1, the default,
@@ -291,6 +295,27 @@ impl Program {
     /// several times or with computed words (its segments are `fixed`).
     pub fn has_macros(&self) -> bool {
         needs_macros(&self.blocks)
+    }
+}
+
+impl Modal {
+    /// The feed of a cutting move, mm/min: F, or under G95 F × S. `None`
+    /// without F (or, under G95, without S).
+    pub fn feed_mm_min(&self) -> Option<f64> {
+        match (self.per_rev, self.feed, self.spindle) {
+            (false, f, _) => f,
+            (true, Some(f), Some(s)) => Some(f * s),
+            _ => None,
+        }
+    }
+
+    /// Why a cutting move has no feed (for the error at the move).
+    pub(super) fn no_feed_reason(&self) -> &'static str {
+        if self.per_rev && self.feed.is_some() {
+            "G95 (feed per revolution) needs the spindle speed: expected an S word (rpm) on this or an earlier block"
+        } else {
+            "expected an F word (mm/min) on this or an earlier block"
+        }
     }
 }
 

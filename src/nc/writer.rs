@@ -197,7 +197,20 @@ fn modal_at(program: &Program, bi: usize) -> Modal {
     program.modal.get(bi).copied().unwrap_or_default()
 }
 
-/// Common word rewriting: G20→G21, G91→G90, feed to mm/min, modal tracking.
+/// The feed an F word gives under `m`, mm/min: inch scaled, and under G95
+/// times the spindle speed (the flat program is written in G94). Without
+/// a spindle speed under G95 the word is kept as it reads (the program's
+/// moves then had no feed and did not parse).
+fn feed_of_word(m: &Modal, w: &Word) -> f64 {
+    let f = if m.inch { w.value * 25.4 } else { w.value };
+    match (m.per_rev, m.spindle) {
+        (true, Some(s)) => f * s,
+        _ => f,
+    }
+}
+
+/// Common word rewriting: G20→G21, G91→G90, G95→G94, feed to mm/min
+/// (under G95 F × S), modal tracking.
 fn rewrite_common(program: &Program, bi: usize, w: &Word, out: &mut Out) -> Option<Word> {
     let m = modal_at(program, bi);
     match w.letter {
@@ -207,6 +220,7 @@ fn rewrite_common(program: &Program, bi: usize, w: &Word, out: &mut Out) -> Opti
             match g {
                 200 => w = word('G', "21".into()),
                 910 => w = word('G', "90".into()),
+                950 => w = word('G', "94".into()),
                 901 => w = word('G', "91.1".into()),
                 0 | 10 | 20 | 30 => {
                     out.motion = Some(match g {
@@ -224,9 +238,9 @@ fn rewrite_common(program: &Program, bi: usize, w: &Word, out: &mut Out) -> Opti
             Some(w)
         }
         'F' => {
-            let f = if m.inch { w.value * 25.4 } else { w.value };
+            let f = feed_of_word(&m, w);
             out.feed = Some(f);
-            Some(if m.inch {
+            Some(if m.inch || m.per_rev {
                 word('F', fmt_feed(f))
             } else {
                 w.clone()
@@ -547,8 +561,7 @@ fn write_block(program: &Program, bi: usize, seg: &Segment, out: &mut Out) {
         }
         if w.letter == 'F' {
             had[2] = true;
-            let m = modal_at(program, bi);
-            let f = if m.inch { w.value * 25.4 } else { w.value };
+            let f = feed_of_word(&modal_at(program, bi), &w);
             if seg.is_cutting() && f != seg.feed {
                 w = word('F', fmt_feed(seg.feed));
             }
