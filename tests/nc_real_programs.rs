@@ -621,6 +621,10 @@ fn g95_feed_per_revolution_is_f_times_s() {
         !cutting.is_empty() && cutting.iter().all(|&f| f == 1000.0),
         "{cutting:?}"
     );
+    // A negative S is refused at the S.
+    let e = parse("G0 X0\nG95 S-1000 G1 X1 F1").unwrap_err();
+    assert_eq!((e.line, e.column), (2, 5), "{e}");
+    assert!(e.message.contains("negative spindle speed"), "{e}");
     // Without S the move says what is missing, at the move.
     let e = parse("G0 X0\nG95 G1 X10 F0.1").unwrap_err();
     assert_eq!(e.line, 2, "{e}");

@@ -170,6 +170,16 @@ fn read_other_words(
                 continue;
             }
             'S' => {
+                if w.value < 0.0 {
+                    return Err(err(
+                        b,
+                        w,
+                        format!(
+                            "S{}: a negative spindle speed; expected S in rpm, 0 or more (M3/M4 give the direction)",
+                            w.text
+                        ),
+                    ));
+                }
                 st.spindle = Some(w.value);
                 if st.per_rev {
                     continue;
