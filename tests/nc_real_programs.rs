@@ -685,3 +685,17 @@ fn the_patcher_writes_a_new_move_under_g95_per_revolution() {
     assert_eq!(feeds, [0.0, 2000.0, 1000.0, 1000.0], "{text}");
     assert!(text.contains("Y5 F0.25"), "{text}");
 }
+
+#[test]
+fn an_absurdly_low_feed_is_named_with_its_true_sample_count() {
+    // G95 with S1e-21 rpm: 1e-21 mm/min. The count of samples it would need
+    // (6e25) was cast to an integer and reported as 4294967295 in wasm.
+    use mtmotion::toolpath::{simulate::simulate, SimConfig};
+    let p = parse("G0 X0\nG95 S0.000000000000000000001 G1 X1 F1").unwrap();
+    let e = simulate(&p.segments, &p.segments, &SimConfig::default()).unwrap_err();
+    let m = e.to_string();
+    assert!(
+        m.contains("would need 6.000e25 samples") && m.contains("very low feed"),
+        "{m}"
+    );
+}

@@ -294,7 +294,7 @@ fn sample_count(tl: &Timeline, cfg: &SimConfig, tmax: f64) -> Result<usize, Tool
     let n_f = (t_end / cfg.dt).ceil() + 1.0;
     if n_f > MAX_SAMPLES as f64 {
         return Err(ToolpathError::TooLong {
-            samples: n_f as usize,
+            samples: n_f,
             limit: MAX_SAMPLES,
         });
     }
