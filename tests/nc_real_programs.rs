@@ -699,3 +699,111 @@ fn an_absurdly_low_feed_is_named_with_its_true_sample_count() {
         "{m}"
     );
 }
+
+#[test]
+fn g93_inverse_time_moves_take_one_over_f_minutes() {
+    // RS274/NGC and FANUC G93: each cutting move takes 1/F minutes and
+    // needs its own F; the feed is then its length × F (mm/min), or for a
+    // rotary-only move its largest rotary move × F (deg/min). F is 1/min
+    // under G20 as under G21.
+    let p = parse("G21 G90 G0 X0 Y0\nG93 G1 X10 F2\nG1 X10 Y10 F0.5\nG1 A90 F4").unwrap();
+    let f: Vec<f64> = p.segments.iter().map(|s| s.feed).collect();
+    assert_eq!(f, [0.0, 20.0, 5.0, 360.0]);
+    let p = parse("G20 G90 G0 X0\nG93 G1 X1 F2").unwrap();
+    assert!((p.segments[1].feed - 50.8).abs() < 1e-12);
+    // Every G93 move needs its own F; a change of mode clears F (FANUC):
+    // F2 under G93 is no feed per minute after G94.
+    for (src, line) in [
+        ("G0 X0\nG93 G1 X10 F2\nX20", 3),
+        ("G0 X0\nG93 G1 X10 F2\nG94 G1 X20", 3),
+        ("G0 X0\nG94 G1 X10 F300\nG95 S1000 G1 X20", 3),
+    ] {
+        let e = parse(src).unwrap_err();
+        assert_eq!(e.line, line, "{src}: {e}");
+        assert!(e.message.contains("without a feed"), "{src}: {e}");
+    }
+    // A canned cycle needs a feed per minute.
+    let e = parse("G0 X0 Z5\nG93 G81 X1 Y1 Z-1 R1 F2").unwrap_err();
+    assert!(e.message.contains("under G93"), "{e}");
+    // LinuxCNC's daisy.ngc plays a song: each note is one G93 move of
+    // F[60/t] (t seconds). The cutting moves' time is the sum of the note
+    // lengths written in its O200 calls, 31.993 s.
+    let path = format!(
+        "{}/tests/nc_corpus/linuxcnc_daisy.ngc",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(path).unwrap();
+    let notes: f64 = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("O200 call ["))
+        .map(|l| l.split(']').next().unwrap().parse::<f64>().unwrap())
+        .sum();
+    let p = parse(&text).unwrap();
+    let cutting: f64 = p
+        .segments
+        .iter()
+        .filter(|s| s.is_cutting())
+        .map(|s| s.timed_length() / s.feed * 60.0)
+        .sum();
+    assert!(
+        (notes - 31.993).abs() < 1e-9 && (cutting - notes).abs() < 1e-9,
+        "{cutting} vs {notes}"
+    );
+}
+
+#[test]
+fn the_writers_keep_g93_timing() {
+    // The flat writer writes G94 and each move's feed in mm/min (deg/min
+    // for a rotary-only move); reverse compensation keeps the G93 words.
+    let src = "G21 G90 G0 X0 Y0\nG93 G1 X20 F40\nG3 X30 Y10 R10 F60\nG1 Y30 F30\nG1 A90 F8\nG1 X60 F20\nG94 M30";
+    let p = parse(src).unwrap();
+    let flat = mtmotion::nc::writer::write(&p, &p.segments);
+    let q = parse(&flat).unwrap();
+    let feeds = |p: &mtmotion::nc::program::Program| -> Vec<f64> {
+        let moves = p
+            .segments
+            .iter()
+            .filter(|s| !matches!(s.motion, Motion::Dwell { .. }));
+        moves.map(|s| s.feed).collect()
+    };
+    let (a, b) = (feeds(&p), feeds(&q));
+    assert!(
+        a.iter()
+            .zip(&b)
+            .all(|(x, y)| (x - y).abs() < 1e-6 * x.max(1.0)),
+        "{a:?} {b:?}\n{flat}"
+    );
+    assert!(!flat.contains("G93"), "{flat}");
+    use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
+    let c = reverse_compensate(src, &ReverseConfig::default()).unwrap();
+    assert!(c.after.max_error_um <= c.before.max_error_um);
+    let q = parse(&c.nc).unwrap();
+    // Moved end points change a G93 move's length by microns: its feed by as little.
+    let b = feeds(&q);
+    assert!(
+        a.iter()
+            .zip(&b)
+            .all(|(x, y)| (x - y).abs() < 1e-3 * x.max(1.0)),
+        "{a:?} {b:?}\n{}",
+        c.nc
+    );
+}
+
+#[test]
+fn the_patcher_writes_a_new_move_under_g93_with_its_own_inverse_time() {
+    // A move the rewrite adds under G93 needs its own F: its feed over its
+    // length (here 1000 mm/min over 5 mm: F200, 0.3 s).
+    let src = "G21 G90 G0 X0 Y0\nG93 G1 X20 F100\nG1 Y20 F50\nG94 M30";
+    let p = parse(src).unwrap();
+    let mut segs = p.segments.clone();
+    let mut extra = segs[2].clone();
+    extra.block = None;
+    extra.end.y = 5.0;
+    extra.feed = 1000.0;
+    segs[2].start = extra.end;
+    segs.insert(2, extra);
+    let text = mtmotion::nc::patch::write_source(src, &p, &segs);
+    let q = parse(&text).unwrap();
+    assert!(text.contains("Y5 F200"), "{text}");
+    assert_eq!(q.segments[2].feed, 1000.0, "{text}");
+}

@@ -16,7 +16,7 @@ use super::cycles::{canned_cycle, Cycle};
 use super::gcodes::{code10, e_word_is_a_g_argument, read_g_words, GWords};
 use super::moves::move_block;
 use super::non_modal::non_modal_move;
-use super::program::{err, Ctx, Modal, Warning, MAX_PLAUSIBLE_FEED};
+use super::program::{err, Ctx, FeedMode, Modal, Warning, MAX_PLAUSIBLE_FEED};
 use super::rotation::rotation_block;
 use super::segment::{Motion, Segment};
 use super::{Block, NcError, Word};
@@ -181,7 +181,7 @@ fn read_other_words(
                     ));
                 }
                 st.spindle = Some(w.value);
-                if st.per_rev {
+                if st.feed_mode == FeedMode::PerRevolution {
                     continue;
                 }
                 format!(
@@ -231,8 +231,10 @@ fn read_feed(
             ),
         ));
     }
-    let f = w.value * length_scale(st);
-    if f > MAX_PLAUSIBLE_FEED && !st.per_rev {
+    // Under G93 F is 1/min, whatever the length unit.
+    let inverse = st.feed_mode == FeedMode::InverseTime;
+    let f = w.value * if inverse { 1.0 } else { length_scale(st) };
+    if f > MAX_PLAUSIBLE_FEED && st.feed_mode == FeedMode::PerMinute {
         warnings.push(Warning::at(
             b.line,
             w.column,

@@ -35,7 +35,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::moves::target;
-use super::program::{err, Ctx, Modal, Warning};
+use super::program::{err, Ctx, FeedMode, Modal, Warning};
 use super::segment::{Motion, Plane, Pose, Segment, AXES};
 use super::{Block, NcError, Word};
 
@@ -364,7 +364,14 @@ fn hole_data(b: &Block, st: &Modal, c: &Cycle, anchor: &Word) -> Result<Holes, N
             format!("{code} (peck drilling) needs a peck depth Q greater than 0"),
         ));
     }
-    let feed = match st.feed_mm_min() {
+    if st.feed_mode == FeedMode::InverseTime {
+        return Err(err(
+            b,
+            anchor,
+            format!("{code} under G93 (inverse time): a canned cycle needs a feed per minute; program G94 and an F in mm/min before it"),
+        ));
+    }
+    let feed = match st.feed_mm_min(0.0) {
         Some(f) if f > 0.0 => f,
         _ => {
             return Err(err(

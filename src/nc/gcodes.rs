@@ -11,7 +11,7 @@
 //!
 //! A G code is handled as its value ×10, rounded (G91.1 → 911).
 
-use super::program::{err, Modal, Warning};
+use super::program::{err, FeedMode, Modal, Warning};
 use super::segment::{MotionCode, Plane};
 use super::{Block, NcError, Word};
 
@@ -135,8 +135,17 @@ fn set_modal(st: &mut Modal, g: i64) -> bool {
         210 => st.inch = false,
         900 => st.incremental = false,
         910 => st.incremental = true,
-        940 => st.per_rev = false,
-        950 => st.per_rev = true,
+        930 | 940 | 950 => {
+            let mode = match g {
+                930 => FeedMode::InverseTime,
+                940 => FeedMode::PerMinute,
+                _ => FeedMode::PerRevolution,
+            };
+            if st.feed_mode != mode {
+                st.feed_mode = mode;
+                st.feed = None;
+            }
+        }
         901 => st.arc_center_absolute = true,
         911 => st.arc_center_absolute = false,
         800 => st.cycle = None,
@@ -246,8 +255,8 @@ fn setting_message(b: &Block, w: &Word, g: i64) -> String {
 
 /// The error for a code that is not simulated and would change the path:
 /// splines, threading, the cycles without a model (G74.1, G80.1–G89.9 other
-/// than the modelled ones, G87, G88), inverse-time feed (G93; G95 feed per
-/// revolution is read: F × S),
+/// than the modelled ones, G87, G88), G95.1 (G93 inverse time and G95 feed
+/// per revolution are read),
 /// 3D coordinate conversion (G68.1–G68.4),
 /// Okuma `G15 H`, modal macro calls. `None` for any other code.
 fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
@@ -266,10 +275,9 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
                 _ => "this canned cycle",
             }
         ),
-        930 | 951 => format!(
-            "G{}: {} changes the meaning of F and is not simulated; expected G94 (feed per minute)",
-            w.text,
-            if g == 930 { "inverse-time feed" } else { "feed per revolution" }
+        951 => format!(
+            "G{}: feed per revolution changes the meaning of F and is not simulated; expected G94 (feed per minute) or G95",
+            w.text
         ),
         681..=684 => format!(
             "G{}: 3D coordinate conversion / tilted working plane is not simulated; post the program in work coordinates (G68 in the plane is simulated)",

@@ -9,7 +9,7 @@
 
 use super::arc::arc;
 use super::block::axis_words;
-use super::program::{err, Corner, CornerKind, Ctx, Modal, Warning};
+use super::program::{err, Corner, CornerKind, Ctx, FeedMode, Modal, Warning};
 use super::rotation::end_to_machine;
 use super::segment::{Motion, MotionCode, Pose, Segment, AXES};
 use super::{Block, NcError, Word};
@@ -66,8 +66,8 @@ pub(super) fn move_block(
     }
     let start = st.pos;
     let end = target(st, &axis_words, scale);
-    let feed = move_feed(b, st, mode, first)?;
     let motion = move_motion(b, st, mode, first, start, end, scale)?;
+    let feed = move_feed(b, st, mode, first, timed_length(&motion, start, end))?;
     let corner = corner_word(b, mode, chamfer_c, scale)?;
     corner_or_centre_warning(b, cx, mode, corner, centre_words.first().copied());
     st.pos = end;
@@ -152,12 +152,39 @@ fn corner_or_centre_warning(
     }
 }
 
+/// [`Segment::timed_length`] of the move being built.
+fn timed_length(motion: &Motion, start: Pose, end: Pose) -> f64 {
+    Segment {
+        block: None,
+        line: 0,
+        motion: *motion,
+        start,
+        end,
+        feed: 0.0,
+        fixed: false,
+    }
+    .timed_length()
+}
+
 /// The feed of a move in `mode`, mm/min: 0 for a rapid, the modal feed
-/// (under G95 F × S; it must be positive) for a cutting move.
-fn move_feed(b: &Block, st: &Modal, mode: MotionCode, first: &Word) -> Result<f64, NcError> {
+/// (under G95 F × S, under G93 `length` × F with an F on the block; it
+/// must be positive) for a cutting move.
+fn move_feed(
+    b: &Block,
+    st: &Modal,
+    mode: MotionCode,
+    first: &Word,
+    length: f64,
+) -> Result<f64, NcError> {
+    let inverse = st.feed_mode == FeedMode::InverseTime;
     match mode {
         MotionCode::Rapid => Ok(0.0),
-        _ => match st.feed_mm_min() {
+        _ if inverse && b.word('F').is_none() => Err(err(
+            b,
+            first,
+            format!("cutting move without a feed; {}", st.no_feed_reason()),
+        )),
+        _ => match st.feed_mm_min(length) {
             Some(f) if f > 0.0 => Ok(f),
             Some(_) => {
                 let fw = b.word('F').or(b.word('S')).unwrap_or(first);

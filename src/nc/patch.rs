@@ -44,7 +44,7 @@
 //!
 //! Units: mm, mm/min inside; the text in the program's own units.
 
-use super::program::{DwellP, Modal, Motion, Program, Segment};
+use super::program::{DwellP, FeedMode, Modal, Motion, Program, Segment};
 use super::Block;
 
 /// Coordinate-number style of a program.
@@ -607,15 +607,32 @@ impl Writer<'_> {
             }
         }
         let out = machine_point(&m, out);
-        if m.feed_mm_min().is_none_or(|f| (f - seg.feed).abs() > 1e-9) && seg.feed > 0.0 {
-            // mm/min, or under G95 mm per revolution (F × S is the feed)
-            let per_rev = m.spindle.filter(|_| m.per_rev).unwrap_or(1.0);
-            let u = if m.inch { 25.4 } else { 1.0 } * per_rev;
+        let length = seg.timed_length();
+        let inverse = m.feed_mode == FeedMode::InverseTime;
+        let differs = m
+            .feed_mm_min(length)
+            .is_none_or(|f| (f - seg.feed).abs() > 1e-9);
+        if (differs || inverse) && seg.feed > 0.0 {
+            // mm/min; under G95 mm per revolution (F × S is the feed); under
+            // G93 1/min, on every move (F × length is the feed)
+            let u = match m.feed_mode {
+                FeedMode::PerMinute => {
+                    if m.inch {
+                        25.4
+                    } else {
+                        1.0
+                    }
+                }
+                FeedMode::PerRevolution => {
+                    (if m.inch { 25.4 } else { 1.0 }) * m.spindle.unwrap_or(1.0)
+                }
+                FeedMode::InverseTime => length.max(f64::MIN_POSITIVE),
+            };
             parts.push(format!(
                 "{}{}",
                 self.d.letter('F'),
                 NumStyle {
-                    decimals: 3,
+                    decimals: if inverse { 6 } else { 3 },
                     pad: false,
                     lead_zero: true,
                     int_point: false

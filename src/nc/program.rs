@@ -240,10 +240,12 @@ pub struct Modal {
     pub incremental: bool,
     /// G20 in force.
     pub inch: bool,
-    /// Modal feed: mm/min, or under G95 mm per revolution.
+    /// Modal feed: mm/min; under G95 mm per revolution; under G93 the
+    /// inverse of the block's time, 1/min.
     pub feed: Option<f64>,
-    /// G95 (feed per revolution) in force; G94 cancels it.
-    pub per_rev: bool,
+    /// G93 / G94 / G95 (a change clears `feed`, as on FANUC controls: the
+    /// F of one mode means something else in the other).
+    pub feed_mode: FeedMode,
     /// The last spindle speed S, rpm (the feed of a G95 move is F × S).
     pub spindle: Option<f64>,
     /// Position, mm / degrees.
@@ -298,23 +300,40 @@ impl Program {
     }
 }
 
+/// How F is read: G94 mm/min (the default), G95 mm per revolution, G93
+/// inverse time (the block takes 1/F minutes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum FeedMode {
+    /// G94.
+    #[default]
+    PerMinute,
+    /// G95.
+    PerRevolution,
+    /// G93.
+    InverseTime,
+}
+
 impl Modal {
-    /// The feed of a cutting move, mm/min: F, or under G95 F × S. `None`
-    /// without F (or, under G95, without S).
-    pub fn feed_mm_min(&self) -> Option<f64> {
-        match (self.per_rev, self.feed, self.spindle) {
-            (false, f, _) => f,
-            (true, Some(f), Some(s)) => Some(f * s),
-            _ => None,
+    /// The feed of a cutting move of `length` (mm; for a move of the rotary
+    /// axes only, its largest rotary move in degrees), mm/min (deg/min):
+    /// F; under G95 F × S; under G93 `length` × F. `None` without F (or,
+    /// under G95, without S).
+    pub fn feed_mm_min(&self, length: f64) -> Option<f64> {
+        let f = self.feed?;
+        match self.feed_mode {
+            FeedMode::PerMinute => Some(f),
+            FeedMode::PerRevolution => self.spindle.map(|s| f * s),
+            FeedMode::InverseTime => Some(f * length),
         }
     }
 
     /// Why a cutting move has no feed (for the error at the move).
     pub(super) fn no_feed_reason(&self) -> &'static str {
-        if self.per_rev && self.feed.is_some() {
-            "G95 (feed per revolution) needs the spindle speed: expected an S word (rpm) on this or an earlier block"
-        } else {
-            "expected an F word (mm/min) on this or an earlier block"
+        match self.feed_mode {
+            FeedMode::PerRevolution if self.feed.is_some() => "G95 (feed per revolution) needs the spindle speed: expected an S word (rpm) on this or an earlier block",
+            FeedMode::PerRevolution => "expected an F word (mm per revolution) after G95",
+            FeedMode::InverseTime => "under G93 (inverse time) every cutting move needs its own F word (1/min)",
+            FeedMode::PerMinute => "expected an F word (mm/min) on this or an earlier block",
         }
     }
 }

@@ -191,6 +191,21 @@ pub struct Segment {
 }
 
 impl Segment {
+    /// The length a feed is read over: the path [`length`](Self::length),
+    /// or for a move of the rotary axes only its largest rotary move in
+    /// degrees (F is deg/min there; under G93 the block still takes 1/F
+    /// minutes).
+    pub fn timed_length(&self) -> f64 {
+        let l = self.length();
+        if l > 0.0 {
+            l
+        } else {
+            (3..6)
+                .map(|i| (self.end.get(i) - self.start.get(i)).abs())
+                .fold(0.0, f64::max)
+        }
+    }
+
     /// XYZ path length, mm (helix length for helical arcs; 0 for dwells).
     ///
     /// # Units

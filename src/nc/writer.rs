@@ -43,7 +43,9 @@
 //! Units: mm, degrees for A/B/C, mm/min.
 
 use super::arc::arc;
-use super::program::{Arc, DwellP, Modal, Motion, MotionCode, Plane, Pose, Program, Segment, AXES};
+use super::program::{
+    Arc, DwellP, FeedMode, Modal, Motion, MotionCode, Plane, Pose, Program, Segment, AXES,
+};
 use super::{Block, Word};
 
 /// A number with up to 4 decimals and a decimal point, e.g. `10.`, `-0.5`.
@@ -200,11 +202,13 @@ fn modal_at(program: &Program, bi: usize) -> Modal {
 /// The feed an F word gives under `m`, mm/min: inch scaled, and under G95
 /// times the spindle speed (the flat program is written in G94). Without
 /// a spindle speed under G95 the word is kept as it reads (the program's
-/// moves then had no feed and did not parse).
+/// moves then had no feed and did not parse). Under G93 F is no feed at
+/// all: NaN, so that every move writes its own F (mm/min) after it.
 fn feed_of_word(m: &Modal, w: &Word) -> f64 {
     let f = if m.inch { w.value * 25.4 } else { w.value };
-    match (m.per_rev, m.spindle) {
-        (true, Some(s)) => f * s,
+    match (m.feed_mode, m.spindle) {
+        (FeedMode::PerRevolution, Some(s)) => f * s,
+        (FeedMode::InverseTime, _) => f64::NAN,
         _ => f,
     }
 }
@@ -220,7 +224,7 @@ fn rewrite_common(program: &Program, bi: usize, w: &Word, out: &mut Out) -> Opti
             match g {
                 200 => w = word('G', "21".into()),
                 910 => w = word('G', "90".into()),
-                950 => w = word('G', "94".into()),
+                930 | 950 => w = word('G', "94".into()),
                 901 => w = word('G', "91.1".into()),
                 0 | 10 | 20 | 30 => {
                     out.motion = Some(match g {
@@ -240,7 +244,11 @@ fn rewrite_common(program: &Program, bi: usize, w: &Word, out: &mut Out) -> Opti
         'F' => {
             let f = feed_of_word(&m, w);
             out.feed = Some(f);
-            Some(if m.inch || m.per_rev {
+            if m.feed_mode == FeedMode::InverseTime {
+                // written per move, in mm/min (`modal_words`)
+                return None;
+            }
+            Some(if m.inch || m.feed_mode == FeedMode::PerRevolution {
                 word('F', fmt_feed(f))
             } else {
                 w.clone()
@@ -559,7 +567,8 @@ fn write_block(program: &Program, bi: usize, seg: &Segment, out: &mut Out) {
             }
             had[1] |= matches!(g, 170 | 180 | 190);
         }
-        if w.letter == 'F' {
+        // Under G93 the F is dropped and the move's mm/min written after it.
+        if w.letter == 'F' && modal_at(program, bi).feed_mode != FeedMode::InverseTime {
             had[2] = true;
             let f = feed_of_word(&modal_at(program, bi), &w);
             if seg.is_cutting() && f != seg.feed {
