@@ -16,6 +16,50 @@ fn close(a: [f64; 3], b: [f64; 3]) -> bool {
     (0..3).all(|k| (a[k] - b[k]).abs() < 1e-9)
 }
 
+/// Reverse compensation of `src` with the default settings, which must
+/// at least halve the largest contour error (a result it found worse would
+/// be the source unchanged, and the checks on the written text void).
+fn compensated(src: &str) -> mtmotion::compensate::reverse::Compensation {
+    use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
+    let c = reverse_compensate(src, &ReverseConfig::default()).unwrap();
+    assert!(
+        c.after.max_error_um < 0.5 * c.before.max_error_um,
+        "{} -> {} µm",
+        c.before.max_error_um,
+        c.after.max_error_um
+    );
+    c
+}
+
+/// The moves of `p` (its dwells left out: a rewrite may add some).
+fn moves(p: &mtmotion::nc::program::Program) -> Vec<Segment> {
+    let dwell = |s: &&Segment| matches!(s.motion, Motion::Dwell { .. });
+    p.segments.iter().filter(|s| !dwell(s)).cloned().collect()
+}
+
+/// The feeds of the moves of `p`, mm/min.
+fn feeds(p: &mtmotion::nc::program::Program) -> Vec<f64> {
+    moves(p).iter().map(|s| s.feed).collect()
+}
+
+/// `src` written by the patcher with one move added that has no source
+/// block: a copy of segment `k` ending at Y = `y`, at `feed` (or the
+/// copied segment's), before segment `k`. The text and the feeds it reads
+/// back with.
+fn with_added_move(src: &str, k: usize, y: f64, feed: Option<f64>) -> (String, Vec<f64>) {
+    let p = parse(src).unwrap();
+    let mut segs = p.segments.clone();
+    let mut extra = segs[k].clone();
+    extra.block = None;
+    extra.end.y = y;
+    extra.feed = feed.unwrap_or(extra.feed);
+    segs[k].start = extra.end;
+    segs.insert(k, extra);
+    let text = mtmotion::nc::patch::write_source(src, &p, &segs);
+    let read = feeds(&parse(&text).unwrap());
+    (text, read)
+}
+
 #[test]
 fn fanuc_chamfer_c_is_not_a_c_axis_move() {
     // 3-axis default: C on G01 is a chamfer of 2 mm from the virtual corner.
@@ -523,24 +567,13 @@ fn reverse_compensation_writes_g52_programs_in_their_local_frame() {
     // Two parts through one contour at two G52 origins: the compensated
     // words must be written in the local frame (a point written in the work
     // frame would land 100 mm away when the control adds the shift again).
-    use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
     let part = "G0 X0 Y0\nG1 X20 F3000\nY20\nG2 X0 Y0 I-10 J-10\nG0 Z5\n";
     let src = format!("G21 G90 G17\nG52 X100 Y50\n{part}G52 X200 Y50\n{part}G52 X0 Y0\nM30\n");
     let p = parse(&src).unwrap();
-    let c = reverse_compensate(&src, &ReverseConfig::default()).unwrap();
     // It did compensate (a result it found worse would be the source unchanged).
-    assert!(
-        c.after.max_error_um < 0.5 * c.before.max_error_um,
-        "{} -> {} µm",
-        c.before.max_error_um,
-        c.after.max_error_um
-    );
+    let c = compensated(&src);
     let q = parse(&c.nc).unwrap();
     // The compensation may add dwells (G4) at corners: compare the moves.
-    let moves = |p: &mtmotion::nc::program::Program| -> Vec<Segment> {
-        let dwell = |s: &&Segment| matches!(s.motion, Motion::Dwell { .. });
-        p.segments.iter().filter(|s| !dwell(s)).cloned().collect()
-    };
     let (pm, qm) = (moves(&p), moves(&q));
     assert_eq!(qm.len(), pm.len(), "{}", c.nc);
     for (a, b) in pm.iter().zip(&qm) {
@@ -631,24 +664,10 @@ fn g95_feed_per_revolution_is_f_times_s() {
     assert!(e.message.contains("needs the spindle speed"), "{e}");
     // Reverse compensation keeps G95 and writes any feed it adds per
     // revolution: the written program reads back with the same feeds.
-    use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
     let src = "G21 G90 G0 X0 Y0\nS4000 M3\nG95 G1 X20 F0.5\nG3 X30 Y10 R10\nG1 Y30\nG2 X40 Y40 I10 J0\nG1 X60\nG0 Z5\nG94 M30";
     let p = parse(src).unwrap();
-    let c = reverse_compensate(src, &ReverseConfig::default()).unwrap();
-    assert!(
-        c.after.max_error_um < 0.5 * c.before.max_error_um,
-        "{} -> {} µm",
-        c.before.max_error_um,
-        c.after.max_error_um
-    );
+    let c = compensated(src);
     let q = parse(&c.nc).unwrap();
-    let feeds = |p: &mtmotion::nc::program::Program| -> Vec<f64> {
-        let moves = p
-            .segments
-            .iter()
-            .filter(|s| !matches!(s.motion, Motion::Dwell { .. }));
-        moves.map(|s| s.feed).collect()
-    };
     assert_eq!(feeds(&q), feeds(&p), "{}", c.nc);
     assert!(c.nc.contains("G95"), "{}", c.nc);
 }
@@ -660,9 +679,6 @@ fn the_flat_writer_writes_a_g95_program_in_mm_per_minute() {
     let p = parse("G21 G90 G0 X0 Y0\nS1000 M3\nG95 G1 X10 F0.1\nY10\nG94 G1 X0 F300").unwrap();
     let flat = mtmotion::nc::writer::write(&p, &p.segments);
     let q = parse(&flat).unwrap();
-    let feeds = |p: &mtmotion::nc::program::Program| -> Vec<f64> {
-        p.segments.iter().map(|s| s.feed).collect()
-    };
     assert_eq!(feeds(&q), feeds(&p), "{flat}");
 }
 
@@ -672,17 +688,8 @@ fn the_patcher_writes_a_new_move_under_g95_per_revolution() {
     // new feed takes that feed: under G95 S4000 its 1000 mm/min is written
     // F0.25 (per revolution), not F1000 (which would read as 4 m/min × 1000).
     let src = "G21 G90 G0 X0 Y0\nS4000 M3\nG95 G1 X20 F0.5\nG1 Y20 F0.25\nM30";
-    let p = parse(src).unwrap();
-    let mut segs = p.segments.clone();
-    let mut extra = segs[2].clone();
-    extra.block = None;
-    extra.end.y = 5.0;
-    segs[2].start = extra.end;
-    segs.insert(2, extra);
-    let text = mtmotion::nc::patch::write_source(src, &p, &segs);
-    let q = parse(&text).unwrap();
-    let feeds: Vec<f64> = q.segments.iter().map(|s| s.feed).collect();
-    assert_eq!(feeds, [0.0, 2000.0, 1000.0, 1000.0], "{text}");
+    let (text, read) = with_added_move(src, 2, 5.0, None);
+    assert_eq!(read, [0.0, 2000.0, 1000.0, 1000.0], "{text}");
     assert!(text.contains("Y5 F0.25"), "{text}");
 }
 
@@ -759,13 +766,6 @@ fn the_writers_keep_g93_timing() {
     let p = parse(src).unwrap();
     let flat = mtmotion::nc::writer::write(&p, &p.segments);
     let q = parse(&flat).unwrap();
-    let feeds = |p: &mtmotion::nc::program::Program| -> Vec<f64> {
-        let moves = p
-            .segments
-            .iter()
-            .filter(|s| !matches!(s.motion, Motion::Dwell { .. }));
-        moves.map(|s| s.feed).collect()
-    };
     let (a, b) = (feeds(&p), feeds(&q));
     assert!(
         a.iter()
@@ -794,16 +794,7 @@ fn the_patcher_writes_a_new_move_under_g93_with_its_own_inverse_time() {
     // A move the rewrite adds under G93 needs its own F: its feed over its
     // length (here 1000 mm/min over 5 mm: F200, 0.3 s).
     let src = "G21 G90 G0 X0 Y0\nG93 G1 X20 F100\nG1 Y20 F50\nG94 M30";
-    let p = parse(src).unwrap();
-    let mut segs = p.segments.clone();
-    let mut extra = segs[2].clone();
-    extra.block = None;
-    extra.end.y = 5.0;
-    extra.feed = 1000.0;
-    segs[2].start = extra.end;
-    segs.insert(2, extra);
-    let text = mtmotion::nc::patch::write_source(src, &p, &segs);
-    let q = parse(&text).unwrap();
+    let (text, read) = with_added_move(src, 2, 5.0, Some(1000.0));
     assert!(text.contains("Y5 F200"), "{text}");
-    assert_eq!(q.segments[2].feed, 1000.0, "{text}");
+    assert_eq!(read[2], 1000.0, "{text}");
 }
