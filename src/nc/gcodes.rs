@@ -340,15 +340,11 @@ fn moves_not_modelled(w: &Word, g: i64) -> Option<String> {
 /// G100, G13.1 of the refused scaling, mirror and polar codes).
 fn warned(w: &Word, g: i64) -> Option<String> {
     Some(match g {
-        540..=590 => format!(
+        540..=590 | 1100..=1290 | 1540 => format!(
             "work offset G{}: its offset values are unknown here, so the program frame is kept (all work offsets coincide)",
             w.text
         ),
         490 | 150 | 610..=649 | 500 | 501 | 1000 | 131 => return None,
-        1100..=1290 | 1540 => format!(
-            "work offset G{}: its offset values are unknown here, so the program frame is kept (all work offsets coincide)",
-            w.text
-        ),
         430 | 440 | 431 | 434 => format!(
             "G{}: tool length compensation is ignored (Z is the programmed Z)",
             w.text

@@ -66,21 +66,21 @@ pub(super) fn move_block(
     }
     let start = st.pos;
     let end = target(st, &axis_words, scale);
-    let motion = move_motion(b, st, mode, first, start, end, scale)?;
-    let feed = move_feed(b, st, mode, first, timed_length(&motion, start, end))?;
+    let mut seg = Segment {
+        block: Some(cx.bi),
+        line: b.line,
+        motion: move_motion(b, st, mode, first, start, end, scale)?,
+        start,
+        end,
+        feed: 0.0,
+        // A polar end point is not a literal X/Y word.
+        fixed: super::polar::polar_word(b).is_some(),
+    };
+    seg.feed = move_feed(b, st, mode, first, seg.timed_length())?;
     let corner = corner_word(b, mode, chamfer_c, scale)?;
     corner_or_centre_warning(b, cx, mode, corner, centre_words.first().copied());
     st.pos = end;
-    cx.segments.push(Segment {
-        block: Some(cx.bi),
-        line: b.line,
-        motion,
-        start,
-        end,
-        feed,
-        // A polar end point is not a literal X/Y word.
-        fixed: super::polar::polar_word(b).is_some(),
-    });
+    cx.segments.push(seg);
     Ok(())
 }
 
@@ -150,20 +150,6 @@ fn corner_or_centre_warning(
             }
         }
     }
-}
-
-/// [`Segment::timed_length`] of the move being built.
-fn timed_length(motion: &Motion, start: Pose, end: Pose) -> f64 {
-    Segment {
-        block: None,
-        line: 0,
-        motion: *motion,
-        start,
-        end,
-        feed: 0.0,
-        fixed: false,
-    }
-    .timed_length()
 }
 
 /// The feed of a move in `mode`, mm/min: 0 for a rapid, the modal feed

@@ -44,6 +44,7 @@
 //!
 //! Units: mm, mm/min inside; the text in the program's own units.
 
+use super::block::length_scale;
 use super::program::{DwellP, FeedMode, Modal, Motion, Program, Segment};
 use super::Block;
 
@@ -616,16 +617,8 @@ impl Writer<'_> {
             // mm/min; under G95 mm per revolution (F × S is the feed); under
             // G93 1/min, on every move (F × length is the feed)
             let u = match m.feed_mode {
-                FeedMode::PerMinute => {
-                    if m.inch {
-                        25.4
-                    } else {
-                        1.0
-                    }
-                }
-                FeedMode::PerRevolution => {
-                    (if m.inch { 25.4 } else { 1.0 }) * m.spindle.unwrap_or(1.0)
-                }
+                FeedMode::PerMinute => length_scale(&m),
+                FeedMode::PerRevolution => length_scale(&m) * m.spindle.unwrap_or(1.0),
                 FeedMode::InverseTime => length.max(f64::MIN_POSITIVE),
             };
             parts.push(format!(
@@ -646,7 +639,7 @@ impl Writer<'_> {
     /// The text of coordinate `target` (mm) on axis `k` from `pos` in mode
     /// `m`, and the position it is read back as.
     fn coord(&self, m: &Modal, target: f64, pos: f64, k: usize) -> (String, f64) {
-        let u = if m.inch { 25.4 } else { 1.0 };
+        let u = length_scale(m);
         let st = self.d.style(m);
         let v = if m.incremental {
             (target - pos) / u
@@ -869,7 +862,7 @@ impl Writer<'_> {
         same_start: bool,
         splices: &mut Vec<Splice>,
     ) {
-        let u = if m.inch { 25.4 } else { 1.0 };
+        let u = length_scale(m);
         if let Some(wd) = block.word('R') {
             if a.radius == oa.radius {
                 return;

@@ -205,7 +205,7 @@ fn modal_at(program: &Program, bi: usize) -> Modal {
 /// moves then had no feed and did not parse). Under G93 F is no feed at
 /// all: NaN, so that every move writes its own F (mm/min) after it.
 fn feed_of_word(m: &Modal, w: &Word) -> f64 {
-    let f = if m.inch { w.value * 25.4 } else { w.value };
+    let f = w.value * super::block::length_scale(m);
     match (m.feed_mode, m.spindle) {
         (FeedMode::PerRevolution, Some(s)) => f * s,
         (FeedMode::InverseTime, _) => f64::NAN,
@@ -568,9 +568,10 @@ fn write_block(program: &Program, bi: usize, seg: &Segment, out: &mut Out) {
             had[1] |= matches!(g, 170 | 180 | 190);
         }
         // Under G93 the F is dropped and the move's mm/min written after it.
-        if w.letter == 'F' && modal_at(program, bi).feed_mode != FeedMode::InverseTime {
+        let m = modal_at(program, bi);
+        if w.letter == 'F' && m.feed_mode != FeedMode::InverseTime {
             had[2] = true;
-            let f = feed_of_word(&modal_at(program, bi), &w);
+            let f = feed_of_word(&m, &w);
             if seg.is_cutting() && f != seg.feed {
                 w = word('F', fmt_feed(seg.feed));
             }
