@@ -714,8 +714,7 @@ fn g93_inverse_time_moves_take_one_over_f_minutes() {
     // rotary-only move its largest rotary move × F (deg/min). F is 1/min
     // under G20 as under G21.
     let p = parse("G21 G90 G0 X0 Y0\nG93 G1 X10 F2\nG1 X10 Y10 F0.5\nG1 A90 F4").unwrap();
-    let f: Vec<f64> = p.segments.iter().map(|s| s.feed).collect();
-    assert_eq!(f, [0.0, 20.0, 5.0, 360.0]);
+    assert_eq!(feeds(&p), [0.0, 20.0, 5.0, 360.0]);
     let p = parse("G20 G90 G0 X0\nG93 G1 X1 F2").unwrap();
     assert!((p.segments[1].feed - 50.8).abs() < 1e-12);
     // Every G93 move needs its own F; a change of mode clears F (FANUC):
