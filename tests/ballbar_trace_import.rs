@@ -2,7 +2,7 @@
 //! columns, split into CCW and CW runs, and malformed files are refused with
 //! a message naming the line (and column) to fix.
 
-use mtmotion::ballbar::{circular_test, parse_ballbar_trace, Direction, ParseOptions};
+use mtmotion::ballbar::{circular_test, parse_ballbar_trace, Direction, ParseOptions, PlanePoint};
 
 fn opts() -> ParseOptions {
     ParseOptions::default()
@@ -53,6 +53,7 @@ fn direction_column_and_units_in_mm() {
         ParseOptions {
             nominal_radius: Some(150.0),
             feed: Some(500.0),
+            centre: None,
         },
     )
     .unwrap();
@@ -112,4 +113,62 @@ fn noise_at_a_standstill_does_not_split_runs() {
     }
     let t = parse_ballbar_trace(&s, opts()).unwrap();
     assert_eq!(t.runs.len(), 1);
+}
+
+/// An X/Y trace of a circle of R 121.5 mm about (250.010, −79.996) in
+/// machine coordinates, 300° from 17°, with a 2 µm order-3 error.
+fn xy_arc() -> String {
+    let mut s = String::from("X [mm],Y [mm]\n");
+    for i in 0..=300 {
+        let a = (17.0 + i as f64).to_radians();
+        let r = 121.5 + 0.002 * (3.0 * a).sin();
+        s += &format!(
+            "{:.6},{:.6}\n",
+            250.010 + r * a.cos(),
+            -79.996 + r * a.sin()
+        );
+    }
+    s
+}
+
+#[test]
+fn xy_trace_keeps_the_offset_from_a_given_centre() {
+    // About the programmed centre (250, −80): the 10/4 µm offset stays in
+    // the deviations, and the trace says the centre was given.
+    let o = ParseOptions {
+        centre: Some(PlanePoint { x: 250.0, y: -80.0 }),
+        nominal_radius: Some(121.5),
+        ..opts()
+    };
+    let t = parse_ballbar_trace(&xy_arc(), o).unwrap();
+    let c = t.centre.unwrap();
+    assert!(c.given && c.point == PlanePoint { x: 250.0, y: -80.0 });
+    let r = &t.runs[0];
+    // Δ(θ) ≈ e_x cos θ + e_y sin θ + 2 µm sin 3θ about the given centre.
+    for (a, d) in r.angle.iter().zip(&r.deviation) {
+        let want = 0.010 * a.cos() + 0.004 * a.sin() + 0.002 * (3.0 * a).sin();
+        assert!((d - want).abs() < 2e-6, "{a}: {d} vs {want}");
+    }
+    // Without a centre: the trace's own LSC, which removes the offset and
+    // says so.
+    let t = parse_ballbar_trace(&xy_arc(), opts()).unwrap();
+    let c = t.centre.unwrap();
+    assert!(!c.given);
+    assert!((c.point.x - 250.010).abs() < 2e-3 && (c.point.y + 79.996).abs() < 2e-3);
+    // Angle/deviation traces have no X/Y centre.
+    let t = parse_ballbar_trace(
+        "angle,dev\n0,1\n10,1\n20,1\n30,1\n40,1\n50,1\n60,1\n70,1\n",
+        opts(),
+    )
+    .unwrap();
+    assert!(t.centre.is_none());
+    let bad = ParseOptions {
+        centre: Some(PlanePoint {
+            x: f64::NAN,
+            y: 0.0,
+        }),
+        ..opts()
+    };
+    let e = parse_ballbar_trace(&xy_arc(), bad).unwrap_err().to_string();
+    assert!(e.starts_with("centre: expected finite x and y"), "{e}");
 }

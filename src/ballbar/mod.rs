@@ -28,5 +28,6 @@ pub use iso230_4::{
 };
 pub use synthetic::{synthetic_trace, SyntheticConfig, SyntheticError};
 pub use trace_import::{
-    parse_ballbar_trace, BallbarTrace, BallbarTraceError, Direction, ParseOptions, Run,
+    parse_ballbar_trace, BallbarTrace, BallbarTraceError, Direction, ParseOptions, PlanePoint, Run,
+    TraceCentre,
 };

@@ -201,6 +201,7 @@ pub fn synthetic_trace(c: &SyntheticConfig) -> Result<BallbarTrace, SyntheticErr
         nominal_radius: c.radius,
         feed: Some(c.feed),
         runs,
+        centre: None,
     })
 }
 

@@ -15,8 +15,13 @@
 //!   /`t` (s, or ms if the name says ms) and `direction`/`dir` (+1 = CCW,
 //!   −1 = CW);
 //! - angle θ = 0 along +X, growing towards +Y (CCW seen from +Z);
-//! - X/Y traces: the nominal centre is the least-squares circle centre of all
-//!   points and the nominal radius its radius, unless given in the options;
+//! - X/Y traces stay in machine coordinates: the deviation is taken about
+//!   the centre the options give (the ball bar's pivot, or the programmed
+//!   circle centre), never re-fitted, so a set-up or rotary-axis offset
+//!   stays in the trace; without one, about the least-squares circle centre
+//!   of all points (which removes any offset: the trace says which, in
+//!   [`BallbarTrace::centre`]); the nominal radius is the given one, else
+//!   the least-squares radius;
 //! - angle/deviation traces: the nominal radius is 100 mm (the common bar
 //!   length) unless given; it only enters at second order (Δ²/R);
 //! - runs: without a direction column, the trace is split where the angle
@@ -117,6 +122,27 @@ pub struct Run {
     pub lines: Vec<usize>,
 }
 
+/// A point of the trace's plane (X/Y positions), mm.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct PlanePoint {
+    /// First plane axis (X), mm.
+    pub x: f64,
+    /// Second plane axis (Y), mm.
+    pub y: f64,
+}
+
+/// The centre an X/Y trace's angles and deviations are taken about.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub struct TraceCentre {
+    /// The centre, in the trace's X/Y coordinates, mm.
+    pub point: PlanePoint,
+    /// True when the options gave it (pivot or programmed centre); false
+    /// when it is the least-squares centre of the trace itself, which
+    /// removes any centre offset from the deviations.
+    pub given: bool,
+}
+
 /// A ball-bar trace in core units.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
@@ -127,6 +153,10 @@ pub struct BallbarTrace {
     pub feed: Option<f64>,
     /// Runs in file order.
     pub runs: Vec<Run>,
+    /// For an X/Y trace, the centre its deviations are about; None for an
+    /// angle/deviation trace (a ball bar measures about its own pivot).
+    #[serde(default)]
+    pub centre: Option<TraceCentre>,
 }
 
 /// Options of [`parse_ballbar_trace`].
@@ -137,6 +167,9 @@ pub struct ParseOptions {
     pub nominal_radius: Option<f64>,
     /// Feed, mm/min.
     pub feed: Option<f64>,
+    /// For X/Y traces: the centre to take the deviations about (the pivot
+    /// or the programmed circle centre), mm in the trace's coordinates.
+    pub centre: Option<PlanePoint>,
 }
 
 /// Minimum samples per run.
@@ -180,7 +213,7 @@ pub fn parse_ballbar_trace(
         TraceError::NoHeader { line } => BallbarTraceError::NoHeader { line },
         e => e.into(),
     })?;
-    let (raw_angle, deviation, radius) = angle_and_deviation(&t, opts)?;
+    let (raw_angle, deviation, radius, centre) = angle_and_deviation(&t, opts)?;
     let angle = unwrap_angles(&raw_angle);
     let bounds = match t.find(&["direction", "dir"]) {
         Some(k) => runs_from_direction_column(&t, k)?,
@@ -207,6 +240,7 @@ pub fn parse_ballbar_trace(
         nominal_radius: radius,
         feed,
         runs,
+        centre,
     })
 }
 
@@ -232,15 +266,24 @@ fn check_options(opts: ParseOptions) -> Result<(), BallbarTraceError> {
             });
         }
     }
+    if let Some(c) = opts.centre {
+        if !(c.x.is_finite() && c.y.is_finite()) {
+            return Err(BallbarTraceError::BadOption {
+                field: "centre",
+                message: "expected finite x and y in mm".into(),
+            });
+        }
+    }
     Ok(())
 }
 
+/// Angles (rad, wrapped as read), radial deviations (mm), the nominal
+/// radius (mm) and, for X/Y traces, the centre used.
+type Polar = (Vec<f64>, Vec<f64>, f64, Option<TraceCentre>);
+
 /// The raw angle (rad, wrapped as read), the radial deviation (mm) and the
 /// nominal radius (mm), from angle/deviation columns or from X/Y columns.
-fn angle_and_deviation(
-    t: &Table,
-    opts: ParseOptions,
-) -> Result<(Vec<f64>, Vec<f64>, f64), BallbarTraceError> {
+fn angle_and_deviation(t: &Table, opts: ParseOptions) -> Result<Polar, BallbarTraceError> {
     let ang = t.find(&[
         "angle",
         "theta",
@@ -282,6 +325,7 @@ fn angle_and_deviation(
                 t.column_at(a + 1, sa)?,
                 t.column_at(d + 1, sd)?,
                 opts.nominal_radius.unwrap_or(100.0),
+                None,
             ))
         }
         (_, _, Some(xi), Some(yi)) => polar_from_xy(t, xi, yi, opts),
@@ -289,14 +333,15 @@ fn angle_and_deviation(
     }
 }
 
-/// Angle and deviation of X/Y positions about their least-squares centre
-/// (the nominal radius is the fitted one unless the options give it).
+/// Angle and deviation of X/Y positions about the given centre, else about
+/// their least-squares centre (the nominal radius is the fitted one unless
+/// the options give it).
 fn polar_from_xy(
     t: &Table,
     xi: usize,
     yi: usize,
     opts: ParseOptions,
-) -> Result<(Vec<f64>, Vec<f64>, f64), BallbarTraceError> {
+) -> Result<Polar, BallbarTraceError> {
     let s = |k| {
         if header_says(t, k, &["um"]) {
             1e-3
@@ -312,17 +357,21 @@ fn polar_from_xy(
         min: MIN_RUN,
     })?;
     let r0 = opts.nominal_radius.unwrap_or(c.r);
+    let centre = TraceCentre {
+        point: opts.centre.unwrap_or(PlanePoint { x: c.cx, y: c.cy }),
+        given: opts.centre.is_some(),
+    };
     let mut a = Vec::with_capacity(x.len());
     let mut d = Vec::with_capacity(x.len());
     for (i, (px, py)) in x.iter().zip(&y).enumerate() {
-        let (u, v) = (px - c.cx, py - c.cy);
+        let (u, v) = (px - centre.point.x, py - centre.point.y);
         if u.hypot(v) <= 1e-12 * c.r {
             return Err(BallbarTraceError::AtCentre(t.lines[i]));
         }
         a.push(v.atan2(u));
         d.push(u.hypot(v) - r0);
     }
-    Ok((a, d, r0))
+    Ok((a, d, r0, Some(centre)))
 }
 
 /// The angle unwrapped across ±180°: each step is taken as the shorter way round.
@@ -498,7 +547,7 @@ mod tests {
         assert_eq!(e, "line 3: direction must be +1 (CCW) or -1 (CW), got 0");
         let bad = ParseOptions {
             nominal_radius: Some(-1.0),
-            feed: None,
+            ..ParseOptions::default()
         };
         assert!(parse_ballbar_trace("angle,dev\n0,1\n", bad)
             .unwrap_err()

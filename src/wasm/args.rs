@@ -35,7 +35,7 @@ mod by_hand {
     use super::JsArg;
     use crate::alignment::travel_range::{default_radius, default_samples};
     use crate::alignment::{Locus, Offset, SweepConfig};
-    use crate::ballbar::{Harmonic, ParseOptions};
+    use crate::ballbar::{Harmonic, ParseOptions, PlanePoint};
     use crate::best_kffp::saturation::{SaturationQuery, SaturationReading, READINGS};
     use crate::wasm::convert::{plain, require_object};
     use crate::wasm::toolpath::Eq3In;
@@ -235,9 +235,17 @@ mod by_hand {
     impl JsArg for ParseOptions {
         fn arg(value: JsValue, what: &str) -> Result<Self, JsError> {
             let o = snapshot(&value, what)?;
+            let centre = match get(&o, "centre") {
+                None => None,
+                Some(v) => Some(PlanePoint {
+                    x: num(&v, "x", &format!("{what}.centre"))?,
+                    y: num(&v, "y", &format!("{what}.centre"))?,
+                }),
+            };
             Ok(ParseOptions {
                 nominal_radius: opt_num(&o, "nominalRadius", what)?,
                 feed: opt_num(&o, "feed", what)?,
+                centre,
             })
         }
     }

@@ -50,8 +50,12 @@ export interface AngleSweepPoint {
   rangeDeg: number; /** [rad] */ deltaBz: number; /** [rad] */ deltaBx: number; /** [rad] */ errorBz: number; /** [rad] */ errorBx: number;
 }
 export interface BallbarRun { direction: 'ccw' | 'cw'; /** [rad] unwrapped */ angleRad: Float64Array; /** [mm] */ deviation: Float64Array }
-export interface BallbarTrace { /** [mm] */ nominalRadius: number; /** [mm/min] */ feed: number | null; runs: BallbarRun[] }
-export interface ParseTraceOptions { /** [mm] */ nominalRadius?: number; /** [mm/min] */ feed?: number }
+/** [mm] a point of the trace's X/Y plane */
+export interface PlanePoint { /** [mm] */ x: number; /** [mm] */ y: number }
+/** The centre an X/Y trace's deviations are about: given (pivot or programmed centre) or the trace's own least-squares centre (given: false), which removes any centre offset. */
+export interface TraceCentre { point: PlanePoint; given: boolean }
+export interface BallbarTrace { /** [mm] */ nominalRadius: number; /** [mm/min] */ feed: number | null; runs: BallbarRun[]; /** null for angle/deviation traces */ centre: TraceCentre | null }
+export interface ParseTraceOptions { /** [mm] */ nominalRadius?: number; /** [mm/min] */ feed?: number; /** [mm] X/Y traces: the centre to take deviations about (pivot or programmed centre); default: the trace's own least-squares centre */ centre?: PlanePoint }
 export interface CircularTestRun {
   direction: 'ccw' | 'cw'; gUm: number; fMaxUm: number; fMinUm: number;
   centreXMm: number; centreYMm: number; radiusMm: number; spanDeg: number; /** [-] samples in the run */ points: number;
@@ -190,10 +194,15 @@ fn trace_to_js(t: &BallbarTrace) -> Result<JsValue, JsError> {
         );
     }
     let feed = t.feed.map_or(JsValue::NULL, JsValue::from_f64);
+    let centre = match t.centre {
+        None => JsValue::NULL,
+        Some(c) => to_js(&c)?,
+    };
     Ok(Obj::new()
         .num("nominalRadius", t.nominal_radius)
         .val("feed", feed)
         .val("runs", runs.into())
+        .val("centre", centre)
         .build())
 }
 
@@ -227,6 +236,7 @@ fn trace_from_js(v: &JsValue) -> Result<BallbarTrace, JsError> {
         nominal_radius: number(v, "nominalRadius", "trace")?,
         feed: opt_number(v, "feed", "trace")?,
         runs,
+        centre: None,
     })
 }
 
