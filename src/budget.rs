@@ -78,6 +78,12 @@ pub const MAX_PITCH_DFT_TERMS: usize = 1_000_000_000;
 /// angle sweep: each sample enters one least-squares fit.
 pub const MAX_SWEEP_POINTS: usize = 10_000_000;
 
+/// Most work of one alignment band: samples over all sections times the
+/// square of the coefficients (2·maxOrder + 1), the cost of the streaming
+/// least squares of [`crate::alignment::section_fit`] (at the default order
+/// 10: 2.2 M samples).
+pub const MAX_ALIGNMENT_WORK: usize = 1_000_000_000;
+
 /// Most runs in one ISO 230-4 circular test (a run is one direction of
 /// one circle; a test has 2).
 pub const MAX_CIRCULAR_RUNS: usize = 64;

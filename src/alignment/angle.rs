@@ -64,6 +64,15 @@ pub struct AlignmentEstimate {
     pub delta_bz: Option<f64>,
     /// ΔBx, rad (None with one section).
     pub delta_bx: Option<f64>,
+    /// Z offset at Y = 0 of the fitted line Z = Z₀ + ΔBz·Y, mm (None with
+    /// one section).
+    pub intercept_z: Option<f64>,
+    /// X offset at Y = 0 of the fitted line, mm (None with one section).
+    pub intercept_x: Option<f64>,
+}
+
+fn mean(v: &[f64]) -> f64 {
+    v.iter().sum::<f64>() / v.len() as f64
 }
 
 /// Slope of v against y by least squares (the Fig. 2 formula for two).
@@ -159,9 +168,9 @@ pub fn estimate_alignment(
         });
     }
     let ys: Vec<f64> = out.iter().map(|s| s.y).collect();
+    let zs: Vec<f64> = out.iter().map(|s| s.z).collect();
+    let xs: Vec<f64> = out.iter().map(|s| s.x).collect();
     let (delta_bz, delta_bx) = if out.len() >= 2 {
-        let zs: Vec<f64> = out.iter().map(|s| s.z).collect();
-        let xs: Vec<f64> = out.iter().map(|s| s.x).collect();
         let bz = slope(&ys, &zs).ok_or_else(|| {
             bad(
                 "sections",
@@ -172,10 +181,13 @@ pub fn estimate_alignment(
     } else {
         (None, None)
     };
+    let my = mean(&ys);
     Ok(AlignmentEstimate {
-        sections: out,
         delta_bz,
         delta_bx,
+        intercept_z: delta_bz.map(|b| mean(&zs) - b * my),
+        intercept_x: delta_bx.map(|b| mean(&xs) - b * my),
+        sections: out,
     })
 }
 

@@ -40,6 +40,7 @@ export interface AlignmentInput { sections: AlignmentSection[]; /** [mm] bar len
 export interface AlignmentEstimate {
   /** [mm] each section's height, estimated centre and fit RMS */ sections: { y: number; z: number; x: number; rmsResidual: number }[];
   /** [rad] (mm/mm); null with one section. */ deltaBz: number | null; /** [rad] */ deltaBx: number | null;
+  /** [mm] offsets at height 0 of the fitted lines; null with one section. */ interceptZ: number | null; /** [mm] */ interceptX: number | null;
 }
 export interface AngleSweepConfig {
   /** [mm] heights and true centre offsets */ sections: { y: number; offset: { z: number; x: number } }[];
@@ -307,21 +308,36 @@ pub fn ballbar_example(
 
 #[wasm_bindgen(typescript_custom_section)]
 const TS_BAND: &str = r#"
-export interface AlignmentBandInput extends AlignmentInput {
-  /** Travel range W, degrees (default: each section's own span). */ travelRangeDeg?: number;
-  /** [-] Highest harmonic order fitted for the bias (default 10). */ maxOrder?: number;
+/** A section as a trace file: its text is read in the core (units, layout, trimming) about the input's centre. */
+export interface AlignmentTraceSection { /** [mm] height of the section */ y: number; /** the ball-bar trace file (CSV/TSV) */ text: string; /** [-] 0-based run of the file (default 0) */ run?: number }
+export interface AlignmentBandInput {
+  sections: (AlignmentSection | AlignmentTraceSection)[];
+  /** [mm] bar length (default 100) */ radius?: number;
+  /** [mm] X/Y traces: the common centre (pivot or programmed circle centre) every section is read about; required for X/Y traces */ centre?: PlanePoint;
+  /** [-] Highest harmonic order considered, 1 … 50 (default 10); the orders kept are those the data supports (BIC). */ maxOrder?: number;
+}
+/** [rad] Half-widths of an angle error's band. */
+export interface AngleBand { /** [rad] */ systematic: number; /** [rad] */ statistical: number; /** [rad] */ band: number; determined: boolean }
+export interface AlignmentSectionBand {
+  /** [mm] */ y: number; /** [deg] the section's measured span */ rangeDeg: number; /** [deg] */ centreDeg: number;
+  /** [mm] systematic error of the centre (selected harmonics) */ biasZ: number; /** [mm] */ biasX: number;
+  /** [mm] standard error from the noise */ sigmaZ: number; /** [mm] */ sigmaX: number; /** [mm] max|Δ|²/R */ secondOrder: number;
+  /** [mm] band half-width: |bias| + secondOrder + coverage·sigma */ bandZ: number; /** [mm] */ bandX: number;
+  determinedZ: boolean; determinedX: boolean; /** why an offset is not determined, in words */ note: string | null;
+  /** [mm] */ peakToValley: number; /** [mm] residual standard deviation */ noise: number;
+  /** [-] highest harmonic order kept (1: none) */ order: number; /** [-] highest order the span resolves */ resolvedOrder: number;
+  harmonics: HarmonicComponent[];
 }
 export interface AlignmentBand {
-  /** bandZ, bandX: half-widths of each offset band, mm (bias + second-order term). */
   estimate: AlignmentEstimate;
-  /** [mm] Heights; predicted bias of each section's centre, its offset band is ±|bias|. */
-  sections: { y: number; rangeDeg: number; centreDeg: number; biasZ: number; biasX: number; bandZ: number; bandX: number; harmonics: HarmonicComponent[] }[];
-  /** [rad] Half-widths of the angle-error bands; null with one section. */ bandBz: number | null; /** [rad] */ bandBx: number | null;
+  sections: AlignmentSectionBand[];
+  bandBz: AngleBand | null; bandBx: AngleBand | null;
+  /** [-] coverage factor of the statistical parts (3) */ coverage: number;
 }
 "#;
 
-/// takayama §2.1–2.2 on measured sections: offsets, angle errors and the
-/// travel-range bias band around them.
+/// takayama §2.1–2.2 on measured sections (arrays, or trace files read
+/// about one common centre): offsets, angle errors and their bands.
 #[cfg(feature = "full")]
 #[wasm_bindgen(js_name = estimateAlignmentBand, unchecked_return_type = "AlignmentBand")]
 pub fn estimate_alignment_band(
@@ -329,15 +345,53 @@ pub fn estimate_alignment_band(
 ) -> Result<JsValue, JsError> {
     require_object(&input, "input")?;
     let input = plain(&input, "input")?;
-    let sections = sections_of(&input)?;
+    if !get(&input, "travelRangeDeg").is_undefined() {
+        return Err(JsError::new(
+            "input.travelRangeDeg: not an input: the travel range is each section's measured span",
+        ));
+    }
+    let radius = opt_number(&input, "radius", "input")?.unwrap_or(100.0);
     let max_order = match opt_number(&input, "maxOrder", "input")? {
         Some(v) => count_arg(v, "input.maxOrder", usize::MAX)?,
         None => 10,
     };
-    let cfg = alignment::BandConfig {
-        radius: opt_number(&input, "radius", "input")?.unwrap_or(100.0),
-        travel_range_deg: opt_number(&input, "travelRangeDeg", "input")?,
-        max_order,
-    };
+    let sections = band_sections(&input, radius)?;
+    let cfg = alignment::BandConfig { radius, max_order };
     to_js(&alignment::estimate_alignment_band(&sections, &cfg)?)
+}
+
+/// The sections of a band input: arrays as given, or trace texts read by
+/// the core about `input.centre`.
+#[cfg(feature = "full")]
+fn band_sections(input: &JsValue, radius: f64) -> Result<Vec<Section>, JsError> {
+    let list = get(input, "sections");
+    let first = Array::is_array(&list).then(|| Array::from(&list).get(0));
+    if !first.is_some_and(|s| s.is_object() && !get(&s, "text").is_undefined()) {
+        return sections_of(input);
+    }
+    let centre = match get(input, "centre") {
+        c if c.is_undefined() || c.is_null() => None,
+        c => Some(ballbar::PlanePoint {
+            x: number(&c, "x", "input.centre")?,
+            y: number(&c, "y", "input.centre")?,
+        }),
+    };
+    let mut traces = Vec::new();
+    for (k, s) in Array::from(&list).iter().enumerate() {
+        let what = format!("sections[{k}]");
+        let run = match opt_number(&s, "run", &what)? {
+            Some(v) => count_arg(v, &format!("{what}.run"), usize::MAX)?,
+            None => 0,
+        };
+        traces.push(alignment::from_trace::TraceSection {
+            y: number(&s, "y", &what)?,
+            text: get(&s, "text").as_string().ok_or_else(|| {
+                JsError::new(&format!("{what}.text: expected the trace file's text"))
+            })?,
+            run,
+        });
+    }
+    Ok(alignment::from_trace::sections_from_traces(
+        &traces, radius, centre,
+    )?)
 }

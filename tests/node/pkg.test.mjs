@@ -28,3 +28,19 @@ test('errorSymbols lists the location errors a cone-frustum test sees', () => {
   assert.ok(!s.includes('EZ0C') && !s.includes('EX0A'), 'no translation along an axis of its own');
   assert.equal(s.length, 13);
 });
+
+test('estimateAlignmentBand reads X/Y trace texts about the common centre, and refuses them without one', () => {
+  // Two X/Y arcs (240° from −30°) about (150, 20) + an offset of 6 µm and
+  // 14 µm along X at heights 80 and 330 mm.
+  const xy = (dx) => ['X,Y', ...Array.from({ length: 241 }, (_, i) => {
+    const t = ((i - 30) * Math.PI) / 180;
+    return `${(150 + dx + 100 * Math.cos(t)).toFixed(8)},${(20 + 100 * Math.sin(t)).toFixed(8)}`;
+  })].join('\n');
+  const sections = [{ y: 80, text: xy(0.006) }, { y: 330, text: xy(0.014) }];
+  const r = mt.estimateAlignmentBand({ sections, centre: { x: 150, y: 20 } });
+  assert.ok(Math.abs(r.estimate.sections[0].z - 0.006) < 1e-6 && Math.abs(r.estimate.sections[1].z - 0.014) < 1e-6, JSON.stringify(r.estimate));
+  assert.ok(Math.abs(r.estimate.deltaBz - 0.008 / 250) < 1e-9, `${r.estimate.deltaBz}`);
+  assert.ok(Math.abs(r.sections[0].rangeDeg - 240) < 1e-6 && r.bandBz.determined && r.coverage === 3);
+  assert.throws(() => mt.estimateAlignmentBand({ sections }), /sections\[0\]: an X\/Y trace needs the common centre/);
+  assert.throws(() => mt.estimateAlignmentBand({ sections, centre: { x: 150, y: 20 }, travelRangeDeg: 90 }), /travelRangeDeg: not an input/);
+});

@@ -156,7 +156,9 @@ const CASES = {
   },
   estimateAlignmentBand: {
     good: () => mt.estimateAlignmentBand({ sections }),
-    bad: [[{}], [{ sections, maxOrder: 2 ** 32 + 1 }], [{ sections, travelRangeDeg: 'all' }], [{ sections, radius: -1 }]],
+    bad: [[{}], [{ sections, maxOrder: 2 ** 32 + 1 }], [{ sections, travelRangeDeg: 'all' }], [{ sections, travelRangeDeg: 180 }], [{ sections, radius: -1 }],
+      [{ sections, maxOrder: 0 }], [{ sections: [{ y: 0, text: 'x,y\n1,2\n' }] }], [{ sections: [{ y: 0, text: 42 }] }], [{ sections: [{ y: 0, text: 'x,y\n' + Array.from({ length: 20 }, (_, i) => `${Math.cos(i / 10)},${Math.sin(i / 10)}`).join('\n') }] }],
+      [{ sections: [{ y: 0, text: 'angle,dev\n' + Array.from({ length: 20 }, (_, i) => `${i},0`).join('\n'), run: 3 }] }], [{ sections: [{ y: 0, text: 'angle,dev\n0,0\n' }], centre: { x: 'a', y: 0 } }]],
   },
   angleSweep: {
     good: () => mt.angleSweep({ sections: [{ y: 0, offset: { z: 0, x: 0.01 } }, { y: 100, offset: { z: 0.01, x: 0 } }], ranges: [90, 180] }),

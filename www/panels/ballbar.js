@@ -3,7 +3,7 @@
 // and the travel-range bias of the centre estimate (Takayama et al.).
 // JS only gathers inputs, calls the core, draws and offers downloads.
 import { h, numberField, selectField, table, downloadText, toCsv, dropZone, showError, fmt, fmtRes, runState } from '../lib/ui.js';
-import { polarChart, barChart, lineChart } from '../lib/plot.js';
+import { polarChart, barChart, lineChart, xyChart } from '../lib/plot.js';
 
 const UM = 1e-3; // mm per µm
 const RAD = Math.PI / 180;
@@ -76,9 +76,11 @@ export async function mount(root, api) {
   const outUi = runState(out);
 
   // ---- alignment from the user's own sections -----------------------------
-  // One trace per section (or one file whose runs are the sections); the
-  // core fits each section's centre, the angle errors from two or more, and
-  // the travel-range bias band around them (Takayama §2.1–2.2).
+  // One trace per section (or one file whose runs are the sections). The
+  // core reads every trace about one common centre (X/Y traces: the pivot or
+  // programmed centre the user gives; angle/deviation traces: the bar's
+  // pivot), fits each section's centre, the angle errors from two or more,
+  // and the band around them (Takayama §2.1–2.2). Heights are required.
   const AXES = {
     b: { plane: ['Z', 'X'], along: 'Y', name: 'B' },
     a: { plane: ['Y', 'Z'], along: 'X', name: 'A' },
@@ -86,15 +88,16 @@ export async function mount(root, api) {
   };
   const al = {
     axis: selectField({ label: 'Rotary axis', id: 'align-axis', value: 'b', options: [['b', 'B (turns in Z–X, sections along Y)'], ['a', 'A (turns in Y–Z, sections along X)'], ['c', 'C (turns in X–Y, sections along Z)']], onChange: () => renderSections() }),
-    range: numberField({ label: 'Travel range', unit: '°', value: 180, id: 'align-range', min: 1, max: 360 }),
     radius: numberField({ label: 'Bar length', unit: 'mm', value: 100, id: 'align-radius', min: 1 }),
-    maxOrder: numberField({ label: 'Harmonics for the bias up to order', value: 10, id: 'align-max-order', min: 2, max: 30, step: 1 }),
+    centreP: numberField({ label: 'Common centre, first axis (X/Y traces)', unit: 'mm', value: '', id: 'align-centre-1', title: 'The pivot or the programmed circle centre, in the trace files\' X/Y coordinates; every section is read about it' }),
+    centreQ: numberField({ label: 'Common centre, second axis (X/Y traces)', unit: 'mm', value: '', id: 'align-centre-2' }),
+    maxOrder: numberField({ label: 'Harmonics considered up to order', value: 10, id: 'align-max-order', min: 1, max: 50, step: 1, title: 'The orders kept are those the data supports (BIC rule)' }),
   };
-  let sections = []; // { name, angleDeg, deviation, height: numberField }
+  let sections = []; // { name, text, run, layout, height: numberField }
   const secBox = h('div', { id: 'align-sections' });
   const alOut = h('div', { id: 'align-results' });
   const alUi = runState(alOut);
-  const alInfo = h('p', { id: 'align-file-info', class: 'unit' }, 'No section loaded. Expected per file: a ball-bar trace (angle + deviation, or X/Y), the angle measured from the first plane axis.');
+  const alInfo = h('p', { id: 'align-file-info', class: 'unit' }, 'No section loaded. Expected per file: a ball-bar trace (angle + deviation about the pivot, or X/Y in machine coordinates), the angle measured from the first plane axis.');
   const alDrop = dropZone({
     id: 'align-files',
     label: 'Drop one trace per section (two or more for the angle errors), or one file whose runs are the sections',
@@ -108,22 +111,22 @@ export async function mount(root, api) {
       try {
         const parsed = [];
         for (const { text, name } of files) {
+          // A preview read (runs and layout); the estimate reads the text again about the common centre.
           const t = await api.call('parseBallbarTrace', [text, { nominalRadius: al.radius.value }]).catch((e) => {
             throw new Error(`${name}: ${(e && e.message) || e}`);
           });
-          parsed.push({ name, t });
+          parsed.push({ name, text, t });
         }
+        const layoutOf = (t) => (t.centre ? 'X/Y' : 'angle/deviation');
         // One file with several runs: each run is a section; else the first run of each file.
         const runs = parsed.length === 1 && parsed[0].t.runs.length > 1
-          ? parsed[0].t.runs.map((r, k) => ({ name: `${parsed[0].name} run ${k + 1} (${r.direction.toUpperCase()})`, r }))
-          : parsed.map(({ name, t }) => ({ name, r: t.runs[0] }));
-        sections = runs.map(({ name, r }, k) => ({
-          name,
-          angleDeg: Float64Array.from(r.angleRad, (a) => a / RAD),
-          deviation: r.deviation,
-          height: numberField({ label: `Height of ${name}`, unit: 'mm', value: k === 0 ? 0 : 100 * k, id: `align-height-${k}` }),
+          ? parsed[0].t.runs.map((r, k) => ({ name: `${parsed[0].name} run ${k + 1} (${r.direction.toUpperCase()})`, text: parsed[0].text, run: k, r, layout: layoutOf(parsed[0].t) }))
+          : parsed.map(({ name, text, t }) => ({ name, text, run: 0, r: t.runs[0], layout: layoutOf(t) }));
+        sections = runs.map((x, k) => ({
+          name: x.name, text: x.text, run: x.run, layout: x.layout, points: x.r.angleRad.length,
+          height: numberField({ label: `Height of ${x.name}`, unit: 'mm', value: '', id: `align-height-${k}` }),
         }));
-        alInfo.textContent = `${sections.length} section(s): ${sections.map((x) => `${x.name} (${x.angleDeg.length} points)`).join(', ')}`;
+        alInfo.textContent = `${sections.length} section(s): ${sections.map((x) => `${x.name} (${x.layout}, ${x.points} points)`).join(', ')}. Enter each section's height.`;
       } catch (e) {
         sectionsRefused(e, files.map((x) => x.name).join(', '));
       }
@@ -139,6 +142,8 @@ export async function mount(root, api) {
   const alRun = h('button', { id: 'align-run', class: 'primary', onclick: () => estimate() }, 'Estimate alignment');
   function renderSections() {
     const ax = AXES[al.axis.value];
+    al.centreP.el.querySelector('span').firstChild.textContent = `Common centre ${ax.plane[0]} (X/Y traces)`;
+    al.centreQ.el.querySelector('span').firstChild.textContent = `Common centre ${ax.plane[1]} (X/Y traces)`;
     secBox.replaceChildren(...sections.map((x) => {
       x.height.el.querySelector('span').firstChild.textContent = `${ax.along} of ${x.name}`;
       return x.height.el;
@@ -150,53 +155,93 @@ export async function mount(root, api) {
     try {
       if (!sections.length) throw new Error('no section loaded: drop one ball-bar trace per section first');
       const ax = AXES[al.axis.value];
+      for (const x of sections) if (!Number.isFinite(x.height.value)) throw new Error(`${ax.along} of ${x.name} [mm]: enter the section's height (no default: a wrong height gives a wrong angle error)`);
+      const [cp, cq] = [al.centreP.value, al.centreQ.value];
+      if (Number.isFinite(cp) !== Number.isFinite(cq)) throw new Error(`common centre: give both ${ax.plane[0]} and ${ax.plane[1]}, or neither`);
+      const centre = Number.isFinite(cp) ? { x: cp, y: cq } : undefined;
       const input = {
-        sections: sections.map((x) => ({ y: x.height.value, angleDeg: x.angleDeg, deviation: x.deviation })),
+        sections: sections.map((x) => ({ y: x.height.value, text: x.text, run: x.run })),
         radius: al.radius.value,
-        travelRangeDeg: al.range.value,
         maxOrder: al.maxOrder.value,
+        ...(centre ? { centre } : {}),
       };
-      for (const x of sections) if (!Number.isFinite(x.height.value)) throw new Error(`${ax.along} of ${x.name} [mm]: enter the section's position`);
       const r = await api.call('estimateAlignmentBand', [input]);
-      renderAlignment(r, ax);
+      renderAlignment(r, ax, centre);
       alUi.ok();
     } catch (e) {
       alUi.fail(e);
     }
   }
 
-  function renderAlignment(r, ax) {
+  function renderAlignment(r, ax, centre) {
     const [p, q] = ax.plane;
-    const pm = (v, b, scale, d) => `${fmt(v * scale, d)} ± ${fmt(b * scale, d)}`;
-    const rows = r.estimate.sections.map((e, k) => [sections[k].name, fmt(e.y, 1), pm(e.z, r.sections[k].bandZ, 1 / UM, 2), pm(e.x, r.sections[k].bandX, 1 / UM, 2), fmt(e.rmsResidual / UM, 2), fmt(r.sections[k].rangeDeg, 1)]);
-    const secTable = table(['section', `${ax.along} [mm]`, `offset ${p} [µm]`, `offset ${q} [µm]`, 'fit RMS [µm]', 'travel range [°]'], rows);
+    const um = (v) => fmtRes(v / UM, 0.01);
+    // An offset the span cannot determine is said in words, never as ±10⁵ µm.
+    const offset = (v, band, ok) => (ok ? `${um(v)} ± ${um(band)}` : 'not determined');
+    const rows = r.estimate.sections.map((e, k) => {
+      const b = r.sections[k];
+      return [sections[k].name, fmt(e.y, 1), offset(e.z, b.bandZ, b.determinedZ), offset(e.x, b.bandX, b.determinedX),
+        `${um(b.biasZ)} / ${um(b.biasX)}`, `${um(b.sigmaZ)} / ${um(b.sigmaX)}`, b.order < 2 ? 'none' : `2…${b.order}`, fmtRes(b.noise / UM, 0.01), fmt(b.rangeDeg, 1)];
+    });
+    const secTable = table(['section', `${ax.along} [mm]`, `offset ${p} [µm]`, `offset ${q} [µm]`, `bias ${p}/${q} [µm]`, `σ ${p}/${q} [µm]`, 'harmonics kept', 'noise [µm]', 'span [°]'], rows);
     secTable.querySelector('table').id = 'align-offsets';
+    const notes = r.sections.filter((b) => b.note).map((b, k) => h('li', {}, `${sections[k].name}: ${b.note}`));
+    const angleText = (v, g) => (g.determined ? `${fmtRes(v * 1e6, 0.01)} ± ${fmtRes(g.band * 1e6, 0.01)}` : 'not determined');
     const angle = r.estimate.deltaBz === null
       ? h('p', { id: 'align-angle' }, 'Angle errors: need two sections at different heights.')
       : h('p', { id: 'align-angle' },
-          `Δ${ax.name}${p.toLowerCase()} = `, h('strong', { id: 'align-angle-1' }, pm(r.estimate.deltaBz, r.bandBz, 1e6, 2)), ' µrad; ',
-          `Δ${ax.name}${q.toLowerCase()} = `, h('strong', { id: 'align-angle-2' }, pm(r.estimate.deltaBx, r.bandBx, 1e6, 2)), ' µrad (µm per m).');
+          `Δ${ax.name}${p.toLowerCase()} = `, h('strong', { id: 'align-angle-1' }, angleText(r.estimate.deltaBz, r.bandBz)), ' µrad; ',
+          `Δ${ax.name}${q.toLowerCase()} = `, h('strong', { id: 'align-angle-2' }, angleText(r.estimate.deltaBx, r.bandBx)), ' µrad (µm per m).');
+    const about = centre
+      ? `X/Y traces read about the common centre you gave (${p} ${fmt(centre.x, 3)} mm, ${q} ${fmt(centre.y, 3)} mm); angle/deviation traces about the bar's pivot.`
+      : 'Every trace is angle/deviation, read about the bar\'s pivot.';
+    const chart = h('div', { id: 'align-chart' });
     const csv = () => toCsv({
       section: sections.map((x) => JSON.stringify(x.name)),
       [`${ax.along.toLowerCase()}_mm`]: r.estimate.sections.map((e) => e.y),
       [`offset_${p.toLowerCase()}_um`]: r.estimate.sections.map((e) => e.z / UM),
-      [`band_${p.toLowerCase()}_um`]: r.sections.map((b) => b.bandZ / UM),
+      [`band_${p.toLowerCase()}_um`]: r.sections.map((b) => (b.determinedZ ? b.bandZ / UM : '')),
       [`offset_${q.toLowerCase()}_um`]: r.estimate.sections.map((e) => e.x / UM),
-      [`band_${q.toLowerCase()}_um`]: r.sections.map((b) => b.bandX / UM),
+      [`band_${q.toLowerCase()}_um`]: r.sections.map((b) => (b.determinedX ? b.bandX / UM : '')),
       [`angle_${p.toLowerCase()}_urad`]: [r.estimate.deltaBz === null ? '' : r.estimate.deltaBz * 1e6],
-      [`angle_band_${p.toLowerCase()}_urad`]: [r.bandBz === null ? '' : r.bandBz * 1e6],
+      [`angle_band_${p.toLowerCase()}_urad`]: [r.bandBz === null || !r.bandBz.determined ? '' : r.bandBz.band * 1e6],
       [`angle_${q.toLowerCase()}_urad`]: [r.estimate.deltaBx === null ? '' : r.estimate.deltaBx * 1e6],
-      [`angle_band_${q.toLowerCase()}_urad`]: [r.bandBx === null ? '' : r.bandBx * 1e6],
+      [`angle_band_${q.toLowerCase()}_urad`]: [r.bandBx === null || !r.bandBx.determined ? '' : r.bandBx.band * 1e6],
     });
-    const json = () => JSON.stringify({ axis: ax.name, plane: ax.plane, sectionsAlong: ax.along, units: { offsets: 'mm', heights: 'mm', angles: 'rad', travelRange: 'deg' }, inputs: { radius: al.radius.value, travelRangeDeg: al.range.value, maxOrder: al.maxOrder.value, sections: sections.map((x, k) => ({ name: x.name, position: r.estimate.sections[k].y, points: x.angleDeg.length })) }, result: r }, null, 2);
+    const json = () => JSON.stringify({ axis: ax.name, plane: ax.plane, sectionsAlong: ax.along, units: { offsets: 'mm', heights: 'mm', angles: 'rad', spans: 'deg' }, inputs: { radius: al.radius.value, maxOrder: al.maxOrder.value, centre: centre ?? null, sections: sections.map((x, k) => ({ name: x.name, layout: x.layout, run: x.run, position: r.estimate.sections[k].y, points: x.points })) }, result: r }, null, 2);
     alOut.replaceChildren(
+      h('p', { id: 'align-centre-used', class: 'unit' }, about),
       secTable,
+      notes.length ? h('ul', { id: 'align-notes' }, ...notes) : '',
       angle,
-      h('p', { class: 'unit' }, `The band is the bias the travel range causes (Takayama §2.1, with each section's own harmonics of order ≥ 2) plus the bar's second-order term; a full revolution has none.`),
+      chart,
+      h('p', { class: 'unit' }, `Band = |bias| + max|Δ|²/R + ${r.coverage}σ. The bias is the travel range's systematic error (Takayama §2.1) from the harmonics the data supports (BIC rule); σ is the noise's standard error, widened for correlated samples. A full revolution has no bias.`),
       h('div', { class: 'buttons' },
         h('button', { id: 'align-download-json', onclick: () => downloadText('alignment.json', json(), 'application/json') }, 'Download result (JSON)'),
         h('button', { id: 'align-download-csv', onclick: () => downloadText('alignment.csv', csv(), 'text/csv') }, 'Download result (CSV)')),
     );
+    drawOffsets(chart, r, ax);
+  }
+
+  /** Offsets against height with their bands and the fitted lines (slope = the angle error). */
+  function drawOffsets(el, r, ax) {
+    const ys = r.estimate.sections.map((e) => e.y);
+    const traces = [];
+    const comps = [['z', 'Z', 'bandZ', 'determinedZ', 'interceptZ', 'deltaBz'], ['x', 'X', 'bandX', 'determinedX', 'interceptX', 'deltaBx']];
+    comps.forEach(([key, , band, det, icpt, slope], c) => {
+      const color = ['#0b6bcb', '#d9480f'][c];
+      const name = ax.plane[c];
+      traces.push({ x: ys, y: r.estimate.sections.map((e) => e[key] / UM), points: true, color, label: `offset ${name} [µm]` });
+      r.sections.forEach((b, k) => {
+        if (b[det]) traces.push({ x: [ys[k], ys[k]], y: [(r.estimate.sections[k][key] - b[band]) / UM, (r.estimate.sections[k][key] + b[band]) / UM], color });
+      });
+      if (r.estimate[slope] !== null) {
+        const y0 = Math.min(...ys);
+        const y1 = Math.max(...ys);
+        traces.push({ x: [y0, y1], y: [y0, y1].map((y) => (r.estimate[icpt] + r.estimate[slope] * y) / UM), color, dash: [6, 4], label: `fit: slope ${fmtRes(r.estimate[slope] * 1e6, 0.01)} µrad` });
+      }
+    });
+    xyChart(el, { traces, equal: false, xLabel: `${ax.along} [mm]`, yLabel: 'offset [µm]', title: 'Offsets against height, with bands and the fitted lines (slope = angle error)' });
   }
 
   // ---- paper examples -----------------------------------------------------
