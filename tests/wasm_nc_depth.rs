@@ -121,9 +121,11 @@ fn deep_expressions_are_located_errors_and_the_instance_lives_on() {
             get(&c, &["errors", "0", "column"]).as_f64(),
             Some(col as f64)
         );
-        let m = message(tp::simulate_tool_path(t(), sim(), None).unwrap_err());
+        let m = message(tp::simulate_tool_path(t(), sim(), JsValue::UNDEFINED).unwrap_err());
         assert_located(&m, line, col, "simulateToolPath");
-        let m = message(tp::reverse_compensate_js(t(), JsValue::UNDEFINED, None).unwrap_err());
+        let m = message(
+            tp::reverse_compensate_js(t(), JsValue::UNDEFINED, JsValue::UNDEFINED).unwrap_err(),
+        );
         assert_located(&m, line, col, "reverseCompensate");
         let m = message(k::compensate_nc5(t(), nc5()).unwrap_err());
         assert_located(&m, line, col, "compensateNc5");
