@@ -442,7 +442,7 @@ impl<'a> Cursor<'a> {
     }
     /// A full expression (lowest precedence: AND OR XOR). Its operands
     /// and operators are read in one loop, then grouped by precedence
-    /// ([`group`]), so a level of nesting costs the parser one frame of
+    /// (`group`), so a level of nesting costs the parser one frame of
     /// this function, not one per precedence level.
     pub fn expr(&mut self) -> Result<Expr, PErr> {
         let first = self.power()?;
