@@ -93,8 +93,12 @@ fn extra_files_hold_the_subprograms() {
     assert_eq!(get(&c, &["errors", "0", "line"]).as_f64(), Some(2.0));
     let cfg =
         r#"{"files":[{"name":"O2000.nc","text":"O2000\nG91 G1 X5 F100\nG90\nM99"}],"tA":0,"T":0}"#;
-    let s =
-        tp::simulate_tool_path(JsValue::from_str("G0 X0\nM98 P2000\nM30"), obj(cfg), None).unwrap();
+    let s = tp::simulate_tool_path(
+        JsValue::from_str("G0 X0\nM98 P2000\nM30"),
+        obj(cfg),
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
     let t = get(&s, &["nominalTime"]).as_f64().unwrap();
     assert!((t - 3.0).abs() < 1e-9, "5 mm at 100 mm/min: {t}");
     let texts = js_sys::JSON::parse(r#"["O2000\nM99","G0 X0\nM30"]"#).unwrap();
@@ -126,7 +130,7 @@ fn tool_radii_offset_the_compensated_path_and_are_validated() {
     let e = tp::parse_nc(JsValue::from_str(text), obj(r#"{"toolRadii":{"D1":-2}}"#)).unwrap_err();
     assert!(message(e).contains("toolRadii D1"));
     let cfg = r#"{"toolRadii":"D1=2","tA":0,"T":0}"#;
-    let s = tp::simulate_tool_path(JsValue::from_str(text), obj(cfg), None).unwrap();
+    let s = tp::simulate_tool_path(JsValue::from_str(text), obj(cfg), JsValue::UNDEFINED).unwrap();
     let t = get(&s, &["nominalTime"]).as_f64().unwrap();
     // 18 mm start-up and 18 mm cancel at 400 mm/min, the circle of 18 mm.
     let want = (18.0 + 2.0 * std::f64::consts::PI * 18.0 + 18.0) / 400.0 * 60.0;

@@ -43,7 +43,7 @@ fn fit_circle_crosses_and_throws() {
 fn harmonics_and_sweeps_cross() {
     let th: Vec<f64> = (0..360).map(|i| (i as f64).to_radians()).collect();
     let dr: Vec<f64> = th.iter().map(|t| 0.005 * (2.0 * t).sin()).collect();
-    let h = Array::from(&harmonics(arr(&th), arr(&dr), 3.0).unwrap());
+    let h = Array::from(&harmonics(arr(&th), arr(&dr), JsValue::from_f64(3.0)).unwrap());
     assert_eq!(h.length(), 4);
     assert!((num(&h.get(2), "amplitude") - 0.005).abs() < 1e-12);
     let s = Array::from(&travel_range_sweep(json(r#"{"offset":{"z":0,"x":0.01},"harmonics":[{"order":2,"amplitude":0.005,"phase":0}],"ranges":[180,360],"radius":100,"samples":1000}"#)).unwrap());

@@ -117,7 +117,7 @@ fn cone_frustum_crosses_and_validates() {
         r#"{"machine": "trunnion-ac", "halfApexDeg": 45, "inclinationDeg": 10, "feed": 1000,
         "centre": [60, 40, 20], "idealServo": true, "points": 360, "errors": {"location": {"EX0C": 0.01}}}"#,
     );
-    let r = k::cone_frustum_test(opts, None).unwrap();
+    let r = k::cone_frustum_test(opts, JsValue::UNDEFINED).unwrap();
     let dev = get(&r, &["deviation"])
         .dyn_into::<Float64Array>()
         .unwrap()
@@ -139,7 +139,7 @@ fn cone_frustum_crosses_and_validates() {
     assert!(c.iter().any(|v| v.abs() > 10.0), "C in degrees");
     let bad =
         js(r#"{"machine": "trunnion-ac", "halfApexDeg": 95, "inclinationDeg": 10, "feed": 1000}"#);
-    let err = message(k::cone_frustum_test(bad, None).unwrap_err());
+    let err = message(k::cone_frustum_test(bad, JsValue::UNDEFINED).unwrap_err());
     assert!(err.contains("halfApexDeg"), "{err}");
 }
 
@@ -181,7 +181,7 @@ fn example_errors_cross_with_the_preset_and_feed_the_cone_frustum_test() {
     );
     Reflect::set(&opts, &JsValue::from_str("errors"), &ex).unwrap();
     Reflect::set(&opts, &JsValue::from_str("drives"), &drives).unwrap();
-    let r = k::cone_frustum_test(opts, None).unwrap();
+    let r = k::cone_frustum_test(opts, JsValue::UNDEFINED).unwrap();
     let max = get(&r, &["maxDeviation"]).as_f64().unwrap();
     let min = get(&r, &["minDeviation"]).as_f64().unwrap();
     assert!(max.max(-min) > 1e-3, "example errors read {min}..{max} mm");

@@ -53,7 +53,7 @@ fn simulate_returns_arrays_and_summary() {
     let r = tp::simulate_tool_path(
         JsValue::from_str("G0 X10 Y0\nG3 X10 Y0 I-10 J0 F2000"),
         cfg(r#"{"tA":0.04,"T":[0.015,0.015,0.015],"dt":0.001}"#),
-        None,
+        JsValue::UNDEFINED,
     )
     .unwrap();
     let err: Float64Array = get(&r, &["errorUm"]).dyn_into().unwrap();
@@ -90,7 +90,12 @@ fn eq3_and_identification() {
 #[wasm_bindgen_test]
 fn reverse_compensation_crosses() {
     let nc = tp::toolpath_example(JsValue::from_str("arcs")).unwrap();
-    let r = tp::reverse_compensate_js(JsValue::from_str(&nc), JsValue::UNDEFINED, None).unwrap();
+    let r = tp::reverse_compensate_js(
+        JsValue::from_str(&nc),
+        JsValue::UNDEFINED,
+        JsValue::UNDEFINED,
+    )
+    .unwrap();
     let text = get(&r, &["nc"]).as_string().unwrap();
     assert!(text.contains("N40 G3") && text.contains("(C)"));
     let before = get(&r, &["before", "maxErrorUm"]).as_f64().unwrap();
@@ -110,8 +115,12 @@ fn bad_input_throws_the_core_message() {
         message(e),
         "line 2, column 4: arc (G2) without a centre in the G17 plane; expected I/J or R"
     );
-    let e = tp::simulate_tool_path(JsValue::from_str("G1 X1 F100"), cfg(r#"{"dt":0}"#), None)
-        .unwrap_err();
+    let e = tp::simulate_tool_path(
+        JsValue::from_str("G1 X1 F100"),
+        cfg(r#"{"dt":0}"#),
+        JsValue::UNDEFINED,
+    )
+    .unwrap_err();
     assert!(message(e).starts_with("dt: expected a sampling interval"));
     let e =
         tp::radius_reduction(cfg(r#"{"feed":2000,"radius":-1,"tA":0.04,"T":0.01}"#)).unwrap_err();

@@ -21,6 +21,14 @@
 //!   away from zero.
 //! - A result that is not finite (division by zero, `SQRT` of a negative,
 //!   `LN` of a non-positive) is an error naming the operation and values.
+//! - Nesting is limited to [`MAX_EXPR_DEPTH`] levels (each `[`, each `#`
+//!   of `##…` and each `**` opens one), far above a real program (Fanuc
+//!   allows 5 bracket levels) and far below what overflows the 1 MiB wasm
+//!   stack: the parser and the evaluator recurse once per level, so a
+//!   deeper expression is refused at the column of the level too many. A
+//!   run of operators of one precedence (`1+1+…+1`) is kept as one flat
+//!   [`Expr::Chain`], and a run of signs (`--…-1`) as one or no
+//!   [`Expr::Neg`], so their length costs no stack at all.
 
 use crate::numeric::compact;
 
@@ -216,6 +224,27 @@ fn hash_or_label(chars: &[char], i: usize, out: &mut Vec<Token>) -> Result<usize
     Ok(j + close + 1)
 }
 
+/// Deepest nesting of one expression: brackets (`[`, so also a function's
+/// argument and `#[…]`), `#` of `##…#1`, and the right operand of `**`
+/// each open a level. Real controls take a handful (Fanuc: 5 bracket
+/// levels). The stack a level costs was measured (docs/nc-programs.md,
+/// "Expression depth"): the costliest shape overflows the 1 MiB wasm stack
+/// at about 1,100 levels in the release build and 136 in the debug build.
+pub const MAX_EXPR_DEPTH: usize = 64;
+
+/// Deepest expression tree [`eval`] takes. A level of nesting adds at most
+/// seven nodes to a parsed tree (four operator chains, `**`, a sign, and a
+/// function or variable), so a parsed expression stays below it; it guards
+/// the evaluator against a tree built in code.
+pub const MAX_TREE_DEPTH: usize = 8 * (MAX_EXPR_DEPTH + 1);
+
+/// The message for an expression nested deeper than [`MAX_EXPR_DEPTH`].
+pub fn depth_message() -> String {
+    format!(
+        "expression nested deeper than {MAX_EXPR_DEPTH} levels (each '[', '#' of '##' and '**' opens one); simplify it, e.g. compute parts into #variables first"
+    )
+}
+
 /// A variable reference.
 #[derive(Debug, Clone, PartialEq)]
 pub enum VarRef {
@@ -325,8 +354,13 @@ pub enum Expr {
     Func(Func, Box<Expr>),
     /// `ATAN[a]/[b]`: the angle of (b, a), degrees.
     Atan2(Box<Expr>, Box<Expr>),
-    /// A binary operation.
+    /// A binary operation (the parser gives it for `**`, right to left:
+    /// `a**b**c` is `a**[b**c]`).
     Bin(BinOp, Box<Expr>, Box<Expr>),
+    /// Operators of one precedence, left to right: `a-b+c` is the first
+    /// operand, then (`-`, b) and (`+`, c). A list rather than a tree, so a
+    /// long sum costs no stack to evaluate or drop.
+    Chain(Box<Expr>, Vec<(BinOp, Expr)>),
     /// `EXISTS[#<name>]` (LinuxCNC).
     Exists(String),
 }
@@ -342,9 +376,33 @@ pub struct Cursor<'a> {
     pub i: usize,
     /// Column just past the line (for errors at its end).
     pub end_col: usize,
+    /// Levels of nesting open (at most [`MAX_EXPR_DEPTH`]).
+    depth: usize,
 }
 
 impl<'a> Cursor<'a> {
+    /// A cursor at the first of `toks`; `end_col` is the column just past
+    /// the line.
+    pub fn new(toks: &'a [Token], end_col: usize) -> Self {
+        Self {
+            toks,
+            i: 0,
+            end_col,
+            depth: 0,
+        }
+    }
+    /// Opens a level of nesting at the next token (the error names its
+    /// column), or refuses one level too many.
+    fn enter(&mut self) -> Result<(), PErr> {
+        if self.depth >= MAX_EXPR_DEPTH {
+            return Err((self.col(), depth_message()));
+        }
+        self.depth += 1;
+        Ok(())
+    }
+    fn leave(&mut self) {
+        self.depth -= 1;
+    }
     /// The next token, if any.
     pub fn peek(&self) -> Option<&'a Tok> {
         self.toks.get(self.i).map(|t| &t.tok)
@@ -375,69 +433,51 @@ impl<'a> Cursor<'a> {
         if self.peek() != Some(&Tok::Open) {
             return Err((self.col(), "expected '[' to start an expression".into()));
         }
+        self.enter()?;
         self.i += 1;
         let e = self.expr()?;
         self.expect_close()?;
+        self.leave();
         Ok(e)
     }
-    /// A full expression (lowest precedence: AND OR XOR).
+    /// A full expression (lowest precedence: AND OR XOR). Its operands
+    /// and operators are read in one loop, then grouped by precedence
+    /// (`group`), so a level of nesting costs the parser one frame of
+    /// this function, not one per precedence level.
     pub fn expr(&mut self) -> Result<Expr, PErr> {
-        const LEVELS: [&[(&str, BinOp)]; 4] = [
-            &[("AND", BinOp::And), ("OR", BinOp::Or), ("XOR", BinOp::Xor)],
-            &[
-                ("EQ", BinOp::Eq),
-                ("NE", BinOp::Ne),
-                ("GT", BinOp::Gt),
-                ("GE", BinOp::Ge),
-                ("LT", BinOp::Lt),
-                ("LE", BinOp::Le),
-            ],
-            &[("+", BinOp::Add), ("-", BinOp::Sub)],
-            &[("*", BinOp::Mul), ("/", BinOp::Div), ("MOD", BinOp::Mod)],
-        ];
-        self.level(&LEVELS)
-    }
-    fn level(&mut self, levels: &[&[(&str, BinOp)]]) -> Result<Expr, PErr> {
-        let Some((ops, rest)) = levels.split_first() else {
-            return self.power();
-        };
-        let mut lhs = self.level(rest)?;
-        loop {
-            let found = ops.iter().find(|(name, _)| match self.peek() {
-                Some(Tok::Op(o)) => o == name,
-                Some(Tok::Word(w)) => w == name,
-                _ => false,
-            });
-            let Some(&(_, op)) = found else {
-                return Ok(lhs);
-            };
+        let first = self.power()?;
+        let mut more = Vec::new();
+        while let Some((op, rank)) = self.peek().and_then(binary_op) {
             self.i += 1;
-            let rhs = self.level(rest)?;
-            lhs = Expr::Bin(op, Box::new(lhs), Box::new(rhs));
+            more.push((op, rank, self.power()?));
         }
+        Ok(group(first, more))
     }
     fn power(&mut self) -> Result<Expr, PErr> {
         let lhs = self.unary()?;
         if self.peek() == Some(&Tok::Op("**")) {
             self.i += 1;
+            self.enter()?;
             let rhs = self.power()?;
+            self.leave();
             return Ok(Expr::Bin(BinOp::Pow, Box::new(lhs), Box::new(rhs)));
         }
         Ok(lhs)
     }
     /// A signed primary: the value of an address word (`X-#1`, `X[…]`).
+    /// A run of signs is read in a loop: an even number of `-` cancels.
     pub fn unary(&mut self) -> Result<Expr, PErr> {
-        match self.peek() {
-            Some(Tok::Op("-")) => {
-                self.i += 1;
-                Ok(Expr::Neg(Box::new(self.unary()?)))
+        let mut negate = false;
+        loop {
+            match self.peek() {
+                Some(Tok::Op("-")) => negate = !negate,
+                Some(Tok::Op("+")) => {}
+                _ => break,
             }
-            Some(Tok::Op("+")) => {
-                self.i += 1;
-                self.unary()
-            }
-            _ => self.primary(),
+            self.i += 1;
         }
+        let e = self.primary()?;
+        Ok(if negate { Expr::Neg(Box::new(e)) } else { e })
     }
     fn primary(&mut self) -> Result<Expr, PErr> {
         let col = self.col();
@@ -519,7 +559,12 @@ impl<'a> Cursor<'a> {
                         Ok(VarRef::Num(Expr::Num(v)))
                     }
                     Some(Tok::Open) => Ok(VarRef::Num(self.bracketed()?)),
-                    Some(Tok::Hash) => Ok(VarRef::Num(Expr::Var(Box::new(self.var()?)))),
+                    Some(Tok::Hash) => {
+                        self.enter()?;
+                        let inner = self.var()?;
+                        self.leave();
+                        Ok(VarRef::Num(Expr::Var(Box::new(inner))))
+                    }
                     _ => Err((
                         col,
                         "expected a variable number after '#' (e.g. #1, #[#2+1], #<name>)".into(),
@@ -528,6 +573,71 @@ impl<'a> Cursor<'a> {
             }
             _ => Err((self.col(), "expected a variable '#'".into())),
         }
+    }
+}
+
+/// The binary operator of `t` (not `**`) and its precedence rank: 0 for
+/// `AND OR XOR` (lowest), 1 for `EQ NE GT GE LT LE`, 2 for `+ -`, 3 for
+/// `* / MOD`.
+fn binary_op(t: &Tok) -> Option<(BinOp, u8)> {
+    Some(match t {
+        Tok::Op("+") => (BinOp::Add, 2),
+        Tok::Op("-") => (BinOp::Sub, 2),
+        Tok::Op("*") => (BinOp::Mul, 3),
+        Tok::Op("/") => (BinOp::Div, 3),
+        Tok::Word(w) => match w.as_str() {
+            "MOD" => (BinOp::Mod, 3),
+            "EQ" => (BinOp::Eq, 1),
+            "NE" => (BinOp::Ne, 1),
+            "GT" => (BinOp::Gt, 1),
+            "GE" => (BinOp::Ge, 1),
+            "LT" => (BinOp::Lt, 1),
+            "LE" => (BinOp::Le, 1),
+            "AND" => (BinOp::And, 0),
+            "OR" => (BinOp::Or, 0),
+            "XOR" => (BinOp::Xor, 0),
+            _ => return None,
+        },
+        _ => return None,
+    })
+}
+
+/// `first op₁ e₁ op₂ e₂ …` grouped by precedence, each rank left to right:
+/// the operands between two operators of the lowest rank present form one
+/// operand of that rank's [`Expr::Chain`], and so on up. The recursion is
+/// at most four ranks deep, whatever the length.
+fn group(first: Expr, more: Vec<(BinOp, u8, Expr)>) -> Expr {
+    let Some(rank) = more.iter().map(|&(_, r, _)| r).min() else {
+        return first;
+    };
+    let mut lead = None;
+    let mut list: Vec<(BinOp, Expr)> = Vec::new();
+    // the operator of this rank before `head`, and the higher-rank tail
+    // after it
+    let mut op_before = None;
+    let mut head = first;
+    let mut run = Vec::new();
+    for (op, r, e) in more {
+        if r != rank {
+            run.push((op, r, e));
+            continue;
+        }
+        let operand = group(head, std::mem::take(&mut run));
+        match op_before {
+            None => lead = Some(operand),
+            Some(p) => list.push((p, operand)),
+        }
+        op_before = Some(op);
+        head = e;
+    }
+    let operand = group(head, run);
+    match (lead, op_before) {
+        (Some(lead), Some(p)) => {
+            list.push((p, operand));
+            Expr::Chain(Box::new(lead), list)
+        }
+        // not reached: `rank` is the rank of an operator in `more`
+        _ => operand,
     }
 }
 
@@ -620,10 +730,15 @@ pub const MAX_VAR: f64 = 99_999.0;
 /// # Errors
 /// A variable number that is vacant, negative, not whole or too large.
 pub fn key(v: &VarRef, vars: &mut dyn Vars) -> Result<VarKey, String> {
+    key_at(v, vars, 0)
+}
+
+/// [`key`] of a reference `depth` nodes down a tree.
+fn key_at(v: &VarRef, vars: &mut dyn Vars, depth: usize) -> Result<VarKey, String> {
     match v {
         VarRef::Named(n) => Ok(VarKey::Named(n.clone())),
         VarRef::Num(e) => {
-            let n = eval(e, vars)?
+            let n = eval_at(e, vars, depth)?
                 .ok_or_else(|| "a variable number is vacant (#[#n] with #n vacant)".to_string())?;
             let r = n.round();
             if !(0.0..=MAX_VAR).contains(&r) || (n - r).abs() > 1e-6 {
@@ -640,16 +755,29 @@ pub fn key(v: &VarRef, vars: &mut dyn Vars) -> Result<VarKey, String> {
 /// Evaluates `e` (`None`: vacant).
 ///
 /// # Errors
-/// A non-finite result, an unreadable variable.
+/// A non-finite result, an unreadable variable, a tree deeper than
+/// [`MAX_TREE_DEPTH`].
 pub fn eval(e: &Expr, vars: &mut dyn Vars) -> Result<Option<f64>, String> {
-    let num = |e: &Expr, vars: &mut dyn Vars| eval(e, vars).map(|v| v.unwrap_or(0.0));
+    eval_at(e, vars, 0)
+}
+
+/// [`eval`] of a node `depth` nodes down a tree: it recurses once per
+/// node, so the depth is bounded (an operator chain is a loop).
+fn eval_at(e: &Expr, vars: &mut dyn Vars, depth: usize) -> Result<Option<f64>, String> {
+    if depth >= MAX_TREE_DEPTH {
+        return Err(format!(
+            "expression tree deeper than {MAX_TREE_DEPTH} nodes; simplify it"
+        ));
+    }
+    let d = depth + 1;
+    let num = |e: &Expr, vars: &mut dyn Vars| eval_at(e, vars, d).map(|v| v.unwrap_or(0.0));
     let v = match e {
         Expr::Num(v) => *v,
         Expr::Var(r) => {
-            let k = key(r, vars)?;
+            let k = key_at(r, vars, d)?;
             return vars.read(&k);
         }
-        Expr::Neg(x) => match eval(x, vars)? {
+        Expr::Neg(x) => match eval_at(x, vars, d)? {
             None => return Ok(None),
             Some(v) => -v,
         },
@@ -663,16 +791,38 @@ pub fn eval(e: &Expr, vars: &mut dyn Vars) -> Result<Option<f64>, String> {
             }
         }
         Expr::Bin(op, a, b) => {
-            let (x, y) = (eval(a, vars)?, eval(b, vars)?);
+            let (x, y) = (eval_at(a, vars, d)?, eval_at(b, vars, d)?);
             binary(*op, x, y, vars.linuxcnc())?
         }
+        Expr::Chain(first, more) => return chain(first, more, vars, d),
         Expr::Exists(n) => f64::from(u8::from(vars.exists(n))),
     };
     if v.is_finite() {
         Ok(Some(v))
     } else {
-        Err("the expression has no finite value".into())
+        Err(NOT_FINITE.into())
     }
+}
+
+const NOT_FINITE: &str = "the expression has no finite value";
+
+/// An [`Expr::Chain`] at `depth`, left to right, in a loop.
+fn chain(
+    first: &Expr,
+    more: &[(BinOp, Expr)],
+    vars: &mut dyn Vars,
+    depth: usize,
+) -> Result<Option<f64>, String> {
+    let mut x = eval_at(first, vars, depth)?;
+    for (op, b) in more {
+        let y = eval_at(b, vars, depth)?;
+        let v = binary(*op, x, y, vars.linuxcnc())?;
+        if !v.is_finite() {
+            return Err(NOT_FINITE.into());
+        }
+        x = Some(v);
+    }
+    Ok(x)
 }
 
 fn func(f: Func, x: f64, linuxcnc: bool) -> Result<f64, String> {
@@ -764,11 +914,7 @@ mod tests {
 
     fn ev(src: &str, linuxcnc: bool) -> Result<Option<f64>, String> {
         let toks = tokenize(src).map_err(|e| e.1)?;
-        let mut c = Cursor {
-            toks: &toks,
-            i: 0,
-            end_col: src.len() + 1,
-        };
+        let mut c = Cursor::new(&toks, src.len() + 1);
         let e = c.expr().map_err(|e| e.1)?;
         assert_eq!(c.i, toks.len(), "{src}: unparsed tail");
         eval(&e, &mut V(HashMap::from([(1, 2.0), (2, -3.5)]), linuxcnc))
@@ -796,6 +942,28 @@ mod tests {
         assert_eq!(ev("#3 LT 1", false), Ok(Some(1.0)));
         assert_eq!(ev("#1 GT 1 AND #2 LT 0", true), Ok(Some(1.0)));
         assert_eq!(ev("#[#1-1]", false), Ok(Some(2.0)));
+    }
+
+    #[test]
+    fn operators_group_by_precedence_left_to_right() {
+        assert_eq!(ev("2-3-4", false), Ok(Some(-5.0)));
+        assert_eq!(ev("8/2/2", false), Ok(Some(2.0)));
+        assert_eq!(ev("1+2*3-4/2", false), Ok(Some(5.0)));
+        assert_eq!(ev("1+1 EQ 2", false), Ok(Some(1.0)));
+        assert_eq!(ev("1 EQ 1 AND 2 GT 1+3", true), Ok(Some(0.0)));
+        assert_eq!(ev("3 OR 4 AND 1", false), Ok(Some(1.0)));
+        assert_eq!(ev("2*3**2", false), Ok(Some(18.0)));
+        assert_eq!(ev("--#1", false), Ok(Some(2.0)));
+        assert_eq!(ev("-+-#3", false), Ok(None));
+    }
+
+    #[test]
+    fn the_evaluator_refuses_a_tree_deeper_than_its_limit() {
+        let tower = |n: usize| (0..n).fold(Expr::Num(1.0), |e, _| Expr::Neg(Box::new(e)));
+        let mut vars = V(HashMap::new(), false);
+        assert_eq!(eval(&tower(MAX_TREE_DEPTH - 1), &mut vars), Ok(Some(-1.0)));
+        let e = eval(&tower(MAX_TREE_DEPTH), &mut vars).unwrap_err();
+        assert!(e.contains(&format!("deeper than {MAX_TREE_DEPTH}")), "{e}");
     }
 
     #[test]

@@ -215,11 +215,7 @@ pub fn lex_macro(src: &str, line: usize) -> Result<Block, NcError> {
         }
     }
     let end_col = src.chars().count() + 1;
-    let mut c = Cursor {
-        toks: &code,
-        i: 0,
-        end_col,
-    };
+    let mut c = Cursor::new(&code, end_col);
     if matches!(c.peek(), Some(Tok::Word(w)) if w == "N") {
         if let Some(Token {
             tok: Tok::Num(v, text),

@@ -8,8 +8,8 @@ use wasm_bindgen::prelude::*;
 
 use super::args::JsArg;
 use super::convert::{
-    count_arg, floats_arg, object, opt_number, opt_number_arg, plain, plain_floats, require_object,
-    string_arg, to_js, Obj,
+    count_arg, floats_arg, number_arg, object, opt_number, opt_number_arg, plain, plain_floats,
+    require_object, string_arg, to_js, Obj,
 };
 use super::results::JsResult;
 use crate::alignment::{self, examples, AngleSweepConfig, Section, SweepConfig};
@@ -108,11 +108,11 @@ pub fn fit_circle(
 pub fn harmonics(
     #[wasm_bindgen(unchecked_param_type = "Float64Array | number[]")] angle_rad: JsValue,
     #[wasm_bindgen(unchecked_param_type = "Float64Array | number[]")] radial_deviation: JsValue,
-    max_order: f64,
+    #[wasm_bindgen(unchecked_param_type = "number")] max_order: JsValue,
 ) -> Result<JsValue, JsError> {
     let angle = floats_arg(&angle_rad, "angleRad")?;
     let dev = floats_arg(&radial_deviation, "radialDeviation")?;
-    let max_order = count_arg(max_order, "maxOrder", usize::MAX)?;
+    let max_order = count_arg(number_arg(&max_order, "maxOrder")?, "maxOrder", usize::MAX)?;
     to_js(&ballbar::fit_harmonics(&angle, &dev, max_order)?)
 }
 

@@ -13,6 +13,14 @@
 //! whose value is `undefined` is left out, as `JSON.stringify` does. Only the
 //! snapshot reaches serde-wasm-bindgen, so the conversion itself can no
 //! longer throw, and its recursion is bounded.
+//!
+//! No other JS call on an argument's value runs outside such a helper
+//! either: [`require_object`]'s `Array.isArray` (which throws on a revoked
+//! Proxy) runs in `isArrayArg`, and the type checks of [`string_arg`],
+//! [`number_arg`] and [`callback_arg`] use `typeof` (which never throws)
+//! and name a revoked Proxy through `isRevoked`, which catches. A revoked
+//! Proxy anywhere in an argument is an `Error` naming the argument (or the
+//! path inside it): "… is a revoked Proxy; pass plain data".
 
 use js_sys::{Float64Array, Object, Reflect};
 use serde::{de::DeserializeOwned, Serialize};
@@ -36,6 +44,17 @@ const kind = (v) => {
   return typeof n === 'string' && n ? 'a ' + clip(n) : 'an object';
 };
 class Refused extends Error {}
+// Array.isArray throws only for a revoked Proxy (its handler is gone)
+const revoked = (v) => {
+  if (v === null || (typeof v !== 'object' && typeof v !== 'function')) return false;
+  try { Array.isArray(v); return false; } catch { return true; }
+};
+const revokedMessage = (path) => `${clip(path)}: is a revoked Proxy; pass plain data (numbers, strings, arrays, objects)`;
+export function isRevoked(value) { return revoked(value); }
+export function isArrayArg(value, what) {
+  if (revoked(value)) throw new Error(revokedMessage(what));
+  try { return Array.isArray(value); } catch (e) { throw say(e, what); }
+}
 function say(e, what) {
   if (e instanceof Refused) return new Error(e.message);
   let m = '';
@@ -48,6 +67,7 @@ export function plainCopy(value, what, maxDepth, maxItems) {
     if (++items > maxItems) throw new Refused(`${what}: more than ${maxItems} values; pass a smaller input`);
     const t = typeof v;
     if (v === null || t === 'undefined' || t === 'boolean' || t === 'number' || t === 'string') return v;
+    if (revoked(v)) throw new Refused(revokedMessage(path));
     if (t !== 'object') throw new Refused(`${clip(path)}: expected a number, string, array or object, got a ${t}`);
     if (depth >= maxDepth) throw new Refused(`${clip(path)}: nested deeper than ${maxDepth} levels`);
     if (ArrayBuffer.isView(v)) {
@@ -81,6 +101,7 @@ export function plainCopy(value, what, maxDepth, maxItems) {
 }
 export function f64Copy(value, what, maxLen) {
   try {
+    if (revoked(value)) throw new Refused(revokedMessage(what));
     if (ArrayBuffer.isView(value) && !(value instanceof DataView)) {
       const out = new Float64Array(value);
       if (out.length > maxLen) throw new Refused(`${what}: ${out.length} values; at most ${maxLen} are accepted`);
@@ -111,6 +132,28 @@ extern "C" {
     ) -> Result<JsValue, JsValue>;
     #[wasm_bindgen(catch, js_name = f64Copy)]
     fn f64_copy(value: &JsValue, what: &str, max_len: f64) -> Result<Float64Array, JsValue>;
+    #[wasm_bindgen(catch, js_name = isArrayArg)]
+    fn is_array_arg(value: &JsValue, what: &str) -> Result<bool, JsValue>;
+    #[wasm_bindgen(catch, js_name = isRevoked)]
+    fn is_revoked(value: &JsValue) -> Result<bool, JsValue>;
+}
+
+/// True when `value` is a revoked Proxy (checked in JS, where the throw is
+/// caught).
+pub fn revoked(value: &JsValue) -> bool {
+    is_revoked(value).unwrap_or(false)
+}
+
+/// What a value that is not of the expected type is, for a message: its
+/// `typeof` ("number", "object", "null"), or "a revoked Proxy".
+fn got(value: &JsValue) -> String {
+    if value.is_null() {
+        "null".into()
+    } else if revoked(value) {
+        "a revoked Proxy".into()
+    } else {
+        value.js_typeof().as_string().unwrap_or_default()
+    }
 }
 
 /// The message of an `Error` the copy helpers threw.
@@ -236,10 +279,9 @@ impl Obj {
 /// copied into wasm memory (UTF-8 needs at least one byte per UTF-16 unit).
 pub fn string_arg(value: &JsValue, what: &str) -> Result<String, JsError> {
     let Some(s) = value.dyn_ref::<js_sys::JsString>() else {
-        let got = value.js_typeof().as_string().unwrap_or_default();
-        let got = if value.is_null() { "null".into() } else { got };
         return Err(JsError::new(&format!(
-            "{what}: expected a string, got {got}"
+            "{what}: expected a string, got {}",
+            got(value)
         )));
     };
     if s.length() as usize > budget::MAX_TEXT_BYTES {
@@ -334,20 +376,53 @@ impl<'de> serde::Deserializer<'de> for FieldsProbe<'_> {
     }
 }
 
-/// An `Error` unless `value` is a non-array object.
+/// An `Error` unless `value` is a non-array object. `Array.isArray` runs in
+/// the catching helper: on a revoked Proxy it throws, and the `Error` says
+/// so, naming `what`.
 pub fn require_object(value: &JsValue, what: &str) -> Result<(), JsError> {
-    if value.is_object() && !js_sys::Array::is_array(value) && !value.is_function() {
-        return Ok(());
-    }
     let got = if value.is_null() {
         "null".to_string()
-    } else if js_sys::Array::is_array(value) {
+    } else if !value.is_object() || value.is_function() {
+        if revoked(value) {
+            return Err(JsError::new(&format!(
+                "{what}: is a revoked Proxy; pass plain data (numbers, strings, arrays, objects)"
+            )));
+        }
+        format!("a {}", value.js_typeof().as_string().unwrap_or_default())
+    } else if is_array_arg(value, what).map_err(message)? {
         "an array".to_string()
     } else {
-        format!("a {}", value.js_typeof().as_string().unwrap_or_default())
+        return Ok(());
     };
     Err(JsError::new(&format!(
         "{what}: expected an object {{ … }}, got {got}"
+    )))
+}
+
+/// A number argument, read without JS's conversion (wasm-bindgen's own
+/// `f64` runs `ToNumber`, which reads `"5"` as 5 and throws an unnamed
+/// `TypeError` on a revoked Proxy): anything but a JS number is an `Error`
+/// naming `what`.
+pub fn number_arg(value: &JsValue, what: &str) -> Result<f64, JsError> {
+    value
+        .as_f64()
+        .ok_or_else(|| JsError::new(&format!("{what}: expected a number, got {}", got(value))))
+}
+
+/// An optional callback argument: `undefined`/`null` give `None`, a
+/// function `Some`; anything else, a revoked Proxy included, is an `Error`
+/// naming `what` (wasm-bindgen's own `Option<Function>` takes any object
+/// unchecked, and calling it failed without a word).
+pub fn callback_arg(value: JsValue, what: &str) -> Result<Option<js_sys::Function>, JsError> {
+    if value.is_undefined() || value.is_null() {
+        return Ok(None);
+    }
+    if value.is_function() && !revoked(&value) {
+        return Ok(Some(value.unchecked_into()));
+    }
+    Err(JsError::new(&format!(
+        "{what}: expected a function, got {}",
+        got(&value)
     )))
 }
 
@@ -371,6 +446,9 @@ pub fn opt_number_arg(value: &JsValue, what: &str) -> Result<Option<f64>, JsErro
         Some(x) => Err(JsError::new(&format!(
             "{what}: expected a finite number, got {}",
             crate::numeric::compact(x)
+        ))),
+        None if revoked(value) => Err(JsError::new(&format!(
+            "{what}: expected a number, got a revoked Proxy"
         ))),
         None => Err(JsError::new(&format!(
             "{what}: expected a number, got a {}",

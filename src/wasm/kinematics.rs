@@ -4,11 +4,13 @@
 
 use std::collections::BTreeMap;
 
-use js_sys::{Array, Function};
+use js_sys::Array;
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
-use super::convert::{floats_arg, from_js, object, opt_number_arg, string_arg, to_js, Obj};
+use super::convert::{
+    callback_arg, floats_arg, from_js, object, opt_number_arg, string_arg, to_js, Obj,
+};
 use crate::compensate::nc5::{self, s_shape};
 use crate::cone_frustum::{self, ConeFrustumConfig};
 use crate::kinematics::{self, inverse::limits_from_degrees, GeometricErrors, Model, Pose, AXES};
@@ -212,9 +214,10 @@ pub fn error_symbols(
 #[wasm_bindgen(js_name = coneFrustumTest, unchecked_return_type = "ConeFrustumResult")]
 pub fn cone_frustum_test(
     #[wasm_bindgen(unchecked_param_type = "ConeFrustumOptions")] options: JsValue,
-    on_progress: Option<Function>,
+    #[wasm_bindgen(unchecked_optional_param_type = "Function | null")] on_progress: JsValue,
 ) -> Result<JsValue, JsError> {
     let cfg: ConeFrustumConfig = object(options, "options")?;
+    let on_progress = callback_arg(on_progress, "onProgress")?;
     if let Some(f) = &on_progress {
         let _ = f.call2(
             &JsValue::NULL,

@@ -52,9 +52,10 @@ pub fn version() -> String {
 #[wasm_bindgen(js_name = checkFileSize)]
 pub fn check_file_size(
     #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
-    bytes: f64,
+    #[wasm_bindgen(unchecked_param_type = "number")] bytes: JsValue,
 ) -> Result<(), JsError> {
     let name = convert::string_arg(&name, "name")?;
+    let bytes = convert::number_arg(&bytes, "bytes")?;
     if !(bytes.is_finite() && bytes >= 0.0 && bytes.fract() == 0.0) {
         return Err(JsError::new(&format!(
             "bytes: expected a whole number of bytes, 0 or more, got {}",

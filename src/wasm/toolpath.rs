@@ -7,8 +7,8 @@ use wasm_bindgen::prelude::*;
 
 use super::args::JsArg;
 use super::convert::{
-    from_js, from_plain, known_keys, object, plain, require_object, string_arg, struct_fields,
-    to_js, Obj,
+    callback_arg, from_js, from_plain, known_keys, object, plain, require_object, string_arg,
+    struct_fields, to_js, Obj,
 };
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
 use crate::nc::files::{main_file, parse_files, NcFile};
@@ -281,7 +281,7 @@ fn js_progress(cb: &Option<js_sys::Function>) -> impl FnMut(f64, &str) -> bool +
 pub fn simulate_tool_path(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ToolPathConfig")] config: JsValue,
-    on_progress: Option<js_sys::Function>,
+    #[wasm_bindgen(unchecked_optional_param_type = "Function | null")] on_progress: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let (files, config) = take_files(config)?;
@@ -299,6 +299,7 @@ pub fn simulate_tool_path(
         },
         ..ParseOptions::default()
     };
+    let on_progress = callback_arg(on_progress, "onProgress")?;
     let p = parse_files(text, &files, &opts).map_err(|e| JsError::new(&e.first().to_string()))?;
     let mut progress = js_progress(&on_progress);
     let s = crate::toolpath::simulate_with_progress(&p.segments, &p.segments, &cfg, &mut |f| {
@@ -344,7 +345,7 @@ pub fn identify_acc_dec(
 pub fn reverse_compensate_js(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "ReverseConfig")] config: JsValue,
-    on_progress: Option<js_sys::Function>,
+    #[wasm_bindgen(unchecked_optional_param_type = "Function | null")] on_progress: JsValue,
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     let (files, config) = take_files(config)?;
@@ -377,6 +378,7 @@ pub fn reverse_compensate_js(
         )?;
         from_plain(config, "config")?
     };
+    let on_progress = callback_arg(on_progress, "onProgress")?;
     let mut progress = js_progress(&on_progress);
     let c = reverse_compensate_with(text, &cfg, &mut progress)?;
     Ok(Obj::new()
