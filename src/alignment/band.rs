@@ -24,7 +24,7 @@
 //!    (Z₁ − Z₂)/(Y₁ − Y₂)); its band is Σ|w_k|·(|bias_k| + e₂,k) (the
 //!    worst case of the biases) + 3·√(Σ w_k² σ_k²) (independent noise);
 //! 5. an offset whose band is wider than the section's own peak-to-valley
-//!    deviation is *not determined*: the span cannot separate it from the
+//!    deviation (at least 1 nm) is *not determined*: the span cannot separate it from the
 //!    motion error, and the result says so in words instead of a number.
 //!    An angle error is not determined when an offset it uses is not.
 //!
@@ -258,7 +258,10 @@ fn section_band(
     let second_order = [moved[0].abs() + rest, moved[1].abs() + rest];
     let band = |i: usize| fit.bias[i].abs() + second_order[i] + COVERAGE * fit.sigma[i];
     let (band_z, band_x) = (band(0), band(1));
-    let (determined_z, determined_x) = (band_z <= peak_to_valley, band_x <= peak_to_valley);
+    // Floored at 1 nm, below any instrument, so a flawless trace of a
+    // centred axis (peak-to-valley 0) is not called undetermined by rounding.
+    let limit = peak_to_valley.max(1e-6);
+    let (determined_z, determined_x) = (band_z <= limit, band_x <= limit);
     let note = (!(determined_z && determined_x)).then(|| {
         let which = match (determined_z, determined_x) {
             (false, false) => "the offsets are",
@@ -476,6 +479,26 @@ mod tests {
             s.band_z < 4.0 * ez.max(rest) && s.band_x < 4.0 * ex.max(rest),
             "{e:?} {s:?}"
         );
+    }
+
+    #[test]
+    fn a_flawless_centred_axis_is_determined_at_zero() {
+        // Every deviation 0 over 90° from 100°: the offsets are 0 and
+        // determined (the limit is floored at 1 nm, not at the trace's 0).
+        let angle_deg: Vec<f64> = (0..=90).map(|i| 100.0 + i as f64).collect();
+        let s = Section {
+            y: 12.0,
+            deviation: vec![0.0; angle_deg.len()],
+            angle_deg,
+        };
+        let b = estimate_alignment_band(&[s], &CFG).unwrap();
+        let (e, s) = (&b.estimate.sections[0], &b.sections[0]);
+        assert!(e.z.abs() < 1e-12 && e.x.abs() < 1e-12, "{e:?}");
+        assert!(
+            s.determined_z && s.determined_x && s.note.is_none(),
+            "{s:?}"
+        );
+        assert!(s.band_z < 1e-9 && s.peak_to_valley == 0.0, "{s:?}");
     }
 
     #[test]
