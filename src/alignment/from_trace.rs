@@ -104,3 +104,97 @@ pub fn sections_from_traces(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An X/Y arc (mm) about `(cx, cy)` + offset, R 80.004 mm (a bar
+    /// 4 µm longer than its nominal 80), 200° from 40°, CCW then back CW
+    /// (two runs).
+    fn xy(cx: f64, cy: f64, dx: f64, dy: f64) -> String {
+        let mut s = String::from("X [mm];Y [mm]\n");
+        let pts = (0..=200).chain((0..200).rev());
+        for i in pts {
+            let a = (40.0 + i as f64).to_radians();
+            s += &format!(
+                "{:.7};{:.7}\n",
+                cx + dx + 80.004 * a.cos(),
+                cy + dy + 80.004 * a.sin()
+            );
+        }
+        s
+    }
+
+    #[test]
+    fn xy_sections_keep_their_offsets_about_the_common_centre() {
+        let ts = [
+            TraceSection {
+                y: 60.0,
+                text: xy(-20.0, 7.5, 0.012, -0.003),
+                run: 0,
+            },
+            TraceSection {
+                y: 260.0,
+                text: xy(-20.0, 7.5, 0.002, 0.005),
+                run: 1,
+            },
+        ];
+        let c = Some(PlanePoint { x: -20.0, y: 7.5 });
+        let s = sections_from_traces(&ts, 80.0, c).unwrap();
+        assert_eq!((s.len(), s[0].y, s[1].y), (2, 60.0, 260.0));
+        // Degrees, about the centre, from the first plane axis.
+        assert!(
+            (s[0].angle_deg[0] - 40.0).abs() < 0.01,
+            "{}",
+            s[0].angle_deg[0]
+        );
+        // Run 1 is the CW run: its angles fall.
+        assert!(s[1].angle_deg[0] > s[1].angle_deg[5]);
+        // The deviation about the given centre from the given bar length:
+        // Δ(θ) ≈ 4 µm + e·u(θ) (second order 1.6 nm).
+        let d_at = |k: usize, i: usize, (ex, ey): (f64, f64)| {
+            let t = s[k].angle_deg[i].to_radians();
+            (s[k].deviation[i] - 0.004 - ex * t.cos() - ey * t.sin()).abs()
+        };
+        for i in [0, 50, 150, 199] {
+            assert!(d_at(0, i, (0.012, -0.003)) < 5e-6, "run 0 sample {i}: {} at {}", s[0].deviation[i], s[0].angle_deg[i]);
+            assert!(d_at(1, i, (0.002, 0.005)) < 5e-6, "run 1 sample {i}");
+        }
+    }
+
+    #[test]
+    fn bad_sections_are_named() {
+        let t = TraceSection {
+            y: 1.0,
+            text: xy(0.0, 0.0, 0.0, 0.0),
+            run: 2,
+        };
+        let c = Some(PlanePoint { x: 0.0, y: 0.0 });
+        let e = sections_from_traces(std::slice::from_ref(&t), 80.0, c).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "sections[0].run: the file has 2 run(s) (0 … 1), not run 2"
+        );
+        let bad = TraceSection {
+            y: 1.0,
+            text: "x,y\n1,2\n3,oops\n".into(),
+            run: 0,
+        };
+        let good = TraceSection {
+            run: 1,
+            ..t.clone()
+        };
+        let e = sections_from_traces(&[good, bad], 80.0, c)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("sections[1]: line 3"), "{e}");
+        let e = sections_from_traces(&[t], 80.0, None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("sections[0]: an X/Y trace needs the common centre"),
+            "{e}"
+        );
+    }
+}
