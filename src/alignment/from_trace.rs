@@ -158,7 +158,12 @@ mod tests {
             (s[k].deviation[i] - 0.004 - ex * t.cos() - ey * t.sin()).abs()
         };
         for i in [0, 50, 150, 199] {
-            assert!(d_at(0, i, (0.012, -0.003)) < 5e-6, "run 0 sample {i}: {} at {}", s[0].deviation[i], s[0].angle_deg[i]);
+            assert!(
+                d_at(0, i, (0.012, -0.003)) < 5e-6,
+                "run 0 sample {i}: {} at {}",
+                s[0].deviation[i],
+                s[0].angle_deg[i]
+            );
             assert!(d_at(1, i, (0.002, 0.005)) < 5e-6, "run 1 sample {i}");
         }
     }

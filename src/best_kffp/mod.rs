@@ -18,7 +18,10 @@
 //! K_FFP in %; ω in rad/s; angles in rad.
 
 pub mod analytic;
+pub mod from_trace;
 pub mod saturation;
+
+pub use from_trace::{best_kffp_from_trace, IdentifiedAxis, TraceKffp, TraceOptions};
 
 use serde::{Deserialize, Serialize};
 
@@ -40,6 +43,14 @@ pub enum BestKffpError {
     /// The feed-vector test failed.
     #[error(transparent)]
     FeedVector(#[from] FeedVectorError),
+    /// An axis could not be identified from the trace.
+    #[error("identifying axis {axis} from the trace: {message}")]
+    Identify {
+        /// Axis letter.
+        axis: &'static str,
+        /// The identification's message.
+        message: String,
+    },
     /// The saturation query has no torque limit to saturate at.
     #[error("`torqueMax`: the machine's C axis has no torque limit (axes.c.torqueMax) and the query gives none; give the C axis' torque limit in N·m")]
     NoTorqueLimit,
@@ -142,13 +153,7 @@ pub fn best_kffp(
     cond: &Condition,
     opts: &Options,
 ) -> Result<BestKffp, BestKffpError> {
-    if !(opts.k_min.is_finite() && opts.k_max.is_finite() && opts.k_min < opts.k_max) {
-        return Err(BestKffpError::BadQuery {
-            field: "options.kMin",
-            value: opts.k_min,
-            expected: "kMin and kMax must be finite with kMin < kMax (in %)",
-        });
-    }
+    check_options(opts)?;
     cond.validate()?;
     let axes = feed_vector::axes_for(machine, cond)?;
     let before = feed_vector::feed_vector_test(machine, cond)?.summary;
@@ -194,12 +199,37 @@ pub fn best_kffp(
     })
 }
 
+/// The search bounds are finite with kMin < kMax.
+fn check_options(opts: &Options) -> Result<(), BestKffpError> {
+    if opts.k_min.is_finite() && opts.k_max.is_finite() && opts.k_min < opts.k_max {
+        return Ok(());
+    }
+    Err(BestKffpError::BadQuery {
+        field: "options.kMin",
+        value: opts.k_min,
+        expected: "kMin and kMax must be finite with kMin < kMax (in %)",
+    })
+}
+
 /// The common K_FFP shift δ of X and Y that zeroes the simulated mean α − β.
 fn simulated_shift(
     axes: &[crate::servo::AxisParams; 3],
     cond: &Condition,
     kx: f64,
     ky: f64,
+    opts: &Options,
+) -> Result<f64, BestKffpError> {
+    simulated_shift_to(axes, cond, kx, ky, 0.0, opts)
+}
+
+/// The common K_FFP shift of X and Y that brings the simulated mean α − β
+/// to `target` rad.
+fn simulated_shift_to(
+    axes: &[crate::servo::AxisParams; 3],
+    cond: &Condition,
+    kx: f64,
+    ky: f64,
+    target: f64,
     opts: &Options,
 ) -> Result<f64, BestKffpError> {
     let n = feed_vector::samples(axes, cond)?;
@@ -218,7 +248,7 @@ fn simulated_shift(
             let xr = feed_vector::run_axis("x", &x, dt, &full.x, n)?;
             let yr = feed_vector::run_axis("y", &y, dt, &full.y, n)?;
             let r = feed_vector::assemble(cmd.clone(), xr, yr, c_resp.clone(), cond, t_ss);
-            Ok(r.summary.mean_angle_diff)
+            Ok(r.summary.mean_angle_diff - target)
         };
         match run() {
             Ok(v) => v,

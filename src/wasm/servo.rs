@@ -319,3 +319,54 @@ pub fn trace_columns(
     }
     Ok(out.into())
 }
+
+#[cfg(feature = "full")]
+#[wasm_bindgen(typescript_custom_section)]
+const TS_KFFP_TRACE: &str = r#"
+/** bestKffpFromTrace options: the search of bestKffp, and whether to identify X and Y from the trace first. */
+export interface TraceKffpOptions extends BestKffpOptions { identify?: boolean }
+export interface TraceIdentifiedAxis { axis: 'x' | 'y'; params: AxisParams; /** [mm] */ rmsPosition: number }
+/** The recommendation from a measured constant-feed-speed-vector trace (suzuki §4.7, anchored on the measurement). */
+export interface TraceKffpResult {
+  /** [%] the set the trace was measured with */ measuredWith: KffpSet; /** [%] recommended */ kffp: KffpSet;
+  measured: FeedVectorSummary; modelBefore: FeedVectorSummary; modelAfter: FeedVectorSummary;
+  /** [rad] measured − model mean α − β at the measured set */ mismatch: number;
+  /** [rad] predicted mean α − β after */ predictedMeanAngleDiff: number; /** [mm] predicted shape-error half amplitude after */ predictedHalfAmplitude: number;
+  method: 'analytic' | 'simulated'; identified: TraceIdentifiedAxis[];
+}
+"#;
+
+/// Best K_FFP from a measured constant-feed-speed-vector trace: the trace
+/// is analysed (`analyzeFeedVectorTrace`), then the recommendation is
+/// anchored on it (`condition.kffp` = the set it was measured with).
+#[cfg(feature = "full")]
+#[wasm_bindgen(js_name = bestKffpFromTrace, unchecked_return_type = "TraceKffpResult")]
+pub fn best_kffp_from_trace(
+    #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "TraceMapping")] mapping: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "TraceKffpOptions")] options: JsValue,
+) -> Result<JsValue, JsError> {
+    let m = machine_arg(machine)?;
+    let text: &str = &string_arg(&text, "text")?;
+    let cond: Condition = object(condition, "condition")?;
+    let map: trace_analysis::ColumnMap = if mapping.is_undefined() || mapping.is_null() {
+        trace_analysis::ColumnMap::default()
+    } else {
+        object(mapping, "mapping")?
+    };
+    let opts: best_kffp::TraceOptions = if options.is_undefined() || options.is_null() {
+        best_kffp::TraceOptions::default()
+    } else {
+        object(options, "options")?
+    };
+    let trace = trace_analysis::analyze_trace(text, &cond, &map)
+        .map_err(|e| JsError::new(&e.user_message()))?;
+    to_js(
+        &best_kffp::best_kffp_from_trace(&m, &cond, &trace, &opts).map_err(|e| match e {
+            best_kffp::BestKffpError::FeedVector(f) => JsError::new(&f.user_message()),
+            other => JsError::from(other),
+        })?,
+    )
+}
