@@ -13,7 +13,9 @@ use super::convert::{
 };
 use super::results::JsResult;
 use crate::alignment::{self, examples, AngleSweepConfig, Section, SweepConfig};
-use crate::ballbar::{self, BallbarTrace, Direction, ParseOptions, Run, SyntheticConfig};
+use crate::ballbar::{
+    self, BallbarTrace, Direction, ParseOptions, PlanePoint, Run, SyntheticConfig, TraceCentre,
+};
 
 #[wasm_bindgen(typescript_custom_section)]
 const TS: &str = r#"
@@ -54,8 +56,33 @@ export interface BallbarRun { direction: 'ccw' | 'cw'; /** [rad] unwrapped */ an
 export interface PlanePoint { /** [mm] */ x: number; /** [mm] */ y: number }
 /** The centre an X/Y trace's deviations are about: given (pivot or programmed centre) or the trace's own least-squares centre (given: false), which removes any centre offset. */
 export interface TraceCentre { point: PlanePoint; given: boolean }
-export interface BallbarTrace { /** [mm] */ nominalRadius: number; /** [mm/min] */ feed: number | null; runs: BallbarRun[]; /** null for angle/deviation traces */ centre: TraceCentre | null }
-export interface ParseTraceOptions { /** [mm] */ nominalRadius?: number; /** [mm/min] */ feed?: number; /** [mm] X/Y traces: the centre to take deviations about (pivot or programmed centre); default: the trace's own least-squares centre */ centre?: PlanePoint }
+/** A stretch of samples the trimming left out (source lines inclusive). */
+export interface TrimmedStretch {
+  reason: 'leadIn' | 'leadOut' | 'standstill' | 'transient' | 'overshoot' | 'short';
+  /** [-] */ firstLine: number; /** [-] */ lastLine: number; /** [-] */ samples: number;
+  /** [s, or the sample index when timeBase is 'sampleIndex'] */ startTime: number; /** [s, or the sample index] */ endTime: number;
+  /** [rad] unwrapped */ startAngle: number; /** [rad] unwrapped */ endAngle: number;
+}
+/** What the trimming to the constant-feed part (speed plateau) did. */
+export interface TraceTrimming {
+  /** 'column': the file's time column; 'sampleIndex': no time column, uniform sampling assumed */ timeBase: 'column' | 'sampleIndex';
+  /** false: found and listed only (options.trim false) */ applied: boolean;
+  /** [-] plateau band, relative (0.05 = ±5 % of the median moving speed) */ band: number;
+  /** [rad/s, or rad per sample when timeBase is 'sampleIndex'] median plateau speed */ plateauSpeed: number;
+  /** [-] samples each side of the speed window */ halfWindow: number;
+  trimmed: TrimmedStretch[];
+}
+export interface BallbarTrace {
+  /** [mm] */ nominalRadius: number; /** [mm/min] the plateau's median speed, or as given */ feed: number | null; runs: BallbarRun[];
+  /** null for angle/deviation traces */ centre: TraceCentre | null;
+  /** null for traces not read from a file */ trimming?: TraceTrimming | null;
+  /** about the file: units, time base; each names the column and what to do */ warnings?: string[];
+}
+export interface ParseTraceOptions {
+  /** [mm] */ nominalRadius?: number; /** [mm/min] */ feed?: number;
+  /** [mm] X/Y traces: the centre to take deviations about (pivot or programmed centre); default: the trace's own least-squares centre */ centre?: PlanePoint;
+  /** Trim each run to its constant-feed part (default true); false keeps every sample and only lists the stretches. */ trim?: boolean;
+}
 export interface CircularTestRun {
   direction: 'ccw' | 'cw'; gUm: number; fMaxUm: number; fMinUm: number;
   centreXMm: number; centreYMm: number; radiusMm: number; spanDeg: number; /** [-] samples in the run */ points: number;
@@ -203,6 +230,8 @@ fn trace_to_js(t: &BallbarTrace) -> Result<JsValue, JsError> {
         .val("feed", feed)
         .val("runs", runs.into())
         .val("centre", centre)
+        .val("trimming", to_js(&t.trimming)?)
+        .val("warnings", to_js(&t.warnings)?)
         .build())
 }
 
@@ -236,8 +265,27 @@ fn trace_from_js(v: &JsValue) -> Result<BallbarTrace, JsError> {
         nominal_radius: number(v, "nominalRadius", "trace")?,
         feed: opt_number(v, "feed", "trace")?,
         runs,
-        centre: None,
+        centre: centre_from_js(&get(v, "centre"))?,
+        trimming: None,
+        warnings: Vec::new(),
     })
+}
+
+/// `trace.centre` (null or absent: an angle/deviation trace).
+fn centre_from_js(c: &JsValue) -> Result<Option<TraceCentre>, JsError> {
+    if c.is_null() || c.is_undefined() {
+        return Ok(None);
+    }
+    let point = get(c, "point");
+    Ok(Some(TraceCentre {
+        point: PlanePoint {
+            x: number(&point, "x", "trace.centre.point")?,
+            y: number(&point, "y", "trace.centre.point")?,
+        },
+        given: get(c, "given")
+            .as_bool()
+            .ok_or_else(|| JsError::new("trace.centre.given: expected true or false"))?,
+    }))
 }
 
 /// Reads a CSV/TSV ball-bar trace (angle + deviation, or X/Y); errors name
