@@ -22,7 +22,8 @@ pub mod trace_import;
 pub mod trim;
 
 pub use circle_fit::{fit_circle, Circle, FitError};
-pub use diagnostics::{Cyclic, Diagnostics, Spike};
+pub use cyclic::CyclicTest;
+pub use diagnostics::{Centre, Cyclic, Diagnostics, Spike};
 pub use harmonics::{fit_harmonics, Harmonic, HarmonicsError};
 pub use iso230_4::{
     circular_deviation, circular_test, CircularDeviation, CircularTest, CircularTestError,

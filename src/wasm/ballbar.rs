@@ -88,12 +88,19 @@ export interface CircularTestRun {
   centreXMm: number; centreYMm: number; radiusMm: number; spanDeg: number; /** [-] samples in the run */ points: number;
 }
 export interface BallbarDiagnostics {
-  centreOffsetXUm: number; centreOffsetYUm: number; backlashXUm: number; backlashYUm: number;
+  /** LSC of the full runs about the centre named by `centre`; 0 by construction for 'traceLsc' */ centreOffsetXUm: number; centreOffsetYUm: number;
+  /** 'barPivot': angle/deviation trace (measured set-up offset); 'given': X/Y about a given centre (measured); 'traceLsc': X/Y about its own least-squares centre (0 by construction) */ centre: 'barPivot' | 'given' | 'traceLsc';
+  /** 0 below its resolution */ backlashXUm: number; backlashYUm: number;
   /** Smallest backlash reported (3 standard errors); below it the backlash reads 0. */ backlashXResolutionUm: number; backlashYResolutionUm: number;
-  /** Only spikes above spikeThresholdUm (1.5 × the largest residual away from the quadrant points). */
-  reversalSpikes: { direction: 'ccw' | 'cw'; axis: 'x' | 'y'; angleDeg: number; heightUm: number }[]; spikeThresholdUm: number;
-  servoMismatchMs: number | null; scaleMismatchPpm: number; squarenessUrad: number;
-  cyclic: { pitchMm: number; amplitudeXUm: number; amplitudeYUm: number } | null; /** [-] */ runsUsed: number;
+  /** Only spikes above spikeThresholdUm (the largest of the runs' 1.5 × largest residual away from the quadrant points); each states the threshold it was compared with. */
+  reversalSpikes: { direction: 'ccw' | 'cw'; axis: 'x' | 'y'; angleDeg: number; heightUm: number; thresholdUm: number }[]; spikeThresholdUm: number;
+  /** null without both directions or feed; 0 below its resolution */ servoMismatchMs: number | null; /** 3 standard errors */ servoMismatchResolutionMs: number | null;
+  /** 0 below its resolution */ scaleMismatchPpm: number; /** 3 standard errors */ scaleMismatchResolutionPpm: number;
+  /** 0 below its resolution */ squarenessUrad: number; /** 3 standard errors */ squarenessResolutionUrad: number;
+  /** null unless the F-test of cyclicTest passes */ cyclic: { pitchMm: number; amplitudeXUm: number; amplitudeYUm: number } | null;
+  /** the cyclic error's significance test: F of the best pitch against the critical F (α = 0.1 % over every pitch position compared) */ cyclicTest: { /** [-] */ fRatio: number; /** [-] */ fCritical: number; /** [-] */ pitches: number } | null;
+  /** RMS of the run model's residuals (the fit quality the standard errors rest on) */ residualRmsUm: number;
+  /** [-] */ runsUsed: number;
 }
 /** circularTest without the diagnostics (the same runs and H). */
 export interface CircularDeviationResult { nominalRadiusMm: number; runs: CircularTestRun[]; hUm: number | null }
