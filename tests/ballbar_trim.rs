@@ -136,6 +136,17 @@ fn lead_in_and_standstill_are_trimmed_and_g_centre_feed_read_as_without_them() {
     let (fc, fm) = (clean.feed.unwrap(), messy.feed.unwrap());
     assert!((fc - FEED).abs() <= 0.01 * FEED, "clean feed {fc}");
     assert!((fm - fc).abs() <= 0.01 * fc, "feed {fm} vs {fc}");
+    // The feed is the path's: a nominal radius given in the options (the
+    // page's bar length) does not scale it.
+    let r100 = ParseOptions {
+        nominal_radius: Some(100.0),
+        ..o
+    };
+    let f100 = parse_ballbar_trace(&raw, r100).unwrap().feed.unwrap();
+    assert!(
+        (f100 - FEED).abs() <= 0.01 * FEED,
+        "feed {f100} with R0 100 mm"
+    );
     // The trace says what was left out: the lead-in (from −73°, before the
     // data arc), the 3 s standstill (3000 samples at the end of the file).
     let t = messy.trimming.as_ref().unwrap();

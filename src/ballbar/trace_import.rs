@@ -31,7 +31,8 @@
 //!   run keeps its constant-feed part; an X/Y trace without a given centre
 //!   is then re-read about the least-squares centre of the kept samples;
 //! - feed: from the options, else the median plateau speed × R from the
-//!   time column, else unknown (no time column: the sample index is the
+//!   time column (R: the least-squares radius of an X/Y trace, the nominal
+//!   radius of an angle/deviation one), else unknown (no time column: the sample index is the
 //!   time, and the trace warns);
 //! - unit plausibility (warnings, not errors): a deviation above 1 % of
 //!   the radius, or deviations spanning less than 0.1 µm (a ball bar's
@@ -275,7 +276,7 @@ pub fn parse_ballbar_trace(
                     given: false,
                 };
                 let r0 = opts.nominal_radius.unwrap_or(f.r);
-                polar = polar_about(&t, x.clone(), y.clone(), centre, r0)?;
+                polar = polar_about(&t, x.clone(), y.clone(), centre, r0, f.r)?;
                 angle = unwrap_angles(&polar.angle);
             }
         }
@@ -297,7 +298,7 @@ pub fn parse_ballbar_trace(
     }
     let radius = polar.radius;
     let measured = (time_base == TimeBase::Column && trimming.plateau_speed > 0.0)
-        .then_some(trimming.plateau_speed * radius * 60.0);
+        .then_some(trimming.plateau_speed * polar.path_radius * 60.0);
     let feed = opts.feed.or(measured);
     let mut warnings = unit_warnings(&polar.source, &runs, radius);
     if time_base == TimeBase::SampleIndex {
@@ -389,6 +390,9 @@ struct Polar {
     angle: Vec<f64>,
     deviation: Vec<f64>,
     radius: f64,
+    /// The radius the tool path runs on (X/Y: the LSC radius, whatever
+    /// nominal radius the options give), for the feed, mm.
+    path_radius: f64,
     xy: Option<(Vec<f64>, Vec<f64>)>,
     centre: Option<TraceCentre>,
     source: String,
@@ -463,6 +467,7 @@ fn angle_and_deviation(t: &Table, opts: ParseOptions) -> Result<Polar, BallbarTr
                 angle: t.column_at(a + 1, sa)?,
                 deviation: t.column_at(d + 1, sd)?,
                 radius: opts.nominal_radius.unwrap_or(100.0),
+                path_radius: opts.nominal_radius.unwrap_or(100.0),
                 xy: None,
                 centre: None,
                 source: format!("column {} ('{}')", d + 1, t.names[d]),
@@ -501,7 +506,7 @@ fn polar_from_xy(
         point: opts.centre.unwrap_or(PlanePoint { x: c.cx, y: c.cy }),
         given: opts.centre.is_some(),
     };
-    polar_about(t, x, y, centre, r0)
+    polar_about(t, x, y, centre, r0, c.r)
 }
 
 /// The polar form of X/Y positions about `centre`, nominal radius `r0`.
@@ -511,6 +516,7 @@ fn polar_about(
     y: Vec<f64>,
     centre: TraceCentre,
     r0: f64,
+    path_radius: f64,
 ) -> Result<Polar, BallbarTraceError> {
     let mut a = Vec::with_capacity(x.len());
     let mut d = Vec::with_capacity(x.len());
@@ -526,6 +532,7 @@ fn polar_about(
         angle: a,
         deviation: d,
         radius: r0,
+        path_radius,
         xy: Some((x, y)),
         centre: Some(centre),
         source: "the X/Y columns".into(),
