@@ -54,6 +54,7 @@ fn direction_column_and_units_in_mm() {
             nominal_radius: Some(150.0),
             feed: Some(500.0),
             centre: None,
+            ..ParseOptions::default()
         },
     )
     .unwrap();

@@ -14,10 +14,15 @@
 //!        + Σₙ₌₃⁸ (aₙ cos nθ + bₙ sin nθ),
 //! s = +1 CCW, −1 CW (the dead-band backlash signature: a step of βx at the
 //! X reversals θ = 0°, 180° and of βy at 90°, 270°; orders 3–8 take up
-//! smooth motion errors so that they are not read as spikes). Then,
+//! smooth motion errors so that they are not read as spikes).
+//! Then,
 //! averaging over
 //! runs and with R₀ the nominal radius and v the feed:
-//! - centre offset = (c₁, s₁);
+//! - centre offset: the least-squares circle (LSC) of all full runs
+//!   together, relative to the centre the deviations are about ([`Centre`]:
+//!   the bar's pivot, a given centre, or the X/Y trace's own LSC, in which
+//!   case it is 0 by construction and says so); the same centre as the
+//!   ISO 230-4 H (the per-run c₁, s₁ are nuisance terms of the run model);
 //! - backlash βx, βy;
 //! - scale mismatch sx − sy = 2c₂/R₀ (X longer: positive);
 //! - squareness α = (s₂,CCW + s₂,CW)/R₀ (positive: the axes enclose less
@@ -34,10 +39,16 @@
 //!   at least 1 nm, the model's resolution). On noise alone the peak in a
 //!   15° window cannot exceed the peak over the other 300°, so none is
 //!   reported; a spike must stand 50 % above it;
-//! - a backlash is reported only above 3 standard errors of its
-//!   least-squares coefficient (σ of the kept residuals, diagonal of
-//!   (AᵀA)⁻¹, averaged over runs); below it reads 0 and the report gives
-//!   the resolution;
+//! - significance: backlash, scale mismatch, squareness and servo mismatch
+//!   are reported only above 3 standard errors of their least-squares
+//!   estimate (σ² of the kept residuals × the diagonal of (AᵀA)⁻¹, per run,
+//!   then of the mean over runs); below it they read 0 and the report
+//!   gives the 3-SE resolution it was compared with. σ² is inflated by
+//!   (1 + ρ)/(1 − ρ), ρ the lag-1 autocorrelation of the residuals (AR(1)
+//!   reading: a capture at 1 kHz has smooth, correlated residuals, whose
+//!   plain σ²/n understates the error by that factor; at most n);
+//! - every reversal spike is compared with one threshold, the largest of
+//!   the runs' thresholds, which the report states (with each spike);
 //! - cyclic error ([`super::cyclic`]): on the residuals of all runs, the
 //!   pitch p (1 mm … R₀/4, a grid uniform in 2π/p fine enough to resolve
 //!   the peak, then refined) whose model
@@ -46,7 +57,10 @@
 //!   are refitted jointly with the
 //!   run model (whose orders 3–8 would otherwise absorb part of the cyclic
 //!   signature) and averaged over runs; amplitudes √(a² + b²) for X,
-//!   √(c² + d²) for Y.
+//!   √(c² + d²) for Y; reported only when the best pitch passes the
+//!   F-test of [`super::cyclic::CyclicTest`]; a reported cyclic error is
+//!   subtracted before the run model is fitted again for the other
+//!   estimates, spikes and standard errors.
 //!
 //! Units: trace in rad and mm; the report in µm, ms, ppm (µm/m), µrad and mm
 //! as named.
@@ -54,7 +68,7 @@
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
-use super::cyclic::{cyclic_amplitudes, cyclic_pitch};
+use super::cyclic::{cyclic_amplitudes, cyclic_pitch, signature, CyclicTest};
 use super::trace_import::{BallbarTrace, Direction, Run};
 
 /// A reversal spike after a quadrant point.
@@ -69,6 +83,22 @@ pub struct Spike {
     pub angle_deg: f64,
     /// Signed spike height (outward positive), µm.
     pub height_um: f64,
+    /// The threshold its magnitude was compared with, µm.
+    pub threshold_um: f64,
+}
+
+/// The centre the deviations (and so the centre offset) are about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum Centre {
+    /// An angle/deviation trace: the ball bar's pivot; the offset is
+    /// measured (the set-up error).
+    BarPivot,
+    /// An X/Y trace about a given centre (pivot or programmed): measured.
+    Given,
+    /// An X/Y trace about its own least-squares centre: the offset is 0 by
+    /// construction, not a measurement.
+    TraceLsc,
 }
 
 /// Cyclic (pitch) error.
@@ -87,10 +117,12 @@ pub struct Cyclic {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
 pub struct Diagnostics {
-    /// Centre offset X, µm.
+    /// Centre offset X (LSC of the full runs about [`Diagnostics::centre`]), µm.
     pub centre_offset_x_um: f64,
     /// Centre offset Y, µm.
     pub centre_offset_y_um: f64,
+    /// What the centre offset is relative to.
+    pub centre: Centre,
     /// Backlash X, µm.
     pub backlash_x_um: f64,
     /// Backlash Y, µm.
@@ -105,14 +137,26 @@ pub struct Diagnostics {
     pub reversal_spikes: Vec<Spike>,
     /// Noise threshold of the reversal spikes (largest over the runs), µm.
     pub spike_threshold_um: f64,
-    /// Servo mismatch, ms (None without both directions or feed).
+    /// Servo mismatch, ms (None without both directions or feed; 0 below
+    /// its resolution).
     pub servo_mismatch_ms: Option<f64>,
-    /// Scale mismatch sx − sy, ppm.
+    /// Smallest servo mismatch reported (3 standard errors), ms.
+    pub servo_mismatch_resolution_ms: Option<f64>,
+    /// Scale mismatch sx − sy, ppm (0 below its resolution).
     pub scale_mismatch_ppm: f64,
-    /// Squareness, µrad (= µm/m).
+    /// Smallest scale mismatch reported (3 standard errors), ppm.
+    pub scale_mismatch_resolution_ppm: f64,
+    /// Squareness, µrad (= µm/m; 0 below its resolution).
     pub squareness_urad: f64,
-    /// Cyclic error.
+    /// Smallest squareness reported (3 standard errors), µrad.
+    pub squareness_resolution_urad: f64,
+    /// Cyclic error (None unless its F-test passes).
     pub cyclic: Option<Cyclic>,
+    /// The cyclic error's significance test (None when not searched).
+    pub cyclic_test: Option<CyclicTest>,
+    /// RMS of the run model's residuals (fitted points, over the runs), µm:
+    /// the fit quality every standard error above rests on.
+    pub residual_rms_um: f64,
     /// Runs used (full revolutions).
     pub runs_used: usize,
 }
@@ -215,61 +259,153 @@ pub(super) fn basis(t: f64, s: f64) -> [f64; COLS] {
 pub fn diagnose(trace: &BallbarTrace) -> Option<Diagnostics> {
     let r0 = trace.nominal_radius;
     let full = full_runs(trace);
-    let mut fits = Vec::new();
     let mut resid: Vec<(f64, f64)> = Vec::new();
-    let mut spikes = Vec::new();
-    let mut spike_threshold = 0.0f64;
-    let mut se2 = [0.0f64; 2];
     for run in &full {
-        let (coef, inv, res, var) = fit_run(run)?;
-        se2[0] += var * inv[5];
-        se2[1] += var * inv[6];
-        let (found, threshold) = find_spikes(run, &res);
-        spikes.extend(found);
-        spike_threshold = spike_threshold.max(threshold);
-        resid.extend(run.angle.iter().copied().zip(res.iter().copied()));
-        fits.push((run.direction, coef));
+        let (_, _, res, _) = fit_run(run)?;
+        resid.extend(run.angle.iter().copied().zip(res));
     }
-    if fits.is_empty() {
-        return None;
-    }
-    let n = fits.len() as f64;
-    let mean = |k: usize| fits.iter().map(|(_, c)| c[k]).sum::<f64>() / n;
-    let s2 = |d: Direction| {
-        let v: Vec<f64> = fits
+    let searched = cyclic_pitch(&resid, r0, COLS * full.len());
+    let cyclic = searched
+        .filter(|(_, t)| t.significant())
+        .and_then(|(p, _)| cyclic_amplitudes(&full, p, r0));
+    // A significant cyclic error is taken out before the other estimates,
+    // so that it is neither read as their noise nor as a spike.
+    let corrected: Vec<Run> = match cyclic {
+        Some((c, coef)) => full
             .iter()
-            .filter(|(e, _)| *e == d)
-            .map(|(_, c)| c[4])
-            .collect();
-        (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+            .map(|r| Run {
+                deviation: r
+                    .angle
+                    .iter()
+                    .zip(&r.deviation)
+                    .map(|(&t, &d)| d - signature(t, c.pitch_mm, &coef, r0))
+                    .collect(),
+                ..(*r).clone()
+            })
+            .collect(),
+        None => full.iter().map(|r| (*r).clone()).collect(),
     };
+    let mut fits: Vec<RunStat> = Vec::new();
+    let mut peaks = Vec::new();
+    let mut spike_threshold = 0.0f64;
+    let mut rms = 0.0;
+    for run in &corrected {
+        let (coef, inv, res, var) = fit_run(run)?;
+        let (found, threshold) = find_spikes(run, &res);
+        peaks.extend(found);
+        spike_threshold = spike_threshold.max(threshold);
+        rms += fit_points_rms(run, &res);
+        fits.push((run.direction, coef, inv * var));
+    }
+    let (all_mean, all_se) = stat(&fits, None)?;
+    let n = fits.len() as f64;
+    // One threshold for every spike: the largest of the runs'.
+    let spikes: Vec<Spike> = peaks
+        .into_iter()
+        .filter(|s| s.height_um.abs() > spike_threshold * 1e3)
+        .map(|s| Spike {
+            threshold_um: spike_threshold * 1e3,
+            ..s
+        })
+        .collect();
+    let s2 = |d| stat(&fits, Some(d)).map(|(m, e)| (m[4], e[4]));
     let (ccw, cw) = (s2(Direction::Ccw), s2(Direction::Cw));
-    let squareness = match (ccw, cw) {
-        (Some(a), Some(b)) => (a + b) / r0,
-        _ => 2.0 * mean(4) / r0,
+    let (squareness, squareness_se) = match (ccw, cw) {
+        (Some(a), Some(b)) => ((a.0 + b.0) / r0, a.1.hypot(b.1) / r0),
+        _ => (2.0 * all_mean[4] / r0, 2.0 * all_se[4] / r0),
     };
     let servo = match (ccw, cw, trace.feed) {
-        (Some(a), Some(b), Some(f)) if f > 0.0 => Some((a - b) / (f / 60.0) * 1e3),
+        (Some(a), Some(b), Some(f)) if f > 0.0 => {
+            let v = f / 60.0;
+            Some(((a.0 - b.0) / v * 1e3, a.1.hypot(b.1) / v * 1e3))
+        }
         _ => None,
     };
-    // Standard error of the mean over runs; 3 of them is the resolution.
-    let resolution = se2.map(|v| 3.0 * v.sqrt() / n * 1e3);
+    let k = SIGNIFICANCE;
     let significant = |v: f64, r: f64| if v.abs() > r { v } else { 0.0 };
+    let resolution = [k * all_se[5] * 1e3, k * all_se[6] * 1e3];
+    let scale_res = k * 2.0 * all_se[3] / r0 * 1e6;
+    let square_res = k * squareness_se * 1e6;
+    let (offset_x, offset_y) = common_centre(&full).unwrap_or((all_mean[1], all_mean[2]));
+    let centre = match trace.centre {
+        None => Centre::BarPivot,
+        Some(c) if c.given => Centre::Given,
+        Some(_) => Centre::TraceLsc,
+    };
     Some(Diagnostics {
-        centre_offset_x_um: mean(1) * 1e3,
-        centre_offset_y_um: mean(2) * 1e3,
-        backlash_x_um: significant(mean(5) * 1e3, resolution[0]),
-        backlash_y_um: significant(mean(6) * 1e3, resolution[1]),
+        centre_offset_x_um: offset_x * 1e3,
+        centre_offset_y_um: offset_y * 1e3,
+        centre,
+        backlash_x_um: significant(all_mean[5] * 1e3, resolution[0]),
+        backlash_y_um: significant(all_mean[6] * 1e3, resolution[1]),
         backlash_x_resolution_um: resolution[0],
         backlash_y_resolution_um: resolution[1],
         reversal_spikes: spikes,
         spike_threshold_um: spike_threshold * 1e3,
-        servo_mismatch_ms: servo,
-        scale_mismatch_ppm: 2.0 * mean(3) / r0 * 1e6,
-        squareness_urad: squareness * 1e6,
-        cyclic: cyclic_pitch(&resid, r0).and_then(|p| cyclic_amplitudes(&full, p, r0)),
+        servo_mismatch_ms: servo.map(|(v, se)| significant(v, k * se)),
+        servo_mismatch_resolution_ms: servo.map(|(_, se)| k * se),
+        scale_mismatch_ppm: significant(2.0 * all_mean[3] / r0 * 1e6, scale_res),
+        scale_mismatch_resolution_ppm: scale_res,
+        squareness_urad: significant(squareness * 1e6, square_res),
+        squareness_resolution_urad: square_res,
+        cyclic: cyclic.map(|(c, _)| c),
+        cyclic_test: searched.map(|(_, t)| t),
+        residual_rms_um: rms / n * 1e3,
         runs_used: fits.len(),
     })
+}
+
+/// Standard errors a diagnostic must exceed to be reported (3).
+pub const SIGNIFICANCE: f64 = 3.0;
+
+/// A run's direction, coefficients and their variances (mm²).
+type RunStat = (Direction, DVector<f64>, DVector<f64>);
+
+/// The mean coefficients over the runs of direction `d` (all: None) and
+/// their standard errors (of the mean); None when there are none.
+fn stat(fits: &[RunStat], d: Option<Direction>) -> Option<(DVector<f64>, DVector<f64>)> {
+    let sel: Vec<&RunStat> = fits.iter().filter(|f| d.is_none_or(|d| f.0 == d)).collect();
+    let first = sel.first()?;
+    let n = sel.len() as f64;
+    let mut mean = DVector::<f64>::zeros(first.1.len());
+    let mut var = DVector::<f64>::zeros(first.1.len());
+    for (_, c, v) in &sel {
+        mean += c;
+        var += v;
+    }
+    Some((mean / n, var.map(f64::sqrt) / n))
+}
+
+/// The LSC centre of all full runs together, mm, relative to the centre
+/// the deviations are about: the linearised LSC, Δ ≈ r + cx cos θ + cy sin θ
+/// fitted to the deviations (second order Δ²/R₀ left out: 1e-8 µm for µm
+/// deviations on a 100 mm bar), which keeps the digits a fit on the
+/// R₀-sized coordinates would cancel.
+fn common_centre(full: &[&Run]) -> Option<(f64, f64)> {
+    let rows = full.iter().flat_map(|r| {
+        r.angle.iter().zip(&r.deviation).map(|(&t, &d)| {
+            let (sn, cs) = t.sin_cos();
+            ([1.0, cs, sn], d)
+        })
+    });
+    let (c, _) = lsq_full(rows, 3)?;
+    Some((c[1], c[2]))
+}
+
+/// RMS of a run's residuals over its fitted points, mm.
+fn fit_points_rms(run: &Run, res: &[f64]) -> f64 {
+    let s = run.direction.sign();
+    let (sum, count) = run
+        .angle
+        .iter()
+        .zip(res)
+        .filter(|(t, _)| !after_quadrant(**t, s, FIT_SKIP))
+        .fold((0.0, 0usize), |(a, c), (_, r)| (a + r * r, c + 1));
+    if count == 0 {
+        0.0
+    } else {
+        (sum / count as f64).sqrt()
+    }
 }
 
 /// The runs that cover a full revolution (≥ 355°).
@@ -313,10 +449,28 @@ pub(super) fn fit_run(run: &Run) -> Option<RunFit> {
         .zip(&run.deviation)
         .map(|(b, d)| d - b.iter().zip(coef.iter()).map(|(b, c)| b * c).sum::<f64>())
         .collect();
-    // Residual variance of the fitted points → backlash standard errors.
+    // Residual variance of the fitted points → standard errors, inflated
+    // for correlated residuals (module header).
     let dof = keep.len().saturating_sub(COLS).max(1) as f64;
     let var = keep.iter().map(|&i| res[i] * res[i]).sum::<f64>() / dof;
-    Some((coef, inv, res, var))
+    let kept: Vec<f64> = keep.iter().map(|&i| res[i]).collect();
+    Some((coef, inv, res, var * ar1_inflation(&kept)))
+}
+
+/// The variance inflation (1 + ρ)/(1 − ρ) of correlated residuals, ρ their
+/// lag-1 autocorrelation (0 when negative), at most the number of samples.
+pub(super) fn ar1_inflation(res: &[f64]) -> f64 {
+    let n = res.len();
+    let ss: f64 = res.iter().map(|r| r * r).sum();
+    if n < 3 || ss <= 0.0 {
+        return 1.0;
+    }
+    let lag: f64 = res.windows(2).map(|w| w[0] * w[1]).sum();
+    let rho = (lag / ss).clamp(0.0, 1.0);
+    if rho >= 1.0 {
+        return n as f64;
+    }
+    ((1.0 + rho) / (1.0 - rho)).min(n as f64)
 }
 
 /// The part after each quadrant point, in the direction of travel, that the
@@ -339,7 +493,8 @@ pub(super) fn after_quadrant(t: f64, s: f64, w: f64) -> bool {
     (s * t).rem_euclid(std::f64::consts::FRAC_PI_2) < w
 }
 
-/// The reversal spikes of one run above its noise threshold, and that
+/// The reversal spikes of one run above its own noise threshold (the
+/// caller compares them with one threshold for all runs), and that
 /// threshold (mm). One pass over the points: each point belongs to at most
 /// one window, the 15° after quadrant point k·90° in the direction of
 /// travel.
@@ -399,6 +554,7 @@ fn find_spikes(run: &Run, res: &[f64]) -> (Vec<Spike>, f64) {
             axis,
             angle_deg: deg.round(),
             height_um: p * 1e3,
+            threshold_um: threshold * 1e3,
         });
     }
     (out, threshold)
@@ -421,6 +577,7 @@ mod tests {
         let d = diagnose(&t).unwrap();
         assert!(d.reversal_spikes.is_empty(), "{:?}", d.reversal_spikes);
         assert_eq!((d.backlash_x_um, d.backlash_y_um), (0.0, 0.0), "{d:?}");
+        assert!(d.cyclic.is_none(), "{d:?}");
         // σ of uniform ±2 µm is 1.15 µm; the backlash column's standard
         // error over ~3000 points is a few hundredths of that.
         assert!(
@@ -432,6 +589,19 @@ mod tests {
             d.spike_threshold_um > 2.5 && d.spike_threshold_um < 3.5,
             "{d:?}"
         );
+    }
+
+    #[test]
+    fn correlated_residuals_widen_the_standard_errors() {
+        assert_eq!(ar1_inflation(&[1.0, -1.0, 1.0, -1.0]), 1.0);
+        assert_eq!(ar1_inflation(&[0.0; 5]), 1.0);
+        assert_eq!(ar1_inflation(&[1.0, 1.0]), 1.0);
+        // ρ = 3/4 for four equal values: (1 + ρ)/(1 − ρ) = 7, capped at n = 4.
+        assert_eq!(ar1_inflation(&[1.0; 4]), 4.0);
+        // A slow sine: ρ = cos(0.1) nearly; inflation about 400 (≤ n).
+        let s: Vec<f64> = (0..2000).map(|i| (i as f64 * 0.1).sin()).collect();
+        let f = ar1_inflation(&s);
+        assert!(f > 300.0 && f < 500.0, "{f}");
     }
 
     #[test]

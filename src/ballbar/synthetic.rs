@@ -202,6 +202,8 @@ pub fn synthetic_trace(c: &SyntheticConfig) -> Result<BallbarTrace, SyntheticErr
         feed: Some(c.feed),
         runs,
         centre: None,
+        trimming: None,
+        warnings: Vec::new(),
     })
 }
 

@@ -27,8 +27,16 @@
 //! - runs: without a direction column, the trace is split where the angle
 //!   turns back by more than 1° from its running extreme (so noise at a
 //!   standstill does not split it); angles are unwrapped across ±180°;
-//! - feed: from the options, else from the time column (|Δθ|·R/Δt of each
-//!   run, median), else unknown.
+//! - trimming ([`super::trim`], on unless the options turn it off): each
+//!   run keeps its constant-feed part; an X/Y trace without a given centre
+//!   is then re-read about the least-squares centre of the kept samples;
+//! - feed: from the options, else the median plateau speed × R from the
+//!   time column (R: the least-squares radius of an X/Y trace, the nominal
+//!   radius of an angle/deviation one), else unknown (no time column: the sample index is the
+//!   time, and the trace warns);
+//! - unit plausibility (warnings, not errors): a deviation above 1 % of
+//!   the radius, or deviations spanning less than 0.1 µm (a ball bar's
+//!   resolution), ask whether the column is in mm or µm.
 //!
 //! Units: the returned trace is in core units: angle rad, deviation and
 //! radius mm, feed mm/min.
@@ -36,6 +44,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::fit_circle;
+use super::trim::{trim, Segment, TimeBase, Trimming};
 use crate::trace::{Table, TraceError};
 
 /// Errors of ball-bar trace import.
@@ -77,6 +86,16 @@ pub enum BallbarTraceError {
         line: usize,
         /// Minimum points per run.
         min: usize,
+    },
+    /// The time column does not increase.
+    #[error("line {line}, column {column} ('{name}'): the time must increase from one row to the next; sort the rows by time or remove the repeated ones")]
+    TimeNotIncreasing {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// Its header.
+        name: String,
     },
     /// A bad option value.
     #[error("{field}: {message}")]
@@ -157,11 +176,19 @@ pub struct BallbarTrace {
     /// angle/deviation trace (a ball bar measures about its own pivot).
     #[serde(default)]
     pub centre: Option<TraceCentre>,
+    /// What was trimmed ([`super::trim`]); None for traces not read from
+    /// a file.
+    #[serde(default)]
+    pub trimming: Option<Trimming>,
+    /// Warnings about the file (units, time base), each naming the column
+    /// and what to do.
+    #[serde(default)]
+    pub warnings: Vec<String>,
 }
 
 /// Options of [`parse_ballbar_trace`].
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "camelCase")]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
 pub struct ParseOptions {
     /// Nominal radius, mm.
     pub nominal_radius: Option<f64>,
@@ -170,6 +197,20 @@ pub struct ParseOptions {
     /// For X/Y traces: the centre to take the deviations about (the pivot
     /// or the programmed circle centre), mm in the trace's coordinates.
     pub centre: Option<PlanePoint>,
+    /// Trim each run to its constant-feed part ([`super::trim`]); false
+    /// keeps every sample (the stretches are still listed).
+    pub trim: bool,
+}
+
+impl Default for ParseOptions {
+    fn default() -> Self {
+        Self {
+            nominal_radius: None,
+            feed: None,
+            centre: None,
+            trim: true,
+        }
+    }
 }
 
 /// Minimum samples per run.
@@ -213,20 +254,40 @@ pub fn parse_ballbar_trace(
         TraceError::NoHeader { line } => BallbarTraceError::NoHeader { line },
         e => e.into(),
     })?;
-    let (raw_angle, deviation, radius, centre) = angle_and_deviation(&t, opts)?;
-    let angle = unwrap_angles(&raw_angle);
-    let bounds = match t.find(&["direction", "dir"]) {
+    let (time, time_base) = time_of(&t)?;
+    let mut polar = angle_and_deviation(&t, opts)?;
+    let mut angle = unwrap_angles(&polar.angle);
+    let segments = match t.find(&["direction", "dir"]) {
         Some(k) => runs_from_direction_column(&t, k)?,
         None => runs_from_turning_points(&angle),
     };
-    let runs: Vec<Run> = bounds
+    let (kept, trimming) = trim(&angle, &time, &t.lines, &segments, time_base, opts.trim);
+    // An X/Y trace about its own LSC: the centre of the kept samples only,
+    // so that a standstill's or a lead-in's weight does not move it.
+    if let (Some((x, y)), Some(c)) = (&polar.xy, polar.centre) {
+        if !c.given && trimming.applied {
+            let mut idx: Vec<usize> = kept.iter().flat_map(|(_, k)| k.iter().copied()).collect();
+            idx.sort_unstable();
+            idx.dedup();
+            let (kx, ky): (Vec<f64>, Vec<f64>) = idx.iter().map(|&i| (x[i], y[i])).unzip();
+            if let Ok(f) = fit_circle(&kx, &ky) {
+                let centre = TraceCentre {
+                    point: PlanePoint { x: f.cx, y: f.cy },
+                    given: false,
+                };
+                let r0 = opts.nominal_radius.unwrap_or(f.r);
+                polar = polar_about(&t, x.clone(), y.clone(), centre, r0, f.r)?;
+                angle = unwrap_angles(&polar.angle);
+            }
+        }
+    }
+    let runs: Vec<Run> = kept
         .into_iter()
-        .filter(|(a, b, _)| b - a >= MIN_RUN)
-        .map(|(a, b, direction)| Run {
+        .map(|(direction, idx)| Run {
             direction,
-            angle: angle[a..b].to_vec(),
-            deviation: deviation[a..b].to_vec(),
-            lines: t.lines[a..b].to_vec(),
+            angle: idx.iter().map(|&i| angle[i]).collect(),
+            deviation: idx.iter().map(|&i| polar.deviation[i]).collect(),
+            lines: idx.iter().map(|&i| t.lines[i]).collect(),
         })
         .collect();
     if runs.is_empty() {
@@ -235,13 +296,58 @@ pub fn parse_ballbar_trace(
             min: MIN_RUN,
         });
     }
-    let feed = opts.feed.or_else(|| feed_from_time(&t, &runs, radius));
+    let radius = polar.radius;
+    let measured = (time_base == TimeBase::Column && trimming.plateau_speed > 0.0)
+        .then_some(trimming.plateau_speed * polar.path_radius * 60.0);
+    let feed = opts.feed.or(measured);
+    let mut warnings = unit_warnings(&polar.source, &runs, radius);
+    if time_base == TimeBase::SampleIndex {
+        warnings.push(format!(
+            "no time column: the sample index is used as time (uniform sampling assumed) to find the constant-feed part{}; add a 'time' column (s, or 'time_ms') to measure the feed",
+            if opts.feed.is_some() { "" } else { ", and the feed is unknown" }
+        ));
+    }
     Ok(BallbarTrace {
         nominal_radius: radius,
         feed,
         runs,
-        centre,
+        centre: polar.centre,
+        trimming: Some(trimming),
+        warnings,
     })
+}
+
+/// Largest deviation read as plausible, relative to the radius (1 %: a
+/// ball bar's travel is ±1 mm on a 100 mm bar).
+pub const MAX_PLAUSIBLE_DEVIATION: f64 = 0.01;
+/// Smallest peak-to-peak deviation read as plausible, mm (0.1 µm, a ball
+/// bar's resolution: Renishaw QC20 0.1 µm).
+pub const MIN_PLAUSIBLE_SPAN: f64 = 1e-4;
+
+/// Unit warnings (module header): a deviation over 1 % of the radius, or
+/// a trace whose deviations span less than a ball bar resolves.
+fn unit_warnings(source: &str, runs: &[Run], radius: f64) -> Vec<String> {
+    let all = || runs.iter().flat_map(|r| r.deviation.iter().copied());
+    let big = all().fold(0.0f64, |m, d| m.max(d.abs()));
+    let (lo, hi) = all().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), d| {
+        (a.min(d), b.max(d))
+    });
+    let compact = crate::numeric::compact;
+    let mut w = Vec::new();
+    if big > MAX_PLAUSIBLE_DEVIATION * radius {
+        w.push(format!(
+            "{source}: the deviation reaches {} mm, more than 1 % of the radius {} mm: are these mm or µm? A deviation column without a unit is read as µm, one named e.g. 'deviation_mm' as mm; X/Y columns are mm unless named e.g. 'x_um'",
+            compact(big),
+            compact(radius)
+        ));
+    }
+    if hi - lo < MIN_PLAUSIBLE_SPAN {
+        w.push(format!(
+            "{source}: the deviations span only {} µm, less than a ball bar resolves (0.1 µm): are these mm or µm? A deviation column without a unit is read as µm; name it e.g. 'deviation_mm' if its values are mm",
+            compact((hi - lo) * 1e3)
+        ));
+    }
+    w
 }
 
 /// The options' radius (a bar length from 0.001 to 1e6 mm) and feed, when
@@ -278,11 +384,47 @@ fn check_options(opts: ParseOptions) -> Result<(), BallbarTraceError> {
 }
 
 /// Angles (rad, wrapped as read), radial deviations (mm), the nominal
-/// radius (mm) and, for X/Y traces, the centre used.
-type Polar = (Vec<f64>, Vec<f64>, f64, Option<TraceCentre>);
+/// radius (mm), for X/Y traces the positions (mm) and the centre used, and
+/// the columns read (for messages).
+struct Polar {
+    angle: Vec<f64>,
+    deviation: Vec<f64>,
+    radius: f64,
+    /// The radius the tool path runs on (X/Y: the LSC radius, whatever
+    /// nominal radius the options give), for the feed, mm.
+    path_radius: f64,
+    xy: Option<(Vec<f64>, Vec<f64>)>,
+    centre: Option<TraceCentre>,
+    source: String,
+}
 
-/// The raw angle (rad, wrapped as read), the radial deviation (mm) and the
-/// nominal radius (mm), from angle/deviation columns or from X/Y columns.
+/// The time of each sample (s) from a time column (`time`/`t`, s, or ms
+/// if the name says ms), strictly increasing; else the sample index.
+fn time_of(t: &Table) -> Result<(Vec<f64>, TimeBase), BallbarTraceError> {
+    let Some(k) = t.find(&["time", "t", "time_s", "time_ms"]) else {
+        return Ok((
+            (0..t.rows()).map(|i| i as f64).collect(),
+            TimeBase::SampleIndex,
+        ));
+    };
+    let scale = if header_says(t, k, &["ms"]) {
+        1e-3
+    } else {
+        1.0
+    };
+    let time = t.column_at(k + 1, scale)?;
+    if let Some(i) = (1..time.len()).find(|&i| time[i] <= time[i - 1]) {
+        return Err(BallbarTraceError::TimeNotIncreasing {
+            line: t.lines[i],
+            column: k + 1,
+            name: t.names[k].clone(),
+        });
+    }
+    Ok((time, TimeBase::Column))
+}
+
+/// The angle, radial deviation and nominal radius from angle/deviation
+/// columns, or from X/Y columns.
 fn angle_and_deviation(t: &Table, opts: ParseOptions) -> Result<Polar, BallbarTraceError> {
     let ang = t.find(&[
         "angle",
@@ -321,12 +463,15 @@ fn angle_and_deviation(t: &Table, opts: ParseOptions) -> Result<Polar, BallbarTr
             } else {
                 1e-3
             };
-            Ok((
-                t.column_at(a + 1, sa)?,
-                t.column_at(d + 1, sd)?,
-                opts.nominal_radius.unwrap_or(100.0),
-                None,
-            ))
+            Ok(Polar {
+                angle: t.column_at(a + 1, sa)?,
+                deviation: t.column_at(d + 1, sd)?,
+                radius: opts.nominal_radius.unwrap_or(100.0),
+                path_radius: opts.nominal_radius.unwrap_or(100.0),
+                xy: None,
+                centre: None,
+                source: format!("column {} ('{}')", d + 1, t.names[d]),
+            })
         }
         (_, _, Some(xi), Some(yi)) => polar_from_xy(t, xi, yi, opts),
         _ => Err(BallbarTraceError::NoColumns(t.names.join(", "))),
@@ -361,17 +506,37 @@ fn polar_from_xy(
         point: opts.centre.unwrap_or(PlanePoint { x: c.cx, y: c.cy }),
         given: opts.centre.is_some(),
     };
+    polar_about(t, x, y, centre, r0, c.r)
+}
+
+/// The polar form of X/Y positions about `centre`, nominal radius `r0`.
+fn polar_about(
+    t: &Table,
+    x: Vec<f64>,
+    y: Vec<f64>,
+    centre: TraceCentre,
+    r0: f64,
+    path_radius: f64,
+) -> Result<Polar, BallbarTraceError> {
     let mut a = Vec::with_capacity(x.len());
     let mut d = Vec::with_capacity(x.len());
     for (i, (px, py)) in x.iter().zip(&y).enumerate() {
         let (u, v) = (px - centre.point.x, py - centre.point.y);
-        if u.hypot(v) <= 1e-12 * c.r {
+        if u.hypot(v) <= 1e-12 * r0 {
             return Err(BallbarTraceError::AtCentre(t.lines[i]));
         }
         a.push(v.atan2(u));
         d.push(u.hypot(v) - r0);
     }
-    Ok((a, d, r0, Some(centre)))
+    Ok(Polar {
+        angle: a,
+        deviation: d,
+        radius: r0,
+        path_radius,
+        xy: Some((x, y)),
+        centre: Some(centre),
+        source: "the X/Y columns".into(),
+    })
 }
 
 /// The angle unwrapped across ±180°: each step is taken as the shorter way round.
@@ -396,7 +561,7 @@ fn unwrap_angles(raw_angle: &[f64]) -> Vec<f64> {
 }
 
 /// A run: first sample, end (exclusive) and direction.
-type RunBounds = (usize, usize, Direction);
+type RunBounds = Segment;
 
 /// Runs where the direction column (+1 CCW, −1 CW) keeps its value.
 fn runs_from_direction_column(t: &Table, k: usize) -> Result<Vec<RunBounds>, BallbarTraceError> {
@@ -462,29 +627,6 @@ fn runs_from_turning_points(angle: &[f64]) -> Vec<RunBounds> {
         bounds.push((start, angle.len(), d));
     }
     bounds
-}
-
-/// The feed (mm/min) from a time column: |Δθ|·R/Δt of each run, the median.
-fn feed_from_time(t: &Table, runs: &[Run], radius: f64) -> Option<f64> {
-    let k = t.find(&["time", "t", "time_s", "time_ms"])?;
-    let scale = if header_says(t, k, &["ms"]) {
-        1e-3
-    } else {
-        1.0
-    };
-    let time = &t.columns[k];
-    let row = |run: &Run, j: usize| t.lines.iter().position(|&l| l == run.lines[j]);
-    let mut feeds: Vec<f64> = runs
-        .iter()
-        .filter_map(|r| {
-            let (i0, i1) = (row(r, 0)?, row(r, r.lines.len() - 1)?);
-            let dt = (time[i1] - time[i0]) * scale;
-            let da = (r.angle[r.angle.len() - 1] - r.angle[0]).abs();
-            (dt > 0.0).then(|| da * radius / dt * 60.0)
-        })
-        .collect();
-    feeds.sort_by(f64::total_cmp);
-    feeds.get(feeds.len() / 2).copied()
 }
 
 #[cfg(test)]

@@ -246,6 +246,12 @@ mod by_hand {
                 nominal_radius: opt_num(&o, "nominalRadius", what)?,
                 feed: opt_num(&o, "feed", what)?,
                 centre,
+                trim: match get(&o, "trim") {
+                    None => true,
+                    Some(v) => v.as_bool().ok_or_else(|| {
+                        JsError::new(&format!("{what}.trim: expected true or false"))
+                    })?,
+                },
             })
         }
     }

@@ -13,7 +13,9 @@ use super::convert::{
 };
 use super::results::JsResult;
 use crate::alignment::{self, examples, AngleSweepConfig, Section, SweepConfig};
-use crate::ballbar::{self, BallbarTrace, Direction, ParseOptions, Run, SyntheticConfig};
+use crate::ballbar::{
+    self, BallbarTrace, Direction, ParseOptions, PlanePoint, Run, SyntheticConfig, TraceCentre,
+};
 
 #[wasm_bindgen(typescript_custom_section)]
 const TS: &str = r#"
@@ -55,19 +57,51 @@ export interface BallbarRun { direction: 'ccw' | 'cw'; /** [rad] unwrapped */ an
 export interface PlanePoint { /** [mm] */ x: number; /** [mm] */ y: number }
 /** The centre an X/Y trace's deviations are about: given (pivot or programmed centre) or the trace's own least-squares centre (given: false), which removes any centre offset. */
 export interface TraceCentre { point: PlanePoint; given: boolean }
-export interface BallbarTrace { /** [mm] */ nominalRadius: number; /** [mm/min] */ feed: number | null; runs: BallbarRun[]; /** null for angle/deviation traces */ centre: TraceCentre | null }
-export interface ParseTraceOptions { /** [mm] */ nominalRadius?: number; /** [mm/min] */ feed?: number; /** [mm] X/Y traces: the centre to take deviations about (pivot or programmed centre); default: the trace's own least-squares centre */ centre?: PlanePoint }
+/** A stretch of samples the trimming left out (source lines inclusive). */
+export interface TrimmedStretch {
+  reason: 'leadIn' | 'leadOut' | 'standstill' | 'transient' | 'overshoot' | 'short';
+  /** [-] */ firstLine: number; /** [-] */ lastLine: number; /** [-] */ samples: number;
+  /** [s, or the sample index when timeBase is 'sampleIndex'] */ startTime: number; /** [s, or the sample index] */ endTime: number;
+  /** [rad] unwrapped */ startAngle: number; /** [rad] unwrapped */ endAngle: number;
+}
+/** What the trimming to the constant-feed part (speed plateau) did. */
+export interface TraceTrimming {
+  /** 'column': the file's time column; 'sampleIndex': no time column, uniform sampling assumed */ timeBase: 'column' | 'sampleIndex';
+  /** false: found and listed only (options.trim false) */ applied: boolean;
+  /** [-] plateau band, relative (0.05 = ±5 % of the median moving speed) */ band: number;
+  /** [rad/s, or rad per sample when timeBase is 'sampleIndex'] median plateau speed */ plateauSpeed: number;
+  /** [-] samples each side of the speed window */ halfWindow: number;
+  trimmed: TrimmedStretch[];
+}
+export interface BallbarTrace {
+  /** [mm] */ nominalRadius: number; /** [mm/min] the plateau's median speed, or as given */ feed: number | null; runs: BallbarRun[];
+  /** null for angle/deviation traces */ centre: TraceCentre | null;
+  /** null for traces not read from a file */ trimming?: TraceTrimming | null;
+  /** about the file: units, time base; each names the column and what to do */ warnings?: string[];
+}
+export interface ParseTraceOptions {
+  /** [mm] */ nominalRadius?: number; /** [mm/min] */ feed?: number;
+  /** [mm] X/Y traces: the centre to take deviations about (pivot or programmed centre); default: the trace's own least-squares centre */ centre?: PlanePoint;
+  /** Trim each run to its constant-feed part (default true); false keeps every sample and only lists the stretches. */ trim?: boolean;
+}
 export interface CircularTestRun {
   direction: 'ccw' | 'cw'; gUm: number; fMaxUm: number; fMinUm: number;
   centreXMm: number; centreYMm: number; radiusMm: number; spanDeg: number; /** [-] samples in the run */ points: number;
 }
 export interface BallbarDiagnostics {
-  centreOffsetXUm: number; centreOffsetYUm: number; backlashXUm: number; backlashYUm: number;
+  /** LSC of the full runs about the centre named by `centre`; 0 by construction for 'traceLsc' */ centreOffsetXUm: number; centreOffsetYUm: number;
+  /** 'barPivot': angle/deviation trace (measured set-up offset); 'given': X/Y about a given centre (measured); 'traceLsc': X/Y about its own least-squares centre (0 by construction) */ centre: 'barPivot' | 'given' | 'traceLsc';
+  /** 0 below its resolution */ backlashXUm: number; backlashYUm: number;
   /** Smallest backlash reported (3 standard errors); below it the backlash reads 0. */ backlashXResolutionUm: number; backlashYResolutionUm: number;
-  /** Only spikes above spikeThresholdUm (1.5 × the largest residual away from the quadrant points). */
-  reversalSpikes: { direction: 'ccw' | 'cw'; axis: 'x' | 'y'; angleDeg: number; heightUm: number }[]; spikeThresholdUm: number;
-  servoMismatchMs: number | null; scaleMismatchPpm: number; squarenessUrad: number;
-  cyclic: { pitchMm: number; amplitudeXUm: number; amplitudeYUm: number } | null; /** [-] */ runsUsed: number;
+  /** Only spikes above spikeThresholdUm (the largest of the runs' 1.5 × largest residual away from the quadrant points); each states the threshold it was compared with. */
+  reversalSpikes: { direction: 'ccw' | 'cw'; axis: 'x' | 'y'; angleDeg: number; heightUm: number; thresholdUm: number }[]; spikeThresholdUm: number;
+  /** null without both directions or feed; 0 below its resolution */ servoMismatchMs: number | null; /** 3 standard errors */ servoMismatchResolutionMs: number | null;
+  /** 0 below its resolution */ scaleMismatchPpm: number; /** 3 standard errors */ scaleMismatchResolutionPpm: number;
+  /** 0 below its resolution */ squarenessUrad: number; /** 3 standard errors */ squarenessResolutionUrad: number;
+  /** null unless the F-test of cyclicTest passes */ cyclic: { pitchMm: number; amplitudeXUm: number; amplitudeYUm: number } | null;
+  /** the cyclic error's significance test: F of the best pitch against the critical F (α = 0.1 % over every pitch position compared) */ cyclicTest: { /** [-] */ fRatio: number; /** [-] */ fCritical: number; /** [-] */ pitches: number } | null;
+  /** RMS of the run model's residuals (the fit quality the standard errors rest on) */ residualRmsUm: number;
+  /** [-] */ runsUsed: number;
 }
 /** circularTest without the diagnostics (the same runs and H). */
 export interface CircularDeviationResult { nominalRadiusMm: number; runs: CircularTestRun[]; hUm: number | null }
@@ -204,6 +238,8 @@ fn trace_to_js(t: &BallbarTrace) -> Result<JsValue, JsError> {
         .val("feed", feed)
         .val("runs", runs.into())
         .val("centre", centre)
+        .val("trimming", to_js(&t.trimming)?)
+        .val("warnings", to_js(&t.warnings)?)
         .build())
 }
 
@@ -237,8 +273,27 @@ fn trace_from_js(v: &JsValue) -> Result<BallbarTrace, JsError> {
         nominal_radius: number(v, "nominalRadius", "trace")?,
         feed: opt_number(v, "feed", "trace")?,
         runs,
-        centre: None,
+        centre: centre_from_js(&get(v, "centre"))?,
+        trimming: None,
+        warnings: Vec::new(),
     })
+}
+
+/// `trace.centre` (null or absent: an angle/deviation trace).
+fn centre_from_js(c: &JsValue) -> Result<Option<TraceCentre>, JsError> {
+    if c.is_null() || c.is_undefined() {
+        return Ok(None);
+    }
+    let point = get(c, "point");
+    Ok(Some(TraceCentre {
+        point: PlanePoint {
+            x: number(&point, "x", "trace.centre.point")?,
+            y: number(&point, "y", "trace.centre.point")?,
+        },
+        given: get(c, "given")
+            .as_bool()
+            .ok_or_else(|| JsError::new("trace.centre.given: expected true or false"))?,
+    }))
 }
 
 /// Reads a CSV/TSV ball-bar trace (angle + deviation, or X/Y); errors name

@@ -110,7 +110,9 @@ function niceTicks(lo, hi, n = 5) {
   return out;
 }
 
-const tick = (v) => (Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(1) : String(+v.toPrecision(6)));
+// Below 1e-12 (in any unit the page plots: mm, µm, rad, deg) a label is
+// numerical noise (4.4e-14 on a colour bar of a zero range): it reads 0.
+const tick = (v) => (Math.abs(v) < 1e-12 ? '0' : Math.abs(v) >= 1e4 || Math.abs(v) < 1e-3 ? v.toExponential(1) : String(+v.toPrecision(6)));
 
 function canvasChart(el, opts, draw) {
   // Zoom and pan: the draw function reads state.view (null = fit) and

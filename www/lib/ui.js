@@ -234,11 +234,14 @@ export function showError(container, err) {
   return box;
 }
 
-/** Formats a number with `digits` significant-ish decimals; '—' for non-finite. */
+/** Formats a number with `digits` significant-ish decimals; '—' for non-finite.
+ * A magnitude below 1e-12 is numerical noise in every unit the page shows
+ * (3.458e-320 was shown once): it reads 0. */
 export function fmt(x, digits = 3) {
   if (typeof x !== 'number' || !Number.isFinite(x)) return '—';
   const a = Math.abs(x);
-  if (a !== 0 && (a < 1e-3 || a >= 1e6)) return x.toExponential(digits);
+  if (a < 1e-12) return (0).toFixed(digits);
+  if (a < 1e-3 || a >= 1e6) return x.toExponential(digits);
   return x.toFixed(digits);
 }
 
@@ -299,6 +302,13 @@ export function fmtRes(x, res = 0.01) {
   const decimals = Math.max(0, Math.ceil(-Math.log10(res) - 1e-9));
   if (Math.abs(x) < res) return (0).toFixed(decimals);
   return (Math.round(x / res) * res).toFixed(decimals);
+}
+
+/** A resolution or threshold at a display resolution: '< 0.01' when it is
+ * finer than the display shows (never 5.64e-12), else as fmtRes. */
+export function fmtLimit(x, res = 0.01) {
+  if (typeof x !== 'number' || !Number.isFinite(x)) return '—';
+  return Math.abs(x) < res ? `< ${res}` : fmtRes(x, res);
 }
 
 /** WAI-ARIA tabs keyboard pattern on a tablist: Left/Right move to the

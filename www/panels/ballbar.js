@@ -2,11 +2,46 @@
 // one), fit its centre, its harmonics, the ISO 230-4 table and diagnostics,
 // and the travel-range bias of the centre estimate (Takayama et al.).
 // JS only gathers inputs, calls the core, draws and offers downloads.
-import { h, numberField, selectField, table, downloadText, toCsv, dropZone, showError, fmt, fmtRes, runState } from '../lib/ui.js';
+import { h, numberField, selectField, table, downloadText, toCsv, dropZone, showError, fmt, fmtRes, fmtLimit, runState } from '../lib/ui.js';
 import { polarChart, barChart, lineChart, xyChart } from '../lib/plot.js';
 
 const UM = 1e-3; // mm per µm
 const RAD = Math.PI / 180;
+
+const REASON = { leadIn: 'lead-in', leadOut: 'lead-out', standstill: 'standstill', transient: 'transient', overshoot: 'overshoot', short: 'too short' };
+
+/** What the core trimmed (trace.trimming), its time base, the feed and the centre used, in words. */
+function trimNote(trace) {
+  const t = trace.trimming;
+  const parts = [];
+  if (t) {
+    const base = t.timeBase === 'column' ? "the file's time column" : 'the sample index (no time column: uniform sampling assumed)';
+    const unit = t.timeBase === 'column' ? ' s' : '';
+    const list = t.trimmed.map((s) => `${REASON[s.reason]} lines ${s.firstLine}–${s.lastLine} (${s.samples} samples, ${fmt(s.startTime, 3)}–${fmt(s.endTime, 3)}${unit}, ${fmt(s.startAngle / RAD, 1)}° to ${fmt(s.endAngle / RAD, 1)}°)`);
+    const shown = list.slice(0, 8).join('; ') + (list.length > 8 ? `; and ${list.length - 8} more` : '');
+    parts.push(`${t.applied ? 'Trimmed' : 'Found (not removed: trimming is off)'} to the constant-feed part, speeds within ±${fmt(t.band * 100, 0)} % of the plateau's median, time from ${base}: ${list.length ? shown : 'nothing trimmed'}.`);
+  }
+  parts.push(trace.feed === null ? 'Feed unknown.' : `Feed ${fmt(trace.feed, 0)} mm/min${t && t.timeBase === 'column' ? " (the plateau's median speed)" : ''}.`);
+  if (trace.centre) {
+    const c = trace.centre;
+    parts.push(c.given
+      ? `Deviations about the given centre (${fmt(c.point.x, 4)}, ${fmt(c.point.y, 4)}) mm.`
+      : `Deviations about the trace's own least-squares centre (${fmt(c.point.x, 4)}, ${fmt(c.point.y, 4)}) mm, so its centre offset is 0 by construction.`);
+  }
+  return parts.join(' ');
+}
+
+/** A diagnostic at its 3-standard-error resolution: the value above it, else 0 and the resolution. */
+function significant(v, res, unit, step = 0.01) {
+  if (v === 0) return res < step ? `0 (below ${step} ${unit}, the display resolution)` : `0 (below ${fmtRes(res, step)} ${unit}, 3 standard errors)`;
+  return `${fmtRes(v, step)} ${unit} (above ${fmtLimit(res, step)} ${unit}, 3 standard errors)`;
+}
+
+const CENTRE = {
+  barPivot: 'from the bar’s pivot (the set-up offset)',
+  given: 'from the given centre',
+  traceLsc: '0 by construction: the deviations are about the trace’s own least-squares centre (give the programmed centre to measure it)',
+};
 
 /** "2:5, 3:3, 5:2.5" (order:amplitude µm[:phase deg]) → harmonics in mm/rad. */
 function parseHarmonics(text) {
@@ -56,7 +91,8 @@ export async function mount(root, api) {
       fileInfo.textContent = `${name}: reading…`;
       try {
         loaded = await api.call('parseBallbarTrace', [text, { nominalRadius: f.radius.value }]);
-        fileInfo.textContent = `${name}: ${loaded.runs.length} run(s), ${loaded.runs.map((r) => `${r.direction} ${r.angleRad.length} points`).join(', ')}`;
+        const trimmed = loaded.trimming ? loaded.trimming.trimmed.length : 0;
+        fileInfo.textContent = `${name}: ${loaded.runs.length} run(s), ${loaded.runs.map((r) => `${r.direction} ${r.angleRad.length} points`).join(', ')}${trimmed ? `; ${trimmed} stretch(es) trimmed (see the results)` : ''}`;
         source.value = 'file';
         await analyse();
       } catch (e) {
@@ -324,15 +360,16 @@ export async function mount(root, api) {
     const d = iso.diagnostics;
     const diagRows = d
       ? [
-          ['Centre offset X / Y (display resolution 0.01 µm)', `${fmtRes(d.centreOffsetXUm)} / ${fmtRes(d.centreOffsetYUm)} µm`],
-          ['Backlash X', d.backlashXUm === 0 ? `0 (below ${fmt(d.backlashXResolutionUm, 2)} µm, 3 standard errors)` : `${fmtRes(d.backlashXUm)} µm`],
-          ['Backlash Y', d.backlashYUm === 0 ? `0 (below ${fmt(d.backlashYResolutionUm, 2)} µm, 3 standard errors)` : `${fmtRes(d.backlashYUm)} µm`],
-          ['Servo mismatch (X lags Y, resolution 0.001 ms)', d.servoMismatchMs === null ? '— (needs CCW + CW and the feed)' : `${fmtRes(d.servoMismatchMs, 0.001)} ms`],
-          ['Scale mismatch (X − Y, resolution 0.01 ppm)', `${fmtRes(d.scaleMismatchPpm)} ppm`],
-          ['Squareness (axes < 90° positive, resolution 0.01 µrad)', `${fmtRes(d.squarenessUrad)} µrad`],
-          ['Cyclic error', d.cyclic ? `X ${fmtRes(d.cyclic.amplitudeXUm)} µm, Y ${fmtRes(d.cyclic.amplitudeYUm)} µm at ${fmt(d.cyclic.pitchMm, 2)} mm pitch` : '—'],
-          ...d.reversalSpikes.map((s) => [`Reversal spike ${s.direction.toUpperCase()} ${s.axis.toUpperCase()} at ${s.angleDeg}°`, `${fmtRes(s.heightUm)} µm`]),
-          ['Reversal spikes', d.reversalSpikes.length ? `reported above ${fmt(d.spikeThresholdUm, 2)} µm (1.5 × the largest residual away from the quadrant points)` : `none above the trace's noise threshold of ${fmt(d.spikeThresholdUm, 2)} µm`],
+          ['Centre offset X / Y (display resolution 0.01 µm)', d.centre === 'traceLsc' ? `0 / 0 µm, ${CENTRE.traceLsc}` : `${fmtRes(d.centreOffsetXUm)} / ${fmtRes(d.centreOffsetYUm)} µm ${CENTRE[d.centre]}`],
+          ['Backlash X', significant(d.backlashXUm, d.backlashXResolutionUm, 'µm')],
+          ['Backlash Y', significant(d.backlashYUm, d.backlashYResolutionUm, 'µm')],
+          ['Servo mismatch (X lags Y)', d.servoMismatchMs === null ? '— (needs CCW + CW and the feed)' : significant(d.servoMismatchMs, d.servoMismatchResolutionMs, 'ms', 0.001)],
+          ['Scale mismatch (X − Y)', significant(d.scaleMismatchPpm, d.scaleMismatchResolutionPpm, 'ppm')],
+          ['Squareness (axes < 90° positive)', significant(d.squarenessUrad, d.squarenessResolutionUrad, 'µrad')],
+          ['Cyclic error', d.cyclic ? `X ${fmtRes(d.cyclic.amplitudeXUm)} µm, Y ${fmtRes(d.cyclic.amplitudeYUm)} µm at ${fmt(d.cyclic.pitchMm, 2)} mm pitch (F ${fmt(d.cyclicTest.fRatio, 1)} above the critical ${fmt(d.cyclicTest.fCritical, 1)})` : d.cyclicTest ? `none: F ${fmt(d.cyclicTest.fRatio, 1)} not above the critical ${fmt(d.cyclicTest.fCritical, 1)} (α = 0.1 % over ${d.cyclicTest.pitches} pitches)` : '—'],
+          ...d.reversalSpikes.map((s) => [`Reversal spike ${s.direction.toUpperCase()} ${s.axis.toUpperCase()} at ${s.angleDeg}°`, `${fmtRes(s.heightUm)} µm (threshold ${fmtLimit(s.thresholdUm)} µm)`]),
+          ['Reversal spikes', d.reversalSpikes.length ? `reported above ${fmtLimit(d.spikeThresholdUm)} µm (1.5 × the largest residual away from the quadrant points, the largest over the runs)` : `none above the trace's noise threshold of ${fmtLimit(d.spikeThresholdUm)} µm`],
+          ['Run-model residual RMS (fit quality)', `${fmtLimit(d.residualRmsUm)} µm (the noise the standard errors rest on)`],
         ]
       : [['Diagnostics', 'need a run over a full revolution']];
     const isoTable = table(['run', 'G [µm]', 'F max [µm]', 'F min [µm]', 'LSC centre X [µm]', 'LSC centre Y [µm]', 'span [°]'], isoRows);
@@ -347,7 +384,9 @@ export async function mount(root, api) {
         downloadText('ballbar-trace.csv', toCsv({ angle_deg: cat((r, i) => r.angleRad[i] / RAD), deviation_um: cat((r, i) => r.deviation[i] / UM), direction: cat((r) => (r.direction === 'ccw' ? 1 : -1)) }), 'text/csv');
       } }, 'Download trace (CSV)'),
     );
+    const warnings = trace.warnings && trace.warnings.length ? h('ul', { id: 'ballbar-warnings', class: 'error-box' }, trace.warnings.map((w) => h('li', {}, w))) : null;
     out.replaceChildren(
+      h('div', { class: 'card' }, h('h3', {}, 'Trace'), h('p', { id: 'ballbar-trim' }, trimNote(trace)), warnings),
       h('div', { class: 'card' }, h('h3', {}, 'Fitted centre (least-squares circle of the first run)'),
         h('p', {}, 'Centre X ', h('strong', { id: 'ballbar-centre-x' }, fmtRes(fit.cx / UM, 0.001)), ' µm, Y ', h('strong', { id: 'ballbar-centre-y' }, fmtRes(fit.cy / UM, 0.001)), ' µm; radius ', fmtRes(fit.r, 0.000001), ' mm; RMS residual ', fmtRes(fit.rmsResidual / UM, 0.001), ' µm (display resolution 0.001 µm)'),
         polarEl),
