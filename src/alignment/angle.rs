@@ -323,6 +323,73 @@ mod tests {
     use super::*;
     use crate::ballbar::Harmonic;
 
+    /// A 100 mm bar's trace over `span`° from `from`° when the axis centre
+    /// is at (cz, cx): angle = axis angle about the pivot, exact geometry.
+    fn bar_section(y: f64, (cz, cx): (f64, f64), from: f64, span: f64) -> Section {
+        let angle_deg: Vec<f64> = (0..=400).map(|i| from + span * i as f64 / 400.0).collect();
+        let deviation = angle_deg
+            .iter()
+            .map(|a| {
+                let t = a.to_radians();
+                let (pz, px) = (cz + 100.0 * t.cos(), cx + 100.0 * t.sin());
+                pz.hypot(px) - 100.0
+            })
+            .collect();
+        Section {
+            y,
+            angle_deg,
+            deviation,
+        }
+    }
+
+    #[test]
+    fn three_sections_at_user_heights_give_the_slope_and_intercept() {
+        // Heights 100/200/300 mm (not centred on 0), centres on the lines
+        // Z = 4 µm + 0.05 µm/mm·Y, X = −2 µm − 0.03 µm/mm·Y, full circles
+        // (no bias): the least-squares slope and intercept are exact to the
+        // bar's second order (about 1 nm here).
+        let line = |y: f64| (0.004 + 5e-5 * y, -0.002 - 3e-5 * y);
+        let secs: Vec<Section> = [100.0, 200.0, 300.0]
+            .iter()
+            .map(|&y| bar_section(y, line(y), 13.0, 360.0))
+            .collect();
+        let e = estimate_alignment(&secs, 100.0).unwrap();
+        for (s, &y) in e.sections.iter().zip(&[100.0, 200.0, 300.0]) {
+            let (z, x) = line(y);
+            assert!((s.z - z).abs() < 5e-9 && (s.x - x).abs() < 5e-9, "{s:?}");
+        }
+        assert!((e.delta_bz.unwrap() - 5e-5).abs() < 5e-11, "{e:?}");
+        assert!((e.delta_bx.unwrap() + 3e-5).abs() < 5e-11, "{e:?}");
+        assert!((e.intercept_z.unwrap() - 0.004).abs() < 1e-8, "{e:?}");
+        assert!((e.intercept_x.unwrap() + 0.002).abs() < 1e-8, "{e:?}");
+        // One section: no angle errors, no line.
+        let one = estimate_alignment(&secs[..1], 100.0).unwrap();
+        assert_eq!(
+            (one.delta_bz, one.delta_bx, one.intercept_z, one.intercept_x),
+            (None, None, None, None)
+        );
+    }
+
+    #[test]
+    fn sections_at_one_height_and_bad_radii_are_refused() {
+        let s = bar_section(50.0, (0.01, 0.0), 0.0, 180.0);
+        let e = estimate_alignment(&[s.clone(), s.clone()], 100.0).unwrap_err();
+        assert!(
+            e.to_string().contains("all sections have the same y"),
+            "{e}"
+        );
+        for r in [0.0, -5.0, f64::INFINITY, f64::NAN] {
+            let e = estimate_alignment(std::slice::from_ref(&s), r).unwrap_err();
+            assert!(e.to_string().starts_with("radius:"), "{r}: {e}");
+        }
+        let e = estimate_alignment(&[], 100.0).unwrap_err();
+        assert!(e.to_string().starts_with("sections:"), "{e}");
+        let mut bad = s;
+        bad.y = f64::NAN;
+        let e = estimate_alignment(&[bad], 100.0).unwrap_err();
+        assert!(e.to_string().starts_with("sections[0].y"), "{e}");
+    }
+
     #[test]
     fn dbb5_reading_gives_an_angle_bias_the_bar_reading_does_not() {
         let s = |y, z| SectionOffset {

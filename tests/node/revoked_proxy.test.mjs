@@ -56,6 +56,7 @@ const GOOD = {
   axisInertia: ['nmv5000', 'c'],
   ballbarExample: ['fig7', 100],
   bestKffp: ['nmv5000', { ...COND, duration: 1 }, { method: 'analytic' }],
+  bestKffpFromTrace: ['nmv5000', { ...COND, duration: 1, kffp: { x: 60, y: 60, c: 60 } }, servoTrace, { time: 'time', timeScale: 1e-3, steadyFrom: 0 }, { method: 'analytic' }],
   checkFileSize: ['part.nc', 1000],
   checkNc: [arcs, {}],
   circularDeviation: [trace],

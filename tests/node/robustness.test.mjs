@@ -89,6 +89,13 @@ const CASES = {
     good: () => mt.bestKffp('nmv5000', { ...COND, duration: 1 }, { method: 'analytic' }),
     bad: [['nmv5000', {}], ['nmv5000', { ...COND, rc: 0 }], ['nmv5000', { ...COND, omega: 1e6 }, { method: 'magic' }]],
   },
+  bestKffpFromTrace: {
+    good: () => mt.bestKffpFromTrace('nmv5000', { ...COND, duration: 1, kffp: { x: 60, y: 60, c: 60 } }, servoTrace, { time: 'time', timeScale: 1e-3, steadyFrom: 0 }, { method: 'analytic' }),
+    bad: [['nmv5000', { ...COND, duration: 1 }, servoTrace, { time: 'time', timeScale: 1e-3, steadyFrom: 0 }],
+      ['nmv5000', { ...COND, kffp: { x: 60, y: 60, c: 60 } }, 'time,x\n0,abc\n'], ['nmv5000', { ...COND, kffp: { x: 60, y: 60, c: 60 } }, servoTrace, { timeScale: 1e300 }],
+      ['nmv5000', { ...COND, kffp: { x: 60, y: 60, c: 60 } }, servoTrace, { time: 'time', timeScale: 1e-3, steadyFrom: 0 }, { kMin: 5, kMax: 1 }],
+      ['nope', { ...COND, kffp: { x: 60, y: 60, c: 60 } }, servoTrace], ['nmv5000', { ...COND, kffp: { x: 60, y: 60, c: 60 } }, 'x'.repeat(9 << 20)]],
+  },
   torqueSaturation: {
     good: () => mt.torqueSaturation('nmv5000', { j1: [1.7], torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200 }),
     bad: [['nmv5000', {}], ['nmv5000', { j1: [-10], torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200 }],
