@@ -237,3 +237,43 @@ fn refused_and_incomplete_cycles_are_located() {
         assert!(e.message.contains(phrase), "{src}: {e}");
     }
 }
+
+#[test]
+fn a_new_g91_r_without_a_bottom_moves_the_bottom_with_r() {
+    // Issue 25: the second hole gives R−0.3 (from the initial level 1 in:
+    // R = 0.7 in) and no Z, so its bottom is R − 0.6 = 0.1 in, as
+    // LinuxCNC's rs274 prints it (STRAIGHT_FEED(2, 1, 0.1)); it was fed to
+    // the first hole's −0.1 in, 5.08 mm deeper. G99 as LinuxCNC's default.
+    let i = 25.4;
+    check(
+        "G20 G17 G90 G0 X0 Y0 Z1\nG91 G99 G81 X1 Y1 Z-0.6 R-0.5 F10\nX1 R-0.3\nG80\nM2",
+        &[
+            ('R', [0.0, 0.0, i]),
+            ('R', [i, i, i]),
+            ('R', [i, i, 0.5 * i]),
+            ('F', [i, i, -0.1 * i]),
+            ('R', [i, i, 0.5 * i]),
+            // Fanuc: to the hole at the current level, then up to R
+            // (LinuxCNC makes these one diagonal rapid).
+            ('R', [2.0 * i, i, 0.5 * i]),
+            ('R', [2.0 * i, i, 0.7 * i]),
+            ('F', [2.0 * i, i, 0.1 * i]),
+            ('R', [2.0 * i, i, 0.7 * i]),
+        ],
+    );
+    // Under G90 the bottom is absolute: a new R leaves it where it is.
+    check(
+        &format!("{START}G99 G81 X1 Z-3 R2 F100\nX2 R4"),
+        &[
+            ('R', [0.0, 0.0, 10.0]),
+            ('R', [1.0, 0.0, 10.0]),
+            ('R', [1.0, 0.0, 2.0]),
+            ('F', [1.0, 0.0, -3.0]),
+            ('R', [1.0, 0.0, 2.0]),
+            ('R', [2.0, 0.0, 2.0]),
+            ('R', [2.0, 0.0, 4.0]),
+            ('F', [2.0, 0.0, -3.0]),
+            ('R', [2.0, 0.0, 4.0]),
+        ],
+    );
+}
