@@ -14,8 +14,11 @@
 //! word added, or put in place of the block's own); mtmotion reads the file
 //! as it is. Both move lists are cut into runs of consecutive moves of one
 //! source line and compared run by run. rs274 prints in the program frame
-//! (its G5x and G92 offsets taken off) and in the program's unit: the
-//! offsets it reports are added back and inch is converted to mm.
+//! (its G5x and G92 offsets taken off) and in the program's unit: the G92
+//! offset it reports is added back (its G5x offsets are not: see
+//! [`Kind::WorkFrame`]) and inch is converted to mm. Its parameter file
+//! starts empty each run (all offsets zero) and its tool table holds
+//! tools 1–99 of zero length and diameter.
 //! Dwells are not compared; moves of zero length are dropped from both.
 //!
 //! Every difference is a failure naming the file, the line and both moves,
@@ -463,8 +466,9 @@ fn moving(moves: Vec<Move>, start: [f64; 6]) -> Vec<Move> {
     let mut out = Vec::new();
     for m in moves {
         let still = (0..6).all(|k| (m.end[k] - at[k]).abs() <= m.tol.max(1e-9));
-        let full_circle = matches!(m.kind, Kinded::Arc { .. });
-        if !still || full_circle {
+        // An arc back to its start is a full circle, not a still move.
+        let arc = matches!(m.kind, Kinded::Arc { .. });
+        if !still || arc {
             out.push(m);
         }
         at = m.end;
