@@ -178,7 +178,13 @@ impl HolePath {
         let dir = if bottom < r { -1.0 } else { 1.0 };
         let depth_total = (bottom - r).abs();
         let mut done = 0.0;
-        while done < depth_total - 1e-12 {
+        // `hole_data` allows at most MAX_PECKS (⌈depth/Q⌉); one more for a
+        // sum of Q's that rounds short of the bottom. The bound keeps the
+        // loop finite whatever the arithmetic.
+        for _ in 0..=MAX_PECKS {
+            if done >= depth_total - 1e-12 {
+                break;
+            }
             let next = (done + c.q).min(depth_total);
             if done > 0.0 {
                 if c.code == 830 {
