@@ -416,6 +416,9 @@ fn exactly_max_pecks_are_drilled_and_one_more_is_refused() {
         .find(|s| s.motion == Motion::Linear)
         .unwrap();
     assert_eq!(last_feed.end.z, -1249.0);
+    // Q of a cycle that does not peck (G76's shift) counts no pecks.
+    let p = parse(&format!("{START}G76 X0 Y0 Z-4 R2 P500 Q0.0001 F80")).unwrap();
+    assert_eq!(p.segments.len(), 5);
     let e = parse(&format!("{START}G83 X0 Y0 Z-1249.125 R1 Q0.125 F100")).unwrap_err();
     assert_eq!((e.line, e.column), (2, 25), "{e}");
     assert!(

@@ -408,7 +408,8 @@ fn hole_data(b: &Block, st: &Modal, c: &Cycle, anchor: &Word) -> Result<Holes, N
         }
     };
     let repeats = repeat_count(b)?;
-    let pecks = if peck && c.q > 0.0 {
+    // A peck cycle has Q > 0 (checked above).
+    let pecks = if peck {
         ((bottom - r).abs() / c.q).ceil()
     } else {
         1.0
