@@ -1,5 +1,5 @@
 //! A stable-Rust fuzz loop over the parsers, the writers and the config
-//! conversion: seeded mutation of corpus seeds (the repo's NC corpus,
+//! conversion: seeded mutation of corpus seeds (the shared NC corpus,
 //! generated ball-bar and servo traces, each export's config as JSON), fed
 //! to the targets of `support/fuzz_targets.rs` (the same functions the
 //! cargo-fuzz crate in `fuzz/` runs under libFuzzer):
@@ -23,6 +23,8 @@
 //! found (by either loop) becomes a regression test below.
 #![cfg(not(target_arch = "wasm32"))]
 
+#[path = "support/corpus.rs"]
+mod corpus;
 #[path = "support/fuzz_targets.rs"]
 mod fuzz_targets;
 
@@ -458,12 +460,9 @@ fn writer_round_trip_regressions() {
             .starts_with("corner word R2 on a G1 block without an end point"),
         "{e}"
     );
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/nc_corpus/cncjs_helical-thread-milling.gcode"
-    ))
-    .unwrap();
-    fuzz_targets::nc_write_target(&text).unwrap();
+    if let Some(text) = corpus::text("cncjs_helical-thread-milling.gcode") {
+        fuzz_targets::nc_write_target(&text).unwrap();
+    }
 }
 
 /// The stable loop (`servo`, seed 1, 50,000 runs: 11 failures): a SERVO

@@ -1,10 +1,15 @@
 //! Canned cycles: each expansion compared with the cycle's written
 //! definition (Fanuc 0i-MF/30i-B operator's manuals; the sequences below
 //! are written out by hand from those definitions, with the peck clearance
-//! `d` = `PECK_CLEARANCE` = 0.5 mm).
+//! `d` = `PECK_CLEARANCE` = 0.5 mm), and the reading of the levels: G90
+//! levels scaled by the unit and shifted by G92, G91 levels from the
+//! initial level and R (a new R moves a G91 bottom), Q in the program's
+//! unit, and every boundary (a 1e-12 mm level change, P0, exactly
+//! `MAX_PECKS` pecks, the repeat-count range, the segment budget) on both
+//! sides. Positions to 1e-9 mm (sums of exact inputs).
 
-use mtmotion::nc::cycles::PECK_CLEARANCE;
-use mtmotion::nc::program::{parse, Motion};
+use mtmotion::nc::cycles::{MAX_PECKS, PECK_CLEARANCE};
+use mtmotion::nc::program::{parse, parse_with, Motion, ParseOptions};
 
 /// A move as (kind, end): 'R' rapid, 'F' feed, 'D' dwell (end x = seconds).
 type Move = (char, [f64; 3]);
@@ -236,4 +241,238 @@ fn refused_and_incomplete_cycles_are_located() {
         assert_eq!((e.line, e.column), (1, col), "{src}: {e}");
         assert!(e.message.contains(phrase), "{src}: {e}");
     }
+}
+
+#[test]
+fn a_new_g91_r_without_a_bottom_moves_the_bottom_with_r() {
+    // Issue 25: the second hole gives R−0.3 (from the initial level 1 in:
+    // R = 0.7 in) and no Z, so its bottom is R − 0.6 = 0.1 in, as
+    // LinuxCNC's rs274 prints it (STRAIGHT_FEED(2, 1, 0.1)); it was fed to
+    // the first hole's −0.1 in, 5.08 mm deeper. G99 as LinuxCNC's default.
+    let i = 25.4;
+    check(
+        "G20 G17 G90 G0 X0 Y0 Z1\nG91 G99 G81 X1 Y1 Z-0.6 R-0.5 F10\nX1 R-0.3\nG80\nM2",
+        &[
+            ('R', [0.0, 0.0, i]),
+            ('R', [i, i, i]),
+            ('R', [i, i, 0.5 * i]),
+            ('F', [i, i, -0.1 * i]),
+            ('R', [i, i, 0.5 * i]),
+            // Fanuc: to the hole at the current level, then up to R
+            // (LinuxCNC makes these one diagonal rapid).
+            ('R', [2.0 * i, i, 0.5 * i]),
+            ('R', [2.0 * i, i, 0.7 * i]),
+            ('F', [2.0 * i, i, 0.1 * i]),
+            ('R', [2.0 * i, i, 0.7 * i]),
+        ],
+    );
+    // Under G90 the bottom is absolute: a new R leaves it where it is.
+    check(
+        &format!("{START}G99 G81 X1 Z-3 R2 F100\nX2 R4"),
+        &[
+            ('R', [0.0, 0.0, 10.0]),
+            ('R', [1.0, 0.0, 10.0]),
+            ('R', [1.0, 0.0, 2.0]),
+            ('F', [1.0, 0.0, -3.0]),
+            ('R', [1.0, 0.0, 2.0]),
+            ('R', [2.0, 0.0, 2.0]),
+            ('R', [2.0, 0.0, 4.0]),
+            ('F', [2.0, 0.0, -3.0]),
+            ('R', [2.0, 0.0, 4.0]),
+        ],
+    );
+}
+
+/// Absolute (G90) R and bottom levels are scaled by the unit and shifted by
+/// the G92 offset; a modal block with a new R keeps the absolute bottom;
+/// after G21 the same offset (mm) applies to metric words. Inch: 25.4 mm.
+/// G92 X1 Z0.5 at X0 Z1 in: offsets X −25.4 mm, Z +12.7 mm.
+#[test]
+fn g90_levels_are_scaled_by_the_unit_and_shifted_by_g92() {
+    let i = 25.4;
+    check(
+        "G20 G17 G90 G0 X0 Y0 Z1\nG92 X1 Z0.5\nG99 G81 X0.2 Y0.3 Z-0.25 R0.1 F10\nX0.4 R0.2\nG21 X10 Z-5 R3",
+        &[
+            ('R', [0.0, 0.0, i]),
+            // R 0.1 in + 12.7 = 15.24; bottom −0.25 in + 12.7 = 6.35.
+            ('R', [0.2 * i - i, 0.3 * i, i]),
+            ('R', [0.2 * i - i, 0.3 * i, 15.24]),
+            ('F', [0.2 * i - i, 0.3 * i, 6.35]),
+            ('R', [0.2 * i - i, 0.3 * i, 15.24]),
+            // R 0.2 in + 12.7 = 17.78; the bottom stays 6.35.
+            ('R', [0.4 * i - i, 0.3 * i, 15.24]),
+            ('R', [0.4 * i - i, 0.3 * i, 17.78]),
+            ('F', [0.4 * i - i, 0.3 * i, 6.35]),
+            ('R', [0.4 * i - i, 0.3 * i, 17.78]),
+            // G21: X10 − 25.4, R 3 + 12.7, bottom −5 + 12.7.
+            ('R', [10.0 - i, 0.3 * i, 17.78]),
+            ('R', [10.0 - i, 0.3 * i, 15.7]),
+            ('F', [10.0 - i, 0.3 * i, 7.7]),
+            ('R', [10.0 - i, 0.3 * i, 15.7]),
+        ],
+    );
+}
+
+/// G91 levels in inch from a non-zero initial level: R from the initial
+/// level, the bottom from R, both × 25.4, and Q in inch.
+#[test]
+fn g91_levels_and_the_peck_depth_are_read_in_inch() {
+    let d = PECK_CLEARANCE;
+    // Initial 1 in = 25.4; R = 25.4 − 0.9 × 25.4 = 2.54; bottom = R − 15.24
+    // = −12.7; Q 0.25 in = 6.35: pecks to −3.81, −10.16, −12.7.
+    check(
+        "G20 G0 X0 Y0 Z1\nG91 G98 G83 X0.5 Z-0.6 R-0.9 Q0.25 F10",
+        &[
+            ('R', [0.0, 0.0, 25.4]),
+            ('R', [12.7, 0.0, 25.4]),
+            ('R', [12.7, 0.0, 2.54]),
+            ('F', [12.7, 0.0, -3.81]),
+            ('R', [12.7, 0.0, 2.54]),
+            ('R', [12.7, 0.0, 2.54 - (6.35 - d)]),
+            ('F', [12.7, 0.0, -10.16]),
+            ('R', [12.7, 0.0, 2.54]),
+            ('R', [12.7, 0.0, 2.54 - (12.7 - d)]),
+            ('F', [12.7, 0.0, -12.7]),
+            ('R', [12.7, 0.0, 25.4]),
+        ],
+    );
+}
+
+/// The boundaries: an R level 1e-12 mm from the current level is a move
+/// (only closer is none); P0 dwells not at all and is allowed, a negative
+/// P is refused; a 20 m deep hole (where bottom − 1e-12 rounds to the
+/// bottom) ends at its bottom after exactly four pecks.
+#[test]
+fn level_dwell_and_peck_boundaries() {
+    check(
+        "G0 X0 Y0 Z0\nG81 X0 Y0 Z-1 R0.000000000001 F100",
+        &[
+            ('R', [0.0, 0.0, 0.0]),
+            ('R', [0.0, 0.0, 1e-12]),
+            ('F', [0.0, 0.0, -1.0]),
+            ('R', [0.0, 0.0, 0.0]),
+        ],
+    );
+    let p = parse("G0 X0 Y0 Z0\nG81 X0 Y0 Z-1 R0.000000000001 F100").unwrap();
+    assert_eq!(p.segments.len(), 4);
+    assert_eq!(p.segments[1].end.z, 1e-12);
+    check(
+        &format!("{START}G82 X0 Y0 Z-1 R1 P0 F100"),
+        &[
+            ('R', [0.0, 0.0, 10.0]),
+            ('R', [0.0, 0.0, 1.0]),
+            ('F', [0.0, 0.0, -1.0]),
+            ('R', [0.0, 0.0, 10.0]),
+        ],
+    );
+    let e = parse(&format!("{START}G82 X0 Y0 Z-1 R1 P-1 F100")).unwrap_err();
+    assert_eq!((e.line, e.column), (2, 18), "{e}");
+    assert!(e.message.contains("zero or positive"), "{e}");
+    let d = PECK_CLEARANCE;
+    let mut want = vec![('R', [0.0, 0.0, 10.0]), ('R', [0.0, 0.0, 0.0])];
+    for k in 1..=4 {
+        let depth = -5000.0 * k as f64;
+        if k > 1 {
+            want.push(('R', [0.0, 0.0, depth + 5000.0 + d]));
+        }
+        want.push(('F', [0.0, 0.0, depth]));
+    }
+    want.push(('R', [0.0, 0.0, 10.0]));
+    check(&format!("{START}G73 X0 Y0 Z-20000 R0 Q5000 F100"), &want);
+}
+
+/// A feed of zero is refused; a block with only A beside the cycle's
+/// axes, or C on a machine with a C axis, is refused naming the word.
+#[test]
+fn a_zero_feed_and_axes_outside_the_plane_are_refused() {
+    let e = parse(&format!("{START}G81 X1 Z-1 R1 F0")).unwrap_err();
+    assert!(e.message.contains("without a feed"), "{e}");
+    let e = parse(&format!("{START}G81 X1 Z-1 R1 A5 F100")).unwrap_err();
+    assert_eq!((e.line, e.column), (2, 15), "{e}");
+    assert!(e.message.starts_with("A5 in a canned-cycle block"), "{e}");
+    let opt = ParseOptions {
+        c_axis: true,
+        ..ParseOptions::default()
+    };
+    let e = parse_with(&format!("{START}G81 X1 Z-1 R1 C5 F100"), &opt).unwrap_err();
+    assert!(e.message.starts_with("C5 in a canned-cycle block"), "{e}");
+}
+
+/// The peck count is ⌈|bottom − R| / Q⌉ and at most `MAX_PECKS`: R 1,
+/// bottom −1249, Q 0.125 gives exactly 10,000 pecks (accepted: 1 feed,
+/// then 3 moves per later peck but for the 4 that return to R itself,
+/// within the 0.5 mm clearance of it), 0.125 mm deeper gives 10,001
+/// (refused, at Q, with the count).
+#[test]
+fn exactly_max_pecks_are_drilled_and_one_more_is_refused() {
+    assert_eq!(MAX_PECKS, 10_000);
+    let p = parse(&format!("{START}G83 X0 Y0 Z-1249 R1 Q0.125 F100")).unwrap();
+    // Start, rapid to R, 1 + 3 × 9999 − 4 peck moves, the return.
+    assert_eq!(p.segments.len(), 1 + 1 + 1 + 3 * 9_999 - 4 + 1);
+    let last_feed = p
+        .segments
+        .iter()
+        .rev()
+        .find(|s| s.motion == Motion::Linear)
+        .unwrap();
+    assert_eq!(last_feed.end.z, -1249.0);
+    // Q of a cycle that does not peck (G76's shift) counts no pecks.
+    let p = parse(&format!("{START}G76 X0 Y0 Z-4 R2 P500 Q0.0001 F80")).unwrap();
+    assert_eq!(p.segments.len(), 5);
+    let e = parse(&format!("{START}G83 X0 Y0 Z-1249.125 R1 Q0.125 F100")).unwrap_err();
+    assert_eq!((e.line, e.column), (2, 25), "{e}");
+    assert!(
+        e.message
+            .starts_with("10001 pecks of Q0.125 mm for a 1250.12"),
+        "{e}"
+    );
+}
+
+/// K/L: a negative count and one over 9999 are refused.
+#[test]
+fn repeat_counts_outside_0_to_9999_are_refused() {
+    for (k, col) in [("K-1", 20), ("L10000", 20)] {
+        let e = parse(&format!("{START}G81 X1 Z-5 R1 F100 {k}")).unwrap_err();
+        assert_eq!((e.line, e.column), (2, col), "{k}: {e}");
+        assert!(
+            e.message.contains("whole number from 0 to 9999"),
+            "{k}: {e}"
+        );
+    }
+}
+
+/// The segment budget stops a cycle's holes as soon as it is exceeded,
+/// not when it is reached: with a budget of 7 segments, the start and two
+/// holes (1 + 4 + 2) fit, the third (9) is refused.
+#[test]
+fn the_segment_budget_is_exceeded_by_the_third_hole_not_reached_by_the_second() {
+    let src = format!("{START}G99 G81 X5 Z-3 R2 L3 F100");
+    assert_eq!(parse(&src).unwrap().segments.len(), 9);
+    let opt = |n| ParseOptions {
+        max_executed_blocks: n,
+        ..ParseOptions::default()
+    };
+    assert_eq!(parse_with(&src, &opt(9)).unwrap().segments.len(), 9);
+    let e = parse_with(&src, &opt(7)).unwrap_err();
+    assert!(e.message.starts_with("more than 7 segments"), "{e}");
+    let two = format!("{START}G99 G81 X5 Z-3 R2 L2 F100");
+    assert_eq!(parse_with(&two, &opt(7)).unwrap().segments.len(), 7);
+}
+
+/// A remnant of less than 1e-12 mm below the last peck is not drilled: a
+/// G73 from R0 to −1.000000000001 by Q1 is one peck to −1 (one more peck
+/// would back off and feed 1e-12 mm).
+#[test]
+fn a_remnant_under_1e_12_mm_is_not_pecked() {
+    check(
+        "G0 X0 Y0 Z5\nG73 X0 Y0 Z-1.000000000001 R0 Q1 F100",
+        &[
+            ('R', [0.0, 0.0, 5.0]),
+            ('R', [0.0, 0.0, 0.0]),
+            ('F', [0.0, 0.0, -1.0]),
+            ('R', [0.0, 0.0, 5.0]),
+        ],
+    );
+    let p = parse("G0 X0 Y0 Z5\nG73 X0 Y0 Z-1.000000000001 R0 Q1 F100").unwrap();
+    assert_eq!(p.segments[2].end.z, -1.0);
 }

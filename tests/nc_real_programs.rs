@@ -4,6 +4,9 @@
 //! written definitions (Fanuc/LinuxCNC manuals) and plain geometry, not
 //! from the parser's output.
 
+#[path = "support/corpus.rs"]
+mod corpus;
+
 use std::f64::consts::PI;
 
 use mtmotion::nc::program::{parse, parse_all, parse_with, DwellP, Motion, ParseOptions, Segment};
@@ -340,7 +343,7 @@ fn summary_groups_warnings_by_kind_with_their_lines() {
 
 #[test]
 fn a_bare_program_name_is_a_header_not_an_address_error() {
-    // Laser Macro B programs (tests/nc_corpus/cncsprayer_*.NC) open with
+    // Laser Macro B programs (the shared corpus's cncsprayer_*.NC) open with
     // `OCIRCLE(Circle)` and `O7997A(NestedShtCutoff)`: a program name, as
     // Mitsubishi and Fanuc 30i-series controls allow.
     for (head, name) in [
@@ -734,11 +737,9 @@ fn g93_inverse_time_moves_take_one_over_f_minutes() {
     // LinuxCNC's daisy.ngc plays a song: each note is one G93 move of
     // F[60/t] (t seconds). The cutting moves' time is the sum of the note
     // lengths written in its O200 calls, 31.993 s.
-    let path = format!(
-        "{}/tests/nc_corpus/linuxcnc_daisy.ngc",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(path).unwrap();
+    let Some(text) = corpus::text("linuxcnc_daisy.ngc") else {
+        return;
+    };
     let notes: f64 = text
         .lines()
         .filter_map(|l| l.strip_prefix("O200 call ["))

@@ -5,6 +5,9 @@
 //! original's N numbers and comments, parses, and its arcs keep their
 //! centres; the line-only example improves by vertex shifting.
 
+#[path = "support/corpus.rs"]
+mod corpus;
+
 use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
 use mtmotion::nc::program::{parse, Motion};
 use mtmotion::toolpath::example;
@@ -249,17 +252,8 @@ fn unchanged_regions_say_why() {
 #[test]
 fn a_line_diff_shows_only_the_compensation() {
     let crlf = example::arc_example().replace('\n', "\r\n");
-    for (name, src) in [
-        (
-            "comp",
-            std::fs::read_to_string(format!(
-                "{}/tests/nc_corpus/linuxcnc_comp.ngc",
-                env!("CARGO_MANIFEST_DIR")
-            ))
-            .unwrap(),
-        ),
-        ("arcs CRLF", crlf),
-    ] {
+    let comp = corpus::text("linuxcnc_comp.ngc").map(|t| ("comp", t));
+    for (name, src) in comp.into_iter().chain([("arcs CRLF", crlf)]) {
         let c = reverse_compensate(&src, &ReverseConfig::default()).unwrap();
         let p = parse(&src).unwrap();
         let moved: std::collections::BTreeSet<usize> = c

@@ -7,6 +7,9 @@
 //! below, where the nearest point is 23 µm away.
 #![cfg(not(target_arch = "wasm32"))]
 
+#[path = "support/corpus.rs"]
+mod corpus;
+
 use mtmotion::nc::program::parse;
 use mtmotion::toolpath::contour::Path;
 use mtmotion::toolpath::{simulate, Lag, SimConfig};
@@ -62,7 +65,7 @@ fn return_pass_then_retract_over_the_part() {
     );
 }
 
-/// LinuxCNC's `tort.ngc` (tests/nc_corpus): 282 lines of helical arcs in
+/// LinuxCNC's `tort.ngc` (the shared corpus, `support/corpus.rs`): 282 lines of helical arcs in
 /// G17, G18 and G19, lines and rapids crossing one another in a 60 mm
 /// cube, where a point is inside many arcs' bounding spheres and the arcs'
 /// own cylinder test decides (`ArcGeo::farther_than`). Every 23rd of its
@@ -70,11 +73,9 @@ fn return_pass_then_retract_over_the_part() {
 /// kind of element).
 #[test]
 fn tortuous_helical_arcs_in_three_planes() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/nc_corpus/linuxcnc_tort.ngc"
-    ))
-    .unwrap();
+    let Some(text) = corpus::text("linuxcnc_tort.ngc") else {
+        return;
+    };
     check_exact_every(&text, &cfg(), 23);
 }
 

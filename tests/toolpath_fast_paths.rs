@@ -12,6 +12,9 @@
 use mtmotion::nc::program::parse;
 use mtmotion::toolpath::{example, filter::filter, sampler::Sampler, timeline::Timeline};
 
+#[path = "support/corpus.rs"]
+mod corpus;
+
 /// Three turns of R 100 mm at F 1000 (≈ 113 s, 1.1 M samples at 0.1 ms),
 /// then a clockwise R 5 mm half circle and a helix.
 const LONG_ARCS: &str = "G0 X100 Y0\nG3 X100 Y0 I-100 J0 F1000\nG3 X100 Y0 I-100 J0\n\
@@ -147,7 +150,10 @@ fn filter_matches_plain_equations() {
 #[test]
 fn statistics_only_simulation_equals_the_full_one() {
     use mtmotion::toolpath::{simulate, simulate_stats, SimConfig};
-    for text in [example::arc_example(), example::line_example(), tort()] {
+    for text in [example::arc_example(), example::line_example()]
+        .into_iter()
+        .chain(tort())
+    {
         let p = parse(&text).unwrap();
         let cfg = SimConfig::default();
         let full = simulate(&p.segments, &p.segments, &cfg).unwrap();
@@ -175,7 +181,7 @@ fn statistics_only_simulation_equals_the_full_one() {
 #[test]
 fn a_thinned_run_keeps_the_largest_error_of_each_group_and_the_same_statistics() {
     use mtmotion::toolpath::{simulate, simulate_thinned, SimConfig};
-    for text in [example::arc_example(), tort()] {
+    for text in [example::arc_example()].into_iter().chain(tort()) {
         let p = parse(&text).unwrap();
         let cfg = SimConfig::default();
         let full = simulate(&p.segments, &p.segments, &cfg).unwrap();
@@ -212,12 +218,10 @@ fn a_thinned_run_keeps_the_largest_error_of_each_group_and_the_same_statistics()
     }
 }
 
-fn tort() -> String {
-    std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/nc_corpus/linuxcnc_tort.ngc"
-    ))
-    .unwrap()
+/// LinuxCNC's tort.ngc from the shared corpus (none, said on stderr,
+/// without the corpus).
+fn tort() -> Option<String> {
+    corpus::text("linuxcnc_tort.ngc")
 }
 
 fn same_statistics(a: &mtmotion::toolpath::Simulation, b: &mtmotion::toolpath::Simulation) {

@@ -1,5 +1,5 @@
 // Node benchmarks of reverseCompensate on the repository's corpus of real
-// programs (tests/nc_corpus/, wasm build in pkg/), and of parse + simulate
+// programs (the shared corpus, tests/support/corpus.mjs; wasm build in pkg/), and of parse + simulate
 // of large programs at dt = 1 ms: the corpus's 40,306-line CNCjs pocket
 // and a GENERATED 35,000-line raster (zig-zag of G1 moves, made here for
 // the benchmark only — not a real program).
@@ -7,11 +7,11 @@
 // (about 150 s natively), far over the 5 s target (see docs/toolpath.md).
 // Targets: reverse compensation < 5 s per program; parse + simulate of
 // 35,000 lines < 1 s.
-import { readFileSync } from 'node:fs';
 import { wasm, bench } from './harness.mjs';
+import { corpusMissing, readCorpus } from '../../tests/support/corpus.mjs';
 
-const dir = new URL('../../tests/nc_corpus/', import.meta.url);
-const read = (f) => readFileSync(new URL(f, dir), 'utf8');
+if (corpusMissing) throw new Error(`these benchmarks need the NC corpus: ${corpusMissing}`);
+const read = readCorpus;
 const cfg = { tA: 0.04, T: 0.015, dt: 0.001 };
 
 // Rows of 20 chords of 1.5 mm at F4000 along X, 0.2 mm apart (a CAM

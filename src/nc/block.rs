@@ -326,6 +326,7 @@ fn set_motion_or_cycle(b: &Block, st: &mut Modal, gw: &GWords) -> Result<(), NcE
                     initial: st.pos.get(n),
                     r: None,
                     bottom: None,
+                    depth: None,
                     q: 0.0,
                     dwell: 0.0,
                 })

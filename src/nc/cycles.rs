@@ -14,7 +14,16 @@
 //! - Under G90 the R and bottom words are absolute. Under G91, R is the
 //!   distance from the initial level and the bottom the distance from R,
 //!   and the hole position is incremental, so `K`/`L` repeats (K0: store
-//!   the data, drill nothing) step from hole to hole.
+//!   the data, drill nothing) step from hole to hole. The G91 bottom is
+//!   kept as its distance from R: a later block that gives a new R but no
+//!   bottom word moves the bottom with R (`G91 G81 Z-0.6 R-0.5` then
+//!   `X1 R-0.3` drills the second hole to R − 0.6, not to the first
+//!   hole's bottom). This is the reading of the LinuxCNC G-code manual
+//!   (canned cycles: in incremental distance mode R is an increment from
+//!   the initial level and Z an increment from R; the interpreter keeps
+//!   the last R and Z numbers as sticky words and recomputes both levels
+//!   from them on every block, checked with its `rs274`) and of Fanuc
+//!   (the G91 Z is "the distance from point R to point Z").
 //! - G81: feed to the bottom, rapid out. G82: the same with a dwell P at the
 //!   bottom. G83 (peck): feed by Q, rapid back to R, rapid down to
 //!   [`PECK_CLEARANCE`] above the last depth, feed on. G73 (high-speed
@@ -59,6 +68,10 @@ pub struct Cycle {
     pub r: Option<f64>,
     /// Bottom, absolute, mm (`None` until given).
     pub bottom: Option<f64>,
+    /// The bottom's distance from R, mm, when the bottom was last given
+    /// under G91 (`None` when it was given under G90): a later block that
+    /// gives a new R under G91 without a bottom word moves the bottom with R.
+    pub depth: Option<f64>,
     /// Peck depth Q, mm.
     pub q: f64,
     /// Dwell at the bottom, s.
@@ -165,7 +178,13 @@ impl HolePath {
         let dir = if bottom < r { -1.0 } else { 1.0 };
         let depth_total = (bottom - r).abs();
         let mut done = 0.0;
-        while done < depth_total - 1e-12 {
+        // `hole_data` allows at most MAX_PECKS (⌈depth/Q⌉); one more for a
+        // sum of Q's that rounds short of the bottom. The bound keeps the
+        // loop finite whatever the arithmetic.
+        for _ in 0..=MAX_PECKS {
+            if done >= depth_total - 1e-12 {
+                break;
+            }
             let next = (done + c.q).min(depth_total);
             if done > 0.0 {
                 if c.code == 830 {
@@ -290,7 +309,9 @@ fn check_cycle_axes(b: &Block, st: &Modal, cx: &Ctx) -> Result<(), NcError> {
 
 /// The R level (`wr`) and the bottom (`wn`, the drilling-axis word) as
 /// absolute levels: under G91 R is from the initial level and the bottom
-/// from R; under G90 both are shifted by the G92 offset.
+/// from R; under G90 both are shifted by the G92 offset. A new R under G91
+/// without a bottom word keeps the bottom's G91 distance from R (the
+/// bottom moves with R), as LinuxCNC and Fanuc do.
 fn read_levels(
     b: &Block,
     st: &Modal,
@@ -301,11 +322,15 @@ fn read_levels(
 ) -> Result<(), NcError> {
     let (_, _, n) = st.plane.axes();
     if let Some(r) = wr {
-        c.r = Some(if st.incremental {
+        let r = if st.incremental {
             c.initial + r.value * scale
         } else {
             r.value * scale + st.offset[n]
-        });
+        };
+        c.r = Some(r);
+        if let (None, true, Some(depth)) = (wn, st.incremental, c.depth) {
+            c.bottom = Some(r + depth);
+        }
     }
     if let Some(z) = wn {
         let Some(r) = c.r else {
@@ -315,6 +340,7 @@ fn read_levels(
                 "canned cycle: the R level must be given before or with the bottom",
             ));
         };
+        c.depth = st.incremental.then_some(z.value * scale);
         c.bottom = Some(if st.incremental {
             r + z.value * scale
         } else {
@@ -382,7 +408,8 @@ fn hole_data(b: &Block, st: &Modal, c: &Cycle, anchor: &Word) -> Result<Holes, N
         }
     };
     let repeats = repeat_count(b)?;
-    let pecks = if peck && c.q > 0.0 {
+    // A peck cycle has Q > 0 (checked above).
+    let pecks = if peck {
         ((bottom - r).abs() / c.q).ceil()
     } else {
         1.0

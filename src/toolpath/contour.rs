@@ -385,7 +385,7 @@ pub struct Tracker {
 /// How far beyond the distance it must cover the exact check's element
 /// list reaches, as a fraction of that distance plus mm: a wider list is
 /// rebuilt less often but scanned longer. Reverse compensation of tort,
-/// cds and arcspiral (tests/nc_corpus) natively, of (0.25, 0.05),
+/// cds and arcspiral (the shared NC corpus) natively, of (0.25, 0.05),
 /// (0.5, 0.2), (1, 0.5), (0.5, 1) and (2, 2 mm): (1, 0.5) and (0.5, 1)
 /// fastest (2.2–2.5 s each), the narrowest slowest (3.6–4.2 s), on a
 /// machine too loaded to resolve less than about 20 %. Results are the

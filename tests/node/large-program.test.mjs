@@ -6,13 +6,17 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as mt from '../../pkg/mtmotion.js';
+import { corpusMissing, readCorpus } from '../support/corpus.mjs';
 
 mt.initSync({ module: readFileSync(new URL('../../pkg/mtmotion_bg.wasm', import.meta.url)) });
-const pocket = readFileSync(new URL('../nc_corpus/cncjs_tball-pocket.gcode', import.meta.url), 'utf8');
+// The pocket is in the shared corpus (tests/support/corpus.mjs); without
+// it both tests are skipped, saying why.
+const pocket = readCorpus('cncjs_tball-pocket.gcode');
+const skip = corpusMissing || false;
 const SERIES = 1_000_000; // budget::MAX_TOOLPATH_SERIES
 const EVERY = 262_144; // toolpath::PROGRESS_EVERY
 
-test('a 5.2 M-sample program simulates with thinned series, progress and the time of its length over feed', () => {
+test('a 5.2 M-sample program simulates with thinned series, progress and the time of its length over feed', { skip }, () => {
   const fractions = [];
   const s = mt.simulateToolPath(pocket, { tA: 0, T: 0, dt: 0.001 }, (f, stage) => {
     assert.equal(stage, 'simulating');
@@ -37,7 +41,7 @@ test('a 5.2 M-sample program simulates with thinned series, progress and the tim
   }
 });
 
-test('a progress callback that returns false cancels the simulation, and the instance still works', () => {
+test('a progress callback that returns false cancels the simulation, and the instance still works', { skip }, () => {
   let calls = 0;
   assert.throws(
     () => mt.simulateToolPath(pocket, {}, () => { calls++; return false; }),

@@ -433,14 +433,26 @@ pub fn targets() -> Vec<(&'static str, Target, Vec<String>)> {
     ]
 }
 
-/// The repo's NC corpus (a window of each file's first 4 kB), the
-/// tool-path examples, a program with a subprogram called twice, an inch
-/// program, one with G68/G69 coordinate rotations and a Haas-style one
-/// (M97 local subprograms with repeats, M99 P, G187, G103).
+/// The shared NC corpus when it is there (`MTMOTION_NC_CORPUS`, else
+/// `../shared/nc_corpus` from the project root or, for the `fuzz/` crate,
+/// from its parent; a window of each file's first 4 kB), the tool-path
+/// examples, a program with a subprogram called twice, an inch program,
+/// one with G68/G69 coordinate rotations and a Haas-style one (M97 local
+/// subprograms with repeats, M99 P, G187, G103).
 pub fn nc_seeds() -> Vec<String> {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/nc_corpus");
-    let mut out: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
+    let root = env!("CARGO_MANIFEST_DIR");
+    let dir = std::env::var("MTMOTION_NC_CORPUS")
+        .ok()
+        .into_iter()
+        .chain([
+            format!("{root}/../shared/nc_corpus"),
+            format!("{root}/../../shared/nc_corpus"),
+        ])
+        .find(|d| std::path::Path::new(d).is_dir());
+    let mut out: Vec<String> = dir
+        .and_then(|d| std::fs::read_dir(d).ok())
+        .into_iter()
+        .flatten()
         .filter_map(|e| e.ok())
         .filter(|e| !e.file_name().to_string_lossy().ends_with(".md"))
         .map(|e| {

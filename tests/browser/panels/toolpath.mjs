@@ -11,6 +11,7 @@
 // Node gives the same number) with a note that the plots are thinned.
 import { readFileSync } from 'node:fs';
 import { worstDelay } from '../event-loop.mjs';
+import { corpusMissing, readCorpus } from '../../support/corpus.mjs';
 
 export default async function (page, check) {
   await page.click('[data-tab="toolpath"]');
@@ -39,7 +40,12 @@ export default async function (page, check) {
   check(/region\(s\) changed/.test(regions), `region notes shown: ${regions.slice(0, 80)}`);
   check(!(await page.isVisible('#toolpath-cancel')), 'cancel hidden when done');
 
-  const cds = readFileSync(new URL('../../nc_corpus/linuxcnc_cds.ngc', import.meta.url), 'utf8');
+  // The real programs are in the shared corpus (tests/support/corpus.mjs).
+  if (corpusMissing) {
+    console.log(`  skipped the real programs (cds.ngc, the pocket): ${corpusMissing}`);
+    return;
+  }
+  const cds = readCorpus('linuxcnc_cds.ngc');
   await page.fill('#toolpath-nc', cds);
   await page.click('#toolpath-compensate');
   await page.waitForSelector('#toolpath-cancel', { state: 'visible', timeout: 10_000 });
@@ -52,7 +58,7 @@ export default async function (page, check) {
   await page.waitForFunction(() => document.querySelector('#toolpath-max-error')?.textContent, null, { timeout: 60_000 });
   check(parseFloat(await page.textContent('#toolpath-max-error')) > 0, 'engine works after the cancel');
 
-  const pocket = readFileSync(new URL('../../nc_corpus/cncjs_tball-pocket.gcode', import.meta.url), 'utf8');
+  const pocket = readCorpus('cncjs_tball-pocket.gcode');
   // page.fill types into the editor too slowly for 1.2 MB; set it as a
   // paste would.
   await page.$eval('#toolpath-nc', (el, text) => {
