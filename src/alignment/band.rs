@@ -502,6 +502,26 @@ mod tests {
     }
 
     #[test]
+    fn the_default_order_and_the_work_budget() {
+        // maxOrder left out is 10.
+        let c: BandConfig = serde_json::from_str(r#"{"radius": 100}"#).unwrap();
+        assert_eq!(c, CFG);
+        // 2.3 M samples × (2·10 + 1)² is over 1e9: refused before any work,
+        // naming the amount.
+        let n = 2_300_000;
+        let s = Section {
+            y: 0.0,
+            angle_deg: vec![0.0; n],
+            deviation: vec![0.0; n],
+        };
+        let e = estimate_alignment_band(&[s], &CFG).unwrap_err().to_string();
+        assert!(
+            e.starts_with("alignment band: 1014300000 units of work"),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn bad_max_order_and_short_sections_are_named() {
         let s = section(0.0, 0.0, 0.0, &[], 180.0, 0.0);
         let cfg = BandConfig {
