@@ -10,19 +10,7 @@
 
 use mtmotion::alignment::{estimate_alignment_band, AlignmentBand, BandConfig, Section};
 
-/// A deterministic standard normal sequence (xorshift64 + Box–Muller).
-fn gauss(seed: u64, n: usize) -> Vec<f64> {
-    let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    let mut u = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        ((s >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    };
-    (0..n)
-        .map(|_| (-2.0 * u().ln()).sqrt() * (std::f64::consts::TAU * u()).cos())
-        .collect()
-}
+use mtmotion::numeric::gaussian as gauss;
 
 /// Harmonic motion error: (order, amplitude mm, phase rad).
 type Motion = [(f64, f64, f64)];

@@ -270,19 +270,7 @@ fn correlation_factor(theta: &[f64], dev: &[f64], f: &Factor, n: usize) -> f64 {
 mod tests {
     use super::*;
 
-    /// A deterministic standard normal sequence (xorshift + Box–Muller).
-    pub(crate) fn gauss(seed: u64, n: usize) -> Vec<f64> {
-        let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-        let mut u = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            ((s >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-        };
-        (0..n)
-            .map(|_| (-2.0 * u().ln()).sqrt() * (std::f64::consts::TAU * u()).cos())
-            .collect()
-    }
+    use crate::numeric::gaussian as gauss;
 
     fn arc(from_deg: f64, span_deg: f64, n: usize) -> Vec<f64> {
         (0..n)

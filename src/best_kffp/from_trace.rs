@@ -34,7 +34,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{analytic, simulated_shift_to, BestKffpError, Method, Options};
+use super::{matched_set, BestKffpError, Method, Options};
 use crate::feed_vector::{self, Condition, FeedVectorResult, KffpSet, Summary};
 use crate::machine::Machine;
 use crate::servo::identify::{identify_axis, MeasuredTrace};
@@ -153,32 +153,23 @@ pub fn best_kffp_from_trace(
     let model_before = feed_vector::feed_vector_test(machine, cond)?.summary;
     let mismatch = measured.mean_angle_diff - model_before.mean_angle_diff;
     let axes = feed_vector::axes_for(machine, cond)?;
-    let [x, y, c] = &axes;
+    let c = &axes[2];
     let alpha = crate::servo::response::alpha_th(c, cond.omega)
         .map_err(|source| BestKffpError::Servo { axis: "c", source })?;
-    let target = alpha + mismatch;
-    let mut kx = analytic::match_lag(x, cond.omega, target, opts.k_min, opts.k_max, "x")?;
-    let mut ky = analytic::match_lag(y, cond.omega, target, opts.k_min, opts.k_max, "y")?;
     let method = match opts.method {
         Method::Auto if measured.saturated || model_before.saturated => Method::Simulated,
         Method::Auto => Method::Analytic,
         m => m,
     };
-    if method == Method::Simulated {
-        let shift = simulated_shift_to(&axes, cond, kx, ky, -mismatch, opts)?;
-        kx += shift;
-        ky += shift;
-    }
-    let kffp = KffpSet {
-        x: kx,
-        y: ky,
-        c: measured_with.c,
-    };
-    let after_cond = Condition {
-        kffp: Some(kffp),
-        ..cond.clone()
-    };
-    let model_after = feed_vector::feed_vector_test(machine, &after_cond)?.summary;
+    let (kffp, model_after) = matched_set(
+        machine,
+        cond,
+        &axes,
+        alpha + mismatch,
+        -mismatch,
+        method,
+        opts,
+    )?;
     let amplitude_mismatch = measured.half_amplitude - model_before.half_amplitude;
     Ok(TraceKffp {
         measured_with,

@@ -160,27 +160,13 @@ pub fn best_kffp(
     let [x, y, c] = &axes;
     let alpha = crate::servo::response::alpha_th(c, cond.omega)
         .map_err(|source| BestKffpError::Servo { axis: "c", source })?;
-    let (mut kx, mut ky) = analytic::solve(x, y, c, cond.omega, opts.k_min, opts.k_max)?;
     let method = match opts.method {
         Method::Auto if before.saturated => Method::Simulated,
         Method::Auto => Method::Analytic,
         m => m,
     };
-    if method == Method::Simulated {
-        let delta = simulated_shift(&axes, cond, kx, ky, opts)?;
-        kx += delta;
-        ky += delta;
-    }
-    let kffp = KffpSet {
-        x: kx,
-        y: ky,
-        c: c.kffp,
-    };
-    let after_cond = Condition {
-        kffp: Some(kffp),
-        ..cond.clone()
-    };
-    let after = feed_vector::feed_vector_test(machine, &after_cond)?.summary;
+    let (kffp, after) = matched_set(machine, cond, &axes, alpha, 0.0, method, opts)?;
+    let (kx, ky) = (kffp.x, kffp.y);
     let residual = |a: &crate::servo::AxisParams, k: f64, name: &'static str| {
         let mut a = a.clone();
         a.kffp = k;
@@ -211,15 +197,39 @@ fn check_options(opts: &Options) -> Result<(), BestKffpError> {
     })
 }
 
-/// The common K_FFP shift δ of X and Y that zeroes the simulated mean α − β.
-fn simulated_shift(
-    axes: &[crate::servo::AxisParams; 3],
+/// The K_FFP set whose X and Y lags on the model equal `lag` (rad; C
+/// keeps its K_FFP), and, with the simulated method, shifted in common
+/// until the saturating simulation's mean α − β is `sim_target` (rad);
+/// with the model's simulated summary for that set.
+#[allow(clippy::too_many_arguments)]
+fn matched_set(
+    machine: &Machine,
     cond: &Condition,
-    kx: f64,
-    ky: f64,
+    axes: &[crate::servo::AxisParams; 3],
+    lag: f64,
+    sim_target: f64,
+    method: Method,
     opts: &Options,
-) -> Result<f64, BestKffpError> {
-    simulated_shift_to(axes, cond, kx, ky, 0.0, opts)
+) -> Result<(KffpSet, Summary), BestKffpError> {
+    let [x, y, c] = axes;
+    let mut kx = analytic::match_lag(x, cond.omega, lag, opts.k_min, opts.k_max, "x")?;
+    let mut ky = analytic::match_lag(y, cond.omega, lag, opts.k_min, opts.k_max, "y")?;
+    if method == Method::Simulated {
+        let shift = simulated_shift_to(axes, cond, kx, ky, sim_target, opts)?;
+        kx += shift;
+        ky += shift;
+    }
+    let kffp = KffpSet {
+        x: kx,
+        y: ky,
+        c: c.kffp,
+    };
+    let after_cond = Condition {
+        kffp: Some(kffp),
+        ..cond.clone()
+    };
+    let after = feed_vector::feed_vector_test(machine, &after_cond)?.summary;
+    Ok((kffp, after))
 }
 
 /// The common K_FFP shift of X and Y that brings the simulated mean α − β
