@@ -75,13 +75,13 @@ fn mean(v: &[f64]) -> f64 {
     v.iter().sum::<f64>() / v.len() as f64
 }
 
-/// Slope of v against y by least squares (the Fig. 2 formula for two).
+/// Slope of v against y by least squares, Σ(y − ȳ)·v / Σ(y − ȳ)² (the
+/// Fig. 2 formula for two sections); None when every y is the same.
 fn slope(y: &[f64], v: &[f64]) -> Option<f64> {
-    let n = y.len() as f64;
-    let (my, mv) = (y.iter().sum::<f64>() / n, v.iter().sum::<f64>() / n);
-    let syy: f64 = y.iter().map(|a| (a - my) * (a - my)).sum();
-    let syv: f64 = y.iter().zip(v).map(|(a, b)| (a - my) * (b - mv)).sum();
-    (y.len() >= 2 && syy > 0.0).then(|| syv / syy)
+    let my = mean(y);
+    let syy: f64 = y.iter().map(|a| (a - my).powi(2)).sum();
+    let syv: f64 = y.iter().zip(v).map(|(a, b)| (a - my) * b).sum();
+    (syy > 0.0).then(|| syv / syy)
 }
 
 /// Estimates the centre of every section and the angle errors ΔBz, ΔBx.
