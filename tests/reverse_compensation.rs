@@ -24,6 +24,7 @@ fn arc_example_error_falls_by_60_percent_within_5_percent_time() {
     assert!(cut >= 0.60, "error cut {:.1} %", cut * 100.0);
     let grow = c.after.motion_time / c.before.motion_time - 1.0;
     assert!(grow <= 0.05, "time grows {:.1} %", grow * 100.0);
+    assert!(c.nc != src && c.unchanged.is_none(), "{:?}", c.unchanged);
     // Line numbers and comments survive; centres are kept.
     for tag in ["N30 G1", "(B)", "(C)", "(D)", "(E)", "N470"] {
         assert!(c.nc.contains(tag), "{tag} missing");
@@ -237,6 +238,15 @@ fn unchanged_regions_say_why() {
         "G21 G90\nG0 X0 Y0\nG1 X10 F3000\nG0 Z5\nG0 X20\nG1 X30 Y5 F3000\nG1 X40 Y0\nG0 Z10\n";
     let c = reverse_compensate(src, &ReverseConfig::default()).unwrap();
     assert!(c.after.max_error_um <= c.before.max_error_um);
+    // Nothing changed: the text is returned byte for byte and the result
+    // says so, naming the worst region's lines and reason.
+    if c.nc == src {
+        let why = c.unchanged.as_deref().unwrap();
+        assert!(why.starts_with("nothing in the program changed"), "{why}");
+        assert!(why.contains("lines "), "{why}");
+    } else {
+        assert!(c.unchanged.is_none());
+    }
     let notes: &[RegionNote] = &c.regions;
     assert_eq!(notes.len(), 2, "{notes:?}");
     assert!(notes[0].reason.contains("no corner"), "{notes:?}");
@@ -392,6 +402,11 @@ fn a_program_with_nothing_to_move_says_why_as_a_whole() {
     ] {
         let c = reverse_compensate(text, &ReverseConfig::default()).unwrap();
         assert_eq!(c.nc, text);
+        let why = c.unchanged.as_deref().unwrap();
+        assert!(
+            why.starts_with("nothing in the program changed") && why.contains(phrase),
+            "{why}"
+        );
         assert!(c.before.max_error_um > 1.0, "{}", c.before.max_error_um);
         assert_eq!(c.after.max_error_um, c.before.max_error_um);
         assert!(c.history_um.is_empty(), "{:?}", c.history_um);

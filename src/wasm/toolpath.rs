@@ -94,6 +94,7 @@ export interface ReverseCompensation {
   nc: string; before: CompSummary; after: CompSummary; segments: SegmentChange[];
   dwells: { /** [-] */ afterLine: number; seconds: number }[]; regions: RegionNote[]; historyUm: number[];
   beforeSim: ToolPathSimulation; afterSim: ToolPathSimulation;
+  /** set when the written program is the original text byte for byte: why, in words (the download is then not offered) */ unchanged: string | null;
   /** set when the work budget cut the correction short: what was kept and what to change */ budgetNote: string | null;
 }
 "#;
@@ -391,6 +392,12 @@ pub fn reverse_compensate_js(
         .ser("historyUm", &c.history_um)?
         .val("beforeSim", sim_obj(&c.sim_before, &[])?)
         .val("afterSim", sim_obj(&c.sim_after, &[])?)
+        .val(
+            "unchanged",
+            c.unchanged
+                .as_deref()
+                .map_or(JsValue::NULL, JsValue::from_str),
+        )
         .val(
             "budgetNote",
             c.budget_note

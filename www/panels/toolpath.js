@@ -289,7 +289,9 @@ export async function mount(root, api) {
         ]),
         h('p', {}, `Error ${pct >= 0 ? 'reduced' : 'increased'} by ${fmt(Math.abs(pct), 3)} %; rounds: ${c.historyUm.length ? `${c.historyUm.map((e) => fmt(e, 3)).join(' → ')} µm` : 'none (nothing to move)'}; dwells: ${c.dwells.length ? c.dwells.map((d) => `${d.seconds} s after line ${d.afterLine}`).join(', ') : 'none'}.`),
         ...(c.budgetNote ? [h('p', { class: 'note', id: 'toolpath-budget-note' }, `Cut short: ${c.budgetNote}.`)] : []),
-        h('button', { id: 'toolpath-download', class: 'primary', onclick: () => downloadText(`${base}-compensated.nc`, c.nc, 'text/plain') }, 'Download compensated .nc'),
+        // The core says when the written program is the original byte for byte: no download of a file that compensates nothing.
+        ...(c.unchanged ? [h('p', { class: 'note', id: 'toolpath-unchanged' }, `No compensated program: ${c.unchanged}.`)] : []),
+        h('button', { id: 'toolpath-download', class: 'primary', disabled: Boolean(c.unchanged), title: c.unchanged ?? '', onclick: () => downloadText(`${base}-compensated.nc`, c.nc, 'text/plain') }, c.unchanged ? 'Download compensated .nc (nothing changed)' : 'Download compensated .nc'),
         h('details', { id: 'toolpath-regions', open: c.regions.some((r) => !r.changed) },
           h('summary', {}, `${c.regions.filter((r) => r.changed).length} of ${c.regions.length} region(s) changed; the others are left unchanged, and why`),
           table(['lines', 'arcs / lines', 'before µm', 'after µm', 'changed', 'left unchanged because'], c.regions.slice(0, 500).map((r) => [

@@ -180,6 +180,10 @@ pub struct Compensation {
     pub sim_before: Simulation,
     /// The simulation of the corrected program against the original path.
     pub sim_after: Simulation,
+    /// Set when the written program is the original text byte for byte:
+    /// why, in words (the worst region's reason), so that nothing is
+    /// offered as a compensated program that is not one.
+    pub unchanged: Option<String>,
     /// Set when the work budget cut the rounds or checks short: what was
     /// kept and what to change for a full run.
     pub budget_note: Option<String>,
@@ -375,18 +379,35 @@ pub fn reverse_compensate_with(
         &mut work,
     )?;
     tick(1.0, "done")?;
-    Ok(Compensation {
-        budget_note: work.note(),
-        ..finish(
-            &program,
-            &rg,
-            &before_err,
-            &sim_before,
-            checked,
-            notes,
-            history,
-        )
-    })
+    let mut c = finish(
+        &program,
+        &rg,
+        &before_err,
+        &sim_before,
+        checked,
+        notes,
+        history,
+    );
+    c.budget_note = work.note();
+    c.unchanged = (c.nc == text).then(|| unchanged_reason(&c.regions));
+    Ok(c)
+}
+
+/// Why a program came back as it was: the worst region's reason, with its
+/// lines and error; or that it has no cutting region at all.
+fn unchanged_reason(regions: &[RegionNote]) -> String {
+    let worst = regions
+        .iter()
+        .filter(|r| !r.reason.is_empty())
+        .max_by(|a, b| a.before_um.total_cmp(&b.before_um));
+    match worst {
+        Some(r) => format!(
+            "nothing in the program changed: the largest error ({:.1} µm, lines {}–{}) was left \
+             as it was because {}",
+            r.before_um, r.first_line, r.last_line, r.reason
+        ),
+        None => "nothing in the program changed: it has no cutting move to correct".to_string(),
+    }
 }
 
 /// The dwell variant.
@@ -746,6 +767,7 @@ fn finish(
         nc: c.nc,
         sim_before: sim_before.clone(),
         sim_after: c.sim,
+        unchanged: None,
         budget_note: None,
     }
 }

@@ -3,7 +3,8 @@
 // here independently; then reverse-compensate the built-in arc example and
 // check the shown before/after figures (≥ 60 % less error, ≤ 5 % more time)
 // and that the corrected program is offered for download, with the
-// per-region notes; then start the compensation of a real program
+// per-region notes; a program with nothing to rewrite is refused a download,
+// with the reason; then start the compensation of a real program
 // (LinuxCNC cds.ngc, seconds), cancel it, and check that the page says so
 // and the engine still simulates. Last, a real 40,306-line CAM pocket
 // (5.2 M samples): its simulation shows progress and can be cancelled,
@@ -39,6 +40,16 @@ export default async function (page, check) {
   const regions = await page.textContent('#toolpath-regions');
   check(/region\(s\) changed/.test(regions), `region notes shown: ${regions.slice(0, 80)}`);
   check(!(await page.isVisible('#toolpath-cancel')), 'cancel hidden when done');
+  check(!(await page.$('#toolpath-unchanged')) && !(await page.isDisabled('#toolpath-download')), 'a compensated program is offered for download');
+
+  // A program whose every word is a macro expression cannot be rewritten:
+  // the core returns it byte for byte and says why; no download is offered.
+  await page.fill('#toolpath-nc', '#1=20\n#2=0\nG0 X0 Y0 Z1\nG1 Z#2 F600\nG1 X#1 F2000\nG1 Y#1\nG1 X#2\nG1 Y[#1-20]\nG0 Z5\nM30\n');
+  await page.click('#toolpath-compensate');
+  await page.waitForSelector('#toolpath-unchanged, #toolpath-comp-out .error-box', { timeout: 60_000 });
+  const unchanged = (await page.textContent('#toolpath-comp-out')) ?? '';
+  check(/No compensated program: nothing in the program changed/.test(unchanged) && /macro/.test(unchanged), `an unchanged program says why: ${unchanged.slice(0, 200)}`);
+  check(await page.isDisabled('#toolpath-download'), 'no download is offered for an unchanged program');
 
   // The real programs are in the shared corpus (tests/support/corpus.mjs).
   if (corpusMissing) {
