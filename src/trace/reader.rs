@@ -24,7 +24,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::cells::{decimal, number, sniff, split_cells, Cell, Decimal, Number};
-use super::units::{name_unit, unit, Quantity};
+use super::units::{name_unit, unit, Quantity, Unit, UNITS};
 use super::{binary_kind, control_char, is_comment, split_lines, Table, TraceError};
 
 /// Options of [`read_table`] (the JS `TraceReadOptions`).
@@ -42,7 +42,8 @@ pub struct ReadOptions {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub enum ColumnKind {
-    /// Numbers, in [`TableRead::table`].
+    /// Numbers, in [`TableRead::table`] (JS `'numeric'`).
+    #[serde(rename = "numeric")]
     Number,
     /// Text or status: ignored.
     Text,
@@ -106,6 +107,8 @@ pub struct Layout {
     pub metadata: Vec<Meta>,
     /// What was found and done, in words.
     pub notes: Vec<String>,
+    /// Every unit a header may state, with its factor (for unit menus).
+    pub units: &'static [Unit],
 }
 
 /// A table read by [`read_table`]: the numeric columns and the layout.
@@ -480,6 +483,7 @@ pub fn read_table(text: &str, opts: &ReadOptions) -> Result<TableRead, TraceErro
         columns: infos,
         metadata,
         notes,
+        units: &UNITS,
     };
     Ok(TableRead {
         table: Table {
