@@ -73,16 +73,19 @@ fn malformed_traces_name_line_and_column() {
     assert!(e.starts_with("line 3, column 2 ('x')"), "{e}");
 }
 
-/// A one-second trace at 1 ms, X = 8 mm, Y = C = 0, with `edit` applied to
-/// the line of sample `k` (1-based line `k + 2`).
+/// A one-second trace at 1 ms of the test at ω = 1 rad/s (X, Y on the
+/// circle of radius 8, C in degrees; a plausible trace), with `edit`
+/// applied to the line of sample `k` (1-based line `k + 2`).
 fn second_of_trace(k: usize, line: &str) -> String {
     let mut text = String::from("time,x,y,c\n");
     for i in 0..1000 {
+        let t = i as f64 * 1e-3;
         if i == k {
             text += line;
             text.push('\n');
         } else {
-            writeln!(text, "{},8,0,0", i as f64 * 1e-3).unwrap();
+            let (x, y, c) = (8.0 * t.cos(), 8.0 * t.sin(), t.to_degrees());
+            writeln!(text, "{t},{x},{y},{c}").unwrap();
         }
     }
     text

@@ -480,7 +480,8 @@ fn servo_trace_magnitude_regressions() {
         (
             "1;0.993833508538892;110.88262850995298;",
             "1;0.993833508538892;1e308;",
-            "line 5, column 3 ('Y [um]'): 1e308 mm",
+            // (the header's µm now scales it: 1e305 mm)
+            "line 5, column 3 ('Y [um]'): 1e305 mm",
         ),
         // run 10,588: X = -0.69e308 mm
         (
@@ -507,7 +508,15 @@ fn servo_trace_magnitude_regressions() {
             "{e}"
         );
     }
-    // the seed itself is analysed, and its summary is finite
+    // the seed itself is analysed, and its summary is finite: its
+    // `Time [ms]` is 59 ms of C turning at 0.5 deg/ms (8.7 rad/s), so the
+    // steady window is the whole trace and ω is C's (it was read as 59 s
+    // at 1 rad/s before the header's units were read)
+    let map = trace_analysis::ColumnMap {
+        steady_from: Some(0.0),
+        ..map
+    };
+    let cond = Condition::paper(500f64.to_radians());
     let r = trace_analysis::analyze_trace(seed, &cond, &map).unwrap();
     assert!(r.summary.half_amplitude.is_finite() && r.summary.half_amplitude > 0.0);
 }

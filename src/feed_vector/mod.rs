@@ -6,7 +6,9 @@
 //! - [`command`]: the commanded motion with its linear acc/dec;
 //! - [`analysis`]: shape error, α, β, α − β, ΔR and the steady summary;
 //! - [`trace_analysis`]: the same analysis of a measured (SERVO GUIDE-style)
-//!   trace.
+//!   trace;
+//! - [`trace_plausibility`]: the check that a trace is of this test (C at
+//!   ω, X/Y on a circle) before its analysis.
 //!
 //! # Readings
 //! - `condition.j1` is the load on C (Table 1's `*`), `condition.torqueMax`
@@ -22,6 +24,7 @@
 pub mod analysis;
 pub mod command;
 pub mod trace_analysis;
+pub mod trace_plausibility;
 
 use serde::{Deserialize, Serialize};
 
@@ -62,6 +65,9 @@ pub enum FeedVectorError {
     /// The input is over a work budget ([`crate::budget`]).
     #[error(transparent)]
     Budget(#[from] crate::budget::BudgetError),
+    /// The trace is not of this test (C not turning at ω, X/Y off a circle).
+    #[error("{0}")]
+    Implausible(String),
     /// A trace value is unusable at a line and column.
     #[error("line {line}, column {column} ('{name}'): {why}")]
     TraceValue {

@@ -2,9 +2,17 @@
 //! (suzuki-best-kffp §4.1, Fig. 7: SERVO GUIDE samples X, Y in mm and C in
 //! degrees every 1 ms).
 //!
-//! The trace is a CSV/TSV table with a header ([`crate::trace::Table`]).
-//! Columns are found by name (aliases below, or the names in
-//! [`ColumnMap`]) and scaled to core units. The commanded angle θ(t) that
+//! The trace is read by the core's tolerant reader
+//! ([`crate::trace::read_table`]: any delimiter, decimal commas, quoted
+//! numbers, text columns ignored, metadata above the header, headerless
+//! with a sample period). Columns are found by name (aliases below, or the
+//! names in [`ColumnMap`]) and scaled to core units: by the unit their
+//! header states (`Time [ms]` is ms, `POS X(um)` µm, `TCMD C(%)` % of
+//! `ratedTorque`), else by the mapping's factors; `headerUnits: false`
+//! makes the mapping's factors apply to every column (the page, whose
+//! menus the header's units fill). Before the analysis the trace must be
+//! plausible ([`super::trace_plausibility`]): C turning at about ω and
+//! X/Y on a circle. The commanded angle θ(t) that
 //! Eqs. 8–9 need is rebuilt from the condition (ω, accel time), with t = 0
 //! at `motionStart` (default: the first sample). Positions are machine
 //! positions with the circle centre at the origin; with `relative: true`
@@ -19,13 +27,15 @@ use serde::{Deserialize, Serialize};
 use super::analysis::{derive, summarize, Series};
 use super::{command, Condition, FeedVectorError, FeedVectorResult};
 use crate::numeric::compact;
-use crate::trace::Table;
+use crate::trace::units::Quantity;
+use crate::trace::{read_table, ReadOptions, TableRead};
 
 /// Column names and units of a trace (the JS `mapping`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 pub struct ColumnMap {
-    /// Time column (default aliases: time, t, time_s).
+    /// Time column (default aliases: time, t, zeit; generated from
+    /// `samplePeriod` for a headerless file).
     pub time: Option<String>,
     /// X column (x, pos_x).
     pub x: Option<String>,
@@ -33,9 +43,10 @@ pub struct ColumnMap {
     pub y: Option<String>,
     /// C column (c, pos_c).
     pub c: Option<String>,
-    /// Torque column (torque, tcmd, torque_c); optional.
+    /// Torque column (torque, tcmd, torque_c, tcmd_c, tq); optional.
     pub torque: Option<String>,
-    /// Seconds per time unit (1e-3 for ms). Default 1.
+    /// Seconds per time unit (1e-3 for ms) of a time column whose header
+    /// states no unit. Default 1.
     pub time_scale: f64,
     /// mm per linear unit (1e-3 for µm). Default 1.
     pub linear_scale: f64,
@@ -47,6 +58,13 @@ pub struct ColumnMap {
     pub motion_start: Option<f64>,
     /// Positions are displacements from the start point.
     pub relative: bool,
+    /// The unit a header states scales its column (default true); false:
+    /// the factors above scale every column.
+    pub header_units: bool,
+    /// Rated torque, N·m: reads a torque column in `%`.
+    pub rated_torque: Option<f64>,
+    /// Sample period, s, of a file without a time column.
+    pub sample_period: Option<f64>,
     /// Start of the steady-state window after the motion start, s
     /// (default `accelTime + 0.4 s`).
     pub steady_from: Option<f64>,
@@ -66,6 +84,9 @@ impl Default for ColumnMap {
             torque_scale: 1.0,
             motion_start: None,
             relative: false,
+            header_units: true,
+            rated_torque: None,
+            sample_period: None,
             steady_from: None,
         }
     }
@@ -79,6 +100,8 @@ struct Range {
     unit: &'static str,
     /// The mapping field whose unit factor scales the column.
     scale: &'static str,
+    /// What the column measures.
+    quantity: Quantity,
 }
 
 /// Times: |t| ≤ 1e7 s (116 days of recording).
@@ -86,24 +109,28 @@ const TIME: Range = Range {
     max: 1e7,
     unit: "s",
     scale: "mapping.timeScale",
+    quantity: Quantity::Time,
 };
 /// X, Y: |x| ≤ 1e5 mm (100 m, beyond any machine's stroke).
 const LINEAR: Range = Range {
     max: 1e5,
     unit: "mm",
     scale: "mapping.linearScale",
+    quantity: Quantity::Length,
 };
 /// C: |c| ≤ 1e6 rad (160,000 turns).
 const ANGLE: Range = Range {
     max: 1e6,
     unit: "rad",
     scale: "mapping.angleScale",
+    quantity: Quantity::Angle,
 };
 /// Torque: |τ| ≤ 1e7 N·m.
 const TORQUE: Range = Range {
     max: 1e7,
     unit: "N·m",
     scale: "mapping.torqueScale",
+    quantity: Quantity::Torque,
 };
 
 /// Shortest sample interval, s: 0.1 µs (SERVO GUIDE samples every 1 ms;
@@ -111,22 +138,27 @@ const TORQUE: Range = Range {
 /// it would lose every digit).
 pub const MIN_STEP: f64 = 1e-7;
 
-/// The 0-based index and scaled values of a column, each finite and
-/// inside `range`.
+/// The 0-based index (in the table) and scaled values of a column, each
+/// finite and inside `range`: scaled by the unit its header states
+/// (`map.header_units`), else by `scale`.
 fn column(
-    table: &Table,
+    read: &TableRead,
+    map: &ColumnMap,
     name: &Option<String>,
     aliases: &[&str],
     scale: f64,
     range: &Range,
 ) -> Result<(usize, Vec<f64>), FeedVectorError> {
+    let table = &read.table;
     let names: Vec<&str> = match name {
         Some(n) => vec![n.as_str()],
         None => aliases.to_vec(),
     };
-    let values = table.column(&names, scale)?;
+    table.column(&names, 1.0)?;
     let index = table.find(&names).unwrap_or(0);
-    let at = |i: usize, why: String| value_error(table, index, i, why);
+    let scale = column_scale(read, map, index, scale, range)?;
+    let values: Vec<f64> = table.columns[index].iter().map(|v| v * scale).collect();
+    let at = |i: usize, why: String| value_error(read, index, i, why);
     if let Some(i) = values.iter().position(|v| !v.is_finite()) {
         return Err(at(i, format!("'{}' is not a finite number", values[i])));
     }
@@ -146,12 +178,59 @@ fn column(
     Ok((index, values))
 }
 
-/// The error for the value of column `col` (0-based) in data row `row`,
-/// located at its line and named by its header.
-fn value_error(table: &Table, col: usize, row: usize, why: String) -> FeedVectorError {
+/// The factor of table column `index` for a column of `range`'s quantity:
+/// the header's unit (a `%` torque needs `mapping.ratedTorque`, whatever
+/// `headerUnits`), else the mapping's `scale`.
+fn column_scale(
+    read: &TableRead,
+    map: &ColumnMap,
+    index: usize,
+    scale: f64,
+    range: &Range,
+) -> Result<f64, FeedVectorError> {
+    let Some(info) = read.info(index) else {
+        return Ok(scale);
+    };
+    let line = read
+        .layout
+        .header_line
+        .unwrap_or(read.layout.first_data_line);
+    let refuse = |why: String| FeedVectorError::TraceValue {
+        line,
+        column: info.field,
+        name: info.name.clone(),
+        why,
+    };
+    if info.unit == Some("%") {
+        return info.factor.ok_or_else(|| {
+            refuse("the torque is in % of the rated torque; give mapping.ratedTorque (the motor's rated torque in N·m), or map a torque column in N·m".into())
+        });
+    }
+    match (map.header_units, info.quantity, info.factor) {
+        (true, Some(q), Some(f)) if q == range.quantity => Ok(f),
+        (true, Some(q), Some(_)) => Err(refuse(format!(
+            "the header states '{}', a unit of {}, but this column is read as the {} column (in {}); map the right column",
+            info.unit.unwrap_or(""),
+            q.core_unit(),
+            match range.quantity {
+                Quantity::Time => "time",
+                Quantity::Length => "X or Y",
+                Quantity::Angle => "C",
+                _ => "torque",
+            },
+            range.unit
+        ))),
+        _ => Ok(scale),
+    }
+}
+
+/// The error for the value of table column `col` (0-based) in data row
+/// `row`, located at its line and named by its header (field in the file).
+fn value_error(read: &TableRead, col: usize, row: usize, why: String) -> FeedVectorError {
+    let table = &read.table;
     FeedVectorError::TraceValue {
         line: table.lines.get(row).copied().unwrap_or(0),
-        column: col + 1,
+        column: read.info(col).map_or(col + 1, |c| c.field),
         name: table.names.get(col).cloned().unwrap_or_default(),
         why,
     }
@@ -190,18 +269,23 @@ pub fn analyze_trace(
     crate::budget::check_text("trace", text)?;
     cond.validate()?;
     validate_map(map)?;
-    let table = Table::parse(text)?;
-    let t = time_column(&table, map)?;
+    let opts = ReadOptions {
+        sample_period: map.sample_period,
+        rated_torque: map.rated_torque,
+    };
+    let read = read_table(text, &opts)?;
+    let t = time_column(&read, map)?;
     let xs = ["x", "pos_x", "x_pos"];
-    let (_, mut x) = column(&table, &map.x, &xs, map.linear_scale, &LINEAR)?;
+    let (_, mut x) = column(&read, map, &map.x, &xs, map.linear_scale, &LINEAR)?;
     let ys = ["y", "pos_y", "y_pos"];
-    let (_, y) = column(&table, &map.y, &ys, map.linear_scale, &LINEAR)?;
+    let (_, y) = column(&read, map, &map.y, &ys, map.linear_scale, &LINEAR)?;
     let cs = ["c", "pos_c", "c_pos"];
-    let (_, c) = column(&table, &map.c, &cs, map.angle_scale, &ANGLE)?;
-    let torque_aliases = ["torque", "tcmd", "torque_c", "tq"];
-    let torque = if map.torque.is_some() || table.find(&torque_aliases).is_some() {
+    let (ci, c) = column(&read, map, &map.c, &cs, map.angle_scale, &ANGLE)?;
+    let torque_aliases = ["torque", "tcmd", "torque_c", "tcmd_c", "tq"];
+    let torque = if map.torque.is_some() || read.table.find(&torque_aliases).is_some() {
         column(
-            &table,
+            &read,
+            map,
             &map.torque,
             &torque_aliases,
             map.torque_scale,
@@ -240,6 +324,8 @@ pub fn analyze_trace(
     // machine-independent part (accel time + 0.4 s)
     let t_ss = map.steady_from.unwrap_or(cond.accel_time + 0.4);
     steady_window_holds_samples(&series.t, t_ss, map.steady_from.is_some())?;
+    let c_name = read.table.names.get(ci).cloned().unwrap_or_default();
+    super::trace_plausibility::check(&series, cond, t_ss, &read.table.lines, &c_name)?;
     let summary = summarize(&series, cond.omega, t_ss, saturated);
     Ok(FeedVectorResult { series, summary })
 }
@@ -296,9 +382,9 @@ fn steady_window_holds_samples(tt: &[f64], t_ss: f64, given: bool) -> Result<(),
 }
 
 /// The time column in s, which must increase strictly from row to row.
-fn time_column(table: &Table, map: &ColumnMap) -> Result<Vec<f64>, FeedVectorError> {
-    let names = ["time", "t", "time_s"];
-    let (tcol, t) = column(table, &map.time, &names, map.time_scale, &TIME)?;
+fn time_column(read: &TableRead, map: &ColumnMap) -> Result<Vec<f64>, FeedVectorError> {
+    let names = ["time", "t", "time_s", "zeit"];
+    let (tcol, t) = column(read, map, &map.time, &names, map.time_scale, &TIME)?;
     for i in 1..t.len() {
         let (now, before) = (t[i], t[i - 1]);
         if now - before >= MIN_STEP {
@@ -313,7 +399,7 @@ fn time_column(table: &Table, map: &ColumnMap) -> Result<Vec<f64>, FeedVectorErr
         } else {
             format!("time {now_s} does not increase after {before_s} on the line before; sort the trace or pick the right time column")
         };
-        return Err(value_error(table, tcol, i, why));
+        return Err(value_error(read, tcol, i, why));
     }
     Ok(t)
 }

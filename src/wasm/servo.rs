@@ -1,7 +1,7 @@
 //! Bindings for [`crate::servo`], [`crate::feed_vector`] and
 //! [`crate::best_kffp`]: `frequencyResponse`, `simulateAxis`,
 //! `feedVectorTest`, `analyzeFeedVectorTrace`, `bestKffp`,
-//! `torqueSaturation`. Thin: convert, call the core, convert back.
+//! `torqueSaturation`, `traceLayout`, `traceColumns`. Thin: convert, call the core, convert back.
 
 use js_sys::Reflect;
 use wasm_bindgen::prelude::*;
@@ -48,6 +48,8 @@ export interface TraceMapping {
   /** [s/unit] default 1 */ timeScale?: number; /** [mm/unit] default 1 */ linearScale?: number;
   /** [rad/unit] default π/180 */ angleScale?: number; /** [N·m/unit] default 1 */ torqueScale?: number;
   /** [s] start of the commanded motion */ motionStart?: number; relative?: boolean; /** [s] after the motion start */ steadyFrom?: number;
+  /** Default true: a unit stated in a column's header scales it; false: the factors above scale every column. */ headerUnits?: boolean;
+  /** [N·m] rated torque: reads a torque column in % */ ratedTorque?: number; /** [s] sample period of a file without a time column */ samplePeriod?: number;
 }
 export interface BestKffpOptions { method?: 'auto' | 'analytic' | 'simulated'; /** [%] */ kMin?: number; /** [%] */ kMax?: number }
 export interface BestKffpResult {
@@ -293,6 +295,47 @@ const TS_COLUMNS: &str = r#"
 /** A trace's columns: the name as written, the name without its unit, and the unit it states (s, ms, us, mm, um, m, deg, rad, n·m) or null. */
 export interface TraceColumn { name: string; bare: string; unit: string | null }
 "#;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_LAYOUT: &str = r#"
+/** Options of traceLayout (the core's tolerant reader). */
+export interface TraceReadOptions { /** [s] sample period of a file without a time column: a time column is generated */ samplePeriod?: number; /** [N·m] rated torque: converts a torque column in % */ ratedTorque?: number }
+export type TraceQuantity = 'time' | 'length' | 'angle' | 'torque' | 'percent';
+/** A unit a header may state. */
+export interface TraceUnit { code: string; quantity: TraceQuantity; /** [s, mm, rad or N·m per unit; 0.01 for %] factor to the core unit */ factor: number }
+/** What one column was read as. */
+export interface TraceColumnLayout {
+  name: string; bare: string; /** [-] 1-based field in the file, 0 for a generated column */ field: number; kind: 'numeric' | 'text' | 'generated';
+  unit: string | null; quantity: TraceQuantity | null; /** [s, mm, rad or N·m per unit] null without a stated unit */ factor: number | null; coreUnit: string | null; note: string | null;
+}
+/** One line above the header, as a key/value pair. */
+export interface TraceMeta { /** [-] 1-based line */ line: number; key: string; value: string }
+/** How the core read a trace: the page's layout preview and unit menus. */
+export interface TraceLayout {
+  delimiter: 'tab' | ';' | ',' | 'spaces' | 'none'; decimalComma: boolean; /** [-] 1-based line, null: headerless */ headerLine: number | null;
+  /** [-] 1-based line */ firstDataLine: number; /** [-] data rows */ rows: number; columns: TraceColumnLayout[]; metadata: TraceMeta[]; notes: string[]; units: TraceUnit[];
+}
+"#;
+
+#[cfg(feature = "full")]
+/// How the core's tolerant reader reads a trace: delimiter, decimal
+/// separator, header line, metadata, each column's kind, unit and factor
+/// to core units, and notes in words; throws with the cause and the first
+/// offending line.
+#[wasm_bindgen(js_name = traceLayout, unchecked_return_type = "TraceLayout")]
+pub fn trace_layout(
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "TraceReadOptions")] options: JsValue,
+) -> Result<JsValue, JsError> {
+    let text: &str = &string_arg(&text, "text")?;
+    crate::budget::check_text("trace", text)?;
+    let opts: crate::trace::ReadOptions = if options.is_undefined() || options.is_null() {
+        Default::default()
+    } else {
+        object(options, "options")?
+    };
+    to_js(&crate::trace::read_table(text, &opts)?.layout)
+}
 
 #[cfg(feature = "full")]
 /// The columns of a CSV/TSV trace and the unit each header states; throws

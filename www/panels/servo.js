@@ -255,39 +255,59 @@ export async function mount(root, api) {
     traceUi.fail(e);
   };
   const onTrace = async (text, name) => {
-    // The core reads the header (and refuses non-text files); the unit each
-    // column name states sets its unit menu.
+    // The core reads the file (delimiter, decimal commas, metadata, text
+    // columns, the unit each header states and its factor): the page shows
+    // that layout and fills its column and unit menus from it.
     mapBox.replaceChildren();
     traceUi.clear();
     if (last) last.trace = null;
-    let columns;
+    let layout;
     try {
-      columns = await api.call('traceColumns', [text]);
+      layout = await api.call('traceLayout', [text]);
     } catch (e) {
       traceRefused(e, name);
       return;
     }
-    traceInfo.textContent = `${name}: columns ${columns.map((c) => c.name).join(', ')}`;
+    const columns = layout.columns.filter((c) => c.kind !== 'text');
+    traceInfo.textContent = `${name}: ${layout.rows} rows, columns ${columns.map((c) => c.name).join(', ')}`;
+    const preview = table(['field', 'column', 'read as', 'unit', 'to core units', 'note'], layout.columns.map((c) => [c.field || '—', c.name, c.kind, c.unit ?? '—', c.factor != null ? `× ${+c.factor.toPrecision(6)} → ${c.coreUnit}` : '—', c.note ?? '']));
+    preview.querySelector('table').id = 'servo-trace-layout';
+    const said = h('ul', { id: 'servo-trace-notes', class: 'note' }, ...layout.notes.map((n) => h('li', {}, n)), ...layout.metadata.map((m) => h('li', {}, `line ${m.line}: ${m.key}${m.value ? ` = ${m.value}` : ''}`)));
     const find = (guess) => columns.find((c) => guess.test(c.bare));
     const pick = (id, label, guess) => selectField({ label, id, value: find(guess)?.name || '', options: [['', '—'], ...columns.map((c) => [c.name, c.name])] });
-    const cols = { time: pick('servo-map-time', 'time', /^t(ime)?$|^time_?s?$|^zeit$/i), x: pick('servo-map-x', 'X', /^(pos_?)?x(_pos)?$/i), y: pick('servo-map-y', 'Y', /^(pos_?)?y(_pos)?$/i), c: pick('servo-map-c', 'C', /^(pos_?)?c(_pos)?$/i), torque: pick('servo-map-torque', 'torque', /torque|tcmd|^tq/i) };
-    const unitOf = (sel) => columns.find((c) => c.name === sel.value)?.unit;
-    const TIME = { s: '1', ms: '0.001', us: '0.000001' };
-    const LEN = { mm: '1', um: '0.001', m: '1000' };
-    const ANG = { deg: String(Math.PI / 180), rad: '1' };
-    const tUnit = selectField({ label: 'time unit', id: 'servo-map-tunit', value: TIME[unitOf(cols.time)] || '1', options: [['1', 's'], ['0.001', 'ms'], ['0.000001', 'µs']] });
-    const lUnit = selectField({ label: 'X, Y unit', id: 'servo-map-lunit', value: LEN[unitOf(cols.x)] || '1', options: [['1', 'mm'], ['0.001', 'µm'], ['1000', 'm']] });
-    const aUnit = selectField({ label: 'C unit', id: 'servo-map-aunit', value: ANG[unitOf(cols.c)] || String(Math.PI / 180), options: [[String(Math.PI / 180), 'deg'], ['1', 'rad']] });
-    // Choosing another column takes its stated unit.
-    cols.time.input.addEventListener('change', () => unitOf(cols.time) in TIME && (tUnit.value = TIME[unitOf(cols.time)]));
-    cols.x.input.addEventListener('change', () => unitOf(cols.x) in LEN && (lUnit.value = LEN[unitOf(cols.x)]));
-    cols.c.input.addEventListener('change', () => unitOf(cols.c) in ANG && (aUnit.value = ANG[unitOf(cols.c)]));
+    const cols = { time: pick('servo-map-time', 'time', /^t(ime)?$|^time_?s?$|^zeit$/i), x: pick('servo-map-x', 'X', /^(pos[_ ]?)?x(_pos)?$/i), y: pick('servo-map-y', 'Y', /^(pos[_ ]?)?y(_pos)?$/i), c: pick('servo-map-c', 'C', /^(pos[_ ]?)?c(_pos)?$/i), torque: pick('servo-map-torque', 'torque', /torque|tcmd|^tq/i) };
+    const info = (sel) => columns.find((c) => c.name === sel.value);
+    // Each unit menu lists the core's units of its quantity; its value is
+    // the core's factor to core units for the column chosen.
+    const LABEL = { us: 'µs', um: 'µm', n·m: 'N·m' };
+    const unitMenu = (id, label, quantity, fallback) => {
+      const units = layout.units.filter((u) => u.quantity === quantity);
+      const dflt = String(units.find((u) => u.code === fallback).factor);
+      const menu = selectField({ label, id, value: dflt, options: units.map((u) => [String(u.factor), LABEL[u.code] ?? u.code]) });
+      const follow = (sel) => {
+        const c = info(sel);
+        menu.value = c?.quantity === quantity ? String(c.factor) : dflt;
+      };
+      return { menu, follow };
+    };
+    const tUnit = unitMenu('servo-map-tunit', 'time unit', 'time', 's');
+    const lUnit = unitMenu('servo-map-lunit', 'X, Y unit', 'length', 'mm');
+    const aUnit = unitMenu('servo-map-aunit', 'C unit', 'angle', 'deg');
+    const follows = [[cols.time, tUnit], [cols.x, lUnit], [cols.c, aUnit]];
+    for (const [sel, u] of follows) {
+      u.follow(sel);
+      // Choosing another column takes its stated unit.
+      sel.input.addEventListener('change', () => u.follow(sel));
+    }
+    const rated = numberField({ label: 'rated torque', unit: 'N·m; needed for a torque in %', value: '', id: 'servo-map-rated', min: 0 });
     const rel = h('input', { type: 'checkbox', id: 'servo-map-relative' });
     // Blank: the first sample, and accel time + 0.4 s after it (the core's defaults).
     const start = numberField({ label: 'motion start', unit: 's, trace time; blank: first sample', value: '', id: 'servo-map-start' });
     const steady = numberField({ label: 'steady window from', unit: 's after the start; blank: accel time + 0.4 s', value: '', id: 'servo-map-steady', min: 0 });
     const go = h('button', { id: 'servo-trace-run', onclick: async () => {
-      const mapping = { timeScale: Number(tUnit.value), linearScale: Number(lUnit.value), angleScale: Number(aUnit.value), relative: rel.checked };
+      // The menus hold the core's factors: they scale every column.
+      const mapping = { headerUnits: false, timeScale: Number(tUnit.menu.value), linearScale: Number(lUnit.menu.value), angleScale: Number(aUnit.menu.value), relative: rel.checked };
+      if (rated.input.value !== '') mapping.ratedTorque = rated.value;
       for (const [k, s] of Object.entries(cols)) if (s.value) mapping[k] = s.value;
       if (start.input.value !== '') mapping.motionStart = start.value;
       if (steady.input.value !== '') mapping.steadyFrom = steady.value;
@@ -309,7 +329,7 @@ export async function mount(root, api) {
         traceUi.fail(e);
       }
     } }, 'Analyse the trace');
-    mapBox.replaceChildren(h('div', { class: 'row' }, ...Object.values(cols).map((c) => c.el), tUnit.el, lUnit.el, aUnit.el, h('label', { class: 'field' }, h('span', {}, 'displacements from the start'), rel), start.el, steady.el), go);
+    mapBox.replaceChildren(preview, said, h('div', { class: 'row' }, ...Object.values(cols).map((c) => c.el), tUnit.menu.el, lUnit.menu.el, aUnit.menu.el, rated.el, h('label', { class: 'field' }, h('span', {}, 'displacements from the start'), rel), start.el, steady.el), go);
   };
 
   // ---- downloads ----

@@ -1,6 +1,6 @@
 // Trace import: a SERVO GUIDE-style trace whose header states its units
-// ("Time [ms]", "X [mm]", "C [deg]") is read with those units — the unit
-// menus are set from the header and the result equals the same samples
+// ("Time [ms]", "X [mm]", "C [deg]") is read with those units — the core's
+// layout preview shows each column's factor, the unit menus are set from it and the result equals the same samples
 // written in seconds (analysed by the core in Node, a second path); a PNG
 // is refused by both imports with "this is not a text trace (it looks like
 // a PNG image)" and fills no column menu; a trace shorter than the steady
@@ -29,6 +29,9 @@ export default async function (page, check) {
   await page.waitForSelector('#servo-map-time');
   check((await page.inputValue('#servo-map-time')) === 'Time [ms]', `the time column should be 'Time [ms]', is '${await page.inputValue('#servo-map-time')}'`);
   check((await page.inputValue('#servo-map-tunit')) === '0.001', 'the header unit [ms] should set the time unit menu to ms');
+  // the core's layout preview: what each column was read as
+  const layoutText = (await page.textContent('#servo-trace-layout')) ?? '';
+  check(layoutText.includes('× 0.001 → s') && layoutText.includes('→ rad'), `the layout preview should show the core's factors (ms → s, deg → rad), shows "${layoutText}"`);
   await page.click('#servo-trace-run');
   await page.waitForSelector('#servo-trace-angle-diff, #servo-trace-results .error-box');
   const err = await page.$('#servo-trace-results .error-box');

@@ -7,6 +7,13 @@
 //! are skipped, as are metadata lines *before* the header that contain no
 //! delimiter. Every error names its 1-based line and column.
 
+pub mod cells;
+pub mod reader;
+pub mod units;
+
+pub use reader::{read_table, ColumnInfo, ColumnKind, Layout, ReadOptions, TableRead};
+pub use units::name_unit;
+
 /// Errors of trace import.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TraceError {
@@ -72,6 +79,42 @@ pub enum TraceError {
         column: usize,
         /// The character's code point.
         code: u32,
+    },
+    /// The text is XML, not a delimited table.
+    #[error("line {line}: this is XML, not a delimited table; export the trace as CSV or TSV text (XML traces are not read yet)")]
+    Xml {
+        /// 1-based line of the first tag.
+        line: usize,
+    },
+    /// No line below the header is a row of numbers.
+    #[error("line {line}: no row of numbers found: {found}; a trace needs rows of numbers below one header line")]
+    NoRows {
+        /// 1-based line of the first row that should have been numbers.
+        line: usize,
+        /// What that line holds instead.
+        found: String,
+    },
+    /// Decimal commas and decimal points in one file.
+    #[error("line {comma_line}: '{comma}' has a decimal comma but line {point_line} has '{point}' with a decimal point; export the trace with one decimal separator")]
+    MixedDecimal {
+        /// 1-based line of the first decimal comma.
+        comma_line: usize,
+        /// Its cell.
+        comma: String,
+        /// 1-based line of the first decimal point.
+        point_line: usize,
+        /// Its cell.
+        point: String,
+    },
+    /// A read option does not fit the file.
+    #[error("line {line}: option {field}: {why}")]
+    BadOption {
+        /// 1-based line it concerns (the header, or the first data row).
+        line: usize,
+        /// camelCase option name.
+        field: &'static str,
+        /// What is wrong and what to do.
+        why: String,
     },
     /// A column index is out of range.
     #[error("column {index} does not exist; the header has {count} columns")]
@@ -150,6 +193,30 @@ fn detect(line: &str) -> Option<char> {
         .into_iter()
         .find(|d| line.contains(*d))
         .or_else(|| (line.split_whitespace().count() > 1).then_some(' '))
+}
+
+/// The first 40 characters of a cell, for a message.
+fn clip(text: &str) -> String {
+    match text.char_indices().nth(40) {
+        Some((i, _)) => format!("{}…", &text[..i]),
+        None => text.to_string(),
+    }
+}
+
+/// A file in which no row is plain numbers: the tolerant reader's error,
+/// or what it found that this strict import does not read, at the first
+/// data line.
+fn strict_diagnosis(text: &str) -> TraceError {
+    match read_table(text, &ReadOptions::default()) {
+        Err(e) => e,
+        Ok(r) => TraceError::NoRows {
+            line: r.layout.first_data_line,
+            found: format!(
+                "the rows are not plain numbers ({}); this import reads plain numbers only: re-export the trace with '.' decimals, no quotes and no text columns",
+                r.layout.notes.join("; ")
+            ),
+        },
+    }
 }
 
 fn is_comment(line: &str) -> bool {
@@ -252,7 +319,10 @@ impl Table {
             return Err(e);
         }
         let lines: Vec<(usize, &str)> = lines.into_iter().filter(|(_, l)| !is_comment(l)).collect();
-        let h = header_index(&lines)?;
+        let h = header_index(&lines).map_err(|e| match e {
+            TraceError::NoData { .. } if lines.len() > 1 => strict_diagnosis(text),
+            e => e,
+        })?;
         let (header_line, header) = lines[h];
         let delimiter = detect(lines[h + 1].1)
             .or_else(|| detect(header))
@@ -284,8 +354,9 @@ impl Table {
     }
 
     /// Index of the first column whose name matches any alias
-    /// (case-insensitive; a unit suffix in brackets such as `X [mm]` or
-    /// `X(mm)` is ignored).
+    /// (case-insensitive; a unit suffix such as `X [mm]`, `X(mm)` or
+    /// `X_mm` is ignored, and spaces or dashes match underscores:
+    /// `POS X(um)` is `pos_x`).
     pub fn find(&self, aliases: &[&str]) -> Option<usize> {
         let bare = |s: &str| {
             s.split(['[', '('])
@@ -294,12 +365,15 @@ impl Table {
                 .trim()
                 .to_ascii_lowercase()
         };
+        // "POS X(um)" is pos_x, "X_mm" is x, "TCMD C(%)" is tcmd_c.
+        let loose = |s: &str| name_unit(s).0.to_ascii_lowercase().replace([' ', '-'], "_");
         aliases.iter().find_map(|a| {
             let full = a.trim().to_ascii_lowercase();
             self.names
                 .iter()
                 .position(|n| n.trim().to_ascii_lowercase() == full)
                 .or_else(|| self.names.iter().position(|n| bare(n) == bare(a)))
+                .or_else(|| self.names.iter().position(|n| loose(n) == loose(a)))
         })
     }
 
@@ -382,57 +456,6 @@ pub fn binary_kind(text: &str) -> Option<&'static str> {
     (sample.contains(&'\0') || bad * 10 > sample.len()).then_some("a binary file")
 }
 
-/// A column name split into its bare name and the unit it states, as
-/// instruments write it: `Time(ms)`, `Time [ms]`, `t(s)`, `X_mm`, `x_um`,
-/// `C deg`, `C[deg]`. Units recognised (lower-case on return): `s`, `ms`,
-/// `us`, `mm`, `um` (also `µm`, `μm`), `m`, `deg`, `rad`, `nm`, `n·m`
-/// (`Nm`, `N.m`, `N·m`); anything else is `None`.
-///
-/// # Examples
-/// ```
-/// use mtmotion::trace::name_unit;
-/// assert_eq!(name_unit("Time [ms]"), ("Time".to_string(), Some("ms")));
-/// assert_eq!(name_unit("t(s)"), ("t".to_string(), Some("s")));
-/// assert_eq!(name_unit("pos_x_mm"), ("pos_x".to_string(), Some("mm")));
-/// assert_eq!(name_unit("C deg"), ("C".to_string(), Some("deg")));
-/// assert_eq!(name_unit("X"), ("X".to_string(), None));
-/// ```
-pub fn name_unit(name: &str) -> (String, Option<&'static str>) {
-    let unit = |u: &str| -> Option<&'static str> {
-        match u.trim().to_lowercase().replace('μ', "µ").as_str() {
-            "s" | "sec" => Some("s"),
-            "ms" | "msec" => Some("ms"),
-            "us" | "µs" => Some("us"),
-            "mm" => Some("mm"),
-            "um" | "µm" => Some("um"),
-            "m" => Some("m"),
-            "deg" | "°" | "degree" | "degrees" => Some("deg"),
-            "rad" => Some("rad"),
-            "nm" | "n·m" | "n.m" | "n*m" => Some("n·m"),
-            _ => None,
-        }
-    };
-    let n = name.trim();
-    // Bracketed suffix: "Time [ms]", "Time(ms)".
-    if let Some(open) = n.rfind(['[', '(']) {
-        let close = if n[open..].starts_with('[') { ']' } else { ')' };
-        if n.ends_with(close) && open > 0 {
-            if let Some(u) = unit(&n[open + 1..n.len() - 1]) {
-                return (n[..open].trim().to_string(), Some(u));
-            }
-        }
-    }
-    // Separated suffix: "x_mm", "C deg", "t-s".
-    if let Some(sep) = n.rfind(['_', ' ', '-']) {
-        if sep > 0 {
-            if let Some(u) = unit(&n[sep + 1..]) {
-                return (n[..sep].trim().to_string(), Some(u));
-            }
-        }
-    }
-    (n.to_string(), None)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -459,27 +482,6 @@ mod tests {
             .contains("a binary file"));
         // Text with a few non-ASCII characters (µ, °) stays text.
         assert_eq!(binary_kind("Zeit [s];X [µm];C [°]\n0;1;2\n"), None);
-    }
-
-    #[test]
-    fn unit_suffixes_name_the_column_and_its_unit() {
-        for (n, bare, u) in [
-            ("Time(ms)", "Time", Some("ms")),
-            ("Time [ms]", "Time", Some("ms")),
-            ("t(s)", "t", Some("s")),
-            ("X_mm", "X", Some("mm")),
-            ("Y [µm]", "Y", Some("um")),
-            ("C deg", "C", Some("deg")),
-            ("Torque (Nm)", "Torque", Some("n·m")),
-            ("pos_x", "pos_x", None),
-            ("(ms)", "(ms)", None),
-        ] {
-            assert_eq!(name_unit(n), (bare.to_string(), u), "{n}");
-        }
-        // A column chosen by its full name with the unit is found.
-        let t = Table::parse("Time(ms),X [mm]\n0,1\n1,2\n").unwrap();
-        assert_eq!(t.column(&["Time(ms)"], 1e-3).unwrap(), vec![0.0, 1e-3]);
-        assert_eq!(t.column(&["x"], 1.0).unwrap(), vec![1.0, 2.0]);
     }
 
     #[test]
