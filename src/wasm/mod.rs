@@ -27,6 +27,7 @@ pub mod machine;
 pub mod results;
 #[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod servo;
+pub mod strict;
 #[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod toolpath;
 
@@ -54,7 +55,7 @@ pub fn check_file_size(
     #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
     #[wasm_bindgen(unchecked_param_type = "number")] bytes: JsValue,
 ) -> Result<(), JsError> {
-    let name = convert::string_arg(&name, "name")?;
+    let name = convert::name_arg(&name, "name")?;
     let bytes = convert::number_arg(&bytes, "bytes")?;
     if !(bytes.is_finite() && bytes >= 0.0 && bytes.fract() == 0.0) {
         return Err(JsError::new(&format!(
@@ -62,6 +63,17 @@ pub fn check_file_size(
             crate::numeric::compact(bytes)
         )));
     }
+    let name = crate::budget::clip(&name, 60);
+    // above 2^53 a size is no exact integer, and `as u64` saturated 1e308
+    // to 18446744073709551615: say the number as given
+    if bytes > 9_007_199_254_740_992.0 {
+        return Err(JsError::new(&format!(
+            "{name}: file size: {} bytes, more than the limit of {}; {}",
+            crate::numeric::compact(bytes),
+            crate::budget::MAX_TEXT_BYTES,
+            crate::budget::TEXT_ADVICE
+        )));
+    }
     crate::budget::check_bytes("file size", bytes as u64)
-        .map_err(|e| JsError::new(&format!("{}: {e}", crate::budget::clip(&name, 80))))
+        .map_err(|e| JsError::new(&format!("{name}: {e}")))
 }
