@@ -112,7 +112,15 @@ fn flat_arc(a: &super::segment::Arc, start: Pose, end: Pose, cw: bool) -> Option
     let (p0, p1) = (start.p(), end.p());
     let (du, dv) = (p1[u] - p0[u], p1[v] - p0[v]);
     let chord = du.hypot(dv);
-    if chord.is_nan() || chord <= 0.0 || a.sweep.abs() >= std::f64::consts::TAU {
+    // a centre beyond the coordinate limit is refused as such ("check the
+    // units"), not straightened
+    if chord.is_nan()
+        || chord <= 0.0
+        || a.sweep.abs() >= std::f64::consts::TAU
+        || a.center
+            .iter()
+            .any(|c| c.abs() > super::segment::MAX_COORDINATE)
+    {
         return None;
     }
     // minor arc: the centre is left of the chord for G3, right for G2
