@@ -54,6 +54,12 @@ pub const MAX_ARGUMENT_VALUES: usize = 8_000_000;
 /// is copied into wasm memory; no real name is near it.
 pub const MAX_NAME_CHARS: usize = 1000;
 
+/// Most keys of one object in a JS argument: no config has more (tool
+/// radii, error symbols and axes are the largest maps, and tool radii are
+/// held to [`MAX_TOOL_RADII`]). Checked as the keys are listed, before any
+/// value is copied.
+pub const MAX_OBJECT_KEYS: usize = 10_000;
+
 /// Most samples of one tool-path simulation (5.5 h of motion at dt = 1 ms).
 /// The run is measured sample by sample and keeps at most
 /// [`MAX_TOOLPATH_SERIES`] samples of its series, so its memory does not

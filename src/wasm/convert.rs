@@ -63,7 +63,7 @@ function say(e, what) {
   try { m = e instanceof Error ? String(e.message) : typeof e === 'string' ? e : typeof e; } catch { m = 'an exception'; }
   return new Error(`${what}: reading the argument threw (${clip(m)}); pass plain data (numbers, strings, arrays, objects)`);
 }
-export function plainCopy(value, what, maxDepth, maxItems, maxString, maxKey) {
+export function plainCopy(value, what, maxDepth, maxItems, maxString, maxKey, maxKeys) {
   let items = 0;
   const tooMany = () => new Refused(`${clip(what)}: more than ${maxItems} values; pass a smaller input`);
   const copy = (v, path, depth) => {
@@ -98,7 +98,10 @@ export function plainCopy(value, what, maxDepth, maxItems, maxString, maxKey) {
     const proto = Object.getPrototypeOf(v);
     if (proto !== Object.prototype && proto !== null) throw new Refused(`${clip(path)}: expected a plain object, got ${kind(v)}`);
     const out = {};
-    for (const k of Reflect.ownKeys(v)) {
+    const keys = Reflect.ownKeys(v);
+    // no config has more keys (an object of 1e6 unknown keys took 5-19 s to refuse)
+    if (keys.length > maxKeys) throw new Refused(`${clip(path)}: an object of ${keys.length} keys, more than the limit of ${maxKeys}`);
+    for (const k of keys) {
       if (typeof k !== 'string') continue;
       if (k.length > maxKey) throw new Refused(`${clip(path)}: a key of ${k.length} characters; a key is a name of at most ${maxKey}`);
       if (++items > maxItems) throw tooMany();
@@ -145,6 +148,7 @@ extern "C" {
         max_items: f64,
         max_string: f64,
         max_key: f64,
+        max_keys: f64,
     ) -> Result<JsValue, JsValue>;
     #[wasm_bindgen(catch, js_name = f64Copy)]
     fn f64_copy(value: &JsValue, what: &str, max_len: f64) -> Result<Float64Array, JsValue>;
@@ -227,6 +231,7 @@ pub fn plain(value: &JsValue, what: &str) -> Result<JsValue, JsError> {
         budget::MAX_ARGUMENT_VALUES as f64,
         budget::MAX_TEXT_BYTES as f64,
         budget::MAX_NAME_CHARS as f64,
+        budget::MAX_OBJECT_KEYS as f64,
     )
     .map_err(message)
 }

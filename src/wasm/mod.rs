@@ -3,9 +3,14 @@
 //! Pattern every binding follows:
 //! - fallible functions return `Result<T, JsError>`; the core's error message
 //!   becomes the thrown `Error`'s message;
-//! - small configs and results cross through serde-wasm-bindgen
-//!   ([`convert::from_js`], [`convert::to_js`]) and have TypeScript shapes
-//!   in a `typescript_custom_section`;
+//! - small configs are copied into plain data ([`convert::plain`]) and
+//!   read strictly by [`strict`] ([`convert::from_js`], [`convert::object`]:
+//!   an unknown key, an array for an object or a string for a number is an
+//!   `Error` naming its path); results cross through serde-wasm-bindgen
+//!   ([`convert::to_js`]); both have TypeScript shapes in a
+//!   `typescript_custom_section`;
+//! - no export runs while a progress callback runs
+//!   ([`convert::not_reentered`]);
 //! - bulk arrays cross as `Float64Array` (`&[f64]` in, [`convert::Obj::arr`]
 //!   out), never through serde;
 //! - the panic hook is installed at start.

@@ -342,7 +342,18 @@ pub fn radius_reduction(
 pub fn identify_acc_dec(
     #[wasm_bindgen(unchecked_param_type = "CircleLoss[]")] data: JsValue,
 ) -> Result<JsValue, JsError> {
-    let d: Vec<CircleLoss> = from_js(data, "data")?;
+    let data = plain(&data, "data")?;
+    // counted before the rows are read (1e6 rows took 12 s to refuse)
+    if let Some(a) = data.dyn_ref::<js_sys::Array>() {
+        crate::budget::check(
+            "data",
+            a.length().into(),
+            crate::budget::MAX_ACCDEC_CIRCLES,
+            "circles",
+            "the fit needs a few circles at different F/R",
+        )?;
+    }
+    let d: Vec<CircleLoss> = from_plain(data, "data")?;
     to_js(&identify(&d)?)
 }
 
