@@ -14,8 +14,8 @@
 //!   a number only from a JS number (finite: NaN and ±Infinity are refused
 //!   naming the field), a whole number only from an integer in its type's
 //!   range, a string only from a string;
-//! - names the path of whatever is wrong ("config.harmonics[0].order:
-//!   expected a whole number from 0 to 4294967295, got 1.5"), and never
+//! - names the path of whatever is wrong (`config.harmonics[0].order:
+//!   expected a whole number from 0 to 4294967295, got 1.5`), and never
 //!   says serde's internals ("untagged enum …", "expected any value").
 //!
 //! The snapshot holds only `null`, booleans, numbers, strings, arrays,
