@@ -49,6 +49,17 @@ pub const MAX_LOOP_ITERATIONS: usize = MAX_EXECUTED_BLOCKS / 4;
 /// its whole nesting: 8 M numbers are 64 MB in wasm memory.
 pub const MAX_ARGUMENT_VALUES: usize = 8_000_000;
 
+/// Longest name one argument may be: a preset, an axis, a reading, a
+/// method, a file or column name, an object key. Checked before the name
+/// is copied into wasm memory; no real name is near it.
+pub const MAX_NAME_CHARS: usize = 1000;
+
+/// Most keys of one object in a JS argument: no config has more (tool
+/// radii, error symbols and axes are the largest maps, and tool radii are
+/// held to [`MAX_TOOL_RADII`]). Checked as the keys are listed, before any
+/// value is copied.
+pub const MAX_OBJECT_KEYS: usize = 10_000;
+
 /// Most samples of one tool-path simulation (5.5 h of motion at dt = 1 ms).
 /// The run is measured sample by sample and keeps at most
 /// [`MAX_TOOLPATH_SERIES`] samples of its series, so its memory does not
@@ -60,6 +71,43 @@ pub const MAX_TOOLPATH_SAMPLES: usize = 20_000_000;
 /// again as JS arrays. A longer run keeps, of each group of consecutive
 /// samples, the one with the largest contour error.
 pub const MAX_TOOLPATH_SERIES: usize = 1_000_000;
+
+/// Checks texts read in one call together (a program and its files): their
+/// count against [`MAX_FILES`], then their bytes and lines summed against
+/// [`MAX_TEXT_BYTES`] and [`MAX_LINES`], each text's bytes first, so that
+/// 20 files of 100,000 lines are refused before any is read.
+///
+/// # Examples
+/// ```
+/// use mtmotion::budget::check_texts;
+/// let line = "G1 X1\n".repeat(60_000);
+/// assert!(check_texts("program and files", [line.as_str()]).is_ok());
+/// let e = check_texts("program and files", [line.as_str(), line.as_str()]).unwrap_err();
+/// assert_eq!(e.unit, "lines");
+/// ```
+pub fn check_texts<'a>(
+    what: &'static str,
+    texts: impl IntoIterator<Item = &'a str> + Clone,
+) -> Result<(), BudgetError> {
+    let count = texts.clone().into_iter().count();
+    check(
+        what,
+        count as u64,
+        MAX_FILES,
+        "texts",
+        "give fewer files at once",
+    )?;
+    let bytes: u64 = texts.clone().into_iter().map(|t| t.len() as u64).sum();
+    check_bytes(what, bytes)?;
+    let n: u64 = texts.into_iter().map(|t| lines(t) as u64).sum();
+    check(
+        what,
+        n,
+        MAX_LINES,
+        "lines",
+        "split the program into parts and run each",
+    )
+}
 
 /// Most samples of one constant-feed-speed-vector test: it keeps 15
 /// series plus the three axis simulations (about 300 B per sample).
@@ -101,6 +149,70 @@ pub const MAX_CIRCULAR_POINTS: usize = 2_000_000;
 /// above that; below it the rounds stop early, keeping their best so far,
 /// when the next would leave too little for the checks.
 pub const MAX_REVERSE_SIMULATED_SAMPLES: usize = 8_000_000;
+
+/// Most servo steps of one cone-frustum test, over all its simulated axes
+/// (each axis is simulated at 1 ms or finer for the whole revolution): a
+/// feed of 1 mm/min took 47 M steps, 19.8 s and 1.8 GB. About 50 B and
+/// 0.4 µs per step in wasm.
+pub const MAX_CONE_FRUSTUM_STEPS: usize = 5_000_000;
+
+/// Most terms of one synthetic ball-bar trace: samples × directions ×
+/// (1 + harmonics); each harmonic costs one `sin` per sample (1e7 samples
+/// with 64 harmonics took 30 s).
+pub const MAX_SYNTHETIC_TERMS: usize = 100_000_000;
+
+/// Most load inertias of one torque-saturation study: each runs a C-axis
+/// simulation (Fig. 21 has a handful; 1e6 took 22 s).
+pub const MAX_SATURATION_LOADS: usize = 1000;
+
+/// Most measured circles of one acc/dec identification (qiu Eq. 3; the
+/// paper fits four).
+pub const MAX_ACCDEC_CIRCLES: usize = 10_000;
+
+/// Most tool radii (D numbers) one program may be given.
+pub const MAX_TOOL_RADII: usize = 1000;
+
+/// Most program texts or extra files of one call (`ncMainFile`,
+/// `files` of parseNc); their bytes and lines together are held to
+/// [`MAX_TEXT_BYTES`] and [`MAX_LINES`].
+pub const MAX_FILES: usize = 1000;
+
+/// Deserializes a list of at most [`MAX_PITCH_HARMONICS`] items, refusing
+/// a longer one by its length before any item is read (when the format
+/// knows the length, as the JS snapshot and JSON arrays do not always:
+/// then at the first item past the limit).
+pub fn at_most_pitch_harmonics<'de, D, T>(d: D) -> Result<Vec<T>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: serde::Deserialize<'de>,
+{
+    struct Bounded<T>(std::marker::PhantomData<T>);
+    impl<'de, T: serde::Deserialize<'de>> serde::de::Visitor<'de> for Bounded<T> {
+        type Value = Vec<T>;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            write!(f, "a list of at most {MAX_PITCH_HARMONICS} harmonics")
+        }
+        fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<T>, A::Error> {
+            let too_many = |n: usize| {
+                serde::de::Error::custom(format!(
+                    "{n} harmonics, more than the limit of {MAX_PITCH_HARMONICS} (the work budget; a worm gear shows a handful)"
+                ))
+            };
+            if let Some(n) = seq.size_hint().filter(|&n| n > MAX_PITCH_HARMONICS) {
+                return Err(too_many(n));
+            }
+            let mut out = Vec::new();
+            while let Some(x) = seq.next_element()? {
+                if out.len() == MAX_PITCH_HARMONICS {
+                    return Err(too_many(out.len() + 1));
+                }
+                out.push(x);
+            }
+            Ok(out)
+        }
+    }
+    d.deserialize_seq(Bounded(std::marker::PhantomData))
+}
 
 /// A refused call: the estimate of its work is above the budget.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -120,7 +120,10 @@ pub fn estimate_alignment(
     if !(radius.is_finite() && radius > 0.0) {
         return Err(bad(
             "radius",
-            format!("expected the ball-bar length in mm (> 0), got {radius}"),
+            format!(
+                "expected the ball-bar length in mm (> 0), got {}",
+                crate::numeric::compact(radius)
+            ),
         ));
     }
     if sections.is_empty() {
@@ -193,6 +196,7 @@ pub fn estimate_alignment(
 
 /// A simulated section: Y position and true centre.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SectionOffset {
     /// Section position Y, mm.
     pub y: f64,
@@ -200,9 +204,11 @@ pub struct SectionOffset {
     pub offset: Offset,
 }
 
-/// Configuration of [`angle_sweep`].
+/// Configuration of [`angle_sweep`]. Read through a flat mirror
+/// (`AngleSweepConfigIn`): serde reads a flattened field as a map and
+/// drops the keys no part names.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "camelCase")]
+#[serde(rename_all = "camelCase", from = "AngleSweepConfigIn")]
 pub struct AngleSweepConfig {
     /// Two or more sections with their true centres.
     pub sections: Vec<SectionOffset>,
@@ -211,6 +217,37 @@ pub struct AngleSweepConfig {
     /// The locus model (same motion error in every section).
     #[serde(flatten)]
     pub locus: Locus,
+}
+
+/// [`AngleSweepConfig`] as read: every key named, no other key accepted.
+#[derive(Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
+struct AngleSweepConfigIn {
+    sections: Vec<SectionOffset>,
+    ranges: Vec<f64>,
+    #[serde(default)]
+    harmonics: Vec<crate::ballbar::Harmonic>,
+    #[serde(default = "super::travel_range::default_radius")]
+    radius: f64,
+    #[serde(default = "super::travel_range::default_samples")]
+    samples: usize,
+    #[serde(default)]
+    centre_deg: f64,
+}
+
+impl From<AngleSweepConfigIn> for AngleSweepConfig {
+    fn from(c: AngleSweepConfigIn) -> Self {
+        Self {
+            sections: c.sections,
+            ranges: c.ranges,
+            locus: Locus {
+                harmonics: c.harmonics,
+                radius: c.radius,
+                samples: c.samples,
+                centre_deg: c.centre_deg,
+            },
+        }
+    }
 }
 
 /// One point of the angle sweep.
@@ -256,12 +293,12 @@ pub fn angle_sweep(cfg: &AngleSweepConfig) -> Result<Vec<AngleSweepPoint>, Align
     cfg.locus.validate("")?;
     crate::budget::check(
         "angle sweep",
-        (cfg.ranges.len() as u64)
+        (cfg.ranges.len() as u64 + cfg.locus.harmonics.len() as u64)
             .saturating_mul(cfg.sections.len() as u64)
             .saturating_mul(cfg.locus.samples as u64),
         crate::budget::MAX_SWEEP_POINTS,
-        "points (ranges × sections × samples per revolution)",
-        "use fewer ranges, sections or samples per revolution",
+        "points ((ranges + harmonics) × sections × samples per revolution)",
+        "use fewer ranges, harmonics, sections or samples per revolution",
     )?;
     if cfg.sections.len() < 2 {
         return Err(bad(
@@ -288,7 +325,10 @@ pub fn angle_sweep(cfg: &AngleSweepConfig) -> Result<Vec<AngleSweepPoint>, Align
         if !(w > 0.0 && w <= 360.0) {
             return Err(bad(
                 format!("ranges[{i}]"),
-                format!("expected a travel range in (0, 360] degrees, got {w}"),
+                format!(
+                    "expected a travel range in (0, 360] degrees, got {}",
+                    crate::numeric::compact(w)
+                ),
             ));
         }
         let (mut zs, mut xs) = (Vec::new(), Vec::new());

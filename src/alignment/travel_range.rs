@@ -69,6 +69,7 @@ pub(crate) fn bad(field: impl Into<String>, message: impl Into<String>) -> Align
 
 /// An offset (centre position) of the rotary axis in the Z–X plane, mm.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Offset {
     /// Z, mm.
     pub z: f64,
@@ -103,9 +104,11 @@ pub struct Locus {
     pub centre_deg: f64,
 }
 
-/// Configuration of [`travel_range_sweep`].
+/// Configuration of [`travel_range_sweep`]. Read through a flat mirror
+/// (`SweepConfigIn`): serde reads a flattened field as a map and drops
+/// the keys no part names, so a misspelt `harmonic` would be ignored.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "camelCase")]
+#[serde(rename_all = "camelCase", from = "SweepConfigIn")]
 pub struct SweepConfig {
     /// True centre c of the rotary axis, mm.
     #[serde(default)]
@@ -115,6 +118,38 @@ pub struct SweepConfig {
     /// The locus model.
     #[serde(flatten)]
     pub locus: Locus,
+}
+
+/// [`SweepConfig`] as read: every key named, no other key accepted.
+#[derive(Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
+struct SweepConfigIn {
+    #[serde(default)]
+    offset: Offset,
+    ranges: Vec<f64>,
+    #[serde(default)]
+    harmonics: Vec<Harmonic>,
+    #[serde(default = "default_radius")]
+    radius: f64,
+    #[serde(default = "default_samples")]
+    samples: usize,
+    #[serde(default)]
+    centre_deg: f64,
+}
+
+impl From<SweepConfigIn> for SweepConfig {
+    fn from(c: SweepConfigIn) -> Self {
+        Self {
+            offset: c.offset,
+            ranges: c.ranges,
+            locus: Locus {
+                harmonics: c.harmonics,
+                radius: c.radius,
+                samples: c.samples,
+                centre_deg: c.centre_deg,
+            },
+        }
+    }
 }
 
 /// One point of the sweep: the centre-estimate error at one range.
@@ -135,7 +170,10 @@ impl Locus {
         if !(self.radius.is_finite() && self.radius >= 0.0) {
             return Err(bad(
                 format!("{prefix}radius"),
-                format!("expected a length ≥ 0 mm, got {}", self.radius),
+                format!(
+                    "expected a length ≥ 0 mm, got {}",
+                    crate::numeric::compact(self.radius)
+                ),
             ));
         }
         if !(3..=10_000_000).contains(&self.samples) {
@@ -241,12 +279,15 @@ impl Locus {
 /// ```
 pub fn travel_range_sweep(cfg: &SweepConfig) -> Result<Vec<SweepPoint>, AlignmentError> {
     cfg.locus.validate("")?;
+    // each range fits the samples it spans, and the locus evaluates every
+    // harmonic at every sample once
     crate::budget::check(
         "travel-range sweep",
-        (cfg.ranges.len() as u64).saturating_mul(cfg.locus.samples as u64),
+        (cfg.ranges.len() as u64 + cfg.locus.harmonics.len() as u64)
+            .saturating_mul(cfg.locus.samples as u64),
         crate::budget::MAX_SWEEP_POINTS,
-        "points (ranges × samples per revolution)",
-        "use fewer ranges or fewer samples per revolution",
+        "points ((ranges + harmonics) × samples per revolution)",
+        "use fewer ranges, harmonics or samples per revolution",
     )?;
     if !(cfg.offset.z.is_finite() && cfg.offset.x.is_finite()) {
         return Err(bad("offset", "z and x must be finite numbers (mm)"));
@@ -255,7 +296,10 @@ pub fn travel_range_sweep(cfg: &SweepConfig) -> Result<Vec<SweepPoint>, Alignmen
         if !(w > 0.0 && w <= 360.0) {
             return Err(bad(
                 format!("ranges[{i}]"),
-                format!("expected a travel range in (0, 360] degrees, got {w}"),
+                format!(
+                    "expected a travel range in (0, 360] degrees, got {}",
+                    crate::numeric::compact(w)
+                ),
             ));
         }
     }

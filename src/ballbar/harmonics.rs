@@ -94,6 +94,7 @@ pub enum HarmonicsError {
 
 /// One harmonic component A sin(nθ + φ).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Harmonic {
     /// Order n (cycles per revolution).
     pub order: u32,

@@ -181,6 +181,16 @@ pub const MAX_HARMONICS: usize = 256;
 pub fn synthetic_trace(c: &SyntheticConfig) -> Result<BallbarTrace, SyntheticError> {
     validate(c)?;
     let n = ((c.samples as f64 * c.range_deg / 360.0).round() as usize).max(8);
+    crate::budget::check(
+        "synthetic trace",
+        (n as u64)
+            .saturating_mul(1 + u64::from(c.both_directions))
+            .saturating_mul(1 + c.harmonics.len() as u64),
+        crate::budget::MAX_SYNTHETIC_TERMS,
+        "terms (samples × directions × (1 + harmonics))",
+        "use fewer samples per revolution or fewer harmonics",
+    )
+    .map_err(|e| err("config", e.to_string()))?;
     let mut noise = Lcg(0x9E37_79B9_7F4A_7C15);
     let mut runs = vec![run(c, Direction::Ccw, n, &mut noise)];
     if c.both_directions {
@@ -251,7 +261,10 @@ fn validate(c: &SyntheticConfig) -> Result<(), SyntheticError> {
     if !(c.range_deg > 0.0 && c.range_deg <= 360.0) {
         return Err(err(
             "rangeDeg",
-            format!("expected a range in (0, 360] degrees, got {}", c.range_deg),
+            format!(
+                "expected a range in (0, 360] degrees, got {}",
+                crate::numeric::compact(c.range_deg)
+            ),
         ));
     }
     if !pos(c.cyclic_pitch) || !pos(c.spike_decay_deg) {

@@ -140,6 +140,13 @@ fn check_query(q: &SaturationQuery) -> Result<(), BestKffpError> {
             expected: "must be > 0 mm/min",
         });
     }
+    if q.j1.len() > crate::budget::MAX_SATURATION_LOADS {
+        return Err(BestKffpError::BadQuery {
+            field: "j1",
+            value: q.j1.len() as f64,
+            expected: "at most 1000 load inertias (each runs a simulation of the C axis)",
+        });
+    }
     if q.j1.is_empty() {
         return Err(BestKffpError::BadQuery {
             field: "j1",

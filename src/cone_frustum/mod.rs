@@ -35,6 +35,9 @@ pub enum ConeFrustumError {
         /// What was expected.
         why: &'static str,
     },
+    /// The servo simulation would be over its work budget.
+    #[error("cone-frustum test: {0}")]
+    Budget(#[from] crate::budget::BudgetError),
     /// The machine preset or description is unusable.
     #[error(transparent)]
     Machine(#[from] crate::machine::MachineError),

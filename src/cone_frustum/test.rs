@@ -234,6 +234,18 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
     let present: Vec<usize> = (0..6)
         .filter(|i| chain.axes().contains(&AXES[*i]))
         .collect();
+    if !cfg.ideal_servo {
+        // every axis is simulated at SERVO_STEP or finer over the whole run
+        let per_axis = ((s.n + s.lead) as u64)
+            .saturating_mul((s.dt / super::drive::SERVO_STEP).ceil().max(1.0) as u64);
+        crate::budget::check(
+            "servo simulation",
+            per_axis.saturating_mul(present.len() as u64),
+            crate::budget::MAX_CONE_FRUSTUM_STEPS,
+            "steps (1 ms steps of the whole revolution × axes)",
+            "raise the feed (a revolution at 1 mm/min takes hours) or set idealServo: true",
+        )?;
+    }
     let cmd = commands(cfg, &chain, &machine, &geo, &s)?;
     let (q_act, series) = drive_axes(cfg, &machine, &cmd.q, &present, &s)?;
     let r = bar_readings(cfg, &chain, &geo, &cmd, &q_act, &present, &s)?;

@@ -36,14 +36,41 @@ use super::chain::Chain;
 use super::htm::Six;
 use super::KinematicsError;
 
-/// A constant or a polynomial `c0 + c1·q + c2·q² …`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// A constant or a polynomial `c0 + c1·q + c2·q² …`: read from a number
+/// or an array of numbers.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Coeffs {
     /// A constant.
     Constant(f64),
     /// Polynomial coefficients, lowest order first.
     Polynomial(Vec<f64>),
+}
+
+impl<'de> Deserialize<'de> for Coeffs {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Either;
+        impl<'de> serde::de::Visitor<'de> for Either {
+            type Value = Coeffs;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a number or an array of polynomial coefficients")
+            }
+            fn visit_f64<E: serde::de::Error>(self, c: f64) -> Result<Coeffs, E> {
+                Ok(Coeffs::Constant(c))
+            }
+            fn visit_i64<E: serde::de::Error>(self, c: i64) -> Result<Coeffs, E> {
+                Ok(Coeffs::Constant(c as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, c: u64) -> Result<Coeffs, E> {
+                Ok(Coeffs::Constant(c as f64))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, seq: A) -> Result<Coeffs, A::Error> {
+                let v = Vec::<f64>::deserialize(serde::de::value::SeqAccessDeserializer::new(seq))?;
+                Ok(Coeffs::Polynomial(v))
+            }
+        }
+        d.deserialize_any(Either)
+    }
 }
 
 impl Coeffs {

@@ -40,7 +40,7 @@ pub enum KinematicsError {
         why: String,
     },
     /// An error parameter is invalid.
-    #[error("errors: `{key}` {why}")]
+    #[error("errors: `{}` {why}", crate::budget::clip(.key, 60))]
     BadError {
         /// Path of the offending key, e.g. `location.XOQ`.
         key: String,

@@ -74,7 +74,7 @@ pub enum MachineError {
 
 /// A machine: its feed-drive axes (servo parameters) and travel limits.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "camelCase")]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
 pub struct Machine {
     /// Preset name, e.g. `nmv5000`.
     pub name: String,
@@ -204,7 +204,8 @@ fn lookup(registry: &[(&str, Builder)], name: &str) -> Result<Machine, MachineEr
         .find(|(n, _)| *n == wanted)
         .map(|(_, build)| build())
         .ok_or_else(|| MachineError::UnknownPreset {
-            name: name.to_string(),
+            // a message quotes at most about 60 characters of the input
+            name: crate::budget::clip(name, 60),
             known: registry
                 .iter()
                 .map(|(n, _)| *n)
@@ -238,14 +239,39 @@ pub fn preset_with_reading(name: &str, reading: &str) -> Result<Machine, Machine
     })
 }
 
-/// A machine given by preset name or described in full.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+/// A machine given by preset name or described in full. Read from a
+/// string (a preset name) or an object (a description); anything else is
+/// refused in those words (not serde's "untagged enum").
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 #[serde(untagged)]
 pub enum MachineRef {
     /// A preset name, e.g. `trunnion-ac`.
     Name(String),
     /// A full description (e.g. an edited preset).
     Spec(Box<Machine>),
+}
+
+impl<'de> Deserialize<'de> for MachineRef {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Either;
+        impl<'de> serde::de::Visitor<'de> for Either {
+            type Value = MachineRef;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a preset name or a machine description { name, axes, … }")
+            }
+            fn visit_str<E: serde::de::Error>(self, s: &str) -> Result<MachineRef, E> {
+                Ok(MachineRef::Name(s.to_string()))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> Result<MachineRef, A::Error> {
+                let m = Machine::deserialize(serde::de::value::MapAccessDeserializer::new(map))?;
+                Ok(MachineRef::Spec(Box::new(m)))
+            }
+        }
+        d.deserialize_any(Either)
+    }
 }
 
 impl MachineRef {

@@ -128,6 +128,7 @@ fn no_repeated_axis(b: &Block) -> Result<(), NcError> {
 
 /// An `E` word stops the program: it drives a 3D printer's extruder
 /// (except on a Haas G187 or G47 block, where it is that code's own).
+/// (`#100=1E3`, an exponent, is named as one by the macro parser.)
 fn reject_extruder(b: &Block) -> Result<(), NcError> {
     match b.word('E') {
         Some(e) if !e_word_is_a_g_argument(b) => Err(err(
@@ -334,4 +335,19 @@ fn set_motion_or_cycle(b: &Block, st: &mut Modal, gw: &GWords) -> Result<(), NcE
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod exponent_tests {
+    #[test]
+    fn an_exponent_in_a_macro_statement_is_named_as_one_not_as_a_3d_printer() {
+        let e = crate::nc::program::parse("#100=1E3\nG1 X#100 F100").unwrap_err();
+        let m = e.to_string();
+        assert!(
+            m.contains("NC numbers take no exponent") && !m.contains("3D"),
+            "{m}"
+        );
+        let e = crate::nc::program::parse("G1 X1 E0.5 F100").unwrap_err();
+        assert!(e.to_string().contains("3D-printer"));
+    }
 }

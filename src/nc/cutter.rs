@@ -116,11 +116,20 @@ impl ToolRadii {
     /// A key that is not a D number, a radius that is not finite or is
     /// negative; the message names the entry.
     pub fn insert(&mut self, key: &str, radius: f64) -> Result<(), String> {
+        if self.0.len() >= crate::budget::MAX_TOOL_RADII {
+            return Err(format!(
+                "toolRadii: more than {} radii; give those the program's D words use",
+                crate::budget::MAX_TOOL_RADII
+            ));
+        }
         let k = key.trim();
         let digits = k.strip_prefix(['D', 'd']).unwrap_or(k).trim();
-        let d: u32 = digits
-            .parse()
-            .map_err(|_| format!("toolRadii: '{k}' is not a D number; expected e.g. D1 or 1"))?;
+        let d: u32 = digits.parse().map_err(|_| {
+            format!(
+                "toolRadii: '{}' is not a D number; expected e.g. D1 or 1",
+                crate::budget::clip(k, 40)
+            )
+        })?;
         if !radius.is_finite() || radius < 0.0 {
             return Err(format!(
                 "toolRadii D{d}: radius {radius} must be a finite number ≥ 0 (program units)"

@@ -51,6 +51,19 @@ pub fn parse_files(
     files: &[NcFile],
     options: &ParseOptions,
 ) -> Result<Program, NcErrors> {
+    if !files.is_empty() {
+        // one budget spans the program and its files (20 files of 100,000
+        // lines took 1.25 GB)
+        let texts = std::iter::once(text).chain(files.iter().map(|f| f.text.as_str()));
+        if let Err(e) = crate::budget::check_texts("program and its files", texts) {
+            let mut errors = NcErrors {
+                errors: Vec::new(),
+                truncated: false,
+            };
+            errors.push(NcError::new(1, 1, e.to_string()));
+            return Err(errors);
+        }
+    }
     let (mut blocks, mut errors) = super::lex_all(text);
     let mut spans: Vec<(usize, &str)> = Vec::new();
     let mut offset = blocks.len();

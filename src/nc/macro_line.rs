@@ -349,7 +349,29 @@ fn assignment(c: &mut Cursor) -> PResult<Assign> {
     }
     c.i += 1;
     let expr = c.expr()?;
+    exponent(c)?;
     Ok(Assign { var, expr, column })
+}
+
+/// An `E…` word written straight after a number (`#100=1E3`) is an
+/// exponent, which NC numbers do not take: named as one (it used to stop
+/// the program as "a 3D-printer program", E being the extruder's word).
+fn exponent(c: &Cursor) -> PResult<()> {
+    let (Some(prev), Some(next)) = (
+        c.i.checked_sub(1).and_then(|i| c.toks.get(i)),
+        c.toks.get(c.i),
+    ) else {
+        return Ok(());
+    };
+    match (&prev.tok, &next.tok) {
+        (Tok::Num(_, text), Tok::Word(w)) if w == "E" && prev.col + text.chars().count() == next.col => {
+            Err((
+                next.col,
+                format!("{text}E…: NC numbers take no exponent; write the number out in full (1E3 as 1000)"),
+            ))
+        }
+        _ => Ok(()),
+    }
 }
 
 fn word(c: &mut Cursor) -> PResult<MWord> {

@@ -76,12 +76,62 @@ pub(super) fn move_block(
         // A polar end point is not a literal X/Y word.
         fixed: super::polar::polar_word(b).is_some(),
     };
+    if let Motion::Arc(a) = seg.motion {
+        if let Some(sagitta) = flat_arc(&a, start, end, mode == MotionCode::Cw) {
+            seg.motion = Motion::Linear;
+            cx.warnings.push(Warning::at(
+                b.line,
+                first.column,
+                format!(
+                    "flat arc: G{} of radius {} mm bulges {} mm from its chord, below the numeric resolution of its centre; simulated as a straight move along the chord",
+                    mode.code(),
+                    crate::numeric::compact(a.radius),
+                    crate::numeric::compact(sagitta)
+                ),
+            ));
+        }
+    }
     seg.feed = move_feed(b, st, mode, first, seg.timed_length())?;
     let corner = corner_word(b, mode, chamfer_c, scale)?;
     corner_or_centre_warning(b, cx, mode, corner, centre_words.first().copied());
     st.pos = end;
     cx.segments.push(seg);
     Ok(())
+}
+
+/// The sagitta (mm) of a minor arc so flat that its bulge is below the
+/// numeric resolution of its centre, or `None`. A centre `R` away holds
+/// its coordinates to about `R·ε`, so the arc's angles and sampled points
+/// are only that good: `G2 X1 R999999999` (a 1 mm move, sagitta 1.25e-10
+/// mm) swept almost a full circle of 1e9 mm and gave a contour error of
+/// 1,095,477 µm. Such an arc is its chord: flat when the sagitta is at
+/// most 1000·R·ε (R = 1e9 mm: 0.2 µm; R = 1000 mm: 2e-10 mm, so no real
+/// arc is touched).
+fn flat_arc(a: &super::segment::Arc, start: Pose, end: Pose, cw: bool) -> Option<f64> {
+    let (u, v, _) = a.plane.axes();
+    let (p0, p1) = (start.p(), end.p());
+    let (du, dv) = (p1[u] - p0[u], p1[v] - p0[v]);
+    let chord = du.hypot(dv);
+    // a centre beyond the coordinate limit is refused as such ("check the
+    // units"), not straightened
+    if chord.is_nan()
+        || chord <= 0.0
+        || a.sweep.abs() >= std::f64::consts::TAU
+        || a.center
+            .iter()
+            .any(|c| c.abs() > super::segment::MAX_COORDINATE)
+    {
+        return None;
+    }
+    // minor arc: the centre is left of the chord for G3, right for G2
+    let (mu, mv) = ((p0[u] + p1[u]) / 2.0, (p0[v] + p1[v]) / 2.0);
+    let side = (a.center[u] - mu) * -dv + (a.center[v] - mv) * du;
+    if (cw && side > 0.0) || (!cw && side < 0.0) {
+        return None;
+    }
+    let (r, half) = (a.radius, chord / 2.0);
+    let sagitta = half * half / (r + (r * r - half * half).max(0.0).sqrt());
+    (sagitta <= 1e3 * r * f64::EPSILON).then_some(sagitta)
 }
 
 /// A G0/G1 block with centre words (`first`) but no axis words: no move
@@ -349,4 +399,34 @@ fn absolute_centre_block(b: &Block, start: Pose, scale: f64, off: &[f64; 6]) -> 
         w.value = (w.value * scale + off[i] - start.get(i)) / scale;
     }
     c
+}
+
+#[cfg(test)]
+mod flat_arc_tests {
+    use crate::nc::program::parse;
+    use crate::nc::segment::Motion;
+
+    #[test]
+    fn an_arc_flatter_than_its_centre_resolution_is_its_chord_with_a_warning() {
+        let p = parse("G0 X0 Y0\nG2 X1 Y0 R999999999 F100").unwrap();
+        let s = p.segments.last().unwrap();
+        assert_eq!(s.motion, Motion::Linear);
+        assert!((s.end.x - 1.0).abs() < 1e-12);
+        assert!(p
+            .warnings
+            .iter()
+            .any(|w| w.line == 2 && w.message.starts_with("flat arc")));
+        // a real arc, small or large, is kept
+        for text in [
+            "G0 X0 Y0\nG2 X0.001 Y0 R0.5 F100",
+            "G0 X0 Y0\nG3 X100 Y0 R1000 F100",
+        ] {
+            let p = parse(text).unwrap();
+            assert!(
+                matches!(p.segments.last().unwrap().motion, Motion::Arc(_)),
+                "{text}"
+            );
+            assert!(p.warnings.is_empty(), "{text}");
+        }
+    }
 }

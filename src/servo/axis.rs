@@ -70,8 +70,14 @@ pub struct AxisParams {
     /// Backlash (full width): mm for linear axes, rad for rotary axes.
     #[serde(default)]
     pub backlash: f64,
-    /// Worm-gear pitch-error harmonics (kato Eq. 1).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    /// Worm-gear pitch-error harmonics (kato Eq. 1); at most
+    /// [`crate::budget::MAX_PITCH_HARMONICS`], refused by their count
+    /// before any is read (1e6 took 5–7.7 s to refuse).
+    #[serde(
+        default,
+        skip_serializing_if = "Vec::is_empty",
+        deserialize_with = "crate::budget::at_most_pitch_harmonics"
+    )]
     pub pitch_error: Vec<WormHarmonic>,
     /// How `pitch_error[i].w` is read (kato Eq. 1; see
     /// [`super::transmission`]); default `gearRatio`.

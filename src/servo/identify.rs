@@ -43,9 +43,19 @@ pub enum IdentifyError {
         /// What is wrong and what was expected.
         message: String,
     },
-    /// The initial axis or a trial point is not a valid axis.
+    /// The initial axis is not a valid axis.
     #[error(transparent)]
     Servo(#[from] ServoError),
+    /// The fit's own trial left the physical range (the caller's values
+    /// were valid): said as the fit's doing, with the initial guess, not
+    /// as a bad parameter the caller never set.
+    #[error("the fit left the physical range from this initial guess (j = {}, c = {}, kvp = {}, kpp = {}): a trial step gave {why}; start from values nearer the axis", crate::numeric::compact(.initial[0]), crate::numeric::compact(.initial[1]), crate::numeric::compact(.initial[2]), crate::numeric::compact(.initial[3]))]
+    FitDiverged {
+        /// The initial j, c, kvp, kpp.
+        initial: [f64; 4],
+        /// The trial's servo error.
+        why: String,
+    },
 }
 
 fn bad(field: impl Into<String>, message: impl Into<String>) -> IdentifyError {
@@ -219,7 +229,13 @@ pub fn identify_axis(
         initial.kvp.ln(),
         initial.kpp.ln(),
     );
-    let fit = levenberg_marquardt_lazy(start, cost, normal, |v| v, &opts)?;
+    let fit = levenberg_marquardt_lazy(start, cost, normal, |v| v, &opts).map_err(|e| match e {
+        IdentifyError::Servo(s) => IdentifyError::FitDiverged {
+            initial: [initial.j, initial.c, initial.kvp, initial.kpp],
+            why: s.to_string(),
+        },
+        e => e,
+    })?;
     let p: [f64; 4] = fit.p.into();
     let iterations = fit.steps;
     let r = fit_problem.residuals(&p)?;

@@ -53,6 +53,17 @@ pub enum ServoError {
         /// What was expected.
         why: String,
     },
+    /// The simulated loop diverges: its position runs away from a bounded
+    /// command (gains too high for the time step, or an unstable loop).
+    #[error("the axis loop is unstable: at dt = {} s its simulated position reaches {} while the command stays within ±{}; lower kpp, kvp or kvi (or the time step) until the loop is stable", crate::numeric::compact(*.dt), crate::numeric::compact(*.reached), crate::numeric::compact(*.command))]
+    Unstable {
+        /// The time step, s.
+        dt: f64,
+        /// The largest |position| reached (or NaN/∞), mm or rad.
+        reached: f64,
+        /// The largest |command|, mm or rad.
+        command: f64,
+    },
     /// A required parameter is missing for this kind of axis.
     #[error("axis parameter `{field}` is required: {why}")]
     MissingParameter {

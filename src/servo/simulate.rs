@@ -193,6 +193,7 @@ pub fn simulate_axis(
             run(&step, sm, kf, limit, load, n, |i| (xs[i], vff[i]))
         }
     };
+    diverged(dt, command, &position, &torque)?;
     if !trans.is_rigid() {
         // position is the motor angle over s_m; map it through gear and backlash
         for p in position.iter_mut() {
@@ -205,6 +206,30 @@ pub fn simulate_axis(
         torque,
         saturated,
     })
+}
+
+/// `Err(Unstable)` when the simulated position leaves every bound a
+/// stable loop keeps: a non-finite sample (position or torque), or a
+/// position beyond 1000 × the largest command (+ 1 mm or rad). A loop whose
+/// gains are too high for `dt` otherwise returned ±2e9 mm and Infinity.
+fn diverged(dt: f64, command: &[f64], position: &[f64], torque: &[f64]) -> Result<(), ServoError> {
+    let command_max = command.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+    let bound = 1e3 * (command_max + 1.0);
+    let reached = position.iter().fold(0.0_f64, |m, p| {
+        if p.is_finite() && m.is_finite() {
+            m.max(p.abs())
+        } else {
+            f64::INFINITY
+        }
+    });
+    if reached > bound || torque.iter().any(|t| !t.is_finite()) {
+        return Err(ServoError::Unstable {
+            dt,
+            reached,
+            command: command_max,
+        });
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -283,5 +308,22 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("sample 1"), "{e}");
+    }
+}
+
+#[cfg(test)]
+mod unstable_tests {
+    use super::*;
+
+    #[test]
+    fn a_diverging_loop_is_refused_in_words_not_returned_as_infinity() {
+        let mut x = crate::machine::preset("trunnion-ac").unwrap().axes["x"].clone();
+        x.kvi = 1e9;
+        let cmd: Vec<f64> = (0..2000).map(|i| (i as f64 * 1e-3).sin()).collect();
+        let e = simulate_axis(&x, 1e-3, &cmd).unwrap_err().to_string();
+        assert!(e.starts_with("the axis loop is unstable"), "{e}");
+        // the preset itself is stable
+        x.kvi = crate::machine::preset("trunnion-ac").unwrap().axes["x"].kvi;
+        assert!(simulate_axis(&x, 1e-3, &cmd).is_ok());
     }
 }

@@ -201,6 +201,17 @@ pub fn identify_acc_dec(data: &[CircleLoss]) -> Result<AccDec, IdentifyError> {
 /// At least two rows, each with a positive feed and radius and a loss
 /// between 0 and the radius, and at least two distinct `F/R`.
 fn check_data(data: &[CircleLoss]) -> Result<(), IdentifyError> {
+    // every fit iteration evaluates every circle (1e6 rows took over 30 s)
+    if data.len() > crate::budget::MAX_ACCDEC_CIRCLES {
+        return Err(IdentifyError::Input {
+            field: "data".into(),
+            message: format!(
+                "{} circles, more than the limit of {}; the fit needs a few circles at different F/R",
+                data.len(),
+                crate::budget::MAX_ACCDEC_CIRCLES
+            ),
+        });
+    }
     if data.len() < 2 {
         return Err(IdentifyError::Underdetermined(format!(
             "{} circle(s) given; expected at least two with different F/R",

@@ -42,13 +42,41 @@ pub use simulate::{
 };
 
 /// The servo time constant: one for all axes or one per axis X, Y, Z.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// Read from a number or an array of three (anything else is refused in
+/// those words, not serde's "untagged enum").
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Lag {
     /// The same `T` for X, Y, Z, s.
     All(f64),
     /// `[Tx, Ty, Tz]`, s.
     PerAxis([f64; 3]),
+}
+
+impl<'de> Deserialize<'de> for Lag {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Either;
+        impl<'de> serde::de::Visitor<'de> for Either {
+            type Value = Lag;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a time constant in s, or [Tx, Ty, Tz]")
+            }
+            fn visit_f64<E: serde::de::Error>(self, t: f64) -> Result<Lag, E> {
+                Ok(Lag::All(t))
+            }
+            fn visit_i64<E: serde::de::Error>(self, t: i64) -> Result<Lag, E> {
+                Ok(Lag::All(t as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, t: u64) -> Result<Lag, E> {
+                Ok(Lag::All(t as f64))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, seq: A) -> Result<Lag, A::Error> {
+                let t = <[f64; 3]>::deserialize(serde::de::value::SeqAccessDeserializer::new(seq))?;
+                Ok(Lag::PerAxis(t))
+            }
+        }
+        d.deserialize_any(Either)
+    }
 }
 
 impl Lag {

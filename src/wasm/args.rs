@@ -1,14 +1,13 @@
 //! The configs of the documentation calculators' functions, read from JS.
 //!
-//! The full module deserialises them with serde-wasm-bindgen
-//! ([`super::convert::object`]). The embed module (`--no-default-features`,
+//! The full module deserialises them strictly ([`super::convert::object`],
+//! [`super::strict`]). The embed module (`--no-default-features`,
 //! docs/performance.md) reads the few fields by hand from the same plain
 //! snapshot ([`super::convert::plain`]), so that serde's deserialiser is
-//! not linked at all: the same defaults, and serde's own messages for what
-//! the calculators can pass (a missing field, a whole number out of range
-//! or with a fraction), including the `Error: ` that serde-wasm-bindgen's
-//! error puts before them. A value of the wrong JS type (a string for a
-//! number) is refused naming the field rather than in serde's words.
+//! not linked at all: the same defaults, the same keys allowed, and the
+//! strict deserializer's messages (a missing or unknown key, a string or a
+//! non-finite number for a number, a whole number out of range), each
+//! naming the path of the value.
 //! `tests/node/optimised.test.mjs` checks both builds give the same values
 //! and the same messages for the calculators' inputs.
 
@@ -29,7 +28,7 @@ impl<T: serde::de::DeserializeOwned> JsArg for T {
 
 #[cfg(not(feature = "full"))]
 mod by_hand {
-    use js_sys::{Array, Reflect};
+    use js_sys::{Array, Float64Array, Reflect};
     use wasm_bindgen::prelude::*;
 
     use super::JsArg;
@@ -37,13 +36,17 @@ mod by_hand {
     use crate::alignment::{Locus, Offset, SweepConfig};
     use crate::ballbar::{Harmonic, ParseOptions, PlanePoint};
     use crate::best_kffp::saturation::{SaturationQuery, SaturationReading, READINGS};
-    use crate::wasm::convert::{plain, require_object};
+    use crate::wasm::convert::{known_keys, plain, require_object};
+    use crate::wasm::strict::{js_number, kind};
     use crate::wasm::toolpath::Eq3In;
 
-    /// The snapshot of a config that must be a plain object.
-    fn snapshot(value: &JsValue, what: &str) -> Result<JsValue, JsError> {
+    /// The snapshot of a config that must be a plain object with only the
+    /// keys `allowed` (the full module's serde structs refuse the others).
+    fn snapshot(value: &JsValue, what: &str, allowed: &[&str]) -> Result<JsValue, JsError> {
         require_object(value, what)?;
-        plain(value, what)
+        let o = plain(value, what)?;
+        known_keys(&o, allowed, what)?;
+        Ok(o)
     }
 
     /// The field `key`, or `None` when absent.
@@ -53,44 +56,49 @@ mod by_hand {
             .filter(|v| !v.is_undefined())
     }
 
-    /// A message in serde-wasm-bindgen's words (its error's text starts
-    /// with the JS `Error: `).
-    fn serde_says(what: &str, message: &str) -> JsError {
-        JsError::new(&format!("{what}: Error: {message}"))
-    }
-
     fn missing(what: &str, key: &str) -> JsError {
-        serde_says(what, &format!("missing field `{key}`"))
+        JsError::new(&format!("{what}: missing key '{key}'"))
     }
 
-    fn not_a_number(what: &str, key: &str) -> JsError {
-        JsError::new(&format!("{what}.{key}: expected a number"))
+    /// A finite JS number at `path` (the strict deserializer's words).
+    fn number(v: &JsValue, path: &str) -> Result<f64, JsError> {
+        match v.as_f64() {
+            Some(x) if x.is_finite() => Ok(x),
+            Some(x) => Err(JsError::new(&format!(
+                "{path}: expected a finite number, got {}",
+                js_number(x)
+            ))),
+            None => Err(JsError::new(&format!(
+                "{path}: expected a number, got {}",
+                kind(v)
+            ))),
+        }
     }
 
-    /// A required number (serde: "missing field").
+    /// A required number.
     fn num(obj: &JsValue, key: &str, what: &str) -> Result<f64, JsError> {
         let v = get(obj, key).ok_or_else(|| missing(what, key))?;
-        v.as_f64().ok_or_else(|| not_a_number(what, key))
+        number(&v, &format!("{what}.{key}"))
     }
 
     /// A number with a default when absent.
     fn num_or(obj: &JsValue, key: &str, what: &str, default: f64) -> Result<f64, JsError> {
         match get(obj, key) {
             None => Ok(default),
-            Some(v) => v.as_f64().ok_or_else(|| not_a_number(what, key)),
+            Some(v) => number(&v, &format!("{what}.{key}")),
         }
     }
 
     /// An optional number: absent or null gives `None` (serde's `Option`).
     fn opt_num(obj: &JsValue, key: &str, what: &str) -> Result<Option<f64>, JsError> {
         match get(obj, key) {
-            Some(v) if !v.is_null() => v.as_f64().map(Some).ok_or_else(|| not_a_number(what, key)),
+            Some(v) if !v.is_null() => number(&v, &format!("{what}.{key}")).map(Some),
             _ => Ok(None),
         }
     }
 
-    /// The items of an array field; absent: serde's "missing field" when
-    /// `required`, else none (serde's `#[serde(default)]`).
+    /// The items of an array field; absent: "missing key" when `required`,
+    /// else none (serde's `#[serde(default)]`).
     fn items(
         obj: &JsValue,
         key: &str,
@@ -101,42 +109,42 @@ mod by_hand {
             None if required => Err(missing(what, key)),
             None => Ok(Vec::new()),
             Some(v) if Array::is_array(&v) => Ok(Array::from(&v).iter().collect()),
-            Some(_) => Err(JsError::new(&format!("{what}.{key}: expected an array"))),
+            Some(v) => match v.dyn_ref::<Float64Array>() {
+                Some(a) => Ok(a.to_vec().into_iter().map(JsValue::from_f64).collect()),
+                None => Err(JsError::new(&format!(
+                    "{what}.{key}: expected an array, got {}",
+                    kind(&v)
+                ))),
+            },
         }
     }
 
     fn nums(obj: &JsValue, key: &str, what: &str) -> Result<Vec<f64>, JsError> {
         items(obj, key, what, true)?
             .iter()
-            .map(|v| v.as_f64().ok_or_else(|| not_a_number(what, key)))
+            .enumerate()
+            .map(|(i, v)| number(v, &format!("{what}.{key}[{i}]")))
             .collect()
     }
 
-    /// A whole number of type `ty` up to `max`, with serde's messages for a
-    /// field under `#[serde(flatten)]` (read from serde's buffered copy,
-    /// where a safe integer is an `i64`): a safe integer below 0 or above
-    /// `max` is an invalid value, anything else that is not a safe integer
-    /// an invalid type.
-    fn whole(x: f64, ty: &str, max: u64, what: &str) -> Result<u64, JsError> {
-        const SAFE: f64 = 9_007_199_254_740_991.0;
-        let message = if x.fract() == 0.0 && x.abs() <= SAFE {
-            if x >= 0.0 && x as u64 <= max {
-                return Ok(x as u64);
-            }
-            format!("invalid value: integer `{}`, expected {ty}", x as i64)
-        } else {
-            let mut s = format!("{x}");
-            if x.is_finite() && !s.contains('.') {
-                s.push_str(".0");
-            }
-            format!("invalid type: floating point `{s}`, expected {ty}")
-        };
-        Err(serde_says(what, &message))
+    /// A whole number from 0 to `max` at `path` (`max` as the strict
+    /// deserializer gives it: `u32::MAX` for a `u32`, 2⁵³ − 1 for a
+    /// `usize`, read as a `u64`).
+    fn whole(v: &JsValue, path: &str, max: u64) -> Result<u64, JsError> {
+        let range = format!("expected a whole number from 0 to {max}");
+        match v.as_f64() {
+            Some(x) if x.fract() == 0.0 && x >= 0.0 && x <= max as f64 => Ok(x as u64),
+            Some(x) => Err(JsError::new(&format!(
+                "{path}: {range}, got {}",
+                crate::numeric::compact(x)
+            ))),
+            None => Err(JsError::new(&format!("{path}: {range}, got {}", kind(v)))),
+        }
     }
 
     impl JsArg for Eq3In {
         fn arg(value: JsValue, what: &str) -> Result<Self, JsError> {
-            let o = snapshot(&value, what)?;
+            let o = snapshot(&value, what, &["feed", "radius", "tA", "T"])?;
             Ok(Eq3In {
                 feed: num(&o, "feed", what)?,
                 radius: num(&o, "radius", what)?,
@@ -150,9 +158,12 @@ mod by_hand {
         let Some(v) = get(o, "reading") else {
             return Ok(SaturationReading::default());
         };
-        let name = v
-            .as_string()
-            .ok_or_else(|| JsError::new(&format!("{what}.reading: expected a string")))?;
+        let Some(name) = v.as_string() else {
+            return Err(JsError::new(&format!(
+                "{what}.reading: expected a string, got {}",
+                kind(&v)
+            )));
+        };
         let all = [
             SaturationReading::PreControlOff,
             SaturationReading::PresetKffp,
@@ -160,20 +171,28 @@ mod by_hand {
         ];
         match READINGS.iter().position(|r| *r == name) {
             Some(k) => Ok(all[k]),
-            None => Err(serde_says(
-                what,
-                &format!(
-                    "unknown variant `{}`, expected one of `{}`",
-                    crate::budget::clip(&name, 60),
-                    READINGS.join("`, `")
-                ),
-            )),
+            None => Err(JsError::new(&format!(
+                "{what}.reading: unknown value '{}'; expected one of {}",
+                crate::budget::clip(&name, 40),
+                READINGS.join(", ")
+            ))),
         }
     }
 
     impl JsArg for SaturationQuery {
         fn arg(value: JsValue, what: &str) -> Result<Self, JsError> {
-            let o = snapshot(&value, what)?;
+            let o = snapshot(
+                &value,
+                what,
+                &[
+                    "j1",
+                    "torqueMax",
+                    "accelTime",
+                    "feedAtCuttingPoint",
+                    "dt",
+                    "reading",
+                ],
+            )?;
             Ok(SaturationQuery {
                 j1: nums(&o, "j1", what)?,
                 torque_max: opt_num(&o, "torqueMax", what)?,
@@ -186,13 +205,16 @@ mod by_hand {
     }
 
     fn harmonic(h: &JsValue, what: &str) -> Result<Harmonic, JsError> {
-        if !h.is_object() || Array::is_array(h) {
+        if !h.is_object() || Array::is_array(h) || h.is_instance_of::<Float64Array>() {
             return Err(JsError::new(&format!(
-                "{what}.harmonics: expected objects {{ order, amplitude, phase }}"
+                "{what}: expected an object {{ … }}, got {}",
+                kind(h)
             )));
         }
+        known_keys(h, &["order", "amplitude", "phase"], what)?;
+        let order = get(h, "order").ok_or_else(|| missing(what, "order"))?;
         Ok(Harmonic {
-            order: whole(num(h, "order", what)?, "u32", u32::MAX.into(), what)? as u32,
+            order: whole(&order, &format!("{what}.order"), u32::MAX.into())? as u32,
             amplitude: num(h, "amplitude", what)?,
             phase: num_or(h, "phase", what, 0.0)?,
         })
@@ -200,23 +222,48 @@ mod by_hand {
 
     impl JsArg for SweepConfig {
         fn arg(value: JsValue, what: &str) -> Result<Self, JsError> {
-            let o = snapshot(&value, what)?;
+            let o = snapshot(
+                &value,
+                what,
+                &[
+                    "offset",
+                    "ranges",
+                    "harmonics",
+                    "radius",
+                    "samples",
+                    "centreDeg",
+                ],
+            )?;
             let offset = match get(&o, "offset") {
                 None => Offset::default(),
-                Some(v) => Offset {
-                    z: num(&v, "z", what)?,
-                    x: num(&v, "x", what)?,
-                },
+                Some(v) => {
+                    let at = format!("{what}.offset");
+                    if !v.is_object() || Array::is_array(&v) {
+                        return Err(JsError::new(&format!(
+                            "{at}: expected an object {{ … }}, got {}",
+                            kind(&v)
+                        )));
+                    }
+                    known_keys(&v, &["z", "x"], &at)?;
+                    Offset {
+                        z: num(&v, "z", &at)?,
+                        x: num(&v, "x", &at)?,
+                    }
+                }
             };
             let harmonics = items(&o, "harmonics", what, false)?
                 .iter()
-                .map(|h| harmonic(h, what))
+                .enumerate()
+                .map(|(i, h)| harmonic(h, &format!("{what}.harmonics[{i}]")))
                 .collect::<Result<_, _>>()?;
             let samples = match get(&o, "samples") {
                 None => default_samples(),
                 Some(v) => {
-                    let x = v.as_f64().ok_or_else(|| not_a_number(what, "samples"))?;
-                    whole(x, "usize", u32::MAX.into(), what)? as usize
+                    let path = format!("{what}.samples");
+                    let n = whole(&v, &path, (1 << 53) - 1)?;
+                    usize::try_from(n).map_err(|_| {
+                        JsError::new(&format!("{path}: {n} is too large for this platform"))
+                    })?
                 }
             };
             Ok(SweepConfig {
@@ -234,12 +281,16 @@ mod by_hand {
 
     impl JsArg for ParseOptions {
         fn arg(value: JsValue, what: &str) -> Result<Self, JsError> {
-            let o = snapshot(&value, what)?;
+            // `trim`: the ball-bar trimming option (src/ballbar/)
+            let o = snapshot(&value, what, &["nominalRadius", "feed", "centre", "trim"])?;
             let centre = match get(&o, "centre") {
                 None => None,
-                Some(v) => Some(PlanePoint {
-                    x: num(&v, "x", &format!("{what}.centre"))?,
-                    y: num(&v, "y", &format!("{what}.centre"))?,
+                Some(v) => Some({
+                    known_keys(&v, &["x", "y"], &format!("{what}.centre"))?;
+                    PlanePoint {
+                        x: num(&v, "x", &format!("{what}.centre"))?,
+                        y: num(&v, "y", &format!("{what}.centre"))?,
+                    }
                 }),
             };
             Ok(ParseOptions {

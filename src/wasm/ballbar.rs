@@ -8,8 +8,8 @@ use wasm_bindgen::prelude::*;
 
 use super::args::JsArg;
 use super::convert::{
-    count_arg, floats_arg, number_arg, object, opt_number, opt_number_arg, plain, plain_floats,
-    require_object, string_arg, to_js, Obj,
+    count_arg, floats_arg, known_keys, name_arg, number_arg, object, opt_number, opt_number_arg,
+    plain, plain_floats, require_object, string_arg, to_js, Obj,
 };
 use super::results::JsResult;
 use crate::alignment::{self, examples, AngleSweepConfig, Section, SweepConfig};
@@ -184,6 +184,18 @@ fn floats(obj: &JsValue, key: &str, what: &str) -> Result<Vec<f64>, JsError> {
     plain_floats(&get(obj, key), &format!("{what}.{key}"))
 }
 
+/// An `Error` unless section `s` (of a plain snapshot) is an object with
+/// only the keys `allowed`.
+fn section_object(s: &JsValue, what: &str, allowed: &[&str]) -> Result<(), JsError> {
+    if !s.is_object() || Array::is_array(s) {
+        return Err(JsError::new(&format!(
+            "{what}: expected an object {{ {} }}",
+            allowed.join(", ")
+        )));
+    }
+    known_keys(s, allowed, what)
+}
+
 /// The sections of an alignment input (a plain snapshot).
 fn sections_of(input: &JsValue) -> Result<Vec<Section>, JsError> {
     let list = get(input, "sections");
@@ -195,6 +207,7 @@ fn sections_of(input: &JsValue) -> Result<Vec<Section>, JsError> {
     let mut sections = Vec::new();
     for (k, s) in Array::from(&list).iter().enumerate() {
         let what = format!("sections[{k}]");
+        section_object(&s, &what, &["y", "angleDeg", "deviation"])?;
         sections.push(Section {
             y: number(&s, "y", &what)?,
             angle_deg: floats(&s, "angleDeg", &what)?,
@@ -212,6 +225,7 @@ pub fn estimate_alignment(
 ) -> Result<JsValue, JsError> {
     require_object(&input, "input")?;
     let input = plain(&input, "input")?;
+    known_keys(&input, &["sections", "radius"], "input")?;
     let sections = sections_of(&input)?;
     let radius = opt_number(&input, "radius", "input")?.unwrap_or(100.0);
     to_js(&alignment::estimate_alignment(&sections, radius)?)
@@ -251,8 +265,10 @@ fn trace_from_js(v: &JsValue) -> Result<BallbarTrace, JsError> {
         ));
     }
     let mut runs = Vec::new();
+    known_keys(v, &["nominalRadius", "feed", "runs", "centre"], "trace")?;
     for (k, r) in Array::from(&list).iter().enumerate() {
         let what = format!("trace.runs[{k}]");
+        section_object(&r, &what, &["direction", "angleRad", "deviation"])?;
         let direction = match get(&r, "direction").as_string().as_deref() {
             Some("ccw") => Direction::Ccw,
             Some("cw") => Direction::Cw,
@@ -356,7 +372,7 @@ pub fn ballbar_example(
     #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
     #[wasm_bindgen(unchecked_param_type = "number | undefined")] radius: JsValue,
 ) -> Result<JsValue, JsError> {
-    let name: &str = &string_arg(&name, "name")?;
+    let name: &str = &name_arg(&name, "name")?;
     let radius = opt_number_arg(&radius, "radius")?.unwrap_or(100.0);
     to_js(&examples::example(name, radius)?)
 }
@@ -405,6 +421,11 @@ pub fn estimate_alignment_band(
             "input.travelRangeDeg: not an input: the travel range is each section's measured span",
         ));
     }
+    known_keys(
+        &input,
+        &["sections", "radius", "centre", "maxOrder"],
+        "input",
+    )?;
     let radius = opt_number(&input, "radius", "input")?.unwrap_or(100.0);
     let max_order = match opt_number(&input, "maxOrder", "input")? {
         Some(v) => count_arg(v, "input.maxOrder", usize::MAX)?,
@@ -426,14 +447,18 @@ fn band_sections(input: &JsValue, radius: f64) -> Result<Vec<Section>, JsError> 
     }
     let centre = match get(input, "centre") {
         c if c.is_undefined() || c.is_null() => None,
-        c => Some(ballbar::PlanePoint {
-            x: number(&c, "x", "input.centre")?,
-            y: number(&c, "y", "input.centre")?,
+        c => Some({
+            section_object(&c, "input.centre", &["x", "y"])?;
+            ballbar::PlanePoint {
+                x: number(&c, "x", "input.centre")?,
+                y: number(&c, "y", "input.centre")?,
+            }
         }),
     };
     let mut traces = Vec::new();
     for (k, s) in Array::from(&list).iter().enumerate() {
         let what = format!("sections[{k}]");
+        section_object(&s, &what, &["y", "text", "run"])?;
         let run = match opt_number(&s, "run", &what)? {
             Some(v) => count_arg(v, &format!("{what}.run"), usize::MAX)?,
             None => 0,

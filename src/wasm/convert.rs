@@ -44,6 +44,8 @@ const kind = (v) => {
   return typeof n === 'string' && n ? 'a ' + clip(n) : 'an object';
 };
 class Refused extends Error {}
+// a typed array's length from its internal slot: no getter of the caller runs
+const typedLength = Function.prototype.call.bind(Object.getOwnPropertyDescriptor(Object.getPrototypeOf(Int8Array.prototype), 'length').get);
 // Array.isArray throws only for a revoked Proxy (its handler is gone)
 const revoked = (v) => {
   if (v === null || (typeof v !== 'object' && typeof v !== 'function')) return false;
@@ -61,21 +63,30 @@ function say(e, what) {
   try { m = e instanceof Error ? String(e.message) : typeof e === 'string' ? e : typeof e; } catch { m = 'an exception'; }
   return new Error(`${what}: reading the argument threw (${clip(m)}); pass plain data (numbers, strings, arrays, objects)`);
 }
-export function plainCopy(value, what, maxDepth, maxItems) {
+export function plainCopy(value, what, maxDepth, maxItems, maxString, maxKey, maxKeys) {
   let items = 0;
+  const tooMany = () => new Refused(`${clip(what)}: more than ${maxItems} values; pass a smaller input`);
   const copy = (v, path, depth) => {
-    if (++items > maxItems) throw new Refused(`${what}: more than ${maxItems} values; pass a smaller input`);
+    if (++items > maxItems) throw tooMany();
     const t = typeof v;
-    if (v === null || t === 'undefined' || t === 'boolean' || t === 'number' || t === 'string') return v;
+    if (t === 'string') {
+      // a string costs its UTF-8 bytes in wasm memory: at least one per unit
+      if (v.length > maxString) throw new Refused(`${clip(path)}: a string of ${v.length} characters, more than the limit of ${maxString}; pass a shorter text`);
+      items += v.length >>> 3;
+      if (items > maxItems) throw tooMany();
+      return v;
+    }
+    if (t === 'bigint') throw new Refused(`${clip(path)}: expected a number, got a bigint`);
+    if (v === null || t === 'undefined' || t === 'boolean' || t === 'number') return v;
     if (revoked(v)) throw new Refused(revokedMessage(path));
     if (t !== 'object') throw new Refused(`${clip(path)}: expected a number, string, array or object, got a ${t}`);
     if (depth >= maxDepth) throw new Refused(`${clip(path)}: nested deeper than ${maxDepth} levels`);
     if (ArrayBuffer.isView(v)) {
       if (v instanceof DataView) throw new Refused(`${clip(path)}: expected an array of numbers, got a DataView`);
-      const out = new Float64Array(v);
-      items += out.length;
-      if (items > maxItems) throw new Refused(`${what}: more than ${maxItems} values; pass a smaller input`);
-      return out;
+      // counted before it is copied
+      items += typedLength(v);
+      if (items > maxItems) throw tooMany();
+      return new Float64Array(v);
     }
     if (Array.isArray(v)) {
       const n = v.length;
@@ -87,8 +98,13 @@ export function plainCopy(value, what, maxDepth, maxItems) {
     const proto = Object.getPrototypeOf(v);
     if (proto !== Object.prototype && proto !== null) throw new Refused(`${clip(path)}: expected a plain object, got ${kind(v)}`);
     const out = {};
-    for (const k of Reflect.ownKeys(v)) {
+    const keys = Reflect.ownKeys(v);
+    // no config has more keys (an object of 1e6 unknown keys took 5-19 s to refuse)
+    if (keys.length > maxKeys) throw new Refused(`${clip(path)}: an object of ${keys.length} keys, more than the limit of ${maxKeys}`);
+    for (const k of keys) {
       if (typeof k !== 'string') continue;
+      if (k.length > maxKey) throw new Refused(`${clip(path)}: a key of ${k.length} characters; a key is a name of at most ${maxKey}`);
+      if (++items > maxItems) throw tooMany();
       const d = Object.getOwnPropertyDescriptor(v, k);
       if (!d || !d.enumerable) continue;
       if ('get' in d || 'set' in d) throw new Refused(`${clip(path + '.' + k)}: is a getter or setter; pass plain data`);
@@ -103,9 +119,10 @@ export function f64Copy(value, what, maxLen) {
   try {
     if (revoked(value)) throw new Refused(revokedMessage(what));
     if (ArrayBuffer.isView(value) && !(value instanceof DataView)) {
-      const out = new Float64Array(value);
-      if (out.length > maxLen) throw new Refused(`${what}: ${out.length} values; at most ${maxLen} are accepted`);
-      return out;
+      // checked before it is copied
+      const n = typedLength(value);
+      if (n > maxLen) throw new Refused(`${clip(what)}: ${n} values; at most ${maxLen} are accepted`);
+      return new Float64Array(value);
     }
     if (Array.isArray(value)) {
       const n = value.length;
@@ -129,6 +146,9 @@ extern "C" {
         what: &str,
         max_depth: u32,
         max_items: f64,
+        max_string: f64,
+        max_key: f64,
+        max_keys: f64,
     ) -> Result<JsValue, JsValue>;
     #[wasm_bindgen(catch, js_name = f64Copy)]
     fn f64_copy(value: &JsValue, what: &str, max_len: f64) -> Result<Float64Array, JsValue>;
@@ -136,6 +156,41 @@ extern "C" {
     fn is_array_arg(value: &JsValue, what: &str) -> Result<bool, JsValue>;
     #[wasm_bindgen(catch, js_name = isRevoked)]
     fn is_revoked(value: &JsValue) -> Result<bool, JsValue>;
+}
+
+/// Set while a progress callback runs ([`progress`]): a call into the
+/// module from it is refused ([`not_reentered`]). Such a call nested a
+/// whole run inside the callback, and a callback that called back again
+/// grew wasm memory to 4 GB at depth 102 and trapped.
+static IN_CALLBACK: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Calls progress callback `cb` with `(fraction, stage)`; its return value,
+/// or `None` when it threw (the throw is caught by wasm-bindgen). While it
+/// runs, every export refuses to start.
+pub fn progress(cb: &js_sys::Function, fraction: f64, stage: &str) -> Option<JsValue> {
+    use std::sync::atomic::Ordering;
+    IN_CALLBACK.store(true, Ordering::Relaxed);
+    let r = cb
+        .call2(
+            &JsValue::NULL,
+            &JsValue::from_f64(fraction),
+            &JsValue::from_str(stage),
+        )
+        .ok();
+    IN_CALLBACK.store(false, Ordering::Relaxed);
+    r
+}
+
+/// An `Error` when called from inside a progress callback (see
+/// [`progress`]); every argument reader below asks it first, so no export
+/// does any work when re-entered.
+pub fn not_reentered() -> Result<(), JsError> {
+    if IN_CALLBACK.load(std::sync::atomic::Ordering::Relaxed) {
+        return Err(JsError::new(
+            "mtmotion is busy: a progress callback may not call into the module; call it after the run returns",
+        ));
+    }
+    Ok(())
 }
 
 /// True when `value` is a revoked Proxy (checked in JS, where the throw is
@@ -168,13 +223,24 @@ fn message(e: JsValue) -> JsError {
 /// A plain-data snapshot of `value` (see the module header); `what` names
 /// the argument in the error.
 pub fn plain(value: &JsValue, what: &str) -> Result<JsValue, JsError> {
-    plain_copy(value, what, MAX_DEPTH, budget::MAX_ARGUMENT_VALUES as f64).map_err(message)
+    not_reentered()?;
+    plain_copy(
+        value,
+        what,
+        MAX_DEPTH,
+        budget::MAX_ARGUMENT_VALUES as f64,
+        budget::MAX_TEXT_BYTES as f64,
+        budget::MAX_NAME_CHARS as f64,
+        budget::MAX_OBJECT_KEYS as f64,
+    )
+    .map_err(message)
 }
 
 /// A `Float64Array` or an array of numbers, copied into a `Vec`; anything
 /// else (an array-like, a non-number item, more than
 /// [`budget::MAX_ARGUMENT_VALUES`] values) is an `Error` naming `what`.
 pub fn floats_arg(value: &JsValue, what: &str) -> Result<Vec<f64>, JsError> {
+    not_reentered()?;
     Ok(f64_copy(value, what, budget::MAX_ARGUMENT_VALUES as f64)
         .map_err(message)?
         .to_vec())
@@ -208,14 +274,13 @@ pub fn from_js<T: DeserializeOwned>(value: JsValue, what: &str) -> Result<T, JsE
     from_plain(plain(&value, what)?, what)
 }
 
-/// Deserialises a config that is already a [`plain`] snapshot.
+/// Deserialises a config that is already a [`plain`] snapshot, strictly
+/// ([`super::strict`]): an unknown key at any depth, an array for an
+/// object, a string for a number or a non-finite number is an `Error`
+/// naming its path; quoted input in the message is clipped.
 pub fn from_plain<T: DeserializeOwned>(copy: JsValue, what: &str) -> Result<T, JsError> {
-    serde_wasm_bindgen::from_value(copy).map_err(|e| {
-        JsError::new(&format!(
-            "{what}: {}",
-            budget::clip_quoted(&e.to_string(), 60)
-        ))
-    })
+    super::strict::from_snapshot(copy, what)
+        .map_err(|e| JsError::new(&budget::clip_quoted(&e.to_string(), 60)))
 }
 
 /// Builder for a result object that mixes numbers, `Float64Array`s and
@@ -278,6 +343,7 @@ impl Obj {
 /// A string longer than [`budget::MAX_TEXT_BYTES`] is refused before it is
 /// copied into wasm memory (UTF-8 needs at least one byte per UTF-16 unit).
 pub fn string_arg(value: &JsValue, what: &str) -> Result<String, JsError> {
+    not_reentered()?;
     let Some(s) = value.dyn_ref::<js_sys::JsString>() else {
         return Err(JsError::new(&format!(
             "{what}: expected a string, got {}",
@@ -295,39 +361,47 @@ pub fn string_arg(value: &JsValue, what: &str) -> Result<String, JsError> {
     Ok(String::from(s))
 }
 
+/// A name argument (a preset, an axis, a reading, a file name): a string
+/// of at most [`budget::MAX_NAME_CHARS`] characters, refused before it is
+/// copied into wasm memory (a 100 MB machine name held 573 MiB of wasm
+/// memory for good and came back in the message).
+pub fn name_arg(value: &JsValue, what: &str) -> Result<String, JsError> {
+    not_reentered()?;
+    if let Some(s) = value.dyn_ref::<js_sys::JsString>() {
+        if s.length() as usize > budget::MAX_NAME_CHARS {
+            return Err(JsError::new(&format!(
+                "{what}: a name of {} characters; a name has at most {}",
+                s.length(),
+                budget::MAX_NAME_CHARS
+            )));
+        }
+    }
+    string_arg(value, what)
+}
+
 /// A config argument that must be a plain object (not an array, a string
-/// or a number, which serde would otherwise read as a struct's fields in
-/// order or ignore), converted from its snapshot.
-///
-/// A key the struct does not name is an `Error` naming it:
-/// serde-wasm-bindgen reads only the keys a struct names, so a misspelt
+/// or a number), converted from its snapshot by [`from_plain`], which
+/// refuses a key the struct does not name at any depth: a misspelt
 /// `omgea` would otherwise leave ω at its default without a word.
 pub fn object<T: DeserializeOwned>(value: JsValue, what: &str) -> Result<T, JsError> {
     require_object(&value, what)?;
-    // the keys are read from the plain snapshot: a Proxy's traps or a
-    // throwing getter never run inside the check
+    // read from the plain snapshot: a Proxy's traps or a throwing getter
+    // never run inside the conversion
     let copy = plain(&value, what)?;
-    if let Some(fields) = struct_fields::<T>() {
-        known_keys(&copy, fields, &[], what)?;
-    }
     from_plain(copy, what)
 }
 
 /// An `Error` naming the first own key of `obj` (a [`plain`] snapshot,
-/// whose keys are data) that is neither in `fields` nor in `more`.
-pub fn known_keys(
-    obj: &JsValue,
-    fields: &[&str],
-    more: &[&str],
-    what: &str,
-) -> Result<(), JsError> {
+/// whose keys are data) that is not in `allowed`: the hand-written readers'
+/// check ("input: unknown key 'travelRange'; expected one of …").
+pub fn known_keys(obj: &JsValue, allowed: &[&str], what: &str) -> Result<(), JsError> {
     let Some(o) = obj.dyn_ref::<Object>() else {
         return Ok(());
     };
     for k in Object::keys(o).iter() {
         let k = k.as_string().unwrap_or_default();
-        if !fields.contains(&k.as_str()) && !more.contains(&k.as_str()) {
-            let mut all: Vec<&str> = fields.iter().chain(more).copied().collect();
+        if !allowed.contains(&k.as_str()) {
+            let mut all = allowed.to_vec();
             all.sort_unstable();
             return Err(JsError::new(&format!(
                 "{what}: unknown key '{}'; expected one of {}",
@@ -339,47 +413,11 @@ pub fn known_keys(
     Ok(())
 }
 
-/// The field names serde's derive gives struct `T`, or `None` for a type
-/// not read as a plain struct (a map, an enum, a struct with a flattened
-/// field, which serde reads as a map).
-pub fn struct_fields<T: DeserializeOwned>() -> Option<&'static [&'static str]> {
-    let mut fields = None;
-    let _ = T::deserialize(FieldsProbe(&mut fields));
-    fields
-}
-
-/// A deserializer that only records the field list of the struct asked
-/// of it, then stops.
-struct FieldsProbe<'a>(&'a mut Option<&'static [&'static str]>);
-
-impl<'de> serde::Deserializer<'de> for FieldsProbe<'_> {
-    type Error = serde::de::value::Error;
-
-    fn deserialize_any<V: serde::de::Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
-        Err(serde::de::Error::custom("not a struct"))
-    }
-
-    fn deserialize_struct<V: serde::de::Visitor<'de>>(
-        self,
-        _name: &'static str,
-        fields: &'static [&'static str],
-        _visitor: V,
-    ) -> Result<V::Value, Self::Error> {
-        *self.0 = Some(fields);
-        Err(serde::de::Error::custom("fields recorded"))
-    }
-
-    serde::forward_to_deserialize_any! {
-        bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string
-        bytes byte_buf option unit unit_struct newtype_struct seq tuple
-        tuple_struct map enum identifier ignored_any
-    }
-}
-
 /// An `Error` unless `value` is a non-array object. `Array.isArray` runs in
 /// the catching helper: on a revoked Proxy it throws, and the `Error` says
 /// so, naming `what`.
 pub fn require_object(value: &JsValue, what: &str) -> Result<(), JsError> {
+    not_reentered()?;
     let got = if value.is_null() {
         "null".to_string()
     } else if !value.is_object() || value.is_function() {
@@ -404,6 +442,7 @@ pub fn require_object(value: &JsValue, what: &str) -> Result<(), JsError> {
 /// `TypeError` on a revoked Proxy): anything but a JS number is an `Error`
 /// naming `what`.
 pub fn number_arg(value: &JsValue, what: &str) -> Result<f64, JsError> {
+    not_reentered()?;
     value
         .as_f64()
         .ok_or_else(|| JsError::new(&format!("{what}: expected a number, got {}", got(value))))
@@ -414,6 +453,7 @@ pub fn number_arg(value: &JsValue, what: &str) -> Result<f64, JsError> {
 /// naming `what` (wasm-bindgen's own `Option<Function>` takes any object
 /// unchecked, and calling it failed without a word).
 pub fn callback_arg(value: JsValue, what: &str) -> Result<Option<js_sys::Function>, JsError> {
+    not_reentered()?;
     if value.is_undefined() || value.is_null() {
         return Ok(None);
     }
@@ -438,6 +478,7 @@ pub fn opt_number(obj: &JsValue, key: &str, what: &str) -> Result<Option<f64>, J
 /// but a finite number (a string, NaN, ±Infinity) is an `Error` naming
 /// `what`. wasm-bindgen's own `Option<f64>` would read `"abc"` as NaN.
 pub fn opt_number_arg(value: &JsValue, what: &str) -> Result<Option<f64>, JsError> {
+    not_reentered()?;
     if value.is_undefined() || value.is_null() {
         return Ok(None);
     }

@@ -9,7 +9,7 @@ use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
 use super::convert::{
-    callback_arg, floats_arg, from_js, object, opt_number_arg, string_arg, to_js, Obj,
+    callback_arg, floats_arg, from_js, name_arg, object, opt_number_arg, string_arg, to_js, Obj,
 };
 use crate::compensate::nc5::{self, s_shape};
 use crate::cone_frustum::{self, ConeFrustumConfig};
@@ -64,11 +64,38 @@ export interface SShapeOptions {
 export interface SShapeTestPiece { /** [mm] tool-tip targets */ points: number[][]; /** [-] tool axes */ axes: number[][]; nc: string }
 "#;
 
-#[derive(Deserialize)]
-#[serde(untagged)]
+/// Axis values as `[x, y, z, a, b, c]` or `{ x, y, … }`; anything else is
+/// refused in those words (not serde's "untagged enum").
 enum AxisValues {
     Arr(Vec<f64>),
     Obj(BTreeMap<String, f64>),
+}
+
+impl<'de> Deserialize<'de> for AxisValues {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Either;
+        impl<'de> serde::de::Visitor<'de> for Either {
+            type Value = AxisValues;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("[x, y, z, a, b, c] or { x, y, z, a, b, c } (numbers)")
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                seq: A,
+            ) -> Result<AxisValues, A::Error> {
+                Vec::deserialize(serde::de::value::SeqAccessDeserializer::new(seq))
+                    .map(AxisValues::Arr)
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> Result<AxisValues, A::Error> {
+                BTreeMap::deserialize(serde::de::value::MapAccessDeserializer::new(map))
+                    .map(AxisValues::Obj)
+            }
+        }
+        d.deserialize_any(Either)
+    }
 }
 
 fn q_of(v: JsValue, what: &str) -> Result<[f64; 6], JsError> {
@@ -89,7 +116,8 @@ fn q_of(v: JsValue, what: &str) -> Result<[f64; 6], JsError> {
                 let i =
                     kinematics::Chain::axis_index(&k.to_ascii_lowercase()).ok_or_else(|| {
                         JsError::new(&format!(
-                            "{what}: unknown axis '{k}'; expected x, y, z, a, b, c"
+                            "{what}: unknown key '{}'; expected one of x, y, z, a, b, c",
+                            crate::budget::clip(&k, 40)
                         ))
                     })?;
                 q[i] = v;
@@ -106,6 +134,9 @@ fn q_of(v: JsValue, what: &str) -> Result<[f64; 6], JsError> {
 }
 
 fn machine_of(v: JsValue) -> Result<(crate::machine::Machine, kinematics::Chain), JsError> {
+    if v.is_string() {
+        return Ok(MachineRef::Name(name_arg(&v, "machine")?).resolve()?);
+    }
     let m: MachineRef = from_js(v, "machine")?;
     Ok(m.resolve()?)
 }
@@ -219,19 +250,11 @@ pub fn cone_frustum_test(
     let cfg: ConeFrustumConfig = object(options, "options")?;
     let on_progress = callback_arg(on_progress, "onProgress")?;
     if let Some(f) = &on_progress {
-        let _ = f.call2(
-            &JsValue::NULL,
-            &JsValue::from_f64(0.0),
-            &JsValue::from_str("simulating"),
-        );
+        super::convert::progress(f, 0.0, "simulating");
     }
     let r = cone_frustum::cone_frustum_test(&cfg)?;
     if let Some(f) = &on_progress {
-        let _ = f.call2(
-            &JsValue::NULL,
-            &JsValue::from_f64(1.0),
-            &JsValue::from_str("done"),
-        );
+        super::convert::progress(f, 1.0, "done");
     }
     // Rotary positions go to JS in degrees, like every angle of the JS API.
     let axes = r.axes.iter().fold(Obj::new(), |o, s| {

@@ -2,7 +2,7 @@
 
 use wasm_bindgen::prelude::*;
 
-use super::convert::{string_arg, to_js};
+use super::convert::{name_arg, to_js};
 use crate::machine;
 
 // GeometricErrors and DriveErrors are declared here rather than with the
@@ -93,11 +93,11 @@ pub fn machine_preset(
     #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "string")] reading: JsValue,
 ) -> Result<JsValue, JsError> {
-    let name: &str = &string_arg(&name, "name")?;
+    let name: &str = &name_arg(&name, "name")?;
     if reading.is_undefined() || reading.is_null() {
         return to_js(&machine::preset(name)?);
     }
-    let reading: &str = &string_arg(&reading, "reading")?;
+    let reading: &str = &name_arg(&reading, "reading")?;
     to_js(&machine::preset_with_reading(name, reading)?)
 }
 

@@ -3,9 +3,14 @@
 //! Pattern every binding follows:
 //! - fallible functions return `Result<T, JsError>`; the core's error message
 //!   becomes the thrown `Error`'s message;
-//! - small configs and results cross through serde-wasm-bindgen
-//!   ([`convert::from_js`], [`convert::to_js`]) and have TypeScript shapes
-//!   in a `typescript_custom_section`;
+//! - small configs are copied into plain data ([`convert::plain`]) and
+//!   read strictly by [`strict`] ([`convert::from_js`], [`convert::object`]:
+//!   an unknown key, an array for an object or a string for a number is an
+//!   `Error` naming its path); results cross through serde-wasm-bindgen
+//!   ([`convert::to_js`]); both have TypeScript shapes in a
+//!   `typescript_custom_section`;
+//! - no export runs while a progress callback runs
+//!   ([`convert::not_reentered`]);
 //! - bulk arrays cross as `Float64Array` (`&[f64]` in, [`convert::Obj::arr`]
 //!   out), never through serde;
 //! - the panic hook is installed at start.
@@ -27,6 +32,7 @@ pub mod machine;
 pub mod results;
 #[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod servo;
+pub mod strict;
 #[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod toolpath;
 
@@ -54,7 +60,7 @@ pub fn check_file_size(
     #[wasm_bindgen(unchecked_param_type = "string")] name: JsValue,
     #[wasm_bindgen(unchecked_param_type = "number")] bytes: JsValue,
 ) -> Result<(), JsError> {
-    let name = convert::string_arg(&name, "name")?;
+    let name = convert::name_arg(&name, "name")?;
     let bytes = convert::number_arg(&bytes, "bytes")?;
     if !(bytes.is_finite() && bytes >= 0.0 && bytes.fract() == 0.0) {
         return Err(JsError::new(&format!(
@@ -62,6 +68,17 @@ pub fn check_file_size(
             crate::numeric::compact(bytes)
         )));
     }
+    let name = crate::budget::clip(&name, 60);
+    // above 2^53 a size is no exact integer, and `as u64` saturated 1e308
+    // to 18446744073709551615: say the number as given
+    if bytes > 9_007_199_254_740_992.0 {
+        return Err(JsError::new(&format!(
+            "{name}: file size: {} bytes, more than the limit of {}; {}",
+            crate::numeric::compact(bytes),
+            crate::budget::MAX_TEXT_BYTES,
+            crate::budget::TEXT_ADVICE
+        )));
+    }
     crate::budget::check_bytes("file size", bytes as u64)
-        .map_err(|e| JsError::new(&format!("{}: {e}", crate::budget::clip(&name, 80))))
+        .map_err(|e| JsError::new(&format!("{name}: {e}")))
 }

@@ -8,7 +8,8 @@ use wasm_bindgen::prelude::*;
 
 use super::args::JsArg;
 use super::convert::{
-    floats_arg, object, plain, plain_floats, require_object, string_arg, to_js, Obj,
+    floats_arg, known_keys, name_arg, object, plain, plain_floats, require_object, string_arg,
+    to_js, Obj,
 };
 use super::results::JsResult;
 use crate::best_kffp::{self, saturation};
@@ -81,10 +82,10 @@ export interface IdentifiedAxis {
 /// A machine given as a preset name or as a full machine object.
 #[cfg(feature = "full")]
 fn machine_arg(value: JsValue) -> Result<Machine, JsError> {
-    match value.as_string() {
-        Some(name) => Ok(machine::preset(&name)?),
-        None => object(value, "machine"),
+    if value.is_string() {
+        return Ok(machine::preset(&name_arg(&value, "machine")?)?);
     }
+    object(value, "machine")
 }
 
 /// The embed module's machine: a preset name only, among the presets with
@@ -92,7 +93,7 @@ fn machine_arg(value: JsValue) -> Result<Machine, JsError> {
 /// neither the other presets nor a machine's deserialiser are linked.
 #[cfg(not(feature = "full"))]
 fn machine_arg(value: JsValue) -> Result<Machine, JsError> {
-    let name = string_arg(&value, "machine")?;
+    let name = name_arg(&value, "machine")?;
     Ok(machine::saturation_preset(&name)?)
 }
 
@@ -122,6 +123,7 @@ pub fn simulate_axis(
     let axis: AxisParams = object(axis, "axis")?;
     require_object(&input, "input")?;
     let input = plain(&input, "input")?;
+    known_keys(&input, &["dt", "position"], "input")?;
     let dt = Reflect::get(&input, &JsValue::from_str("dt"))
         .ok()
         .and_then(|v| v.as_f64())
@@ -240,7 +242,7 @@ pub fn axis_inertia(
     #[wasm_bindgen(unchecked_param_type = "string")] axis: JsValue,
 ) -> Result<f64, JsError> {
     let m = machine_arg(machine)?;
-    let axis = string_arg(&axis, "axis")?;
+    let axis = name_arg(&axis, "axis")?;
     match m.axes.get(axis.as_str()) {
         Some(a) => Ok(a.j),
         None => Err(JsError::new(&format!(

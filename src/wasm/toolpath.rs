@@ -7,8 +7,8 @@ use wasm_bindgen::prelude::*;
 
 use super::args::JsArg;
 use super::convert::{
-    callback_arg, from_js, from_plain, known_keys, object, plain, require_object, string_arg,
-    struct_fields, to_js, Obj,
+    callback_arg, from_js, from_plain, name_arg, object, plain, require_object, string_arg, to_js,
+    Obj,
 };
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
 use crate::nc::files::{main_file, parse_files, NcFile};
@@ -168,8 +168,20 @@ fn take_key(options: JsValue, name: &str) -> Result<(JsValue, JsValue), JsError>
 pub fn nc_main_file(
     #[wasm_bindgen(unchecked_param_type = "string[]")] texts: JsValue,
 ) -> Result<usize, JsError> {
-    let texts: Vec<String> = from_js(texts, "texts")?;
+    let texts = plain(&texts, "texts")?;
+    // counted before the texts are copied into wasm memory (1e6 texts took 19 s)
+    if let Some(a) = texts.dyn_ref::<js_sys::Array>() {
+        crate::budget::check(
+            "texts",
+            a.length().into(),
+            crate::budget::MAX_FILES,
+            "texts",
+            "give fewer files at once",
+        )?;
+    }
+    let texts: Vec<String> = from_plain(texts, "texts")?;
     let refs: Vec<&str> = texts.iter().map(String::as_str).collect();
+    crate::budget::check_texts("texts", refs.iter().copied())?;
     Ok(main_file(&refs))
 }
 
@@ -263,13 +275,9 @@ fn sim_obj(s: &Simulation, warnings: &[Warning]) -> Result<JsValue, JsError> {
 #[cfg(feature = "full")]
 fn js_progress(cb: &Option<js_sys::Function>) -> impl FnMut(f64, &str) -> bool + '_ {
     move |f: f64, stage: &str| match cb {
-        Some(cb) => cb
-            .call2(
-                &JsValue::NULL,
-                &JsValue::from_f64(f),
-                &JsValue::from_str(stage),
-            )
-            .map_or(true, |v| v.as_bool() != Some(false)),
+        Some(cb) => {
+            super::convert::progress(cb, f, stage).is_none_or(|v| v.as_bool() != Some(false))
+        }
         None => true,
     }
 }
@@ -335,7 +343,18 @@ pub fn radius_reduction(
 pub fn identify_acc_dec(
     #[wasm_bindgen(unchecked_param_type = "CircleLoss[]")] data: JsValue,
 ) -> Result<JsValue, JsError> {
-    let d: Vec<CircleLoss> = from_js(data, "data")?;
+    let data = plain(&data, "data")?;
+    // counted before the rows are read (1e6 rows took 12 s to refuse)
+    if let Some(a) = data.dyn_ref::<js_sys::Array>() {
+        crate::budget::check(
+            "data",
+            a.length().into(),
+            crate::budget::MAX_ACCDEC_CIRCLES,
+            "circles",
+            "the fit needs a few circles at different F/R",
+        )?;
+    }
+    let d: Vec<CircleLoss> = from_plain(data, "data")?;
     to_js(&identify(&d)?)
 }
 
@@ -368,15 +387,6 @@ pub fn reverse_compensate_js(
                 "config.toolRadii: reverseCompensate corrects the programmed path and does not offset it for cutter compensation; leave toolRadii out (the G41/G42 offset is applied by the control to the corrected program)",
             ));
         }
-        // ReverseConfig flattens SimConfig, which serde reads as a map: its
-        // keys are checked here
-        let sim = struct_fields::<SimConfig>().unwrap_or(&[]);
-        known_keys(
-            &config,
-            sim,
-            &["dwell", "iterations", "timeBudget"],
-            "config",
-        )?;
         from_plain(config, "config")?
     };
     let on_progress = callback_arg(on_progress, "onProgress")?;
@@ -414,7 +424,7 @@ pub fn reverse_compensate_js(
 pub fn toolpath_example(
     #[wasm_bindgen(unchecked_param_type = "string")] kind: JsValue,
 ) -> Result<String, JsError> {
-    let kind: &str = &string_arg(&kind, "kind")?;
+    let kind: &str = &name_arg(&kind, "kind")?;
     match kind {
         "arcs" => Ok(example::arc_example()),
         "lines" => Ok(example::line_example()),

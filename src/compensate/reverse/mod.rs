@@ -72,9 +72,11 @@ const NEIGHBOUR_SLACK: f64 = 1e-4;
 /// Rounds of writing, checking and reverting regions at most.
 const MAX_CHECKS: usize = 5;
 
-/// Settings of the reverse compensation.
+/// Settings of the reverse compensation. Read through a flat mirror
+/// (`ReverseConfigIn`): serde reads a flattened field as a map and drops
+/// the keys no part names.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, from = "ReverseConfigIn")]
 pub struct ReverseConfig {
     /// The model (tA, T, dt, …).
     #[serde(flatten)]
@@ -86,6 +88,62 @@ pub struct ReverseConfig {
     /// Largest allowed growth of the motion time, as a fraction (0.05 = +5 %).
     #[serde(rename = "timeBudget")]
     pub time_budget: f64,
+}
+
+/// [`ReverseConfig`] as read: every key named, no other key accepted.
+#[derive(Deserialize)]
+#[serde(default, deny_unknown_fields)]
+struct ReverseConfigIn {
+    #[serde(rename = "tA")]
+    t_a: f64,
+    #[serde(rename = "T")]
+    t: crate::toolpath::Lag,
+    dt: f64,
+    #[serde(rename = "rapidFeed")]
+    rapid_feed: f64,
+    #[serde(rename = "feedOverride")]
+    feed_override: f64,
+    #[serde(rename = "dwellExactStop")]
+    dwell_exact_stop: bool,
+    dwell: Option<f64>,
+    iterations: usize,
+    #[serde(rename = "timeBudget")]
+    time_budget: f64,
+}
+
+impl Default for ReverseConfigIn {
+    fn default() -> Self {
+        let c = ReverseConfig::default();
+        Self {
+            t_a: c.sim.t_a,
+            t: c.sim.t,
+            dt: c.sim.dt,
+            rapid_feed: c.sim.rapid_feed,
+            feed_override: c.sim.feed_override,
+            dwell_exact_stop: c.sim.dwell_exact_stop,
+            dwell: c.dwell,
+            iterations: c.iterations,
+            time_budget: c.time_budget,
+        }
+    }
+}
+
+impl From<ReverseConfigIn> for ReverseConfig {
+    fn from(c: ReverseConfigIn) -> Self {
+        Self {
+            sim: SimConfig {
+                t_a: c.t_a,
+                t: c.t,
+                dt: c.dt,
+                rapid_feed: c.rapid_feed,
+                feed_override: c.feed_override,
+                dwell_exact_stop: c.dwell_exact_stop,
+            },
+            dwell: c.dwell,
+            iterations: c.iterations,
+            time_budget: c.time_budget,
+        }
+    }
 }
 
 impl Default for ReverseConfig {

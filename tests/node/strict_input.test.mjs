@@ -1,0 +1,371 @@
+// Issue 29, items 3-12: inputs that used to give a silent wrong answer, a
+// non-finite result, a huge message or a slow or fatal refusal. One
+// regression case per item, then two properties over every export (each
+// enumerated from the pkg module, as revoked_proxy.test.mjs does):
+// - no argument position documented as a number (in pkg/mtmotion.d.ts)
+//   accepts a string, a boolean, a one-element array or a BigInt;
+// - every config object, and every object nested in it, refuses a key it
+//   does not name, and the message names the key.
+// Calls that could kill or exhaust an instance run in their own process
+// (runIsolated); afterwards the good calls must give the same bits.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import * as mt from '../../pkg/mtmotion.js';
+
+const wasm = mt.initSync({ module: readFileSync(new URL('../../pkg/mtmotion_bg.wasm', import.meta.url)) });
+const PKG = new URL('../../pkg/', import.meta.url).href;
+
+const message = (f) => {
+  try {
+    f();
+  } catch (e) {
+    assert.ok(e instanceof Error && !(e instanceof WebAssembly.RuntimeError), `threw ${e}`);
+    return e.message;
+  }
+  return 'returned';
+};
+
+/** Runs `body` (JS source using `mt`) in a fresh Node process with the pkg loaded; its stdout as JSON. */
+function runIsolated(body, timeout = 60_000) {
+  const src = `import * as mt from '${PKG}mtmotion.js';
+import { readFileSync } from 'node:fs';
+const wasm = mt.initSync({ module: readFileSync(new URL('mtmotion_bg.wasm', '${PKG}')) });
+const out = await (async () => { ${body} })();
+process.stdout.write(JSON.stringify(out));`;
+  const r = spawnSync(process.execPath, ['--input-type=module', '-e', src], { encoding: 'utf8', timeout, maxBuffer: 1 << 24 });
+  assert.equal(r.status, 0, `isolated run failed: ${r.stderr.slice(0, 500)}`);
+  return JSON.parse(r.stdout);
+}
+
+const f64 = (...v) => new Float64Array(v);
+const COND = { rc: 5, rw: 8, omega: 3, accelTime: 0.064, j1: 1.7 };
+const TP = { tA: 0.04, T: 0.015, dt: 0.001 };
+const arcs = mt.toolpathExample('arcs');
+const axisC = mt.machinePreset('nmv5000').axes.c;
+const axisX = mt.machinePreset('nmv5000').axes.x;
+const ramp = Float64Array.from({ length: 300 }, (_, i) => Math.max(0, i * 1e-3 - 0.05) * 0.2);
+const angles = Float64Array.from({ length: 360 }, (_, i) => (i * Math.PI) / 180);
+const twoTurns = Float64Array.from({ length: 720 }, (_, i) => (i * Math.PI) / 180);
+const sections = () => [0, 100].map((y) => ({
+  y,
+  angleDeg: Float64Array.from({ length: 121 }, (_, i) => i - 60),
+  deviation: Float64Array.from({ length: 121 }, (_, i) => 0.01 * Math.cos(((i - 60) * Math.PI) / 180) + y * 1e-5),
+}));
+const servoTrace = 'time [ms],X [mm],Y [mm],C [deg]\n' + Array.from({ length: 50 }, (_, i) => `${i},${Math.cos(i / 8)},${Math.sin(i / 8)},${i / 10}`).join('\n');
+const ballbarText = 'angle [deg],deviation [um]\n' + Array.from({ length: 37 }, (_, i) => `${i * 10},${Math.sin(i)}`).join('\n');
+const trace = () => mt.syntheticBallbarTrace({ backlashX: 0.004, bothDirections: true });
+const sshape = mt.sShapeTestPiece({ machine: 'pocketnc-v2-10', scale: 0.1 });
+const pocket = mt.machinePreset('pocketnc-v2-10');
+const x = angles.map((a) => 1 + 50 * Math.cos(a));
+const y = angles.map((a) => 2 + 50 * Math.sin(a));
+
+// name → () => a good argument list (fresh each time), one value per parameter
+const GOOD = {
+  analyzeFeedVectorTrace: () => [servoTrace, COND, { time: 'time', timeScale: 1e-3, steadyFrom: 0 }],
+  angleSweep: () => [{ sections: [{ y: 0, offset: { z: 0, x: 0.01 } }, { y: 100, offset: { z: 0.01, x: 0 } }], ranges: [90, 180], harmonics: [{ order: 2, amplitude: 0.001, phase: 0 }] }],
+  axisInertia: () => ['nmv5000', 'c'],
+  ballbarExample: () => ['fig7', 100],
+  bestKffp: () => ['nmv5000', { ...COND, duration: 1 }, { method: 'analytic' }],
+  checkFileSize: () => ['part.nc', 1000],
+  checkNc: () => [arcs, {}],
+  circularDeviation: () => [trace()],
+  circularTest: () => [trace()],
+  compensateNc5: () => [sshape.nc, { machine: 'pocketnc-v2-10', errors: pocket.exampleErrors }],
+  coneFrustumTest: () => [{ machine: 'trunnion-ac', halfApexDeg: 15, inclinationDeg: 10, feed: 1000, points: 200 }, () => true],
+  errorSymbols: () => ['trunnion-ac'],
+  estimateAlignment: () => [{ sections: sections() }],
+  estimateAlignmentBand: () => [{ sections: sections() }],
+  feedVectorTest: () => ['nmv5000', { ...COND, duration: 0.2 }],
+  fitCircle: () => [x, y],
+  forwardKinematics: () => ['pocketnc-v2-10', { x: 10, y: -5, z: 3, a: 20, b: 45 }, {}, 0],
+  forwardKinematicsBulk: () => ['pocketnc-v2-10', f64(10, -5, 3, 20, 45, 0), {}, 0],
+  frequencyResponse: () => [axisC, f64(1, 10, 100)],
+  harmonics: () => [angles, angles.map((a) => 0.005 * Math.sin(2 * a)), 4],
+  identifyAccDec: () => [[[2000, 3], [4000, 5], [6000, 4], [1000, 10]].map(([feed, radius]) => ({ feed, radius, radiusLoss: mt.radiusReduction({ feed, radius, tA: 0.05, T: 0.02 }) }))],
+  identifyAxis: () => [axisX, { dt: 1e-3, command: Array.from(ramp), position: Array.from(mt.simulateAxis(axisX, { dt: 1e-3, position: ramp }).position) }],
+  identifyPitchError: () => [twoTurns, twoTurns.map((a) => 1e-5 * Math.sin(4 * a)), { maxOrder: 8 }],
+  inverseKinematics: () => ['table-on-table-bc', { position: [10, 0, 5], orientation: [0, 0, 1] }, 0],
+  machinePreset: () => ['nmv5000', 'inertiaAtLoad'],
+  machines: () => [],
+  ncMainFile: () => [['O100\nG1 X1 F100\nM99\n', 'G1 X1 F100\nM98 P100\nM30\n']],
+  parseBallbarTrace: () => [ballbarText, { nominalRadius: 100 }],
+  parseNc: () => [arcs, { files: [{ name: 'sub.nc', text: 'O100\nG1 X1 F100\nM99\n' }] }],
+  radiusReduction: () => [{ feed: 2000, radius: 10, tA: 0.04, T: 0.015 }],
+  reverseCompensate: () => [arcs, { ...TP, iterations: 1 }, () => true],
+  sShapeTestPiece: () => [{ machine: 'pocketnc-v2-10', scale: 0.1 }],
+  simulateAxis: () => [axisC, { dt: 1e-3, position: ramp }],
+  simulateToolPath: () => [arcs, TP, () => true],
+  start: () => [],
+  syntheticBallbarTrace: () => [{ offsetX: 0.003, harmonics: [{ order: 3, amplitude: 0.001 }] }],
+  toolpathExample: () => ['lines'],
+  torqueSaturation: () => ['nmv5000', { j1: [1.7], torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200 }],
+  traceColumns: () => [servoTrace],
+  travelRangeSweep: () => [{ offset: { z: 0.01, x: -0.02 }, ranges: [90, 180], samples: 200, harmonics: [{ order: 2, amplitude: 0.005, phase: 0.1 }] }],
+  version: () => [],
+};
+
+/** A fresh good argument list whose objects are copies (functions kept). */
+const goodArgs = (name) => GOOD[name]().map((a) => (typeof a === 'function' ? a : structuredClone(a)));
+
+const exported = Object.entries(mt)
+  .filter(([name, f]) => typeof f === 'function' && name !== 'initSync' && name !== 'default')
+  .map(([name, f]) => ({ name, f }));
+
+test('every export has a good argument list here, and it works', () => {
+  assert.deepEqual(exported.filter(({ name }) => !(name in GOOD)).map(({ name }) => name), []);
+  for (const { name, f } of exported) {
+    assert.equal(GOOD[name]().length, f.length, name);
+    f(...GOOD[name]());
+  }
+});
+
+// ---- item 7: misspelt keys, arrays read as configs --------------------------------
+
+test('item 7: a misspelt key is refused at any depth, naming it and the keys allowed', () => {
+  const unknown = (f, key) => assert.match(message(f), new RegExp(`unknown key '${key}'; expected one of `), key);
+  // the issue's case: 0 % reduction instead of 77.6 %
+  unknown(() => mt.compensateNc5(sshape.nc, { machine: 'pocketnc-v2-10', errors: { Location: pocket.exampleErrors.location } }), 'Location');
+  assert.match(message(() => mt.compensateNc5(sshape.nc, { machine: 'pocketnc-v2-10', errors: { Location: {} } })), /^options\.errors: unknown key 'Location'; expected one of component, location, tool$/);
+  unknown(() => mt.travelRangeSweep({ ranges: [90], harmonic: [] }), 'harmonic');
+  unknown(() => mt.angleSweep({ sections: [{ y: 0, offset: { z: 0, x: 0 } }, { y: 1, offset: { z: 0, x: 0, q: 1 } }], ranges: [90] }), 'q');
+  unknown(() => mt.estimateAlignment({ sections: sections(), radios: 5 }), 'radios');
+  unknown(() => mt.estimateAlignment({ sections: [{ ...sections()[0], dev: 1 }] }), 'dev');
+  unknown(() => mt.estimateAlignmentBand({ sections: sections(), order: 3 }), 'order');
+  unknown(() => mt.circularTest({ ...trace(), nominalRadios: 3 }), 'nominalRadios');
+  unknown(() => mt.circularDeviation({ ...trace(), runs: trace().runs.map((r) => ({ ...r, dir: 1 })) }), 'dir');
+  unknown(() => mt.syntheticBallbarTrace({ harmonics: [{ order: 2, amplitude: 0.005, phse: 1 }] }), 'phse');
+  unknown(() => mt.identifyAccDec([{ feed: 1000, radius: 10, radiusLoss: 0.01, bogus: 1 }]), 'bogus');
+  unknown(() => mt.simulateAxis(axisC, { dt: 1e-3, position: ramp, positon: ramp }), 'positon');
+  unknown(() => mt.parseBallbarTrace(ballbarText, { nominalRadious: 100 }), 'nominalRadious');
+  unknown(() => mt.feedVectorTest({ ...mt.machinePreset('nmv5000'), bogus: 1 }, COND), 'bogus');
+  // the travel range keeps its own message
+  assert.match(message(() => mt.estimateAlignmentBand({ sections: sections(), travelRangeDeg: 180 })), /^input\.travelRangeDeg: not an input/);
+  // arrays are not read as configs
+  for (const f of [
+    () => mt.syntheticBallbarTrace({ harmonics: [[2, 0.005, 0.1]] }),
+    () => mt.travelRangeSweep({ ranges: [90], harmonics: [[2, 0.005, 0.1]] }),
+    () => mt.angleSweep({ sections: [[0, [0, 0]], [1, [0, 0]]], ranges: [90] }),
+  ]) assert.match(message(f), /expected an object \{ … \}, got an array/);
+  // the right keys still give the paper's numbers
+  const r = mt.compensateNc5(sshape.nc, { machine: 'pocketnc-v2-10', errors: pocket.exampleErrors });
+  assert.ok(r.totalReductionPercent > 50, `${r.totalReductionPercent} %`);
+});
+
+test('item 7 property: every config object of every export, and every object nested in it, refuses an unknown key', () => {
+  // objects whose keys are data, not fields: error symbols, axis letters, D numbers
+  const MAPS = /\.(location|component|axes|limits|toolRadii|backlash|kffp|q)$/;
+  const problems = [];
+  let checked = 0;
+  const objectPaths = (v, path, out) => {
+    if (v && typeof v === 'object' && !ArrayBuffer.isView(v)) {
+      if (!Array.isArray(v) && !MAPS.test(path)) out.push(path);
+      for (const [k, u] of Object.entries(v)) objectPaths(u, Array.isArray(v) ? `${path}[${k}]` : `${path}.${k}`, out);
+    }
+    return out;
+  };
+  for (const { name, f } of exported) {
+    const good = GOOD[name]();
+    good.forEach((arg, i) => {
+      for (const path of objectPaths(arg, '', [])) {
+        const args = goodArgs(name);
+        // the object at `path` inside a fresh copy of argument i
+        let o = args[i];
+        for (const step of path.match(/[^.[\]]+/g) ?? []) o = o[step];
+        o.zzUnknownKey = 1;
+        checked += 1;
+        const m = message(() => f(...args));
+        if (!/unknown key 'zzUnknownKey'; expected one of /.test(m)) problems.push(`${name} #${i}${path}: ${m.slice(0, 160)}`);
+      }
+    });
+  }
+  assert.ok(checked >= 50, `only ${checked} config objects checked`);
+  assert.deepEqual(problems, []);
+});
+
+// ---- item 6: a huge arc radius -----------------------------------------------------
+
+test('item 6: an arc flatter than its centre can resolve is its chord, with a warning', () => {
+  const p = mt.parseNc('G0 X0 Y0\nG2 X1 Y0 R999999999 F100');
+  assert.equal(p.segments[1].motion.type, 'linear');
+  assert.ok(p.warnings.some((w) => w.line === 2 && /^flat arc/.test(w.message)), JSON.stringify(p.warnings));
+  const arc = mt.simulateToolPath('G0 X0 Y0\nG2 X1 Y0 R999999999 F100', TP);
+  const line = mt.simulateToolPath('G0 X0 Y0\nG1 X1 Y0 F100', TP);
+  assert.equal(arc.maxErrorUm, line.maxErrorUm);
+  assert.ok(arc.maxErrorUm < 1e-6, `${arc.maxErrorUm} µm (was 1,095,477)`);
+  // a real arc is kept
+  assert.equal(mt.parseNc('G0 X0 Y0\nG3 X100 Y0 R1000 F100').segments[1].motion.type, 'arc');
+});
+
+// ---- item 5: Infinity and NaN ---------------------------------------------------------
+
+test('item 5: a diverging loop is refused in words; NaN in a machine is refused naming the field', () => {
+  const m = mt.machinePreset('trunnion-ac');
+  m.axes.x.kvi = 1e9;
+  const e = message(() => mt.coneFrustumTest({ machine: m, halfApexDeg: 15, inclinationDeg: 10, feed: 1000, points: 200 }));
+  assert.match(e, /X.*the axis loop is unstable/);
+  assert.ok(!/Infinity/.test(e), e);
+  const n = mt.machinePreset('nmv5000');
+  n.axes.c.j = NaN;
+  assert.equal(message(() => mt.axisInertia(n, 'c')), 'machine.axes.c.j: expected a finite number, got NaN');
+  assert.match(message(() => mt.frequencyResponse({ ...axisC, kvp: Infinity }, f64(1))), /^axis\.kvp: expected a finite number, got Infinity$/);
+});
+
+// ---- item 8: positional numbers -------------------------------------------------------
+
+test('item 8 property: no position documented as a number accepts a string, a boolean, a one-element array or a BigInt', () => {
+  const dts = readFileSync(new URL('../../pkg/mtmotion.d.ts', import.meta.url), 'utf8');
+  const problems = [];
+  let checked = 0;
+  for (const [, name, params] of dts.matchAll(/^export function (\w+)\(([^)]*)\)/gm)) {
+    if (name === 'initSync' || !params) continue;
+    params.split(/,(?![^{]*})/).forEach((p, i) => {
+      if (!/^\s*\w+\??:\s*number\b/.test(p)) return;
+      for (const bad of ['5', true, [5], 5n, { valueOf: () => 5 }]) {
+        const args = goodArgs(name);
+        args[i] = bad;
+        checked += 1;
+        const m = message(() => mt[name](...args));
+        if (!/^[\w.[\]]+: expected (a|a finite) number, got /.test(m)) problems.push(`${name} #${i} ${typeof bad}: ${m.slice(0, 120)}`);
+      }
+    });
+  }
+  assert.ok(checked >= 25, `only ${checked} number positions found`);
+  assert.deepEqual(problems, []);
+});
+
+test('item 8: checkFileSize says a huge size as given, not as 2^64 - 1', () => {
+  assert.match(message(() => mt.checkFileSize('a', 1e308)), /^a: file size: 1e308 bytes, more than the limit of 8388608/);
+  assert.match(message(() => mt.checkFileSize('a', 5n)), /^bytes: expected a number, got bigint$/);
+  assert.match(message(() => mt.harmonics(angles, angles, '2')), /^maxOrder: expected a number, got string$/);
+});
+
+// ---- item 4 and 9: long strings, echoed input ----------------------------------------------
+
+test('item 4: long names are refused before they reach wasm memory; messages stay short', () => {
+  const before = wasm.memory.buffer.byteLength;
+  const huge = 'x'.repeat(1e8);
+  for (const f of [
+    () => mt.feedVectorTest(huge, COND),
+    () => mt.machinePreset(huge),
+    () => mt.axisInertia('nmv5000', huge),
+    () => mt.coneFrustumTest({ machine: huge, halfApexDeg: 15, inclinationDeg: 10, feed: 1000 }),
+    () => mt.parseNc('G1 X1 F100', { dwellP: huge }),
+    () => mt.torqueSaturation('nmv5000', { j1: [1.7], accelTime: 0.064, feedAtCuttingPoint: 200, reading: huge }),
+    () => mt.analyzeFeedVectorTrace(servoTrace, COND, { x: huge }),
+    () => mt.radiusReduction({ [huge.slice(0, 1e6)]: 1 }),
+  ]) {
+    const t = performance.now();
+    const m = message(f);
+    assert.ok(m.length < 300, `${m.length} characters: ${m.slice(0, 100)}`);
+    assert.ok(performance.now() - t < 3000, `${(performance.now() - t).toFixed(0)} ms: ${m.slice(0, 80)}`);
+  }
+  assert.ok(wasm.memory.buffer.byteLength - before < 64 << 20, `wasm memory grew by ${(wasm.memory.buffer.byteLength - before) >> 20} MiB`);
+  // a name just under the limit is still read, and clipped in the message
+  assert.ok(message(() => mt.machinePreset('y'.repeat(999))).length < 300);
+});
+
+// ---- item 10: slow refusals -----------------------------------------------------------
+
+test('item 10: oversized inputs are refused before they are copied', () => {
+  const time = (f) => {
+    const t = performance.now();
+    const m = message(f);
+    return [performance.now() - t, m];
+  };
+  const big = new Float64Array(2e7); // 160 MB: over the 8 M-value argument budget
+  let [ms, m] = time(() => mt.fitCircle(big, big));
+  assert.match(m, /^x: 20000000 values; at most 8000000/);
+  assert.ok(ms < 100, `${ms} ms`);
+  [ms, m] = time(() => mt.simulateAxis(axisC, { dt: 1e-3, position: big }));
+  assert.match(m, /more than 8000000 values/);
+  assert.ok(ms < 100, `${ms} ms`);
+  // an object of many keys is refused as its keys are listed (1e6 unknown
+  // keys took 4.9-18.6 s); the listing itself is the cost left
+  const keys = {};
+  for (let i = 0; i < 200_000; i++) keys[`k${i}`] = 1;
+  [ms, m] = time(() => mt.simulateToolPath('G1 X1 F100', keys));
+  assert.match(m, /^options: an object of 200000 keys, more than the limit of 10000$/);
+  assert.ok(ms < 2000, `${ms} ms`);
+  // 100,000 pitch harmonics: refused by the list's length, not after reading each
+  [ms, m] = time(() => mt.simulateAxis({ ...axisC, pitchError: Array.from({ length: 100_000 }, () => ({ n: 1, w: 1e-5, phi: 0 })) }, { dt: 1e-3, position: ramp }));
+  assert.match(m, /^axis\.pitchError: 100000 harmonics, more than the limit of 64/);
+  assert.ok(ms < 2000, `${ms} ms`);
+});
+
+// ---- item 3: budgets over the whole call ------------------------------------------------
+
+test('item 3: each of the issue\'s calls is refused before the work, naming its budget', () => {
+  const cases = [
+    [() => mt.coneFrustumTest({ machine: 'trunnion-ac', halfApexDeg: 15, inclinationDeg: 10, feed: 1, points: 200 }), /servo simulation: \d+ steps .*limit of 5000000/],
+    [() => mt.syntheticBallbarTrace({ samples: 1e7, harmonics: Array.from({ length: 64 }, (_, i) => ({ order: i + 1, amplitude: 1e-3 })) }), /1300000000 terms .*limit of 100000000/],
+    [() => mt.travelRangeSweep({ ranges: [180], samples: 1e7, harmonics: Array.from({ length: 256 }, (_, i) => ({ order: i + 1, amplitude: 1e-3 })) }), /2570000000 points .*limit of 10000000/],
+    [() => mt.parseNc('G1 X1 F100', { files: Array.from({ length: 20 }, (_, k) => ({ name: `f${k}.nc`, text: 'G1 X1\n'.repeat(60_000) })) }), /program and its files: 1200001 lines, more than the limit of 100000/],
+    [() => mt.torqueSaturation('nmv5000', { j1: new Array(5000).fill(1), torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200 }), /at most 1000 load inertias/],
+    [() => mt.ncMainFile(new Array(5000).fill('G1 X1')), /texts: 5000 texts, more than the limit of 1000/],
+    [() => mt.identifyAccDec(Array.from({ length: 20_000 }, () => ({ feed: 1000, radius: 1, radiusLoss: 0.001 }))), /data: 20000 circles, more than the limit of 10000/],
+    [() => mt.simulateToolPath('G1 X1 F100', { toolRadii: Object.fromEntries(Array.from({ length: 2000 }, (_, i) => [`D${i}`, 1])) }), /more than 1000 radii/],
+  ];
+  for (const [f, want] of cases) {
+    const t = performance.now();
+    const m = message(f);
+    assert.match(m, want);
+    assert.ok(performance.now() - t < 3000, `${(performance.now() - t).toFixed(0)} ms: ${m}`);
+  }
+  // the budgets leave the paper's cases alone
+  assert.ok(mt.coneFrustumTest({ machine: 'trunnion-ac', halfApexDeg: 15, inclinationDeg: 10, feed: 1000, points: 200 }).angle.length > 0);
+  assert.equal(mt.travelRangeSweep({ ranges: [90, 180], samples: 1000, harmonics: [{ order: 2, amplitude: 0.005 }] }).length, 2);
+});
+
+// ---- item 9: numbers and echoed input in messages ------------------------------------------------
+
+test('item 9: messages print at most 6 significant digits and clip echoed input', () => {
+  for (const f of [
+    () => mt.syntheticBallbarTrace({ rangeDeg: 1e308 }),
+    () => mt.travelRangeSweep({ ranges: [1e308] }),
+    () => mt.angleSweep({ sections: [{ y: 0, offset: { z: 0, x: 0 } }, { y: 1, offset: { z: 0, x: 0 } }], ranges: [-1e300] }),
+    () => mt.machinePreset('q'.repeat(900)),
+    () => mt.parseBallbarTrace('angle,deviation\n0,' + '9'.repeat(100_000) + 'x\n'),
+    () => mt.compensateNc5('G1 X1 F100', { machine: 'pocketnc-v2-10', errors: { location: { ['E'.repeat(500)]: 1 } } }),
+  ]) {
+    const m = message(f);
+    assert.ok(m.length < 300, `${m.length} characters: ${m.slice(0, 120)}`);
+    assert.ok(!/\d{20}/.test(m), m.slice(0, 200));
+  }
+});
+
+// ---- item 11: misleading messages ---------------------------------------------------------
+
+test('item 11: messages say what is wrong with what the caller gave', () => {
+  assert.match(message(() => mt.parseNc('#100=1E3\nG1 X#100 F100')), /NC numbers take no exponent/);
+  assert.doesNotMatch(message(() => mt.parseNc('#100=1E3\nG1 X#100 F100')), /3D-printer/);
+  for (const f of [
+    () => mt.coneFrustumTest({ machine: 5, halfApexDeg: 15, inclinationDeg: 10, feed: 1000 }),
+    () => mt.simulateToolPath('G1 X1 F100', { T: 'a' }),
+    () => mt.forwardKinematics('pocketnc-v2-10', 'x'),
+    () => mt.compensateNc5('G1 X1 F100', { machine: 'pocketnc-v2-10', errors: { component: { EXX: 'a' } } }),
+  ]) {
+    const m = message(f);
+    assert.doesNotMatch(m, /untagged|expected any value|Error: /, m);
+    assert.match(m, /^[\w.[\]]+: /, m);
+  }
+});
+
+// ---- item 12: a progress callback calling back into the module ------------------------------
+
+test('item 12: a progress callback that calls into the module is refused, and the run goes on', () => {
+  const out = runIsolated(`
+    let depth = 0, refused = '';
+    // 600 s of motion at 1 ms: the callback is called every 262,144 samples
+    const cb = () => { depth += 1; try { mt.simulateToolPath('G1 X1000 F100', { dt: 0.001 }, cb); } catch (e) { refused = e.message; } };
+    const r = mt.simulateToolPath('G1 X1000 F100', { dt: 0.001 }, cb);
+    let cone = '';
+    mt.coneFrustumTest({ machine: 'trunnion-ac', halfApexDeg: 15, inclinationDeg: 10, feed: 1000, points: 200 }, () => { try { mt.version(); mt.machinePreset('nmv5000'); } catch (e) { cone = e.message; } });
+    return { depth, refused, cone, maxErrorUm: r.maxErrorUm, memory: wasm.memory.buffer.byteLength };`);
+  assert.match(out.refused, /^mtmotion is busy: a progress callback may not call into the module/);
+  assert.match(out.cone, /^mtmotion is busy/);
+  assert.ok(out.depth >= 1 && out.memory < 1 << 30, JSON.stringify(out));
+  // the same bits as a run without the callback here
+  assert.equal(out.maxErrorUm, mt.simulateToolPath('G1 X1000 F100', { dt: 0.001 }).maxErrorUm);
+});
