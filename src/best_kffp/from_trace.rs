@@ -40,15 +40,43 @@ use crate::machine::Machine;
 use crate::servo::identify::{identify_axis, MeasuredTrace};
 use crate::servo::AxisParams;
 
-/// Options of [`best_kffp_from_trace`].
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+/// Options of [`best_kffp_from_trace`]: the search of [`super::best_kffp`]
+/// and whether to identify X and Y first (fields, not a flattened
+/// [`Options`], so that the JS reader can name every key).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 pub struct TraceOptions {
-    /// The search (method, kMin, kMax), as [`super::best_kffp`].
-    #[serde(flatten)]
-    pub search: Options,
+    /// Method; default `auto`.
+    pub method: Method,
+    /// Lower bound of the K_FFP search, %.
+    pub k_min: f64,
+    /// Upper bound of the K_FFP search, %.
+    pub k_max: f64,
     /// Identify X and Y (C, Kvp, Kpp) from the trace first.
     pub identify: bool,
+}
+
+impl Default for TraceOptions {
+    fn default() -> Self {
+        let o = Options::default();
+        Self {
+            method: o.method,
+            k_min: o.k_min,
+            k_max: o.k_max,
+            identify: false,
+        }
+    }
+}
+
+impl TraceOptions {
+    /// The search options.
+    pub fn search(&self) -> Options {
+        Options {
+            method: self.method,
+            k_min: self.k_min,
+            k_max: self.k_max,
+        }
+    }
 }
 
 /// An axis identified from the trace.
@@ -123,7 +151,7 @@ pub fn best_kffp_from_trace(
     options: &TraceOptions,
 ) -> Result<TraceKffp, BestKffpError> {
     let measured = &trace.summary;
-    let opts = &options.search;
+    let opts = &options.search();
     let Some(measured_with) = cond.kffp else {
         return Err(BestKffpError::BadQuery {
             field: "condition.kffp",

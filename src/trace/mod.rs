@@ -197,7 +197,9 @@ fn detect(line: &str) -> Option<char> {
 
 /// The first 40 characters of a cell, for a message.
 fn clip(text: &str) -> String {
-    match text.char_indices().nth(40) {
+    // 16 characters: enough to recognise a cell, too few to echo a number
+    // of 20 digits back.
+    match text.char_indices().nth(16) {
         Some((i, _)) => format!("{}…", &text[..i]),
         None => text.to_string(),
     }
@@ -209,13 +211,21 @@ fn clip(text: &str) -> String {
 fn strict_diagnosis(text: &str) -> TraceError {
     match read_table(text, &ReadOptions::default()) {
         Err(e) => e,
-        Ok(r) => TraceError::NoRows {
-            line: r.layout.first_data_line,
-            found: format!(
-                "the rows are not plain numbers ({}); this import reads plain numbers only: re-export the trace with '.' decimals, no quotes and no text columns",
-                r.layout.notes.join("; ")
-            ),
-        },
+        Ok(r) => {
+            // The first two notes; the message stays short whatever the file.
+            let notes = &r.layout.notes;
+            let more = match notes.len() {
+                0..=2 => String::new(),
+                n => format!("; and {} more", n - 2),
+            };
+            TraceError::NoRows {
+                line: r.layout.first_data_line,
+                found: format!(
+                    "the rows are not plain numbers ({}{more}); this import reads plain numbers only: re-export with '.' decimals, no quotes, no text columns",
+                    notes[..notes.len().min(2)].join("; ")
+                ),
+            }
+        }
     }
 }
 

@@ -265,7 +265,20 @@ fn trace_from_js(v: &JsValue) -> Result<BallbarTrace, JsError> {
         ));
     }
     let mut runs = Vec::new();
-    known_keys(v, &["nominalRadius", "feed", "runs", "centre"], "trace")?;
+    // `trimming` and `warnings` are what parseBallbarTrace reported about
+    // the file: accepted so its result can be passed on as it is, not read.
+    known_keys(
+        v,
+        &[
+            "nominalRadius",
+            "feed",
+            "runs",
+            "centre",
+            "trimming",
+            "warnings",
+        ],
+        "trace",
+    )?;
     for (k, r) in Array::from(&list).iter().enumerate() {
         let what = format!("trace.runs[{k}]");
         section_object(&r, &what, &["direction", "angleRad", "deviation"])?;

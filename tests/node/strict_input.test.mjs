@@ -68,6 +68,7 @@ const GOOD = {
   axisInertia: () => ['nmv5000', 'c'],
   ballbarExample: () => ['fig7', 100],
   bestKffp: () => ['nmv5000', { ...COND, duration: 1 }, { method: 'analytic' }],
+  bestKffpFromTrace: () => ['nmv5000', { ...COND, duration: 1, kffp: { x: 60, y: 60, c: 60 } }, servoTrace, { time: 'time', timeScale: 1e-3, steadyFrom: 0 }, { method: 'analytic', identify: false }],
   checkFileSize: () => ['part.nc', 1000],
   checkNc: () => [arcs, {}],
   circularDeviation: () => [trace()],
@@ -102,6 +103,7 @@ const GOOD = {
   toolpathExample: () => ['lines'],
   torqueSaturation: () => ['nmv5000', { j1: [1.7], torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200 }],
   traceColumns: () => [servoTrace],
+  traceLayout: () => [servoTrace, { ratedTorque: 10 }],
   travelRangeSweep: () => [{ offset: { z: 0.01, x: -0.02 }, ranges: [90, 180], samples: 200, harmonics: [{ order: 2, amplitude: 0.005, phase: 0.1 }] }],
   version: () => [],
 };
