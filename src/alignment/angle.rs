@@ -411,6 +411,48 @@ mod tests {
     }
 
     #[test]
+    fn angle_sweep_checks_its_sections_and_ranges_and_reports_both_errors() {
+        let s = |y, z, x| SectionOffset {
+            y,
+            offset: Offset { z, x },
+        };
+        let locus = Locus {
+            harmonics: vec![],
+            radius: 100.0,
+            samples: 720,
+            centre_deg: 30.0,
+        };
+        let two = vec![s(120.0, 0.004, -0.002), s(420.0, 0.010, 0.007)];
+        let mut cfg = AngleSweepConfig {
+            sections: two.clone(),
+            ranges: vec![360.0, 90.0],
+            locus,
+        };
+        // No motion error: every range recovers ΔBz = 6 µm/300 mm and
+        // ΔBx = 9 µm/300 mm; the errors are estimate − truth.
+        for p in angle_sweep(&cfg).unwrap() {
+            assert!(
+                (p.delta_bz - 2e-5).abs() < 1e-12 && (p.delta_bx - 3e-5).abs() < 1e-12,
+                "{p:?}"
+            );
+            assert!((p.error_bz - (p.delta_bz - 2e-5)).abs() < 1e-18, "{p:?}");
+            assert!((p.error_bx - (p.delta_bx - 3e-5)).abs() < 1e-18, "{p:?}");
+        }
+        cfg.sections.truncate(1);
+        let e = angle_sweep(&cfg).unwrap_err().to_string();
+        assert!(e.starts_with("sections: give at least two"), "{e}");
+        cfg.sections = two;
+        for bad in [0.0, -5.0, 400.0, f64::NAN] {
+            cfg.ranges = vec![90.0, bad];
+            let e = angle_sweep(&cfg).unwrap_err().to_string();
+            assert!(
+                e.starts_with("ranges[1]: expected a travel range in (0, 360]"),
+                "{bad}: {e}"
+            );
+        }
+    }
+
+    #[test]
     fn sections_at_one_height_and_bad_radii_are_refused() {
         let s = bar_section(50.0, (0.01, 0.0), 0.0, 180.0);
         let e = estimate_alignment(&[s.clone(), s.clone()], 100.0).unwrap_err();

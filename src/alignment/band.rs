@@ -396,8 +396,14 @@ mod tests {
         let want =
             (s1.bias_z.abs() + s1.second_order_z + s2.bias_z.abs() + s2.second_order_z) / 700.0;
         assert!((gz.systematic - want).abs() < 1e-15, "{gz:?} vs {want}");
+        let want =
+            (s1.bias_x.abs() + s1.second_order_x + s2.bias_x.abs() + s2.second_order_x) / 700.0;
+        assert!((gx.systematic - want).abs() < 1e-15, "{gx:?} vs {want}");
         let want = COVERAGE * s1.sigma_x.hypot(s2.sigma_x) / 700.0;
         assert!((gx.statistical - want).abs() < 1e-15, "{gx:?} vs {want}");
+        // Peak-to-valley is the section's own max − min deviation.
+        let (lo, hi) = min_max(&secs[0].deviation);
+        assert_eq!(s1.peak_to_valley, hi - lo);
         assert_eq!(gz.band, gz.systematic + gz.statistical);
         assert!(gz.determined && b.coverage == 3.0);
     }
@@ -435,9 +441,16 @@ mod tests {
         // resolves against the centre): the band would exceed the trace.
         let hs = [h(2, 8.0, 0.7), h(7, 0.5, 0.0)];
         let s = section(10.0, 0.004, 0.002, &hs, 40.0, 65.0);
-        let b = estimate_alignment_band(&[s], &CFG).unwrap();
+        let good = section(300.0, 0.004, 0.002, &[], 180.0, 65.0);
+        let b = estimate_alignment_band(&[s, good], &CFG).unwrap();
+        // An angle error built on an undetermined offset is undetermined.
+        assert!(b.sections[1].determined_z && b.sections[1].determined_x);
+        let (gz, gx) = (b.band_bz.unwrap(), b.band_bx.unwrap());
+        assert!(!(gz.determined && gx.determined), "{gz:?} {gx:?}");
         let s = &b.sections[0];
         assert!(!(s.determined_z && s.determined_x), "{s:?}");
+        assert_eq!(gz.determined, s.determined_z);
+        assert_eq!(gx.determined, s.determined_x);
         let note = s.note.as_deref().unwrap();
         assert!(
             note.contains("not determined") && note.contains("40° span"),

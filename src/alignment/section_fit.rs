@@ -348,6 +348,10 @@ mod tests {
             fit_section(&th, &d_ar, 10).unwrap(),
             fit_section(&th, &d_w, 10).unwrap(),
         );
+        // The effective count m/f keeps the BIC from reading the
+        // correlated noise as harmonics.
+        assert_eq!((a.order, b.order), (1, 1), "{a:?} {b:?}");
+        assert!(a.sigma[0] > 3.0 * b.sigma[0], "{a:?} vs {b:?}");
         assert!(
             a.correlation_factor > 12.0 && a.correlation_factor < 30.0,
             "{a:?}"
@@ -380,5 +384,123 @@ mod tests {
         );
         let flat = vec![0.3; 10];
         assert_eq!(fit_section(&flat, &flat, 4), Err(SectionFitError::NoCentre));
+    }
+
+    #[test]
+    fn sigma_and_noise_are_the_textbook_ones() {
+        // A second computation: (XᵀX)⁻¹ of {1, cos, sin} formed directly,
+        // the residual of fit_harmonics' dense QR, σ² = RSS/(m − 3).
+        let th = arc(-40.0, 160.0, 1200);
+        let e = gauss(21, th.len());
+        let d: Vec<f64> = th
+            .iter()
+            .zip(&e)
+            .map(|(t, n)| 0.002 - 0.006 * t.cos() + 0.009 * t.sin() + 5e-4 * n)
+            .collect();
+        let f = fit_section(&th, &d, 10).unwrap();
+        assert_eq!(f.order, 1, "{f:?}");
+        let mut xtx = nalgebra::Matrix3::<f64>::zeros();
+        for t in &th {
+            let r = nalgebra::Vector3::new(1.0, t.cos(), t.sin());
+            xtx += r * r.transpose();
+        }
+        let inv = xtx.try_inverse().unwrap();
+        let h = crate::ballbar::fit_harmonics(&th, &d, 1).unwrap();
+        let rss: f64 = th
+            .iter()
+            .zip(&d)
+            .map(|(t, v)| (v - h.iter().map(|c| c.eval(*t)).sum::<f64>()).powi(2))
+            .sum();
+        let s2 = rss / (th.len() - 3) as f64;
+        assert!(
+            (f.noise - s2.sqrt()).abs() < 1e-12 * s2.sqrt(),
+            "{} vs {}",
+            f.noise,
+            s2.sqrt()
+        );
+        for k in 0..2 {
+            let want = (s2 * f.correlation_factor * inv[(k + 1, k + 1)]).sqrt();
+            assert!(
+                (f.sigma[k] - want).abs() < 1e-9 * want,
+                "{k}: {} vs {want}",
+                f.sigma[k]
+            );
+        }
+    }
+
+    #[test]
+    fn the_bic_keeps_a_harmonic_above_its_threshold_and_not_below() {
+        // Full circle, white noise σ: adding order 3 lowers m·ln RSS by
+        // about m·A²/(2σ²) and costs 2·ln m, so the threshold is
+        // A* = σ·√(4 ln m / m). 0.6 A* is dropped, 1.6 A* is kept.
+        let m = 3000;
+        let th = arc(0.0, 360.0 * (m - 1) as f64 / m as f64, m);
+        let e = gauss(5, m);
+        let sigma = 3e-4;
+        let a_star = sigma * (4.0 * (m as f64).ln() / m as f64).sqrt();
+        for (scale, want) in [(0.6, 1), (1.6, 3)] {
+            let d: Vec<f64> = th
+                .iter()
+                .zip(&e)
+                .map(|(t, n)| 0.004 * t.cos() + scale * a_star * (3.0 * t + 0.5).sin() + sigma * n)
+                .collect();
+            let f = fit_section(&th, &d, 6).unwrap();
+            assert_eq!(f.order, want, "{scale} A*: {f:?}");
+        }
+    }
+
+    #[test]
+    fn a_top_order_harmonic_leaves_white_residuals_and_every_order_is_resolved() {
+        // Orders up to 10 over a full circle are all resolved, and the
+        // residual model includes order 10's sine and cosine: ρ ≈ 0.
+        let th = arc(3.0, 359.0, 3600);
+        let e = gauss(9, th.len());
+        let d: Vec<f64> = th
+            .iter()
+            .zip(&e)
+            .map(|(t, n)| 0.005 * (10.0 * t + 0.2).sin() + 3e-4 * n)
+            .collect();
+        let f = fit_section(&th, &d, 10).unwrap();
+        assert_eq!((f.resolved, f.order), (10, 10), "{f:?}");
+        assert!(f.correlation_factor < 1.2, "{f:?}");
+        // A 30° span resolves far fewer orders against the centre.
+        let short = arc(100.0, 30.0, 600);
+        let d: Vec<f64> = short.iter().map(|t| 0.001 * t.cos()).collect();
+        let g = fit_section(&short, &d, 10).unwrap();
+        assert!(g.resolved >= 1 && g.resolved <= 4, "{g:?}");
+    }
+
+    #[test]
+    fn few_samples_fit_the_orders_they_can() {
+        // 4 samples: orders 0–1 with one degree of freedom; 9 samples on a
+        // full circle resolve up to order 3 ((9 − 2)/2), whatever is asked.
+        let th4 = arc(0.0, 270.0, 4);
+        let d4: Vec<f64> = th4.iter().map(|t| 0.01 * t.cos()).collect();
+        let f = fit_section(&th4, &d4, 10).unwrap();
+        assert_eq!(f.resolved, 1);
+        assert!((f.centre[0] - 0.01).abs() < 1e-12, "{f:?}");
+        let th9 = arc(0.0, 320.0, 9);
+        let d9: Vec<f64> = th9.iter().map(|t| 0.01 * t.sin()).collect();
+        assert_eq!(fit_section(&th9, &d9, 10).unwrap().resolved, 3);
+    }
+
+    #[test]
+    fn centre_projection_moves_the_centre_by_the_terms_share() {
+        // cos θ over any arc is a pure Z shift; a constant none.
+        let th = arc(20.0, 130.0, 300);
+        let c: Vec<f64> = th
+            .iter()
+            .map(|t| 0.003 * t.cos() - 0.001 * t.sin() + 0.7)
+            .collect();
+        let p = centre_projection(&th, &c);
+        assert!(
+            (p[0] - 0.003).abs() < 1e-12 && (p[1] + 0.001).abs() < 1e-12,
+            "{p:?}"
+        );
+        assert_eq!(centre_projection(&th[..2], &c[..2]), [0.0, 0.0]);
+        assert_eq!(centre_projection(&th, &c[..10]), [0.0, 0.0]);
+        let mut bad = c.clone();
+        bad[4] = f64::NAN;
+        assert_eq!(centre_projection(&th, &bad), [0.0, 0.0]);
     }
 }
