@@ -1,7 +1,7 @@
 // Servo & Best K_FFP panel (suzuki-best-kffp). JS gathers inputs, calls the
 // core in the worker, draws and offers downloads; every number is computed
 // in Rust (feedVectorTest, bestKffp, torqueSaturation, frequencyResponse,
-// analyzeFeedVectorTrace).
+// analyzeFeedVectorTrace, bestKffpFromTrace).
 import { h, table, fmt, numberField, selectField, downloadText, toCsv, dropZone, progressBar, runState, showError } from '../lib/ui.js';
 import { lineChart } from '../lib/plot.js';
 import { mapCalls } from '../lib/pool.js';
@@ -100,6 +100,50 @@ export async function mount(root, api) {
   const traceBox = h('div', { id: 'servo-trace-results' });
   const sweepUi = runState(sweepBox);
   const traceUi = runState(traceBox);
+  // ---- Best K_FFP from the measured trace (suzuki §4.7, anchored on it) ----
+  // The set the trace was measured with and its load are required: the
+  // recommendation depends on them, so nothing is assumed.
+  const measuredK = ['x', 'y', 'c'].map((a) => numberField({ label: `K_FFP ${a.toUpperCase()} during the trace`, unit: '%', value: '', id: `servo-tk-${a}` }));
+  const traceJ1 = numberField({ label: 'J1 during the trace', unit: 'kg·m²', value: '', id: 'servo-tk-j1', min: 0 });
+  const identify = h('input', { type: 'checkbox', id: 'servo-tk-identify' });
+  const recBox = h('div', { id: 'servo-tk-results' });
+  const recUi = runState(recBox);
+  const recommend = async () => {
+    recUi.start();
+    try {
+      if (!last?.traceText) throw new Error('analyse a measured trace first (drop it above and press "Analyse the trace")');
+      const [kx, ky, kc] = measuredK.map((f) => f.value);
+      for (const f of measuredK) if (!Number.isFinite(f.value)) throw new Error(`${f.el.querySelector('span').textContent}: enter the K_FFP the control had when the trace was recorded`);
+      if (!Number.isFinite(traceJ1.value)) throw new Error('J1 during the trace [kg·m²]: enter the load on C when the trace was recorded');
+      const m = currentMachine();
+      const cond = condition({ j1: traceJ1.value, kffp: { x: kx, y: ky, c: kc } });
+      const r = await api.call('bestKffpFromTrace', [m, cond, last.traceText, last.mapping, { identify: identify.checked }]);
+      const mrad = (v) => fmt(v * 1e3, 4);
+      const um = (v) => fmt(v * 1e3, 2);
+      const t = table(['', 'K_FFP X / Y / C [%]', 'mean α − β [mrad]', 'shape error half ampl. [µm]'], [
+        ['measured (your trace)', `${fmt(r.measuredWith.x, 2)} / ${fmt(r.measuredWith.y, 2)} / ${fmt(r.measuredWith.c, 2)}`, mrad(r.measured.meanAngleDiff), um(r.measured.halfAmplitude)],
+        ['your axis model, same set', '', mrad(r.modelBefore.meanAngleDiff), um(r.modelBefore.halfAmplitude)],
+        [h('b', {}, 'recommended'), h('b', { id: 'servo-tk-kffp' }, `${fmt(r.kffp.x, 2)} / ${fmt(r.kffp.y, 2)} / ${fmt(r.kffp.c, 2)}`), h('span', { id: 'servo-tk-after' }, mrad(r.predictedMeanAngleDiff)), um(r.predictedHalfAmplitude)],
+      ]);
+      t.querySelector('table').id = 'servo-tk-table';
+      const ident = r.identified.length
+        ? table(['axis', 'Kpp [1/s]', 'Kvp [N·m·s/rad]', 'C [N·m·s/rad]', 'RMS residual [µm]'], r.identified.map((a) => [a.axis.toUpperCase(), fmt(a.params.kpp, 3), fmt(a.params.kvp, 4), fmt(a.params.c, 4), fmt(a.rmsPosition * 1e3, 3)]))
+        : '';
+      recBox.replaceChildren(
+        h('p', {}, `On your axis (the table above${r.identified.length ? ', with X and Y identified from the trace' : ''}) at J1 = ${fmt(traceJ1.value, 3)} kg·m², ${r.method}: the model's mismatch at the measured set is ${mrad(r.mismatch)} mrad, taken into the recommendation.`),
+        t, ident,
+        h('button', { id: 'servo-tk-json', onclick: () => downloadText('kffp-from-trace.json', JSON.stringify({ machine: m, condition: cond, mapping: last.mapping, result: r }, null, 2), 'application/json') }, 'Download (JSON)'),
+      );
+      recUi.ok();
+    } catch (e) {
+      recUi.fail(e);
+    }
+  };
+  const recCard = h('div', { class: 'subcard', id: 'servo-tk' },
+    h('h4', {}, 'Best K_FFP from this trace'),
+    h('p', { class: 'unit' }, 'Recommends the K_FFP that makes α − β zero on your axis, anchored on the measured α − β (suzuki §4.7). Enter the set and the load the trace was recorded with.'),
+    h('div', { class: 'row' }, ...measuredK.map((f) => f.el), traceJ1.el, h('label', { class: 'field' }, h('span', {}, 'identify X and Y from the trace'), identify)),
+    h('button', { id: 'servo-tk-run', onclick: recommend }, 'Recommend K_FFP from this trace'), recBox);
   let last = null; // { cond, before, best, after, trace }
 
   const summaryRows = (label, s) => [label, fmt(s.meanAngleDiff * 1e3, 4), fmt(s.halfAmplitude * 1e3, 2), fmt(s.radiusDecrease * 1e3, 2), fmt(s.peakTorque, 0), s.saturated ? 'yes' : 'no'];
@@ -354,8 +398,8 @@ export async function mount(root, api) {
         h('button', { id: 'servo-csv', onclick: csv }, 'Download CSV'),
         h('button', { id: 'servo-json', onclick: json }, 'Download JSON')),
       status, out, charts),
-    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ link: 'servo-trace', label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace, onRefused: traceRefused }), traceInfo, mapBox, traceBox),
-    h('div', { class: 'card' }, h('h3', {}, `The paper's sweep: R_C = ${paper.rc} mm, R_W = ${paper.rw} mm, ω = ${paper.omega.map((w) => `${+(w / Math.PI).toFixed(3)}π`).join(', ')} rad/s, J1 = ${paper.j1.map((v) => v.toFixed(2)).join(', ')} kg·m² (Figs. 14, 15, 20, 21, 22)`),
+    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ link: 'servo-trace', label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace, onRefused: traceRefused }), traceInfo, mapBox, traceBox, recCard),
+    h('div', { class: 'card' }, h('h3', {}, `The paper's sweep on your axis (the table above): R_C = ${paper.rc} mm, R_W = ${paper.rw} mm, ω = ${paper.omega.map((w) => `${+(w / Math.PI).toFixed(3)}π`).join(', ')} rad/s, J1 = ${paper.j1.map((v) => v.toFixed(2)).join(', ')} kg·m² (Figs. 14, 15, 20, 21, 22)`),
       h('p', { class: 'unit' }, `Source: ${paper.source}.`),
       h('button', { id: 'servo-sweep', onclick: sweep }, 'Run the sweep'), progress.el, sweepBox),
   );
