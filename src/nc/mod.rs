@@ -22,6 +22,7 @@ pub mod cutter;
 pub mod cutter_path;
 pub mod cycles;
 pub mod dialect;
+mod fadal;
 pub mod files;
 mod gcodes;
 pub mod macro_exec;
