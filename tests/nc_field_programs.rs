@@ -69,3 +69,20 @@ fn fadal_subroutines_are_refused_at_their_l_word_and_e_and_repeated_g0_are_read(
     assert!(e.message.contains("two motion codes"), "{e}");
     let _ = parse_with;
 }
+
+#[test]
+fn a_number_followed_by_e_ends_there_and_e_is_an_address() {
+    let b = mtmotion::nc::lex("G1 X1 F600E41").unwrap();
+    let e = b[0].word('E').unwrap();
+    assert_eq!((e.value, e.column), (41.0, 11));
+    assert_eq!(b[0].word('F').unwrap().value, 600.0);
+    let b = mtmotion::nc::lex("V0.2E41").unwrap();
+    assert_eq!(b[0].word('V').unwrap().value, 0.2);
+    // A signed exponent is still named as one.
+    let e = mtmotion::nc::lex("G1 X1E-3").unwrap_err();
+    assert!(e.message.contains("exponent notation"), "{e}");
+    // Macro B: WH is not WHILE.
+    let e = parse("#1=0\nWH[#1LT2]DO1\n#1=#1+1\nEND1\nM30").unwrap_err();
+    assert_eq!((e.line, e.column), (2, 1), "{e}");
+    assert!(e.message.contains("'WH' reads as WHILE abbreviated"), "{e}");
+}

@@ -651,6 +651,8 @@ fn keyword_error(run: &str, line: usize, col: usize, block: &Block) -> NcError {
                 "'{run}' is a Fanuc Macro B statement; macros are not supported yet, expand them in the post-processor"
             ),
         )
+    } else if let Some(m) = macro_b_abbreviation_message(run) {
+        NcError::new(line, col, m)
     } else {
         let letter = run.chars().next().unwrap_or('?');
         NcError::new(
@@ -659,6 +661,22 @@ fn keyword_error(run: &str, line: usize, col: usize, block: &Block) -> NcError {
             format!("expected a number after address '{letter}', found the letters '{run}'"),
         )
     }
+}
+
+/// The Macro B keyword that `run` abbreviates (`WH` → `WHILE`), which
+/// the lexer names rather than reads: Fanuc's macro syntax is `WHILE
+/// […] DO n`, and its program editor expands `WH`, `GO`, `TH` as they are
+/// keyed in; a file that still has them is refused at the abbreviation.
+pub(crate) fn macro_b_abbreviation_message(run: &str) -> Option<String> {
+    let full = match run {
+        "WH" => "WHILE",
+        "GO" => "GOTO",
+        "TH" => "THEN",
+        _ => return None,
+    };
+    Some(format!(
+        "'{run}' reads as {full} abbreviated: a Fanuc control stores and runs the full keyword (its editor expands abbreviations as they are keyed in), so '{run}' is not read as {full} here; write '{full}'"
+    ))
 }
 
 /// One address word at `chars[*i]` (the letter); advances `*i` past it.
@@ -677,10 +695,13 @@ fn lex_word(chars: &[char], i: &mut usize, line: usize) -> Result<Word, NcError>
         *i += 1;
     }
     let text: String = chars[start..*i].iter().collect();
+    // E is an address in NC (`F600E41`, `V0.2E41`: the word E41), so only
+    // a signed exponent (`X1E-3`) is refused as exponent notation.
     if *i + 1 < chars.len()
         && !text.is_empty()
         && matches!(chars[*i], 'e' | 'E')
-        && (chars[*i + 1].is_ascii_digit() || chars[*i + 1] == '+' || chars[*i + 1] == '-')
+        && matches!(chars[*i + 1], '+' | '-')
+        && chars.get(*i + 2).is_some_and(char::is_ascii_digit)
     {
         return Err(NcError::new(
             line,
