@@ -6,7 +6,7 @@
 //! the control reads it, with the warning that says so — never skipped in
 //! silence.
 
-use mtmotion::nc::program::{parse, parse_all, parse_with, Motion, ParseOptions, Program};
+use mtmotion::nc::program::{parse, parse_all, parse_with, Motion, ParseOptions, Program, Units};
 
 fn messages(p: &Program) -> Vec<String> {
     p.warnings.iter().map(|w| w.to_string()).collect()
@@ -85,4 +85,55 @@ fn a_number_followed_by_e_ends_there_and_e_is_an_address() {
     let e = parse("#1=0\nWH[#1LT2]DO1\n#1=#1+1\nEND1\nM30").unwrap_err();
     assert_eq!((e.line, e.column), (2, 1), "{e}");
     assert!(e.message.contains("'WH' reads as WHILE abbreviated"), "{e}");
+}
+
+/// An inch program as a Fusion 360 generic post writes it when its units
+/// block is left out: four decimals, feeds in inch/min, no G20.
+const INCH_NO_G20: &str = "%
+O1001
+G90 G17
+G0 X0.0000 Y0.0000 Z0.2000
+G1 Z-0.0500 F10.
+G1 X1.2500 F40.
+G2 X2.5000 Y1.2500 I0.0000 J1.2500
+G1 Y2.0000
+G0 Z0.2000
+M30
+%";
+
+#[test]
+fn an_inch_program_without_g20_is_warned_and_the_units_option_reads_it() {
+    let p = parse(INCH_NO_G20).unwrap();
+    let w = messages(&p);
+    let units: Vec<&String> = w
+        .iter()
+        .filter(|m| m.contains("never states its units"))
+        .collect();
+    assert_eq!(units.len(), 1, "{w:?}");
+    assert!(
+        units[0].contains("look like inch") && units[0].contains("line 4"),
+        "{w:?}"
+    );
+    let inch = parse_with(
+        INCH_NO_G20,
+        &ParseOptions {
+            units: Units::Inch,
+            ..ParseOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(!messages(&inch).iter().any(|m| m.contains("units")));
+    let end = inch.segments.last().unwrap().end.p();
+    assert!((end[1] - 2.0 * 25.4).abs() < 1e-9 && (end[2] - 0.2 * 25.4).abs() < 1e-9);
+    let s = mtmotion::nc::summary::summarize(&inch, 10_000.0);
+    assert_eq!(s.units, "inch");
+    // With G20 stated, no warning; G20 after the first block is still an
+    // inch program in the summary.
+    let g20 = INCH_NO_G20.replace("G90 G17", "G90 G17\nG20");
+    let p = parse(&g20).unwrap();
+    assert!(!messages(&p).iter().any(|m| m.contains("units")));
+    assert_eq!(mtmotion::nc::summary::summarize(&p, 10_000.0).units, "inch");
+    // The option is a serialised key.
+    let o: ParseOptions = serde_json::from_str(r#"{"units":"inch"}"#).unwrap();
+    assert_eq!(o.units, Units::Inch);
 }

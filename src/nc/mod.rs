@@ -40,6 +40,7 @@ mod run;
 pub mod segment;
 pub mod sequence;
 pub mod summary;
+pub mod units;
 pub mod writer;
 
 /// An error that names the line and column and says what was expected.

@@ -149,6 +149,19 @@ impl DwellP {
     }
 }
 
+/// The length unit a program is read in until it states one (G20/G21):
+/// a machine setting (Fanuc parameter 0000#2 INI sets the unit at power-on
+/// and reset). Default mm.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum Units {
+    /// Millimetres (G21).
+    #[default]
+    Mm,
+    /// Inches (G20).
+    Inch,
+}
+
 /// Interpreter options. Unknown keys are rejected when deserialised (a
 /// misspelt key is an error naming it, never silently dropped).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -172,6 +185,11 @@ pub struct ParseOptions {
     /// Without a radius for a D the simulated path is the programmed path
     /// (warned).
     pub tool_radii: ToolRadii,
+    /// The unit of a program that does not state one (no G20/G21 before
+    /// its first move); a program that never states its units and whose
+    /// numbers look like the other unit's is warned about
+    /// ([`super::units`]).
+    pub units: Units,
     /// Most blocks the run may execute, loops and repeats included; a
     /// macro loop may jump back a quarter of it, and the program may give
     /// as many segments. At most (and by default) the product's budgets
@@ -186,8 +204,14 @@ pub struct ParseOptions {
 
 impl ParseOptions {
     /// The keys of the serialised form (camelCase).
-    pub const KEYS: [&'static str; 5] =
-        ["dwellP", "start", "skipBlockDelete", "cAxis", "toolRadii"];
+    pub const KEYS: [&'static str; 6] = [
+        "dwellP",
+        "start",
+        "skipBlockDelete",
+        "cAxis",
+        "toolRadii",
+        "units",
+    ];
 }
 
 impl Default for ParseOptions {
@@ -198,6 +222,7 @@ impl Default for ParseOptions {
             skip_block_delete: true,
             c_axis: false,
             tool_radii: ToolRadii::default(),
+            units: Units::default(),
             max_executed_blocks: MAX_EXECUTED_BLOCKS,
         }
     }
@@ -410,7 +435,9 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
             break;
         }
     }
-    run.finish(blocks)
+    let mut p = run.finish(blocks)?;
+    super::units::check(&mut p);
+    Ok(p)
 }
 
 /// True when the program is evidently multi-axis, so C is a rotary axis
