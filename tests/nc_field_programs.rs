@@ -137,3 +137,38 @@ fn an_inch_program_without_g20_is_warned_and_the_units_option_reads_it() {
     let o: ParseOptions = serde_json::from_str(r#"{"units":"inch"}"#).unwrap();
     assert_eq!(o.units, Units::Inch);
 }
+
+/// Haas/Fanuc drilling with no R word: the R level is the initial level.
+#[test]
+fn a_canned_cycle_without_r_starts_at_the_initial_level_with_a_warning() {
+    let p = parse("G90 G21 G17\nG0 X0 Y0 Z5.\nG98 G81 X10. Y0 Z-3. F100\nX20.\nG80").unwrap();
+    let w = messages(&p);
+    let no_r: Vec<&String> = w.iter().filter(|m| m.contains("without R")).collect();
+    assert_eq!(no_r.len(), 1, "{w:?}");
+    assert!(no_r[0].contains("line 3, column 17"), "{w:?}");
+    // Per hole: rapid to the hole, (R = initial: no rapid down), feed to
+    // Z-3, rapid back to Z5.
+    let cuts: Vec<[f64; 3]> = p
+        .segments
+        .iter()
+        .filter(|s| matches!(s.motion, Motion::Linear))
+        .map(|s| [s.start.p()[2], s.end.p()[2], s.end.p()[0]])
+        .collect();
+    assert_eq!(cuts, vec![[5.0, -3.0, 10.0], [5.0, -3.0, 20.0]]);
+    assert!(p.segments.iter().all(|s| s.end.p()[2] <= 5.0));
+}
+
+/// A C word on a drilling block of a 3-axis program is refused, located.
+#[test]
+fn a_c_word_on_a_canned_cycle_of_a_three_axis_program_is_refused() {
+    let e = parse("G0 X0 Y0 Z5.\nG81 X1 Z-1 R1 C5 F100").unwrap_err();
+    assert_eq!((e.line, e.column), (2, 15), "{e}");
+    assert!(e.message.contains("C5 in a canned-cycle block"), "{e}");
+    // With a C axis it is a rotary word, refused as off the cycle's axes.
+    let opt = ParseOptions {
+        c_axis: true,
+        ..ParseOptions::default()
+    };
+    let e = parse_with("G0 X0 Y0 Z5.\nG81 X1 Z-1 R1 C5 F100", &opt).unwrap_err();
+    assert!(e.message.contains("only the plane axes"), "{e}");
+}

@@ -242,7 +242,7 @@ pub(super) fn canned_cycle(
         return Ok(());
     };
     check_cycle_axes(b, st, cx)?;
-    read_levels(b, st, &mut c, wr, wn, scale)?;
+    read_levels(b, st, &mut c, wr, wn, scale, cx.warnings)?;
     read_q_and_p(b, &mut c, cx, scale)?;
     st.cycle = Some(c);
     let holes = hole_data(b, st, &c, anchor)?;
@@ -303,7 +303,16 @@ fn check_cycle_axes(b: &Block, st: &Modal, cx: &Ctx) -> Result<(), NcError> {
             w,
             format!("{}{} in a canned-cycle block: only the plane axes {lu}/{lv} and the drilling axis {ln} are allowed", w.letter, w.text),
         )),
-        None => Ok(()),
+        // In a 3-axis program C is no axis, and a cycle has no chamfer:
+        // ignoring it would pass a typo (or a rotary move) in silence.
+        None => match b.word('C').filter(|_| !cx.opt.c_axis) {
+            Some(w) => Err(err(
+                b,
+                w,
+                format!("C{} in a canned-cycle block: C is no axis of this program (no A, B or C move elsewhere; set the option cAxis if the machine has a C axis) and a cycle takes no chamfer", w.text),
+            )),
+            None => Ok(()),
+        },
     }
 }
 
@@ -311,7 +320,10 @@ fn check_cycle_axes(b: &Block, st: &Modal, cx: &Ctx) -> Result<(), NcError> {
 /// absolute levels: under G91 R is from the initial level and the bottom
 /// from R; under G90 both are shifted by the G92 offset. A new R under G91
 /// without a bottom word keeps the bottom's G91 distance from R (the
-/// bottom moves with R), as LinuxCNC and Fanuc do.
+/// bottom moves with R), as LinuxCNC and Fanuc do. A bottom with no R
+/// level given yet takes the initial level as R, warned: Fanuc and Haas
+/// controls run a cycle without R from the initial level (LinuxCNC
+/// refuses it).
 fn read_levels(
     b: &Block,
     st: &Modal,
@@ -319,6 +331,7 @@ fn read_levels(
     wr: Option<&Word>,
     wn: Option<&Word>,
     scale: f64,
+    warnings: &mut Vec<Warning>,
 ) -> Result<(), NcError> {
     let (_, _, n) = st.plane.axes();
     if let Some(r) = wr {
@@ -333,12 +346,20 @@ fn read_levels(
         }
     }
     if let Some(z) = wn {
-        let Some(r) = c.r else {
-            return Err(err(
-                b,
-                z,
-                "canned cycle: the R level must be given before or with the bottom",
-            ));
+        let r = match c.r {
+            Some(r) => r,
+            None => {
+                warnings.push(Warning::at(
+                    b.line,
+                    z.column,
+                    format!(
+                        "canned cycle without R: the R level is taken as the initial level {:.4} mm, as Fanuc and Haas controls do (the tool feeds from there; LinuxCNC refuses it); write R for a rapid approach",
+                        c.initial
+                    ),
+                ));
+                c.r = Some(c.initial);
+                c.initial
+            }
         };
         c.depth = st.incremental.then_some(z.value * scale);
         c.bottom = Some(if st.incremental {
