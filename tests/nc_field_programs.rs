@@ -172,3 +172,24 @@ fn a_c_word_on_a_canned_cycle_of_a_three_axis_program_is_refused() {
     let e = parse_with("G0 X0 Y0 Z5.\nG81 X1 Z-1 R1 C5 F100", &opt).unwrap_err();
     assert!(e.message.contains("only the plane axes"), "{e}");
 }
+
+/// Fusion 360 Fanuc posts write D on the tool-change block and G41 alone
+/// on the lead-in: the modal D is carried.
+#[test]
+fn a_g41_without_d_uses_the_modal_d() {
+    let src = "G90 G21 G17\nT1 M6\nG0 X-10. Y0 D1\nG1 Z-1. F300\nG41 X0 Y0\nG1 Y20.\nG40 X-10.";
+    let mut opt = ParseOptions::default();
+    opt.tool_radii.insert("D1", 2.0).unwrap();
+    let p = parse_with(src, &opt).unwrap();
+    assert_eq!(p.cutter.len(), 1);
+    assert_eq!(p.cutter[0].radius, Some(2.0));
+    assert_eq!(p.cutter[0].d.as_deref(), Some("D1"));
+    assert!(
+        !messages(&p).iter().any(|m| m.contains("D1")),
+        "{:?}",
+        messages(&p)
+    );
+    // Without any D the stretch is still the programmed path, warned.
+    let p = parse_with(&src.replace(" D1", ""), &opt).unwrap();
+    assert_eq!(p.cutter[0].radius, None);
+}

@@ -209,6 +209,12 @@ fn read_other_words(
             'L' | 'P' | 'Q' if st.cycle.is_some() || gw.cycle.is_some() => continue,
             'L' if fadal::is_subroutine_word(w) => return Err(fadal::subroutine_error(b, w)),
             'D' if gw.cutter.is_some_and(|(_, g)| g != 400) => continue,
+            // A D word elsewhere is the modal offset number a later
+            // G41/G42 without D uses.
+            'D' if w.value >= 0.0 && w.value.fract() == 0.0 => {
+                st.d = Some(w.value);
+                continue;
+            }
             'M' | 'T' | 'H' | 'D' => format!(
                 "{}{} does not affect the motion model and was ignored",
                 w.letter, w.text

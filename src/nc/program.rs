@@ -296,6 +296,11 @@ pub struct Modal {
     /// Coordinate system rotation in force (G68 until G69,
     /// [`super::rotation`]); `pos` stays in the un-rotated frame.
     pub rotation: Option<Rotation>,
+    /// The modal tool-offset number D (the last D word outside a
+    /// G41.1/G42.1 block): a G41/G42 without D uses it, as the control
+    /// does.
+    #[serde(default)]
+    pub d: Option<f64>,
 }
 
 /// An interpreted program.
