@@ -193,3 +193,25 @@ fn a_g41_without_d_uses_the_modal_d() {
     let p = parse_with(&src.replace(" D1", ""), &opt).unwrap();
     assert_eq!(p.cutter[0].radius, None);
 }
+
+/// A Fusion 360 post's long arc whose end radius is 0.025 mm off its
+/// start radius (895 mm): read with a warning, as LinuxCNC reads it;
+/// 0.9 mm off (above 0.0283 mm and 0.1 %) is refused, located.
+#[test]
+fn an_arc_radius_mismatch_within_linuxcncs_tolerance_is_warned_not_refused() {
+    let p = parse("G21 G90 G17\nG0 X0 Y0\nG2 X895. Y895.025 I895. J0 F1000").unwrap();
+    let w = messages(&p);
+    let arc: Vec<&String> = w.iter().filter(|m| m.contains("radius mismatch")).collect();
+    assert_eq!(arc.len(), 1, "{w:?}");
+    assert!(arc[0].starts_with("line 3, column 4"), "{w:?}");
+    let Motion::Arc(a) = &p.segments.last().unwrap().motion else {
+        panic!("an arc")
+    };
+    assert!((a.radius - 895.0125).abs() < 1e-6);
+    let e = parse("G21 G90 G17\nG0 X0 Y0\nG2 X895. Y895.9 I895. J0 F1000").unwrap_err();
+    assert_eq!((e.line, e.column), (3, 17), "{e}");
+    assert!(e.message.contains("beyond LinuxCNC's tolerance"), "{e}");
+    // A few µm pass without a warning.
+    let p = parse("G21 G90 G17\nG0 X0 Y0\nG2 X895. Y895.004 I895. J0 F1000").unwrap();
+    assert!(!messages(&p).iter().any(|m| m.contains("radius mismatch")));
+}

@@ -100,6 +100,15 @@ const KNOWN: &[Known] = &[
               are all compared",
     },
     Known {
+        file: "cncsprayer_fusion-output.nc",
+        lines: &[54, 56],
+        kind: Kind::NotCompared,
+        why: "G28 G91 Z0. / X0. Y0.: the return to the reference point is not simulated \
+              (as in ledfloor_1003.nc). The program (G20 with metric-sized numbers, \
+              edited) is compared since the arc tolerance is LinuxCNC's: its arcs are \
+              0.001 in off their radius, read by rs274 and by mtmotion with a warning",
+    },
+    Known {
         file: "ledfloor_1003.nc",
         lines: &[202, 205],
         kind: Kind::NotCompared,
@@ -131,13 +140,6 @@ const KNOWN: &[Known] = &[
         why: "line 11 (`N55 X.75` after a full circle, still in G2) is an arc without a \
               centre: mtmotion refuses it, and rs274 stops there too ('R i j k words all \
               missing for arc')",
-    },
-    Known {
-        file: "cncsprayer_fusion-output.nc",
-        lines: &[],
-        kind: Kind::Refused("inconsistent radius"),
-        why: "G20 with metric-sized numbers (edited): the first semicircle is off its \
-              radius by more than mtmotion's tolerance, not LinuxCNC's",
     },
     Known {
         file: "linuxcnc_mmount.ngc",

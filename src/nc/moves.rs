@@ -7,7 +7,7 @@
 //!
 //! Units: mm, degrees for A/B/C, feed in mm/min.
 
-use super::arc::arc;
+use super::arc::arc_warned;
 use super::block::axis_words;
 use super::program::{err, Corner, CornerKind, Ctx, FeedMode, Modal, Warning};
 use super::rotation::end_to_machine;
@@ -66,10 +66,14 @@ pub(super) fn move_block(
     }
     let start = st.pos;
     let end = target(st, &axis_words, scale);
+    let (motion, warning) = move_motion(b, st, mode, first, start, end, scale)?;
+    if let Some(m) = warning {
+        cx.warnings.push(Warning::at(b.line, first.column, m));
+    }
     let mut seg = Segment {
         block: Some(cx.bi),
         line: b.line,
-        motion: move_motion(b, st, mode, first, start, end, scale)?,
+        motion,
         start,
         end,
         feed: 0.0,
@@ -191,7 +195,8 @@ fn move_feed(
 
 /// The motion from `start` to `end` in `mode`: a rapid, a line, or the arc
 /// of the block's centre words (I/J/K made incremental first under G90.1;
-/// under G68 computed in the rotated frame and its centre turned back).
+/// under G68 computed in the rotated frame and its centre turned back),
+/// with the arc's radius-mismatch warning ([`super::arc::arc_warned`]).
 fn move_motion(
     b: &Block,
     st: &Modal,
@@ -200,10 +205,10 @@ fn move_motion(
     start: Pose,
     end: Pose,
     scale: f64,
-) -> Result<Motion, NcError> {
+) -> Result<(Motion, Option<String>), NcError> {
     Ok(match mode {
-        MotionCode::Rapid => Motion::Rapid,
-        MotionCode::Linear => Motion::Linear,
+        MotionCode::Rapid => (Motion::Rapid, None),
+        MotionCode::Linear => (Motion::Linear, None),
         MotionCode::Cw | MotionCode::Ccw => {
             let (start, end) = match st.rotation {
                 Some(r) => (r.pose_to_program(start), r.pose_to_program(end)),
@@ -216,7 +221,7 @@ fn move_motion(
             } else {
                 b
             };
-            let a = arc(
+            let (a, warning) = arc_warned(
                 blk,
                 first,
                 st.plane,
@@ -225,7 +230,10 @@ fn move_motion(
                 end,
                 scale,
             )?;
-            Motion::Arc(st.rotation.map_or(a, |r| r.arc_to_machine(a)))
+            (
+                Motion::Arc(st.rotation.map_or(a, |r| r.arc_to_machine(a))),
+                warning,
+            )
         }
     })
 }

@@ -61,8 +61,9 @@
 //! G187 block) stops the program as "this looks like a 3D-printer
 //! program". (G65 macro calls, macro `#` variables and `[ ]` expressions
 //! and LinuxCNC o-words run in [`super::macro_exec`].) Every error of a program is collected
-//! ([`parse_all`]). Arc radius consistency: the end radius must match the
-//! start radius within 0.005 mm + 1e-5·R; the arc radius is their mean.
+//! ([`parse_all`]). Arc radius consistency: the end radius may differ from
+//! the start radius by 0.005 mm + 1e-5·R, by LinuxCNC's tolerance with a
+//! warning, and no more ([`super::arc`]); the arc radius is their mean.
 //!
 //! Where the parts live (files under `src/nc/`): the run over the blocks,
 //! calls and returns in `run.rs` (sequence numbers in `sequence.rs`); one block's passes in `block.rs`, its G
