@@ -215,3 +215,41 @@ fn an_arc_radius_mismatch_within_linuxcncs_tolerance_is_warned_not_refused() {
     let p = parse("G21 G90 G17\nG0 X0 Y0\nG2 X895. Y895.004 I895. J0 F1000").unwrap();
     assert!(!messages(&p).iter().any(|m| m.contains("radius mismatch")));
 }
+
+/// A MillMaster-style program: `%` with a title on its line, `//`
+/// comments, G70 for inch; and a Windows-1252 comment read as Latin-1
+/// (a C1 control character inside it).
+#[test]
+fn millmaster_percent_titles_slash_comments_g70_and_control_chars_in_comments() {
+    let src = "% MILLMASTER PART 7\n// roughing pass\nG70 G90 // inch\nG0 X1. Y1. (\u{96}DIA 0.25\u{96})\nG1 X2. F10. ; cut\nG71\nM30\n%";
+    let p = parse(src).unwrap();
+    assert_eq!(p.blocks[0].comments, vec!["MILLMASTER PART 7"]);
+    assert!(p.blocks[0].percent);
+    assert_eq!(p.blocks[1].comments, vec!["roughing pass"]);
+    assert_eq!(p.blocks[2].comments, vec!["inch"]);
+    let end = p.segments.last().unwrap().end.p();
+    assert!((end[0] - 2.0 * 25.4).abs() < 1e-9, "{end:?}");
+    let w = messages(&p);
+    assert!(
+        w.iter().any(|m| m.contains("G70 read as inch units")),
+        "{w:?}"
+    );
+    assert!(
+        w.iter().any(|m| m.contains("G71 read as mm units")),
+        "{w:?}"
+    );
+    assert!(
+        !w.iter().any(|m| m.contains("never states its units")),
+        "{w:?}"
+    );
+    // A Haas bolt-hole G70 (with I/J/L) is still refused, located.
+    let e = parse("G0 X0 Y0\nG81 Z-1 R1 F100 L0\nG70 I1. J0 L4").unwrap_err();
+    assert_eq!((e.line, e.column), (3, 1), "{e}");
+    // A control character outside a comment is still an error at its column.
+    let e = parse("G0 X1\u{96} Y2").unwrap_err();
+    assert_eq!((e.line, e.column), (1, 6), "{e}");
+    assert!(e.message.contains("U+0096"), "{e}");
+    // Block delete still works; `//` is not a block delete.
+    let p = parse("/G0 X5.\nG0 X1.").unwrap();
+    assert_eq!(p.segments.len(), 1);
+}

@@ -81,11 +81,37 @@ pub(super) fn read_g_words<'a>(
             )?;
         } else if g == 40 {
             gw.dwell = Some(w);
+        } else if let Some(inch) = units_g70_g71(b, g) {
+            st.inch = inch;
+            warnings.push(Warning::at(
+                b.line,
+                w.column,
+                format!(
+                    "G{} read as {} units (older controls such as MillMaster's: G70 inch, G71 mm), since the block has no I/J/K/L words of a Haas bolt-hole pattern",
+                    w.text,
+                    if inch { "inch" } else { "mm" }
+                ),
+            ));
         } else if !set_modal(st, g) {
             grouped_or_other(b, w, g, &mut gw, warnings)?;
         }
     }
     Ok(gw)
+}
+
+/// G70 (inch) / G71 (mm) as units, as older controls use them (MillMaster,
+/// Fanuc 0 lathes' alternative code system): detected by a block without
+/// the I/J/K/L words of a Haas bolt-hole pattern (G70 I J L, G71 I J K L),
+/// which stays a located error. `Some(true)`: inch.
+pub(super) fn units_g70_g71(b: &Block, g: i64) -> Option<bool> {
+    let pattern = b
+        .words
+        .iter()
+        .any(|w| matches!(w.letter, 'I' | 'J' | 'K' | 'L'));
+    match g {
+        700 | 710 if !pattern => Some(g == 700),
+        _ => None,
+    }
 }
 
 /// The motion code of G0, G1, G2 or G3 (code ×10).
@@ -310,7 +336,7 @@ fn moves_not_modelled(w: &Word, g: i64) -> Option<String> {
             "post the engraving as G1/G2/G3 moves, or remove the block",
         ),
         700 | 710 | 720 => (
-            "a bolt-hole pattern (Haas: circle, arc, line of holes; G70/G71 as inch/metric on older controls are not read either)",
+            "a bolt-hole pattern (Haas: circle, arc, line of holes; G70/G71 without I/J/K/L are read as inch/mm units)",
             "program each hole's X/Y after the canned cycle (and G20/G21 for the units)",
         ),
         1500 => ("general-purpose pocket milling (Haas)", "post the pocket as G1/G2/G3 moves"),

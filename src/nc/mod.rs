@@ -348,6 +348,25 @@ fn control_char(c: char) -> bool {
     c.is_control() && c != '\t'
 }
 
+/// The index of the first control character outside comments: one inside
+/// `( … )` or after `;` or `//` (a C1 character of a Windows-1252 comment,
+/// `(Ø 10 mm)` read as Latin-1) is the comment's and never refuses the
+/// program.
+fn control_outside_comments(chars: &[char]) -> Option<usize> {
+    let mut depth = 0usize;
+    for (k, &c) in chars.iter().enumerate() {
+        match c {
+            '(' => depth += 1,
+            ')' => depth = depth.saturating_sub(1),
+            ';' if depth == 0 => return None,
+            '/' if depth == 0 && chars.get(k + 1) == Some(&'/') => return None,
+            _ if depth == 0 && control_char(c) => return Some(k),
+            _ => {}
+        }
+    }
+    None
+}
+
 /// Lexes one line; `line` is its 1-based number.
 ///
 /// Comments: `( … )` may nest (`(DRILL (5 HOLES))` is one comment; a stray
@@ -360,15 +379,16 @@ fn control_char(c: char) -> bool {
 /// [`Block::comma_words`]. An Okuma OSP file header (`$OKUMA.SSB%`, see
 /// [`macro_expr::okuma_file_header`]) is refused as an Okuma program.
 pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
-    if macro_line::is_macro_line(src) && !src.chars().any(control_char) {
+    let chars: Vec<char> = src.chars().collect();
+    let control = control_outside_comments(&chars);
+    if macro_line::is_macro_line(src) && control.is_none() {
         return macro_line::lex_macro(src, line);
     }
-    let chars: Vec<char> = src.chars().collect();
     let mut block = Block {
         line,
         ..Block::default()
     };
-    if let Some(i) = chars.iter().position(|&c| control_char(c)) {
+    if let Some(i) = control {
         return Err(NcError::new(
             line,
             i + 1,
@@ -388,7 +408,18 @@ pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
     if i < chars.len() && chars[i] == '%' {
         block.percent = true;
         i += 1;
-    } else if i < chars.len() && chars[i] == '/' {
+        // Text after `%` on its line (a program title, `% MillMaster`) is
+        // no block: kept as a comment.
+        let rest: String = chars[i..].iter().collect();
+        let rest = rest
+            .trim()
+            .trim_start_matches(['(', ';'])
+            .trim_end_matches(')');
+        if !rest.trim().is_empty() {
+            block.comments.push(rest.trim().to_string());
+        }
+        return Ok(block);
+    } else if i < chars.len() && chars[i] == '/' && chars.get(i + 1) != Some(&'/') {
         block.block_delete = true;
         i += 1;
     }
@@ -517,9 +548,10 @@ fn lex_item(
             col,
             "')' without an opening '('; expected a comment as '( … )'",
         ));
-    } else if c == ';' {
+    } else if c == ';' || (c == '/' && chars.get(*i + 1) == Some(&'/')) {
+        let skip = if c == ';' { 1 } else { 2 };
         block.comments.push(
-            chars[*i + 1..]
+            chars[*i + skip..]
                 .iter()
                 .collect::<String>()
                 .trim()

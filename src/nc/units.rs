@@ -1,4 +1,5 @@
-//! The length unit of a program that never states one.
+//! The length unit of a program that never states one (G20/G21, or
+//! G70/G71 where they are units, [`super::gcodes::units_g70_g71`]).
 //!
 //! A program without G20/G21 runs in the control's power-on unit (a
 //! machine setting: Fanuc parameter 0000#2 INI, [`ParseOptions::units`],
@@ -28,11 +29,12 @@ pub const MIN_WORDS: usize = 10;
 /// Largest coordinate above which an inch reading looks like mm.
 pub const MM_LIKE_EXTENT: f64 = 100.0;
 
-/// True when a block states the unit (G20/G21, or G70/G71 where read as
-/// units).
+/// True when a block states the unit.
 fn states_units(b: &Block) -> bool {
-    b.words_of('G')
-        .any(|g| matches!(g.text.trim_start_matches('0'), "20" | "21" | "20." | "21."))
+    b.words_of('G').any(|g| {
+        let code = super::gcodes::code10(g);
+        matches!(code, 200 | 210) || super::gcodes::units_g70_g71(b, code).is_some()
+    })
 }
 
 /// Adds the warning of a program that never states its units and whose
