@@ -253,3 +253,22 @@ fn millmaster_percent_titles_slash_comments_g70_and_control_chars_in_comments() 
     let p = parse("/G0 X5.\nG0 X1.").unwrap();
     assert_eq!(p.segments.len(), 1);
 }
+
+/// A lead-in posted with `F1.`: warned at its F word; and a run whose
+/// sample count is over the budget names the line of its longest move.
+#[test]
+fn a_very_low_feed_is_warned_and_the_sample_budget_names_the_slow_line() {
+    use mtmotion::toolpath::{simulate::simulate, SimConfig};
+    let src = "G21 G90 G17\nG0 X0 Y0 Z1.\nG1 Z0 F1.\nG1 X100000. F1.\nG1 Y10. F600.";
+    let p = parse(src).unwrap();
+    let w = messages(&p);
+    let slow: Vec<&String> = w
+        .iter()
+        .filter(|m| m.contains("implausibly slow"))
+        .collect();
+    assert_eq!(slow.len(), 2, "{w:?}");
+    assert!(slow[0].starts_with("line 3, column 7"), "{w:?}");
+    assert!(!w.iter().any(|m| m.contains("F600.")), "{w:?}");
+    let e = simulate(&p.segments, &p.segments, &SimConfig::default()).unwrap_err();
+    assert!(e.to_string().contains("the longest move is line 4"), "{e}");
+}

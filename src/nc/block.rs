@@ -17,7 +17,9 @@ use super::fadal;
 use super::gcodes::{code10, e_word_is_a_g_argument, read_g_words, GWords};
 use super::moves::move_block;
 use super::non_modal::non_modal_move;
-use super::program::{err, Ctx, FeedMode, Modal, MotionCode, Warning, MAX_PLAUSIBLE_FEED};
+use super::program::{
+    err, Ctx, FeedMode, Modal, MotionCode, Warning, MAX_PLAUSIBLE_FEED, MIN_PLAUSIBLE_FEED,
+};
 use super::rotation::rotation_block;
 use super::segment::{Motion, Segment};
 use super::{Block, NcError, Word};
@@ -257,6 +259,18 @@ fn read_feed(
                 if st.inch { "inch/min" } else { "mm/min" },
                 f,
                 MAX_PLAUSIBLE_FEED
+            ),
+        ));
+    }
+    if f < MIN_PLAUSIBLE_FEED && st.feed_mode == FeedMode::PerMinute {
+        warnings.push(Warning::at(
+            b.line,
+            w.column,
+            format!(
+                "F{} {} = {f:.3} mm/min is implausibly slow for a milling feed (below {MIN_PLAUSIBLE_FEED} mm/min: a 1 mm move takes {:.0} s or more); check the F word (a lead-in posted with F1.?) and the units (G20/G21)",
+                w.text,
+                if st.inch { "inch/min" } else { "mm/min" },
+                60.0 / MIN_PLAUSIBLE_FEED
             ),
         ));
     }

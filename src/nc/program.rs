@@ -254,6 +254,11 @@ impl ParseOptions {
 /// Feeds above this (mm/min) are warned about as implausible for milling.
 pub const MAX_PLAUSIBLE_FEED: f64 = 100_000.0;
 
+/// Feeds per minute below this (mm/min) are warned about as implausibly
+/// slow (a lead-in posted with `F1.`: a 1 mm move at 1 mm/min takes a
+/// minute, and a long one can exceed the simulation's sample budget).
+pub const MIN_PLAUSIBLE_FEED: f64 = 10.0;
+
 /// Modal state after a block.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
