@@ -272,3 +272,34 @@ fn a_very_low_feed_is_warned_and_the_sample_budget_names_the_slow_line() {
     let e = simulate(&p.segments, &p.segments, &SimConfig::default()).unwrap_err();
     assert!(e.to_string().contains("the longest move is line 4"), "{e}");
 }
+
+/// G88 boring with a manual retract: feed in, dwell, then a rapid out to
+/// the return level (the operator's jog), warned.
+#[test]
+fn g88_bores_dwells_and_retracts_at_rapid_with_a_warning() {
+    let p = parse("G21 G90 G17\nG0 X0 Y0 Z5.\nG98 G88 X10. Y0 Z-3. R1. P0.5 F100\nG80").unwrap();
+    let kinds: Vec<(&str, f64)> = p
+        .segments
+        .iter()
+        .map(|s| match s.motion {
+            Motion::Rapid => ("G0", s.end.p()[2]),
+            Motion::Linear => ("G1", s.end.p()[2]),
+            Motion::Dwell { seconds } => ("G4", seconds),
+            _ => ("?", 0.0),
+        })
+        .collect();
+    assert_eq!(
+        kinds,
+        vec![
+            ("G0", 5.0),
+            ("G0", 5.0),
+            ("G0", 1.0),
+            ("G1", -3.0),
+            ("G4", 0.5),
+            ("G0", 5.0)
+        ]
+    );
+    assert!(messages(&p).iter().any(|m| m.contains("G88 boring")));
+    let e = parse("G87 X1 Z-1 R1 F100").unwrap_err();
+    assert!(e.message.contains("back boring"), "{e}");
+}

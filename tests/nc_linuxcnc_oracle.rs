@@ -163,8 +163,8 @@ const KNOWN: &[Known] = &[
         file: "printhor_example3.gcode",
         lines: &[],
         kind: Kind::Refused("back boring"),
-        why: "G87 back boring (and G88) are refused: the spindle orientation and shift \
-              they need are machine data",
+        why: "G87 back boring is refused: the spindle orientation and shift it needs \
+              are machine data",
     },
 ];
 

@@ -1,4 +1,4 @@
-//! Canned drilling cycles G73, G74, G76, G81–G86 and G89 expanded into the
+//! Canned drilling cycles G73, G74, G76, G81–G86, G88 and G89 expanded into the
 //! moves the machine really makes, in the G17, G18 or G19 plane (drilling
 //! along Z, Y or X). Fanuc rules (Fanuc Series 0i-MF/30i-B operator's
 //! manuals, "canned cycles for drilling"); where LinuxCNC differs (its G98
@@ -32,9 +32,14 @@
 //!   R. G85: feed in, feed out to R. G89: as G85 with a dwell. G86: feed
 //!   in, rapid out. G76 (fine boring): feed in, dwell, rapid out; the tool
 //!   shift Q at the bottom (a machine parameter gives its direction) is not
-//!   modelled and is warned about.
-//! - G87 (back boring) and G88 (manual retract) are refused with a located
-//!   error.
+//!   modelled and is warned about. G88 (boring, manual retract): feed in,
+//!   dwell P, then the spindle and the program stop and the operator jogs
+//!   the tool out; simulated as a rapid out to the return level, warned
+//!   (LinuxCNC's rs274 leaves the retract out and goes on from the
+//!   bottom; a Fanuc control returns to the level at rapid after the
+//!   manual retract).
+//! - G87 (back boring: the shift direction is a machine parameter) is
+//!   refused with a located error.
 //! - P is read like a G4 P ([`super::program::DwellP`]); Q and the
 //!   clearance are in the program's length unit (converted to mm).
 //!
@@ -112,7 +117,7 @@ pub fn hole(
         730 | 830 => path.peck(c, r, bottom, feed),
         _ => path.level(Motion::Linear, bottom, feed),
     }
-    if matches!(c.code, 820 | 760 | 890 | 840 | 740) {
+    if matches!(c.code, 820 | 760 | 880 | 890 | 840 | 740) {
         path.dwell(c.dwell);
     }
     let level = if g99 { r } else { c.initial };
@@ -246,6 +251,13 @@ pub(super) fn canned_cycle(
     read_q_and_p(b, &mut c, cx, scale)?;
     st.cycle = Some(c);
     let holes = hole_data(b, st, &c, anchor)?;
+    if c.code == 880 {
+        cx.warnings.push(Warning::at(
+            b.line,
+            anchor.column,
+            "G88 boring: after the dwell the spindle stops and the program stops for a manual retract; the retract is simulated as a rapid to the return level (LinuxCNC's rs274 leaves it out and goes on from the bottom), and the time of the stop is not counted",
+        ));
+    }
     if c.code == 760 {
         cx.warnings.push(Warning::at(
             b.line,

@@ -200,7 +200,7 @@ fn grouped_or_other<'a>(
         280 | 300 | 520 | 530 | 100 | 920 | 921 | 922 | 923 => {
             only_one(&mut gw.non_modal, b, w, g, "non-modal codes", "")
         }
-        730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 890 => {
+        730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 880 | 890 => {
             only_one(&mut gw.cycle, b, w, g, "canned cycles", "")
         }
         400 | 410 | 420 | 411 | 421 => only_one(
@@ -295,13 +295,12 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
             "G{}: spline interpolation is not simulated; post the program with lines and arcs (G1/G2/G3)",
             w.text
         ),
-        330 | 331 | 332 | 741 | 801..=899 => format!(
+        330 | 331 | 332 | 741 | 801..=879 | 881..=899 => format!(
             "G{}: {} is not simulated yet; post the program with the cycle expanded into G0/G1 moves",
             w.text,
             match g {
                 330..=332 => "spindle-synchronised threading/tapping",
                 870 => "back boring (its shift direction is a machine parameter)",
-                880 => "a cycle with a manual retract",
                 _ => "this canned cycle",
             }
         ),
