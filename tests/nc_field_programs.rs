@@ -303,3 +303,29 @@ fn g88_bores_dwells_and_retracts_at_rapid_with_a_warning() {
     let e = parse("G87 X1 Z-1 R1 F100").unwrap_err();
     assert!(e.message.contains("back boring"), "{e}");
 }
+
+/// G33 (LinuxCNC spindle-synchronised motion) runs as its axis motion at
+/// pitch × S; Fanuc rigid tapping (M29 then G84) runs as G84's feeds.
+#[test]
+fn g33_moves_at_pitch_times_s_and_g84_after_m29_taps() {
+    let p = parse("G21 G90 G18\nG0 X10. Z5.\nS400 M3\nG33 Z-20. K1.5\nG0 X12.").unwrap();
+    let s = &p.segments[1];
+    assert!(matches!(s.motion, Motion::Linear));
+    assert_eq!(s.end.p()[2], -20.0);
+    assert!((s.feed - 600.0).abs() < 1e-9, "{}", s.feed);
+    assert!(!messages(&p).iter().any(|m| m.contains("K1.5")));
+    let e = parse("S400 M3\nG33 Z-20.").unwrap_err();
+    assert!(e.message.contains("without a pitch"), "{e}");
+    let e = parse("G33 Z-20. K1.5").unwrap_err();
+    assert!(e.message.contains("spindle speed"), "{e}");
+    // Rigid tapping, Fanuc form: M29 S… then G84 at F = pitch × S.
+    let p =
+        parse("G21 G90 G17\nG0 X0 Y0 Z5.\nM29 S500\nG99 G84 X10. Y0 Z-10. R2. F625.\nG80").unwrap();
+    let feeds: Vec<(f64, f64)> = p
+        .segments
+        .iter()
+        .filter(|s| matches!(s.motion, Motion::Linear))
+        .map(|s| (s.end.p()[2], s.feed))
+        .collect();
+    assert_eq!(feeds, vec![(-10.0, 625.0), (2.0, 625.0)]);
+}

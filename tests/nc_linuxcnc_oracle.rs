@@ -154,12 +154,6 @@ const KNOWN: &[Known] = &[
         why: "G5.1 quadratic splines are not simulated",
     },
     Known {
-        file: "linuxcnc_threading.ngc",
-        lines: &[],
-        kind: Kind::Refused("G33"),
-        why: "G33 spindle-synchronised threading is not simulated",
-    },
-    Known {
         file: "printhor_example3.gcode",
         lines: &[],
         kind: Kind::Refused("back boring"),

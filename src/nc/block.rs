@@ -189,7 +189,7 @@ fn read_other_words(
                     continue;
                 }
                 format!(
-                    "S{}: the spindle speed does not affect the motion model (it sets the feed only under G95, feed per revolution)",
+                    "S{}: the spindle speed does not affect the motion model (it sets the feed only under G95, feed per revolution, and of G33 moves)",
                     w.text
                 )
             }

@@ -68,9 +68,13 @@ pub(super) fn read_g_words<'a>(
     warnings: &mut Vec<Warning>,
 ) -> Result<GWords<'a>, NcError> {
     let mut gw = GWords::default();
+    let mut sync = false;
     for w in b.words.iter().filter(|w| w.letter == 'G') {
         let g = code10(w);
-        if let Some(m) = motion_code(g) {
+        // G33: spindle-synchronised motion, a line at K × S (LinuxCNC).
+        let g33 = g == 330;
+        sync |= g33;
+        if let Some(m) = motion_code(g).or(g33.then_some(MotionCode::Linear)) {
             only_one(
                 &mut gw.motion,
                 b,
@@ -95,6 +99,9 @@ pub(super) fn read_g_words<'a>(
         } else if !set_modal(st, g) {
             grouped_or_other(b, w, g, &mut gw, warnings)?;
         }
+    }
+    if gw.motion.is_some() || gw.cycle.is_some() {
+        st.spindle_sync = sync;
     }
     Ok(gw)
 }
@@ -295,11 +302,11 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
             "G{}: spline interpolation is not simulated; post the program with lines and arcs (G1/G2/G3)",
             w.text
         ),
-        330 | 331 | 332 | 741 | 801..=879 | 881..=899 => format!(
+        331 | 332 | 741 | 801..=879 | 881..=899 => format!(
             "G{}: {} is not simulated yet; post the program with the cycle expanded into G0/G1 moves",
             w.text,
             match g {
-                330..=332 => "spindle-synchronised threading/tapping",
+                331 | 332 => "spindle-synchronised tapping",
                 870 => "back boring (its shift direction is a machine parameter)",
                 _ => "this canned cycle",
             }

@@ -35,6 +35,7 @@ pub(super) fn move_block(
         .words
         .iter()
         .filter(|w| matches!(w.letter, 'I' | 'J' | 'K' | 'R'))
+        .filter(|w| !(st.spindle_sync && w.letter == 'K'))
         .collect();
     if axis_words.is_empty() && centre_words.is_empty() {
         return match chamfer_c {
@@ -167,6 +168,9 @@ fn move_feed(
     length: f64,
 ) -> Result<f64, NcError> {
     let inverse = st.feed_mode == FeedMode::InverseTime;
+    if st.spindle_sync && mode == MotionCode::Linear {
+        return sync_feed(b, st, first);
+    }
     match mode {
         MotionCode::Rapid => Ok(0.0),
         _ if inverse && b.word('F').is_none() => Err(err(
@@ -190,6 +194,28 @@ fn move_feed(
                 format!("cutting move without a feed; {}", st.no_feed_reason()),
             )),
         },
+    }
+}
+
+/// The feed of a G33 move, mm/min: its K (the pitch: length per spindle
+/// revolution, along the move, in program units) × the spindle speed S
+/// (rpm), as LinuxCNC runs it (the axis motion only; the spindle's
+/// position is not simulated).
+fn sync_feed(b: &Block, st: &Modal, first: &Word) -> Result<f64, NcError> {
+    let Some(k) = b.word('K').filter(|k| k.value > 0.0) else {
+        return Err(err(
+            b,
+            first,
+            "G33 move without a pitch: expected K (length per spindle revolution) greater than 0 on the block",
+        ));
+    };
+    match st.spindle {
+        Some(s) if s > 0.0 => Ok(k.value * super::block::length_scale(st) * s),
+        _ => Err(err(
+            b,
+            k,
+            "G33 needs the spindle speed: expected an S word (rpm, above 0) on this or an earlier block",
+        )),
     }
 }
 
