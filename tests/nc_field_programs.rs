@@ -329,3 +329,22 @@ fn g33_moves_at_pitch_times_s_and_g84_after_m29_taps() {
         .collect();
     assert_eq!(feeds, vec![(-10.0, 625.0), (2.0, 625.0)]);
 }
+
+/// G33.1 rigid tapping (LinuxCNC): a feed to the bottom and back to the
+/// start at K × S; the tool ends where it started.
+#[test]
+fn g33_1_taps_to_the_bottom_and_back() {
+    let p = parse("G21 G90 G17\nG0 X0 Y-7. Z6.\nS200 M3\nG33.1 Z-24. K1.25\nG0 X5.").unwrap();
+    let taps: Vec<(f64, f64)> = p.segments[1..3]
+        .iter()
+        .map(|s| {
+            assert!(matches!(s.motion, Motion::Linear) && s.fixed);
+            (s.end.p()[2], s.feed)
+        })
+        .collect();
+    assert_eq!(taps, vec![(-24.0, 250.0), (6.0, 250.0)]);
+    let last = p.segments.last().unwrap();
+    assert_eq!(last.start.p(), [0.0, -7.0, 6.0]);
+    let e = parse("S200 M3\nG41 D0 G1 X1 F100\nG33.1 Z-5. K1.").unwrap_err();
+    assert!(e.message.contains("cutter compensation"), "{e}");
+}

@@ -68,12 +68,14 @@ pub(super) fn read_g_words<'a>(
     warnings: &mut Vec<Warning>,
 ) -> Result<GWords<'a>, NcError> {
     let mut gw = GWords::default();
-    let mut sync = false;
+    let (mut sync, mut tap) = (false, false);
     for w in b.words.iter().filter(|w| w.letter == 'G') {
         let g = code10(w);
-        // G33: spindle-synchronised motion, a line at K × S (LinuxCNC).
-        let g33 = g == 330;
+        // G33: spindle-synchronised motion, a line at K × S; G33.1: rigid
+        // tapping, there and back at K × S (LinuxCNC).
+        let g33 = matches!(g, 330 | 331);
         sync |= g33;
+        tap |= g == 331;
         if let Some(m) = motion_code(g).or(g33.then_some(MotionCode::Linear)) {
             only_one(
                 &mut gw.motion,
@@ -102,6 +104,7 @@ pub(super) fn read_g_words<'a>(
     }
     if gw.motion.is_some() || gw.cycle.is_some() {
         st.spindle_sync = sync;
+        st.rigid_tap = tap;
     }
     Ok(gw)
 }
@@ -302,11 +305,11 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
             "G{}: spline interpolation is not simulated; post the program with lines and arcs (G1/G2/G3)",
             w.text
         ),
-        331 | 332 | 741 | 801..=879 | 881..=899 => format!(
+        332 | 741 | 801..=879 | 881..=899 => format!(
             "G{}: {} is not simulated yet; post the program with the cycle expanded into G0/G1 moves",
             w.text,
             match g {
-                331 | 332 => "spindle-synchronised tapping",
+                332 => "spindle-synchronised tapping",
                 870 => "back boring (its shift direction is a machine parameter)",
                 _ => "this canned cycle",
             }

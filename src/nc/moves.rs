@@ -84,8 +84,41 @@ pub(super) fn move_block(
     seg.feed = move_feed(b, st, mode, first, seg.timed_length())?;
     let corner = corner_word(b, mode, chamfer_c, scale)?;
     corner_or_centre_warning(b, cx, mode, corner, centre_words.first().copied());
+    if st.rigid_tap && mode == MotionCode::Linear {
+        return rigid_tap(b, st, cx, seg, first);
+    }
     st.pos = end;
     cx.segments.push(seg);
+    Ok(())
+}
+
+/// A G33.1 rigid tap (LinuxCNC): the synchronised move `seg` to its end
+/// point and the same move back to its start (the spindle reverses), both
+/// at K × S; the tool ends where it started. Both segments are `fixed`
+/// (the return has no word of its own). Under cutter compensation it is
+/// refused (LinuxCNC refuses it too).
+fn rigid_tap(
+    b: &Block,
+    st: &mut Modal,
+    cx: &mut Ctx,
+    seg: Segment,
+    first: &Word,
+) -> Result<(), NcError> {
+    if st.cutter.is_some() {
+        return Err(err(
+            b,
+            first,
+            "G33.1 rigid tapping with cutter compensation in force; cancel it with G40 first",
+        ));
+    }
+    let back = Segment {
+        start: seg.end,
+        end: seg.start,
+        fixed: true,
+        ..seg.clone()
+    };
+    cx.segments.push(Segment { fixed: true, ..seg });
+    cx.segments.push(back);
     Ok(())
 }
 

@@ -55,8 +55,8 @@
 //! tool-centre path ([`super::cutter`], [`super::cutter_path`]); without
 //! one the simulated path is the programmed path, and one warning per
 //! stretch says so. G43 length compensation is ignored (warned). What is not simulated and would change the path is a
-//! located error: G33.1 rigid tapping, G84.x, G87 (G33 runs as a line at
-//! K × S, G88 with a rapid for its manual retract), G93/G95 feeds,
+//! located error: G84.x, G87 (G33 runs as a line at K × S, G33.1 there
+//! and back, G88 with a rapid for its manual retract), G93/G95 feeds,
 //! G66.1 and nested G66 modal calls, splines, the G68 cases
 //! above and G68.1–G68.4 (3D coordinate conversion); an `E` word (not on a
 //! G187 block) stops the program as "this looks like a 3D-printer
@@ -312,6 +312,10 @@ pub struct Modal {
     /// move whose feed is its K (pitch, length per revolution) × S.
     #[serde(default)]
     pub spindle_sync: bool,
+    /// G33.1 (rigid tapping, LinuxCNC) in force: a G33 move to the end
+    /// point and back to the start at the same K × S.
+    #[serde(default)]
+    pub rigid_tap: bool,
 }
 
 /// An interpreted program.
