@@ -1,8 +1,9 @@
 //! The length unit of a program that never states one (G20/G21, or
-//! G70/G71 where they are units, [`super::gcodes::units_g70_g71`]).
+//! G70/G71 where they are units: without the I/J/K/L of a Haas bolt-hole
+//! pattern).
 //!
 //! A program without G20/G21 runs in the control's power-on unit (a
-//! machine setting: Fanuc parameter 0000#2 INI, [`ParseOptions::units`],
+//! machine setting: Fanuc parameter 0000#2 INI, [`super::program::ParseOptions::units`],
 //! default mm). Read in the wrong unit, an inch program's path is 25.4
 //! times too small and every error with it, in silence (a field program
 //! gave 9.4 µm read as mm against 186.5 µm with G20). So a program that
