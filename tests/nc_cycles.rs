@@ -232,7 +232,6 @@ fn g80_and_motion_codes_end_the_cycle() {
 fn refused_and_incomplete_cycles_are_located() {
     for (src, col, phrase) in [
         ("G87 X1 Z-1 R1 F100", 1, "back boring"),
-        ("G88 X1 Z-1 R1 F100", 1, "manual retract"),
         ("G81 X1 F100", 1, "needs the R level"),
         ("G83 X1 Z-5 R1 F100", 1, "peck depth Q"),
         ("G81 X1 Z-5 R1 K2.5 F100", 15, "whole number"),

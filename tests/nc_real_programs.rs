@@ -154,9 +154,11 @@ fn g90_1_absolute_arc_centres() {
 
 #[test]
 fn threading_and_tapping_are_refused_at_their_word() {
+    // G33 and G33.1 are simulated (tests/nc_field_programs.rs); G84.2
+    // (LinuxCNC/Fanuc rigid-tapping variants) is not.
     for (src, col) in [
-        ("G0 X0 Y0\nG33.1 Z-10 K1.25", 1),
         ("G0 X1\nG98 G84.2 Z-5 R1 F100", 5),
+        ("G0 X1\nG98 G84.3 Z-5 R1 F100", 5),
     ] {
         let e = parse(src).unwrap_err();
         assert_eq!((e.line, e.column), (2, col), "{e}");

@@ -66,6 +66,16 @@ const ADDED: &[(&str, f64)] = &[
     ("ugs_no_spaces.gcode", 0.003),
 ];
 
+/// Programs that parse since issue 25 (LinuxCNC's arc tolerance, G33),
+/// measured as pinned here (tA 40 ms, T 15 ms, dt 1 ms), kept out of the
+/// medians: the edited Fusion 360 program 534.75 -> 515.25 µm (its one
+/// region changed), LinuxCNC's lathe threading unchanged at 156.90 µm
+/// (1 of 3 regions changed, the largest error is in another).
+const FIELD: &[(&str, f64)] = &[
+    ("cncsprayer_fusion-output.nc", 0.964),
+    ("linuxcnc_threading.ngc", 1.0),
+];
+
 /// Programs that parse but are left as they are as a whole, with the
 /// phrase of the one note that says why.
 const UNCHANGED: &[(&str, &str)] = &[
@@ -97,6 +107,8 @@ const REFUSED: &[(&str, &str)] = &[
     ("cncjs_tball-pocket.gcode", "more than the limit of 8000000"),
     // CAMotics raster finishing, 35,282 segments: 46.4 M samples.
     ("camotics_cameo.nc", "more than the limit of 8000000"),
+    // Parses since G33.1 is simulated: 11.5 M samples.
+    ("linuxcnc_mmount.ngc", "more than the limit of 8000000"),
 ];
 
 /// Every file of the corpus has a pinned reverse-compensation outcome: a
@@ -111,6 +123,7 @@ fn every_corpus_program_has_a_pinned_reverse_outcome() {
         .chain(LARGE)
         .chain(CAM)
         .chain(ADDED)
+        .chain(FIELD)
         .map(|(n, _)| *n)
         .chain(UNCHANGED.iter().chain(REFUSED).map(|(n, _)| *n))
         .collect();
@@ -235,4 +248,5 @@ fn every_simulating_corpus_program_is_never_worse_median_pinned() {
     eprintln!("median after/before (10 programs, with the CAM ones): {m:.3}");
     assert!(m <= 0.265, "median {m:.3} rose above the measured 0.258");
     check(ADDED);
+    check(FIELD);
 }

@@ -1,10 +1,21 @@
 //! Arc centre and sweep from an NC block: the centre as I/J/K (incremental
 //! from the start, per plane: G17 I/J, G18 K/I, G19 J/K) or as R (R > 0 the
 //! arc up to 180°, R < 0 the arc over 180°). A full circle (end = start)
-//! needs I/J/K. Consistency: the end radius must match the start radius
-//! within 0.005 mm + 1e-5·R (FANUC alarms on a few µm), and R must be at
-//! least half the chord within the same tolerance; the arc's radius is the
-//! mean of start and end radii.
+//! needs I/J/K. Consistency: an end radius that differs from the start
+//! radius by up to 0.005 mm + 1e-5·R passes; beyond it, up to LinuxCNC's
+//! tolerance, the arc is read with a warning, and beyond that it is
+//! refused. LinuxCNC refuses a difference above
+//! `CENTER_ARC_RADIUS_TOLERANCE` (2·0.01·√2 mm = 0.0283 mm, or
+//! 2·0.0005·√2 in = 0.00141 in in an inch program) that is also above
+//! 0.1 % of the radius (`SPIRAL_RELATIVE_TOLERANCE`), and any difference
+//! above 100 times that tolerance (checked on the installed `rs274`,
+//! LinuxCNC 2.9: on an 895 mm arc 0.5 mm passes and 0.9 mm is refused; on
+//! a 100 m arc 2 mm passes and 3 mm is refused). Grbl refuses a difference
+//! above 0.005 mm that is above 0.5 mm or 0.1 % of the radius. mtmotion
+//! takes LinuxCNC's (the rs274 oracle's), so a 0.025 mm mismatch on an
+//! 895 mm CAM arc (Fusion 360) is read, warned.
+//! R must be at least half the chord within 0.005 mm + 1e-5·R. The arc's
+//! radius is the mean of start and end radii (LinuxCNC runs a spiral).
 //!
 //! Units: mm, rad.
 
@@ -31,6 +42,24 @@ pub fn arc(
     end: Pose,
     scale: f64,
 ) -> Result<Arc, NcError> {
+    arc_warned(b, first, plane, cw, start, end, scale).map(|(a, _)| a)
+}
+
+/// As [`arc`], with the warning of an end radius that differs from the
+/// start radius beyond the few-µm tolerance but within LinuxCNC's (see the
+/// module header).
+///
+/// # Errors
+/// As [`arc`].
+pub fn arc_warned(
+    b: &Block,
+    first: &Word,
+    plane: Plane,
+    cw: bool,
+    start: Pose,
+    end: Pose,
+    scale: f64,
+) -> Result<(Arc, Option<String>), NcError> {
     let (u, v, n) = plane.axes();
     let g = ArcBlock {
         b,
@@ -46,9 +75,10 @@ pub fn arc(
     let mut center = [0.0; 3];
     center[n] = p0[n];
     let r_form = b.word('R').is_some();
+    let mut warning = None;
     let (cu, cv, radius) = match b.word('R') {
         Some(rw) => g.centre_from_r(rw, chord)?,
-        None => g.centre_from_ijk()?,
+        None => g.centre_from_ijk(&mut warning)?,
     };
     center[u] = cu;
     center[v] = cv;
@@ -67,19 +97,29 @@ pub fn arc(
     } else {
         (th1 - th0).rem_euclid(tau)
     };
-    Ok(Arc {
-        center,
-        radius,
-        plane,
-        sweep,
-        r_form,
-    })
+    Ok((
+        Arc {
+            center,
+            radius,
+            plane,
+            sweep,
+            r_form,
+        },
+        warning,
+    ))
 }
 
 /// Tolerance of the radius checks, mm: 0.005 mm + 1e-5·R.
 fn tol(r: f64) -> f64 {
     0.005 + 1e-5 * r.abs()
 }
+
+/// LinuxCNC's `CENTER_ARC_RADIUS_TOLERANCE_MM`, mm.
+pub const LINUXCNC_ARC_TOLERANCE_MM: f64 = 2.0 * 0.01 * std::f64::consts::SQRT_2;
+/// LinuxCNC's `CENTER_ARC_RADIUS_TOLERANCE_INCH`, inch.
+pub const LINUXCNC_ARC_TOLERANCE_INCH: f64 = 2.0 * 0.0005 * std::f64::consts::SQRT_2;
+/// LinuxCNC's `SPIRAL_RELATIVE_TOLERANCE`.
+pub const SPIRAL_RELATIVE_TOLERANCE: f64 = 0.001;
 
 /// A G2/G3 block with its start and end points (mm).
 struct ArcBlock<'a> {
@@ -136,7 +176,7 @@ impl ArcBlock<'_> {
 
     /// The centre's in-plane coordinates from I/J/K (incremental from the
     /// start) and the radius, the mean of the start and end radii.
-    fn centre_from_ijk(&self) -> Result<(f64, f64, f64), NcError> {
+    fn centre_from_ijk(&self, warning: &mut Option<String>) -> Result<(f64, f64, f64), NcError> {
         let (b, first, p0, p1) = (self.b, self.first, self.p0, self.p1);
         let (u, v, _) = self.plane.axes();
         let letters = ['I', 'J', 'K'];
@@ -165,14 +205,26 @@ impl ArcBlock<'_> {
                 "arc centre equals the start point; expected a non-zero radius",
             ));
         }
-        if (r0 - r1).abs() > tol(r0) {
+        let diff = (r0 - r1).abs();
+        let abs_tol = if self.scale == 1.0 {
+            LINUXCNC_ARC_TOLERANCE_MM
+        } else {
+            LINUXCNC_ARC_TOLERANCE_INCH * self.scale
+        };
+        let rel = diff / r0.max(r1);
+        if diff > 100.0 * abs_tol || (diff > abs_tol && rel > SPIRAL_RELATIVE_TOLERANCE) {
             return Err(err(
                 b,
                 iw.or(jw).unwrap_or(first),
                 format!(
-                    "inconsistent radius: start radius {:.4} but end radius {:.4} (mm); check the end point and {lu}/{lv}",
+                    "inconsistent radius: start radius {:.4} but end radius {:.4} (mm), {diff:.4} mm apart, beyond LinuxCNC's tolerance ({abs_tol:.4} mm and 0.1 % of the radius, or 100 × {abs_tol:.4} mm); check the end point and {lu}/{lv}",
                     r0, r1
                 ),
+            ));
+        }
+        if diff > tol(r0) {
+            *warning = Some(format!(
+                "arc radius mismatch: start radius {r0:.4} but end radius {r1:.4} (mm), {diff:.4} mm apart; read as an arc of their mean radius (within LinuxCNC's tolerance: {abs_tol:.4} mm or 0.1 % of the radius; a Fanuc control may alarm above a few µm)"
             ));
         }
         Ok((cu, cv, 0.5 * (r0 + r1)))

@@ -13,10 +13,13 @@
 
 use super::cutter::{cutter_word, refused_during};
 use super::cycles::{canned_cycle, Cycle};
+use super::fadal;
 use super::gcodes::{code10, e_word_is_a_g_argument, read_g_words, GWords};
 use super::moves::move_block;
 use super::non_modal::non_modal_move;
-use super::program::{err, Ctx, FeedMode, Modal, Warning, MAX_PLAUSIBLE_FEED};
+use super::program::{
+    err, Ctx, FeedMode, Modal, MotionCode, Warning, MAX_PLAUSIBLE_FEED, MIN_PLAUSIBLE_FEED,
+};
 use super::rotation::rotation_block;
 use super::segment::{Motion, Segment};
 use super::{Block, NcError, Word};
@@ -40,8 +43,8 @@ pub(super) fn length_scale(st: &Modal) -> f64 {
 /// The block's first error, naming its column (an `E` word's error contains
 /// "this looks like": the caller stops the program there).
 pub(super) fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result<(), NcError> {
-    reject_extruder(b)?;
     let gw = read_g_words(b, st, cx.warnings)?;
+    reject_extruder(b, gw.motion.map(|(_, m)| m).or(st.motion))?;
     read_m_words(b, st);
     let scale = length_scale(st);
     if let Some((w, g)) = gw.cutter {
@@ -127,11 +130,12 @@ fn no_repeated_axis(b: &Block) -> Result<(), NcError> {
 }
 
 /// An `E` word stops the program: it drives a 3D printer's extruder
-/// (except on a Haas G187 or G47 block, where it is that code's own).
+/// (except on a Haas G187 or G47 block, where it is that code's own, and a
+/// Fadal fixture offset, [`super::fadal`]); `motion` is the block's motion.
 /// (`#100=1E3`, an exponent, is named as one by the macro parser.)
-fn reject_extruder(b: &Block) -> Result<(), NcError> {
+fn reject_extruder(b: &Block, motion: Option<MotionCode>) -> Result<(), NcError> {
     match b.word('E') {
-        Some(e) if !e_word_is_a_g_argument(b) => Err(err(
+        Some(e) if !e_word_is_a_g_argument(b) && !fadal::is_fixture_offset(b, motion) => Err(err(
             b,
             e,
             format!(
@@ -186,7 +190,7 @@ fn read_other_words(
                     continue;
                 }
                 format!(
-                    "S{}: the spindle speed does not affect the motion model (it sets the feed only under G95, feed per revolution)",
+                    "S{}: the spindle speed does not affect the motion model (it sets the feed only under G95, feed per revolution, and of G33 moves)",
                     w.text
                 )
             }
@@ -199,10 +203,21 @@ fn read_other_words(
             'P' | 'L' if call => continue,
             'P' if gw.setting.is_some() => continue,
             'E' if gw.setting == Some(1870) => continue,
+            'E' if fadal::is_fixture_offset(b, gw.motion.map(|(_, m)| m).or(st.motion)) => format!(
+                "E{}: a Fadal fixture offset (E1–E48, as G54–G59; E0 cancels): its offset values are unknown here, so the program frame is kept",
+                w.text
+            ),
             'Q' if gw.setting == Some(640) => continue,
             'M' if matches!(code10(w), 20 | 300 | 970 | 980 | 990) => continue,
             'L' | 'P' | 'Q' if st.cycle.is_some() || gw.cycle.is_some() => continue,
+            'L' if fadal::is_subroutine_word(w) => return Err(fadal::subroutine_error(b, w)),
             'D' if gw.cutter.is_some_and(|(_, g)| g != 400) => continue,
+            // A D word elsewhere is the modal offset number a later
+            // G41/G42 without D uses.
+            'D' if w.value >= 0.0 && w.value.fract() == 0.0 => {
+                st.d = Some(w.value);
+                continue;
+            }
             'M' | 'T' | 'H' | 'D' => format!(
                 "{}{} does not affect the motion model and was ignored",
                 w.letter, w.text
@@ -245,6 +260,18 @@ fn read_feed(
                 if st.inch { "inch/min" } else { "mm/min" },
                 f,
                 MAX_PLAUSIBLE_FEED
+            ),
+        ));
+    }
+    if f < MIN_PLAUSIBLE_FEED && st.feed_mode == FeedMode::PerMinute {
+        warnings.push(Warning::at(
+            b.line,
+            w.column,
+            format!(
+                "F{} {} = {f:.3} mm/min is implausibly slow for a milling feed (below {MIN_PLAUSIBLE_FEED} mm/min: a 1 mm move takes {:.0} s or more); check the F word (a lead-in posted with F1.?) and the units (G20/G21)",
+                w.text,
+                if st.inch { "inch/min" } else { "mm/min" },
+                60.0 / MIN_PLAUSIBLE_FEED
             ),
         ));
     }

@@ -231,8 +231,21 @@ pub(super) fn cutter_word(
         410 | 411 => Side::Left,
         _ => Side::Right,
     };
-    let dw = b.word('D');
+    // A G41/G42 without D uses the modal D (an earlier block's D word).
+    let modal_d = match (b.word('D'), st.d) {
+        (None, Some(d)) if matches!(g, 410 | 420) => Some(Word {
+            letter: 'D',
+            value: d,
+            text: format!("{d}"),
+            column: w.column,
+        }),
+        _ => None,
+    };
+    let dw = b.word('D').or(modal_d.as_ref());
     let radius = radius_of(b, w, g, dw, st, cx)?;
+    if let (Some(d), 410 | 420) = (dw, g) {
+        st.d = Some(d.value);
+    }
     if let Some(c) = st.cutter {
         if c.side == side && c.radius == radius {
             return Ok(());

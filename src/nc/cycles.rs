@@ -1,4 +1,4 @@
-//! Canned drilling cycles G73, G74, G76, G81–G86 and G89 expanded into the
+//! Canned drilling cycles G73, G74, G76, G81–G86, G88 and G89 expanded into the
 //! moves the machine really makes, in the G17, G18 or G19 plane (drilling
 //! along Z, Y or X). Fanuc rules (Fanuc Series 0i-MF/30i-B operator's
 //! manuals, "canned cycles for drilling"); where LinuxCNC differs (its G98
@@ -32,9 +32,14 @@
 //!   R. G85: feed in, feed out to R. G89: as G85 with a dwell. G86: feed
 //!   in, rapid out. G76 (fine boring): feed in, dwell, rapid out; the tool
 //!   shift Q at the bottom (a machine parameter gives its direction) is not
-//!   modelled and is warned about.
-//! - G87 (back boring) and G88 (manual retract) are refused with a located
-//!   error.
+//!   modelled and is warned about. G88 (boring, manual retract): feed in,
+//!   dwell P, then the spindle and the program stop and the operator jogs
+//!   the tool out; simulated as a rapid out to the return level, warned
+//!   (LinuxCNC's rs274 leaves the retract out and goes on from the
+//!   bottom; a Fanuc control returns to the level at rapid after the
+//!   manual retract).
+//! - G87 (back boring: the shift direction is a machine parameter) is
+//!   refused with a located error.
 //! - P is read like a G4 P ([`super::program::DwellP`]); Q and the
 //!   clearance are in the program's length unit (converted to mm).
 //!
@@ -112,7 +117,7 @@ pub fn hole(
         730 | 830 => path.peck(c, r, bottom, feed),
         _ => path.level(Motion::Linear, bottom, feed),
     }
-    if matches!(c.code, 820 | 760 | 890 | 840 | 740) {
+    if matches!(c.code, 820 | 760 | 880 | 890 | 840 | 740) {
         path.dwell(c.dwell);
     }
     let level = if g99 { r } else { c.initial };
@@ -242,10 +247,17 @@ pub(super) fn canned_cycle(
         return Ok(());
     };
     check_cycle_axes(b, st, cx)?;
-    read_levels(b, st, &mut c, wr, wn, scale)?;
+    read_levels(b, st, &mut c, wr, wn, scale, cx.warnings)?;
     read_q_and_p(b, &mut c, cx, scale)?;
     st.cycle = Some(c);
     let holes = hole_data(b, st, &c, anchor)?;
+    if c.code == 880 {
+        cx.warnings.push(Warning::at(
+            b.line,
+            anchor.column,
+            "G88 boring: after the dwell the spindle stops and the program stops for a manual retract; the retract is simulated as a rapid to the return level (LinuxCNC's rs274 leaves it out and goes on from the bottom), and the time of the stop is not counted",
+        ));
+    }
     if c.code == 760 {
         cx.warnings.push(Warning::at(
             b.line,
@@ -303,7 +315,16 @@ fn check_cycle_axes(b: &Block, st: &Modal, cx: &Ctx) -> Result<(), NcError> {
             w,
             format!("{}{} in a canned-cycle block: only the plane axes {lu}/{lv} and the drilling axis {ln} are allowed", w.letter, w.text),
         )),
-        None => Ok(()),
+        // In a 3-axis program C is no axis, and a cycle has no chamfer:
+        // ignoring it would pass a typo (or a rotary move) in silence.
+        None => match b.word('C').filter(|_| !cx.opt.c_axis) {
+            Some(w) => Err(err(
+                b,
+                w,
+                format!("C{} in a canned-cycle block: C is no axis of this program (no A, B or C move elsewhere; set the option cAxis if the machine has a C axis) and a cycle takes no chamfer", w.text),
+            )),
+            None => Ok(()),
+        },
     }
 }
 
@@ -311,7 +332,10 @@ fn check_cycle_axes(b: &Block, st: &Modal, cx: &Ctx) -> Result<(), NcError> {
 /// absolute levels: under G91 R is from the initial level and the bottom
 /// from R; under G90 both are shifted by the G92 offset. A new R under G91
 /// without a bottom word keeps the bottom's G91 distance from R (the
-/// bottom moves with R), as LinuxCNC and Fanuc do.
+/// bottom moves with R), as LinuxCNC and Fanuc do. A bottom with no R
+/// level given yet takes the initial level as R, warned: Fanuc and Haas
+/// controls run a cycle without R from the initial level (LinuxCNC
+/// refuses it).
 fn read_levels(
     b: &Block,
     st: &Modal,
@@ -319,6 +343,7 @@ fn read_levels(
     wr: Option<&Word>,
     wn: Option<&Word>,
     scale: f64,
+    warnings: &mut Vec<Warning>,
 ) -> Result<(), NcError> {
     let (_, _, n) = st.plane.axes();
     if let Some(r) = wr {
@@ -333,12 +358,20 @@ fn read_levels(
         }
     }
     if let Some(z) = wn {
-        let Some(r) = c.r else {
-            return Err(err(
-                b,
-                z,
-                "canned cycle: the R level must be given before or with the bottom",
-            ));
+        let r = match c.r {
+            Some(r) => r,
+            None => {
+                warnings.push(Warning::at(
+                    b.line,
+                    z.column,
+                    format!(
+                        "canned cycle without R: the R level is taken as the initial level {:.4} mm, as Fanuc and Haas controls do (the tool feeds from there; LinuxCNC refuses it); write R for a rapid approach",
+                        c.initial
+                    ),
+                ));
+                c.r = Some(c.initial);
+                c.initial
+            }
         };
         c.depth = st.incremental.then_some(z.value * scale);
         c.bottom = Some(if st.incremental {

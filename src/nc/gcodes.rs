@@ -68,9 +68,15 @@ pub(super) fn read_g_words<'a>(
     warnings: &mut Vec<Warning>,
 ) -> Result<GWords<'a>, NcError> {
     let mut gw = GWords::default();
+    let (mut sync, mut tap) = (false, false);
     for w in b.words.iter().filter(|w| w.letter == 'G') {
         let g = code10(w);
-        if let Some(m) = motion_code(g) {
+        // G33: spindle-synchronised motion, a line at K × S; G33.1: rigid
+        // tapping, there and back at K × S (LinuxCNC).
+        let g33 = matches!(g, 330 | 331);
+        sync |= g33;
+        tap |= g == 331;
+        if let Some(m) = motion_code(g).or(g33.then_some(MotionCode::Linear)) {
             only_one(
                 &mut gw.motion,
                 b,
@@ -81,11 +87,41 @@ pub(super) fn read_g_words<'a>(
             )?;
         } else if g == 40 {
             gw.dwell = Some(w);
+        } else if let Some(inch) = units_g70_g71(b, g) {
+            st.inch = inch;
+            warnings.push(Warning::at(
+                b.line,
+                w.column,
+                format!(
+                    "G{} read as {} units (older controls such as MillMaster's: G70 inch, G71 mm), since the block has no I/J/K/L words of a Haas bolt-hole pattern",
+                    w.text,
+                    if inch { "inch" } else { "mm" }
+                ),
+            ));
         } else if !set_modal(st, g) {
             grouped_or_other(b, w, g, &mut gw, warnings)?;
         }
     }
+    if gw.motion.is_some() || gw.cycle.is_some() {
+        st.spindle_sync = sync;
+        st.rigid_tap = tap;
+    }
     Ok(gw)
+}
+
+/// G70 (inch) / G71 (mm) as units, as older controls use them (MillMaster,
+/// Fanuc 0 lathes' alternative code system): detected by a block without
+/// the I/J/K/L words of a Haas bolt-hole pattern (G70 I J L, G71 I J K L),
+/// which stays a located error. `Some(true)`: inch.
+pub(super) fn units_g70_g71(b: &Block, g: i64) -> Option<bool> {
+    let pattern = b
+        .words
+        .iter()
+        .any(|w| matches!(w.letter, 'I' | 'J' | 'K' | 'L'));
+    match g {
+        700 | 710 if !pattern => Some(g == 700),
+        _ => None,
+    }
 }
 
 /// The motion code of G0, G1, G2 or G3 (code ×10).
@@ -110,6 +146,10 @@ fn only_one<'a, T>(
     hint: &str,
 ) -> Result<(), NcError> {
     if let Some((prev, _)) = slot {
+        // The same code twice (`G0 G90 G0`) says one thing once more.
+        if code10(prev) == code10(w) {
+            return Ok(());
+        }
         return Err(err(
             b,
             w,
@@ -170,7 +210,7 @@ fn grouped_or_other<'a>(
         280 | 300 | 520 | 530 | 100 | 920 | 921 | 922 | 923 => {
             only_one(&mut gw.non_modal, b, w, g, "non-modal codes", "")
         }
-        730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 890 => {
+        730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 880 | 890 => {
             only_one(&mut gw.cycle, b, w, g, "canned cycles", "")
         }
         400 | 410 | 420 | 411 | 421 => only_one(
@@ -265,13 +305,12 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
             "G{}: spline interpolation is not simulated; post the program with lines and arcs (G1/G2/G3)",
             w.text
         ),
-        330 | 331 | 332 | 741 | 801..=899 => format!(
+        332 | 741 | 801..=879 | 881..=899 => format!(
             "G{}: {} is not simulated yet; post the program with the cycle expanded into G0/G1 moves",
             w.text,
             match g {
-                330..=332 => "spindle-synchronised threading/tapping",
+                332 => "spindle-synchronised tapping",
                 870 => "back boring (its shift direction is a machine parameter)",
-                880 => "a cycle with a manual retract",
                 _ => "this canned cycle",
             }
         ),
@@ -306,7 +345,7 @@ fn moves_not_modelled(w: &Word, g: i64) -> Option<String> {
             "post the engraving as G1/G2/G3 moves, or remove the block",
         ),
         700 | 710 | 720 => (
-            "a bolt-hole pattern (Haas: circle, arc, line of holes; G70/G71 as inch/metric on older controls are not read either)",
+            "a bolt-hole pattern (Haas: circle, arc, line of holes; G70/G71 without I/J/K/L are read as inch/mm units)",
             "program each hole's X/Y after the canned cycle (and G20/G21 for the units)",
         ),
         1500 => ("general-purpose pocket milling (Haas)", "post the pocket as G1/G2/G3 moves"),

@@ -460,6 +460,9 @@ fn keyword_message(run: &str) -> String {
     if is_okuma_word(run) {
         return okuma_message(run);
     }
+    if let Some(m) = super::macro_b_abbreviation_message(run) {
+        return m;
+    }
     let letter = run.chars().next().unwrap_or('?');
     format!("expected a number after address '{letter}', found the letters '{run}'")
 }

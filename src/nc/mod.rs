@@ -22,6 +22,7 @@ pub mod cutter;
 pub mod cutter_path;
 pub mod cycles;
 pub mod dialect;
+mod fadal;
 pub mod files;
 mod gcodes;
 pub mod macro_exec;
@@ -39,6 +40,7 @@ mod run;
 pub mod segment;
 pub mod sequence;
 pub mod summary;
+pub mod units;
 pub mod writer;
 
 /// An error that names the line and column and says what was expected.
@@ -346,6 +348,25 @@ fn control_char(c: char) -> bool {
     c.is_control() && c != '\t'
 }
 
+/// The index of the first control character outside comments: one inside
+/// `( … )` or after `;` or `//` (a C1 character of a Windows-1252 comment,
+/// `(Ø 10 mm)` read as Latin-1) is the comment's and never refuses the
+/// program.
+fn control_outside_comments(chars: &[char]) -> Option<usize> {
+    let mut depth = 0usize;
+    for (k, &c) in chars.iter().enumerate() {
+        match c {
+            '(' => depth += 1,
+            ')' => depth = depth.saturating_sub(1),
+            ';' if depth == 0 => return None,
+            '/' if depth == 0 && chars.get(k + 1) == Some(&'/') => return None,
+            _ if depth == 0 && control_char(c) => return Some(k),
+            _ => {}
+        }
+    }
+    None
+}
+
 /// Lexes one line; `line` is its 1-based number.
 ///
 /// Comments: `( … )` may nest (`(DRILL (5 HOLES))` is one comment; a stray
@@ -358,15 +379,16 @@ fn control_char(c: char) -> bool {
 /// [`Block::comma_words`]. An Okuma OSP file header (`$OKUMA.SSB%`, see
 /// [`macro_expr::okuma_file_header`]) is refused as an Okuma program.
 pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
-    if macro_line::is_macro_line(src) && !src.chars().any(control_char) {
+    let chars: Vec<char> = src.chars().collect();
+    let control = control_outside_comments(&chars);
+    if macro_line::is_macro_line(src) && control.is_none() {
         return macro_line::lex_macro(src, line);
     }
-    let chars: Vec<char> = src.chars().collect();
     let mut block = Block {
         line,
         ..Block::default()
     };
-    if let Some(i) = chars.iter().position(|&c| control_char(c)) {
+    if let Some(i) = control {
         return Err(NcError::new(
             line,
             i + 1,
@@ -386,7 +408,18 @@ pub fn lex_line(src: &str, line: usize) -> Result<Block, NcError> {
     if i < chars.len() && chars[i] == '%' {
         block.percent = true;
         i += 1;
-    } else if i < chars.len() && chars[i] == '/' {
+        // Text after `%` on its line (a program title, `% MillMaster`) is
+        // no block: kept as a comment.
+        let rest: String = chars[i..].iter().collect();
+        let rest = rest
+            .trim()
+            .trim_start_matches(['(', ';'])
+            .trim_end_matches(')');
+        if !rest.trim().is_empty() {
+            block.comments.push(rest.trim().to_string());
+        }
+        return Ok(block);
+    } else if i < chars.len() && chars[i] == '/' && chars.get(i + 1) != Some(&'/') {
         block.block_delete = true;
         i += 1;
     }
@@ -515,9 +548,10 @@ fn lex_item(
             col,
             "')' without an opening '('; expected a comment as '( … )'",
         ));
-    } else if c == ';' {
+    } else if c == ';' || (c == '/' && chars.get(*i + 1) == Some(&'/')) {
+        let skip = if c == ';' { 1 } else { 2 };
         block.comments.push(
-            chars[*i + 1..]
+            chars[*i + skip..]
                 .iter()
                 .collect::<String>()
                 .trim()
@@ -650,6 +684,8 @@ fn keyword_error(run: &str, line: usize, col: usize, block: &Block) -> NcError {
                 "'{run}' is a Fanuc Macro B statement; macros are not supported yet, expand them in the post-processor"
             ),
         )
+    } else if let Some(m) = macro_b_abbreviation_message(run) {
+        NcError::new(line, col, m)
     } else {
         let letter = run.chars().next().unwrap_or('?');
         NcError::new(
@@ -658,6 +694,22 @@ fn keyword_error(run: &str, line: usize, col: usize, block: &Block) -> NcError {
             format!("expected a number after address '{letter}', found the letters '{run}'"),
         )
     }
+}
+
+/// The Macro B keyword that `run` abbreviates (`WH` → `WHILE`), which
+/// the lexer names rather than reads: Fanuc's macro syntax is `WHILE
+/// […] DO n`, and its program editor expands `WH`, `GO`, `TH` as they are
+/// keyed in; a file that still has them is refused at the abbreviation.
+pub(crate) fn macro_b_abbreviation_message(run: &str) -> Option<String> {
+    let full = match run {
+        "WH" => "WHILE",
+        "GO" => "GOTO",
+        "TH" => "THEN",
+        _ => return None,
+    };
+    Some(format!(
+        "'{run}' reads as {full} abbreviated: a Fanuc control stores and runs the full keyword (its editor expands abbreviations as they are keyed in), so '{run}' is not read as {full} here; write '{full}'"
+    ))
 }
 
 /// One address word at `chars[*i]` (the letter); advances `*i` past it.
@@ -676,10 +728,13 @@ fn lex_word(chars: &[char], i: &mut usize, line: usize) -> Result<Word, NcError>
         *i += 1;
     }
     let text: String = chars[start..*i].iter().collect();
+    // E is an address in NC (`F600E41`, `V0.2E41`: the word E41), so only
+    // a signed exponent (`X1E-3`) is refused as exponent notation.
     if *i + 1 < chars.len()
         && !text.is_empty()
         && matches!(chars[*i], 'e' | 'E')
-        && (chars[*i + 1].is_ascii_digit() || chars[*i + 1] == '+' || chars[*i + 1] == '-')
+        && matches!(chars[*i + 1], '+' | '-')
+        && chars.get(*i + 2).is_some_and(char::is_ascii_digit)
     {
         return Err(NcError::new(
             line,

@@ -7,7 +7,7 @@
 //!
 //! Units: mm, degrees for A/B/C, feed in mm/min.
 
-use super::arc::arc;
+use super::arc::arc_warned;
 use super::block::axis_words;
 use super::program::{err, Corner, CornerKind, Ctx, FeedMode, Modal, Warning};
 use super::rotation::end_to_machine;
@@ -35,6 +35,7 @@ pub(super) fn move_block(
         .words
         .iter()
         .filter(|w| matches!(w.letter, 'I' | 'J' | 'K' | 'R'))
+        .filter(|w| !(st.spindle_sync && w.letter == 'K'))
         .collect();
     if axis_words.is_empty() && centre_words.is_empty() {
         return match chamfer_c {
@@ -66,10 +67,14 @@ pub(super) fn move_block(
     }
     let start = st.pos;
     let end = target(st, &axis_words, scale);
+    let (motion, warning) = move_motion(b, st, mode, first, start, end, scale)?;
+    if let Some(m) = warning {
+        cx.warnings.push(Warning::at(b.line, first.column, m));
+    }
     let mut seg = Segment {
         block: Some(cx.bi),
         line: b.line,
-        motion: move_motion(b, st, mode, first, start, end, scale)?,
+        motion,
         start,
         end,
         feed: 0.0,
@@ -94,6 +99,9 @@ pub(super) fn move_block(
     seg.feed = move_feed(b, st, mode, first, seg.timed_length())?;
     let corner = corner_word(b, mode, chamfer_c, scale)?;
     corner_or_centre_warning(b, cx, mode, corner, centre_words.first().copied());
+    if st.rigid_tap && mode == MotionCode::Linear {
+        return rigid_tap(b, st, cx, seg, first);
+    }
     st.pos = end;
     cx.segments.push(seg);
     Ok(())
@@ -132,6 +140,36 @@ fn flat_arc(a: &super::segment::Arc, start: Pose, end: Pose, cw: bool) -> Option
     let (r, half) = (a.radius, chord / 2.0);
     let sagitta = half * half / (r + (r * r - half * half).max(0.0).sqrt());
     (sagitta <= 1e3 * r * f64::EPSILON).then_some(sagitta)
+}
+
+/// A G33.1 rigid tap (LinuxCNC): the synchronised move `seg` to its end
+/// point and the same move back to its start (the spindle reverses), both
+/// at K × S; the tool ends where it started. Both segments are `fixed`
+/// (the return has no word of its own). Under cutter compensation it is
+/// refused (LinuxCNC refuses it too).
+fn rigid_tap(
+    b: &Block,
+    st: &mut Modal,
+    cx: &mut Ctx,
+    seg: Segment,
+    first: &Word,
+) -> Result<(), NcError> {
+    if st.cutter.is_some() {
+        return Err(err(
+            b,
+            first,
+            "G33.1 rigid tapping with cutter compensation in force; cancel it with G40 first",
+        ));
+    }
+    let back = Segment {
+        start: seg.end,
+        end: seg.start,
+        fixed: true,
+        ..seg.clone()
+    };
+    cx.segments.push(Segment { fixed: true, ..seg });
+    cx.segments.push(back);
+    Ok(())
 }
 
 /// A G0/G1 block with centre words (`first`) but no axis words: no move
@@ -213,6 +251,9 @@ fn move_feed(
     length: f64,
 ) -> Result<f64, NcError> {
     let inverse = st.feed_mode == FeedMode::InverseTime;
+    if st.spindle_sync && mode == MotionCode::Linear {
+        return sync_feed(b, st, first);
+    }
     match mode {
         MotionCode::Rapid => Ok(0.0),
         _ if inverse && b.word('F').is_none() => Err(err(
@@ -239,9 +280,32 @@ fn move_feed(
     }
 }
 
+/// The feed of a G33 move, mm/min: its K (the pitch: length per spindle
+/// revolution, along the move, in program units) × the spindle speed S
+/// (rpm), as LinuxCNC runs it (the axis motion only; the spindle's
+/// position is not simulated).
+fn sync_feed(b: &Block, st: &Modal, first: &Word) -> Result<f64, NcError> {
+    let Some(k) = b.word('K').filter(|k| k.value > 0.0) else {
+        return Err(err(
+            b,
+            first,
+            "G33 move without a pitch: expected K (length per spindle revolution) greater than 0 on the block",
+        ));
+    };
+    match st.spindle {
+        Some(s) if s > 0.0 => Ok(k.value * super::block::length_scale(st) * s),
+        _ => Err(err(
+            b,
+            k,
+            "G33 needs the spindle speed: expected an S word (rpm, above 0) on this or an earlier block",
+        )),
+    }
+}
+
 /// The motion from `start` to `end` in `mode`: a rapid, a line, or the arc
 /// of the block's centre words (I/J/K made incremental first under G90.1;
-/// under G68 computed in the rotated frame and its centre turned back).
+/// under G68 computed in the rotated frame and its centre turned back),
+/// with the arc's radius-mismatch warning ([`super::arc::arc_warned`]).
 fn move_motion(
     b: &Block,
     st: &Modal,
@@ -250,10 +314,10 @@ fn move_motion(
     start: Pose,
     end: Pose,
     scale: f64,
-) -> Result<Motion, NcError> {
+) -> Result<(Motion, Option<String>), NcError> {
     Ok(match mode {
-        MotionCode::Rapid => Motion::Rapid,
-        MotionCode::Linear => Motion::Linear,
+        MotionCode::Rapid => (Motion::Rapid, None),
+        MotionCode::Linear => (Motion::Linear, None),
         MotionCode::Cw | MotionCode::Ccw => {
             let (start, end) = match st.rotation {
                 Some(r) => (r.pose_to_program(start), r.pose_to_program(end)),
@@ -266,7 +330,7 @@ fn move_motion(
             } else {
                 b
             };
-            let a = arc(
+            let (a, warning) = arc_warned(
                 blk,
                 first,
                 st.plane,
@@ -275,7 +339,10 @@ fn move_motion(
                 end,
                 scale,
             )?;
-            Motion::Arc(st.rotation.map_or(a, |r| r.arc_to_machine(a)))
+            (
+                Motion::Arc(st.rotation.map_or(a, |r| r.arc_to_machine(a))),
+                warning,
+            )
         }
     })
 }

@@ -55,14 +55,16 @@
 //! tool-centre path ([`super::cutter`], [`super::cutter_path`]); without
 //! one the simulated path is the programmed path, and one warning per
 //! stretch says so. G43 length compensation is ignored (warned). What is not simulated and would change the path is a
-//! located error: G33/G33.1 threading, G84.x, G87/G88, G93/G95 feeds,
+//! located error: G84.x, G87 (G33 runs as a line at K × S, G33.1 there
+//! and back, G88 with a rapid for its manual retract), G93/G95 feeds,
 //! G66.1 and nested G66 modal calls, splines, the G68 cases
 //! above and G68.1–G68.4 (3D coordinate conversion); an `E` word (not on a
 //! G187 block) stops the program as "this looks like a 3D-printer
 //! program". (G65 macro calls, macro `#` variables and `[ ]` expressions
 //! and LinuxCNC o-words run in [`super::macro_exec`].) Every error of a program is collected
-//! ([`parse_all`]). Arc radius consistency: the end radius must match the
-//! start radius within 0.005 mm + 1e-5·R; the arc radius is their mean.
+//! ([`parse_all`]). Arc radius consistency: the end radius may differ from
+//! the start radius by 0.005 mm + 1e-5·R, by LinuxCNC's tolerance with a
+//! warning, and no more ([`super::arc`]); the arc radius is their mean.
 //!
 //! Where the parts live (files under `src/nc/`): the run over the blocks,
 //! calls and returns in `run.rs` (sequence numbers in `sequence.rs`); one block's passes in `block.rs`, its G
@@ -149,6 +151,19 @@ impl DwellP {
     }
 }
 
+/// The length unit a program is read in until it states one (G20/G21):
+/// a machine setting (Fanuc parameter 0000#2 INI sets the unit at power-on
+/// and reset). Default mm.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase")]
+pub enum Units {
+    /// Millimetres (G21).
+    #[default]
+    Mm,
+    /// Inches (G20).
+    Inch,
+}
+
 /// Interpreter options. Unknown keys are rejected when deserialised (a
 /// misspelt key is an error naming it, never silently dropped).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -172,6 +187,11 @@ pub struct ParseOptions {
     /// Without a radius for a D the simulated path is the programmed path
     /// (warned).
     pub tool_radii: ToolRadii,
+    /// The unit of a program that does not state one (no G20/G21 before
+    /// its first move); a program that never states its units and whose
+    /// numbers look like the other unit's is warned about
+    /// ([`super::units`]).
+    pub units: Units,
     /// Most blocks the run may execute, loops and repeats included; a
     /// macro loop may jump back a quarter of it, and the program may give
     /// as many segments. At most (and by default) the product's budgets
@@ -186,8 +206,14 @@ pub struct ParseOptions {
 
 impl ParseOptions {
     /// The keys of the serialised form (camelCase).
-    pub const KEYS: [&'static str; 5] =
-        ["dwellP", "start", "skipBlockDelete", "cAxis", "toolRadii"];
+    pub const KEYS: [&'static str; 6] = [
+        "dwellP",
+        "start",
+        "skipBlockDelete",
+        "cAxis",
+        "toolRadii",
+        "units",
+    ];
 }
 
 impl Default for ParseOptions {
@@ -198,6 +224,7 @@ impl Default for ParseOptions {
             skip_block_delete: true,
             c_axis: false,
             tool_radii: ToolRadii::default(),
+            units: Units::default(),
             max_executed_blocks: MAX_EXECUTED_BLOCKS,
         }
     }
@@ -227,6 +254,11 @@ impl ParseOptions {
 
 /// Feeds above this (mm/min) are warned about as implausible for milling.
 pub const MAX_PLAUSIBLE_FEED: f64 = 100_000.0;
+
+/// Feeds per minute below this (mm/min) are warned about as implausibly
+/// slow (a lead-in posted with `F1.`: a 1 mm move at 1 mm/min takes a
+/// minute, and a long one can exceed the simulation's sample budget).
+pub const MIN_PLAUSIBLE_FEED: f64 = 10.0;
 
 /// Modal state after a block.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -271,6 +303,19 @@ pub struct Modal {
     /// Coordinate system rotation in force (G68 until G69,
     /// [`super::rotation`]); `pos` stays in the un-rotated frame.
     pub rotation: Option<Rotation>,
+    /// The modal tool-offset number D (the last D word outside a
+    /// G41.1/G42.1 block): a G41/G42 without D uses it, as the control
+    /// does.
+    #[serde(default)]
+    pub d: Option<f64>,
+    /// G33 (spindle-synchronised motion, LinuxCNC) in force: a G1-like
+    /// move whose feed is its K (pitch, length per revolution) × S.
+    #[serde(default)]
+    pub spindle_sync: bool,
+    /// G33.1 (rigid tapping, LinuxCNC) in force: a G33 move to the end
+    /// point and back to the start at the same K × S.
+    #[serde(default)]
+    pub rigid_tap: bool,
 }
 
 /// An interpreted program.
@@ -410,7 +455,9 @@ pub fn interpret_all(blocks: Vec<Block>, options: &ParseOptions) -> Result<Progr
             break;
         }
     }
-    run.finish(blocks)
+    let mut p = run.finish(blocks)?;
+    super::units::check(&mut p);
+    Ok(p)
 }
 
 /// True when the program is evidently multi-axis, so C is a rotary axis

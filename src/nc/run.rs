@@ -132,6 +132,7 @@ impl<'a> Run<'a> {
             opt,
             st: Modal {
                 pos: opt.start,
+                inch: opt.units == super::program::Units::Inch,
                 ..Modal::default()
             },
             segments: Vec::new(),
@@ -493,6 +494,7 @@ impl<'a> Run<'a> {
         }
         let mut last = Modal {
             pos: opt.start,
+            inch: opt.units == super::program::Units::Inch,
             ..Modal::default()
         };
         let modal: Vec<Modal> = modal

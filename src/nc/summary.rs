@@ -237,11 +237,22 @@ impl Tally {
     }
 }
 
-/// The units the program was written in: "mm", "inch" or "mm and inch".
+/// The units the program was written in: "mm", "inch" or "mm and inch",
+/// from the units in force where it moves (a G20 after the first block
+/// does not make an inch program "mm and inch"); with no move, the units
+/// at its end.
 fn units(p: &Program) -> &'static str {
-    let any_inch = p.modal.iter().any(|m| m.inch);
-    let any_mm = p.modal.iter().any(|m| !m.inch);
-    match (any_mm, any_inch) {
+    let moving: Vec<bool> = p
+        .segments
+        .iter()
+        .filter_map(|s| s.block.and_then(|bi| p.modal.get(bi)).map(|m| m.inch))
+        .collect();
+    let states = if moving.is_empty() {
+        p.modal.last().map(|m| m.inch).into_iter().collect()
+    } else {
+        moving
+    };
+    match (states.iter().any(|i| !i), states.iter().any(|&i| i)) {
         (true, true) => "mm and inch",
         (false, true) => "inch",
         _ => "mm",

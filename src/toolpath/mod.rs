@@ -152,13 +152,15 @@ pub enum ToolpathError {
     #[error(transparent)]
     Budget(#[from] crate::budget::BudgetError),
     /// The run would need too many samples.
-    #[error("the simulation would need {samples:.3e} samples (limit {limit}); increase dt or shorten the program, or check a very low feed")]
+    #[error("the simulation would need {samples:.3e} samples (limit {limit}){slowest}; increase dt or shorten the program, or check a very low feed")]
     TooLong {
         /// Samples needed (a float: a feed of 1e-21 mm/min asks for more
         /// than any integer type holds, which a cast would saturate).
         samples: f64,
         /// The limit.
         limit: usize,
+        /// `"; the longest move is line N (… s at F mm/min)"`, or empty.
+        slowest: String,
     },
 }
 

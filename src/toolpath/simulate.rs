@@ -211,7 +211,7 @@ fn simulate_keeping(
     if path.elements.is_empty() || tl.items.is_empty() {
         return Err(ToolpathError::Empty);
     }
-    let n = sample_count(&tl, cfg, tmax)?;
+    let n = sample_count(&tl, cfg, tmax, command)?;
     let end = reference.last().map_or(tl.origin, |s| s.end.p());
     let stride = max_series.map_or(0, |m| n.div_ceil(m));
     let mut run = Run::new(&path, n, stride);
@@ -266,7 +266,7 @@ fn simulate_keeping(
 pub fn sample_estimate(command: &[Segment], cfg: &SimConfig) -> Result<usize, ToolpathError> {
     cfg.validate()?;
     let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
-    sample_count(&timeline(command, cfg, tmax), cfg, tmax)
+    sample_count(&timeline(command, cfg, tmax), cfg, tmax, command)
 }
 
 /// The timed command: a G0 ends in an exact stop of `tA + 10·max T`, and
@@ -288,14 +288,33 @@ fn timeline(command: &[Segment], cfg: &SimConfig, tmax: f64) -> Timeline {
 }
 
 /// Number of samples at `dt` until `tA + 12·max T` after the last command
-/// ends, or [`ToolpathError::TooLong`] past [`MAX_SAMPLES`].
-fn sample_count(tl: &Timeline, cfg: &SimConfig, tmax: f64) -> Result<usize, ToolpathError> {
+/// ends, or [`ToolpathError::TooLong`] past [`MAX_SAMPLES`], naming the
+/// source line of the longest move of `command` (usually a very low feed).
+fn sample_count(
+    tl: &Timeline,
+    cfg: &SimConfig,
+    tmax: f64,
+    command: &[Segment],
+) -> Result<usize, ToolpathError> {
     let t_end = tl.end_time + cfg.t_a + 12.0 * tmax + cfg.dt;
     let n_f = (t_end / cfg.dt).ceil() + 1.0;
     if n_f > MAX_SAMPLES as f64 {
+        let slowest = tl
+            .items
+            .iter()
+            .max_by(|a, b| a.tau.total_cmp(&b.tau))
+            .and_then(|it| command.get(it.segment).map(|s| (s, it.tau)))
+            .map(|(s, tau)| {
+                format!(
+                    "; the longest move is line {} ({tau:.3e} s at {} mm/min)",
+                    s.line, s.feed
+                )
+            })
+            .unwrap_or_default();
         return Err(ToolpathError::TooLong {
             samples: n_f,
             limit: MAX_SAMPLES,
+            slowest,
         });
     }
     Ok(n_f as usize)

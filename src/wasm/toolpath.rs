@@ -36,8 +36,8 @@ export interface NcSegment {
 export interface NcWarning { /** [-] 1-based */ line: number; /** [-] 1-based */ column: number; message: string; file?: string }
 /** An extra program file holding subprograms (O… M99, G65 macros, o<name> sub … endsub) the main program calls. */
 export interface NcFile { name: string; text: string }
-/** Reading options; an unknown key is an error naming it. dwellP: how G4 P is read ('auto': with a decimal point seconds, without milliseconds; 'milliseconds': Fanuc; 'seconds': LinuxCNC/Grbl). skipBlockDelete (default true): skip '/' blocks. cAxis (default false): C is a rotary axis; otherwise C on G01 is a Fanuc chamfer. */
-export interface NcParseOptions { dwellP?: 'auto' | 'milliseconds' | 'seconds'; skipBlockDelete?: boolean; cAxis?: boolean; start?: Pose; files?: NcFile[]; /** [mm or inch] tool radius per D number, in the program's units */ toolRadii?: NcToolRadii }
+/** Reading options; an unknown key is an error naming it. dwellP: how G4 P is read ('auto': with a decimal point seconds, without milliseconds; 'milliseconds': Fanuc; 'seconds': LinuxCNC/Grbl). skipBlockDelete (default true): skip '/' blocks. cAxis (default false): C is a rotary axis; otherwise C on G01 is a Fanuc chamfer. units (default 'mm'): the machine's unit for a program that states none (no G20/G21). */
+export interface NcParseOptions { dwellP?: 'auto' | 'milliseconds' | 'seconds'; skipBlockDelete?: boolean; cAxis?: boolean; units?: 'mm' | 'inch'; start?: Pose; files?: NcFile[]; /** [mm or inch] tool radius per D number, in the program's units */ toolRadii?: NcToolRadii }
 /** Tool radius per D number for cutter compensation G41/G42, in program units (inch under G20): a map { D1: 3, "8": 0.25 } or a text "D1=3, D8=0.25"; each finite and ≥ 0. Without an entry for a D the simulated path is the programmed path (warned). */
 export type NcToolRadii = Record<string, number> | string;
 /** One cutter-compensation stretch (G41/G42 … G40). radius: [mm] the tool radius its offset path used; null: the simulated path is the programmed path (warned). */
