@@ -438,6 +438,20 @@ mod tests {
             assert!((p.error_bz - (p.delta_bz - 2e-5)).abs() < 1e-18, "{p:?}");
             assert!((p.error_bx - (p.delta_bx - 3e-5)).abs() < 1e-18, "{p:?}");
         }
+        // The work budget counts (ranges + harmonics) × sections × samples.
+        let mut big = cfg.clone();
+        big.ranges = vec![90.0, 180.0, 270.0];
+        big.locus.harmonics = vec![
+            Harmonic {
+                order: 2,
+                amplitude: 0.001,
+                phase: 0.0
+            };
+            2
+        ];
+        big.locus.samples = 1_000_001;
+        let e = angle_sweep(&big).unwrap_err().to_string();
+        assert!(e.starts_with("angle sweep: 10000010 points"), "{e}");
         cfg.sections.truncate(1);
         let e = angle_sweep(&cfg).unwrap_err().to_string();
         assert!(e.starts_with("sections: give at least two"), "{e}");
