@@ -495,6 +495,52 @@ mod tests {
     }
 
     #[test]
+    fn both_offsets_undetermined_are_named_together() {
+        // 40° with 8 and 4 µm of orders 2 and 3: neither offset is
+        // determined, and the note says so of both.
+        let hs = [h(2, 8.0, 0.7), h(3, 4.0, 1.9), h(7, 0.5, 0.0)];
+        let s = section(10.0, 0.004, 0.002, &hs, 40.0, 65.0);
+        let b = estimate_alignment_band(&[s], &CFG).unwrap();
+        let s = &b.sections[0];
+        assert_eq!((s.determined_z, s.determined_x), (false, false), "{s:?}");
+        let note = s.note.as_deref().unwrap();
+        assert!(note.starts_with("the offsets are not determined"), "{note}");
+    }
+
+    #[test]
+    fn the_tangential_term_predicts_the_second_order_error() {
+        // Offset (35, 35) µm over 120° from 5°, exact geometry read at the
+        // axis angle, no motion error: the centre's error is the
+        // tangential term (ĉ·t)²/R through the fit (module header, step
+        // 3) to 2 % (0.06 % measured), in both components.
+        let (cz, cx) = (0.035, 0.035);
+        let angle_deg: Vec<f64> = (0..=1200).map(|i| 5.0 + 0.1 * i as f64).collect();
+        let deviation: Vec<f64> = angle_deg
+            .iter()
+            .map(|a| {
+                let t = a.to_radians();
+                (cz + 100.0 * t.cos()).hypot(cx + 100.0 * t.sin()) - 100.0
+            })
+            .collect();
+        // The allowance's other part, max|Δ|²/R.
+        let rest = deviation.iter().fold(0.0f64, |m, d| m.max(d.abs())).powi(2) / 100.0;
+        let s = Section {
+            y: 5.0,
+            angle_deg,
+            deviation,
+        };
+        let b = estimate_alignment_band(&[s], &CFG).unwrap();
+        let (e, s) = (&b.estimate.sections[0], &b.sections[0]);
+        for (err, allowance) in [(e.z - cz, s.second_order_z), (e.x - cx, s.second_order_x)] {
+            let moved = allowance - rest;
+            assert!(
+                (err.abs() - moved).abs() < 0.02 * moved,
+                "error {err}, tangential {moved}: {s:?}"
+            );
+        }
+    }
+
+    #[test]
     fn a_flawless_centred_axis_is_determined_at_zero() {
         // Every deviation 0 over 90° from 100°: the offsets are 0 and
         // determined (the limit is floored at 1 nm, not at the trace's 0).

@@ -2,7 +2,7 @@
 //!
 //! Instruments write a column's unit into its name: `Time [ms]`, `t(s)`,
 //! `X_mm`, `x_um`, `POS X(um)`, `C deg`, `TCMD C(%)`. [`name_unit`] splits a
-//! name into its bare name and the unit; [`unit`] gives the unit's quantity
+//! name into its bare name and the unit; [`unit()`] gives the unit's quantity
 //! and its factor to the core's units (mm, s, rad, N·m).
 //!
 //! Reading chosen: `nm` in a header is N·m (servo tuning software writes
