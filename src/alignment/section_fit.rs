@@ -503,4 +503,21 @@ mod tests {
         bad[4] = f64::NAN;
         assert_eq!(centre_projection(&th, &bad), [0.0, 0.0]);
     }
+
+    #[test]
+    fn a_sub_nanometre_harmonic_is_below_the_floor() {
+        // 0.3 nm of order 3 on 0.05 nm of noise: the residual mean square
+        // is floored at (1 nm)² (no instrument resolves less), so the BIC
+        // keeps no harmonic; 30 nm of order 3 is kept.
+        let th = arc(0.0, 359.0, 1000);
+        let e = gauss(13, th.len());
+        for (amp, want) in [(3e-7, 1), (3e-5, 3)] {
+            let d: Vec<f64> = th
+                .iter()
+                .zip(&e)
+                .map(|(t, n)| 0.002 * t.cos() + amp * (3.0 * t).sin() + 5e-8 * n)
+                .collect();
+            assert_eq!(fit_section(&th, &d, 6).unwrap().order, want, "{amp} mm");
+        }
+    }
 }
