@@ -498,10 +498,28 @@ mod tests {
             "{p:?}"
         );
         assert_eq!(centre_projection(&th[..2], &c[..2]), [0.0, 0.0]);
+        // Three points are enough for a centre.
+        let p3 = centre_projection(&th[..3], &c[..3]);
+        assert!(
+            (p3[0] - 0.003).abs() < 1e-9 && (p3[1] + 0.001).abs() < 1e-9,
+            "{p3:?}"
+        );
         assert_eq!(centre_projection(&th, &c[..10]), [0.0, 0.0]);
         let mut bad = c.clone();
         bad[4] = f64::NAN;
         assert_eq!(centre_projection(&th, &bad), [0.0, 0.0]);
+    }
+
+    #[test]
+    fn a_flawless_trace_has_no_correlation_to_widen() {
+        // Residuals exactly zero: no autocorrelation (ρ undefined is 0),
+        // f = 1, σ = 0.
+        let th = arc(10.0, 200.0, 500);
+        let f = fit_section(&th, &vec![0.0; th.len()], 6).unwrap();
+        assert_eq!(
+            (f.correlation_factor, f.sigma, f.order),
+            (1.0, [0.0, 0.0], 1)
+        );
     }
 
     #[test]
