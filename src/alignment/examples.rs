@@ -380,6 +380,23 @@ mod tests {
     use super::*;
 
     #[test]
+    fn fig8_runs_the_papers_four_offsets_in_micrometres() {
+        // (0, 0), (0, 10), (10, 0), (10, 10) µm, as mm, in both readings.
+        for radius in [100.0, 0.0] {
+            let ex = example("fig8", radius).unwrap();
+            let want = [(0.0, 0.0), (0.0, 0.010), (0.010, 0.0), (0.010, 0.010)];
+            assert_eq!(ex.curves.len(), 4);
+            for (c, (z, x)) in ex.curves.iter().zip(want) {
+                assert!(
+                    (c.offset.z - z).abs() < 1e-15 && (c.offset.x - x).abs() < 1e-15,
+                    "{:?}",
+                    c.offset
+                );
+            }
+        }
+    }
+
+    #[test]
     fn every_example_runs_and_quotes_the_paper() {
         for r in [100.0, 0.0] {
             for n in NAMES {
