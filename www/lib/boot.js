@@ -53,6 +53,9 @@ export function linkValueProblem(e, raw) {
   }
   if (e.type === 'checkbox') return raw === 'true' || raw === 'false' ? null : `${labelOf(e)}: expected true or false`;
   if (e.type === 'number') {
+    // A field that starts blank (a required entry with no default, or
+    // "blank: the core's default") travels blank.
+    if (raw.trim() === '' && e.dataset.blank === 'ok') return null;
     const v = Number(raw);
     if (raw.trim() === '' || !Number.isFinite(v)) return `${labelOf(e)}: '${raw}' is not a number`;
     const lo = e.min === '' ? -Infinity : Number(e.min);

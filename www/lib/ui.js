@@ -26,6 +26,8 @@ export function h(tag, attrs = {}, ...children) {
  */
 export function numberField({ label, value, unit, step = 'any', min, max, id, title, onChange }) {
   const input = h('input', { type: 'number', step, min, max, id, title, value: String(value) });
+  // Blank by design (no default): a shared link may carry it blank.
+  if (value === '') input.dataset.blank = 'ok';
   if (onChange) input.addEventListener('change', () => onChange(Number(input.value)));
   const el = h('label', { class: 'field', title }, h('span', {}, label, unit ? h('span', { class: 'unit' }, ` [${unit}]`) : null), input);
   return {
