@@ -389,6 +389,37 @@ mod tests {
     }
 
     #[test]
+    fn defaults_and_locus_checks() {
+        // radius and samples left out are the paper's 100 mm and 1000.
+        let c: SweepConfig = serde_json::from_str(r#"{"ranges": [180]}"#).unwrap();
+        assert_eq!((c.locus.radius, c.locus.samples), (100.0, 1000));
+        // A negative or infinite radius, a harmonic with one non-finite
+        // part: each refused by name.
+        let mut l = c.locus.clone();
+        for r in [-1.0, f64::INFINITY] {
+            l.radius = r;
+            assert!(
+                l.validate("")
+                    .unwrap_err()
+                    .to_string()
+                    .starts_with("radius:"),
+                "{r}"
+            );
+        }
+        l.radius = 0.0;
+        assert!(l.validate("").is_ok());
+        for (a, p) in [(f64::NAN, 0.0), (0.001, f64::INFINITY)] {
+            l.harmonics = vec![Harmonic {
+                order: 2,
+                amplitude: a,
+                phase: p,
+            }];
+            let e = l.validate("").unwrap_err().to_string();
+            assert!(e.starts_with("harmonics[0]:"), "{e}");
+        }
+    }
+
+    #[test]
     fn bad_fields_are_named() {
         let mut c = cfg(Offset::default(), 100.0, vec![]);
         c.ranges = vec![90.0, 400.0];
