@@ -229,6 +229,24 @@ fn strict_diagnosis(text: &str) -> TraceError {
     }
 }
 
+/// The numbered (1-based) lines of `text` that are not comments or blank,
+/// after refusing a binary file and a control character (naming its line
+/// and column): the start both readers share.
+fn data_lines(text: &str) -> Result<Vec<(usize, &str)>, TraceError> {
+    if let Some(kind) = binary_kind(text) {
+        return Err(TraceError::NotText { kind });
+    }
+    let lines: Vec<(usize, &str)> = split_lines(text)
+        .into_iter()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l))
+        .collect();
+    if let Some(e) = control_char(&lines) {
+        return Err(e);
+    }
+    Ok(lines.into_iter().filter(|(_, l)| !is_comment(l)).collect())
+}
+
 fn is_comment(line: &str) -> bool {
     let t = line.trim();
     t.is_empty() || t.starts_with('#') || t.starts_with("//")
@@ -317,18 +335,7 @@ impl Table {
     /// assert_eq!(e.to_string(), "line 3, column 2 ('x'): 'abc' is not a number");
     /// ```
     pub fn parse(text: &str) -> Result<Self, TraceError> {
-        if let Some(kind) = binary_kind(text) {
-            return Err(TraceError::NotText { kind });
-        }
-        let lines: Vec<(usize, &str)> = split_lines(text)
-            .into_iter()
-            .enumerate()
-            .map(|(i, l)| (i + 1, l))
-            .collect();
-        if let Some(e) = control_char(&lines) {
-            return Err(e);
-        }
-        let lines: Vec<(usize, &str)> = lines.into_iter().filter(|(_, l)| !is_comment(l)).collect();
+        let lines = data_lines(text)?;
         let h = header_index(&lines).map_err(|e| match e {
             TraceError::NoData { .. } if lines.len() > 1 => strict_diagnosis(text),
             e => e,

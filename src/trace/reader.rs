@@ -25,7 +25,7 @@ use serde::{Deserialize, Serialize};
 
 use super::cells::{decimal, number, sniff, split_cells, Cell, Decimal, Number};
 use super::units::{name_unit, unit, Quantity, Unit, UNITS};
-use super::{binary_kind, control_char, is_comment, split_lines, Table, TraceError};
+use super::{data_lines, Table, TraceError};
 
 /// Options of [`read_table`] (the JS `TraceReadOptions`).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -291,18 +291,7 @@ fn check_options(opts: &ReadOptions, line: usize) -> Result<(), TraceError> {
 /// assert_eq!(e.to_string(), "line 3, column 2 ('x'): 'oops' is not a number");
 /// ```
 pub fn read_table(text: &str, opts: &ReadOptions) -> Result<TableRead, TraceError> {
-    if let Some(kind) = binary_kind(text) {
-        return Err(TraceError::NotText { kind });
-    }
-    let lines: Vec<(usize, &str)> = split_lines(text)
-        .into_iter()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l))
-        .collect();
-    if let Some(e) = control_char(&lines) {
-        return Err(e);
-    }
-    let lines: Vec<(usize, &str)> = lines.into_iter().filter(|(_, l)| !is_comment(l)).collect();
+    let lines = data_lines(text)?;
     let Some(&(first, first_text)) = lines.first() else {
         return Err(TraceError::Empty);
     };
