@@ -247,7 +247,9 @@ export function fmt(x, digits = 3) {
   return x.toFixed(digits);
 }
 
-/** One run state for a panel's result areas. start() marks the previous
+/** One run state for a panel's result areas. dependsOn(...inputs) marks
+ * shown results outdated (class `outdated`, a note, downloads off) as soon
+ * as one of those inputs is edited. start() marks the previous
  * results stale (class `stale`, `aria-busy`), disables the buttons in them
  * (no download of stale results) and greys them (class `dimmed`) if the
  * run lasts SHOW_AFTER_MS; ok() shows the new ones; fail(err) empties every
@@ -265,9 +267,48 @@ export function runState(main, ...extra) {
       a.removeAttribute('aria-busy');
     }
   };
+  let outdatedNote = null;
+  let editedDuringRun = false;
+  const clearOutdated = () => {
+    editedDuringRun = false;
+    outdatedNote?.remove();
+    outdatedNote = null;
+    for (const a of areas) a.classList.remove('outdated');
+  };
+  // An input edited after a run: the results shown belong to the inputs
+  // before the edit. They stay readable, marked at once, with their
+  // downloads off, until the next run.
+  const markOutdated = (e) => {
+    const t = e.target;
+    if (!(t instanceof Element) || t.closest('[data-display]') || areas.some((a) => a.contains(t))) return;
+    // An edit while a run is in flight: its result will already be outdated.
+    if (areas.some((a) => a.classList.contains('stale'))) {
+      editedDuringRun = true;
+      return;
+    }
+    outdated();
+  };
+  const outdated = () => {
+    if (outdatedNote || areas.every((a) => !a.childElementCount)) return;
+    for (const a of areas) {
+      a.classList.add('outdated');
+      for (const b of a.querySelectorAll('button')) b.disabled = true;
+    }
+    outdatedNote = h('p', { class: 'outdated-note', role: 'status' }, 'Inputs changed since these results were computed: they show the previous inputs. Run again to update them.');
+    main.prepend(outdatedNote);
+  };
   return {
+    /** Marks the results outdated when an input inside `containers` changes
+     * (not a display-only control, marked `data-display`). */
+    dependsOn(...containers) {
+      for (const c of containers) {
+        c.addEventListener('input', markOutdated);
+        c.addEventListener('change', markOutdated);
+      }
+    },
     start() {
       clearTimeout(dim);
+      clearOutdated();
       for (const a of areas) {
         a.classList.add('stale');
         a.setAttribute('aria-busy', 'true');
@@ -279,16 +320,22 @@ export function runState(main, ...extra) {
       return ++token;
     },
     current: (t) => t === token,
-    ok: settle,
+    ok() {
+      const edited = editedDuringRun;
+      settle();
+      if (edited) outdated();
+    },
     // A clear or a failure is the panel's newest state: a run still in
     // flight (say, the analysis of the previous file) must not draw over it.
     clear() {
       token++;
+      clearOutdated();
       for (const a of areas) a.replaceChildren();
       settle();
     },
     fail(err) {
       token++;
+      clearOutdated();
       for (const a of areas) a.replaceChildren();
       settle();
       return showError(main, err);

@@ -287,12 +287,14 @@ export async function mount(root, api) {
   const exUi = runState(exOut);
   const exRun = h('button', { id: 'ballbar-example-run', onclick: () => example() }, 'Run example');
 
-  root.replaceChildren(
-    h('div', { class: 'card' }, h('h3', {}, 'Trace'), h('div', { class: 'fields' }, source.el, ...Object.values(f).map((x) => x.el), harmField), drop, fileInfo, run),
-    out,
-    h('div', { class: 'card', id: 'align-card' }, h('h3', {}, 'Rotary-axis alignment from your sections (Takayama §2.2)'), h('div', { class: 'fields' }, ...Object.values(al).map((x) => x.el)), alDrop, alInfo, secBox, alRun, alOut),
-    h('div', { class: 'card' }, h('h3', {}, 'The paper’s simulations (Takayama et al., Figs. 6, 7, 8, 12)'), h('div', { class: 'fields' }, exName.el, exReading.el), exRun, exOut),
-  );
+  const traceCard = h('div', { class: 'card' }, h('h3', {}, 'Trace'), h('div', { class: 'fields' }, source.el, ...Object.values(f).map((x) => x.el), harmField), drop, fileInfo, run);
+  const alCard = h('div', { class: 'card', id: 'align-card' }, h('h3', {}, 'Rotary-axis alignment from your sections (Takayama §2.2)'), h('div', { class: 'fields' }, ...Object.values(al).map((x) => x.el)), alDrop, alInfo, secBox, alRun, alOut);
+  const exCard = h('div', { class: 'card' }, h('h3', {}, 'The paper’s simulations (Takayama et al., Figs. 6, 7, 8, 12)'), h('div', { class: 'fields' }, exName.el, exReading.el), exRun, exOut);
+  // Results shown are marked outdated as soon as an input they came from is edited.
+  outUi.dependsOn(traceCard);
+  alUi.dependsOn(alCard);
+  exUi.dependsOn(exCard);
+  root.replaceChildren(traceCard, out, alCard, exCard);
 
   async function getTrace() {
     if (source.value === 'file') {

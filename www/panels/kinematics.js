@@ -255,22 +255,23 @@ export async function mount(root, api) {
     ncInfo.textContent = 'Edited program: the axis words are checked against the selected machine when you compensate.';
   });
 
-  root.replaceChildren(
-    h('div', { class: 'card' }, h('h3', {}, 'Machine and geometric errors'), machineSel.el,
-      exampleBtn, h('small', {}, ' illustrative ISO 230-7 location errors and worm-gear backlash (not measured), then runs the cone-frustum test; the compensation uses the location errors'),
-      errBox),
-    h('div', { class: 'card' }, h('h3', {}, 'ISO 10791-6 cone-frustum ball-bar test'),
-      incl.el, feed.el, bar.el, cx.el, cy.el, cz.el,
-      h('label', { class: 'field' }, h('span', {}, 'Ideal servos'), ideal),
-      coneNote,
-      h('button', { id: 'kinematics-cone-run', dataset: { run: '' }, onclick: runCone }, 'Run 15°/45° × perpendicular/parallel'),
-      progress.el, coneOut),
-    h('div', { class: 'card' }, h('h3', {}, '5-axis NC compensation'),
-      h('button', { id: 'kinematics-sshape', onclick: loadSShape }, 'Load the ISO 10791-7 S-shape program (selects the Pocket NC, 15 %)'),
-      ncInfo, ncText, seed.el, runs.el, sigMm.el, sigRad.el,
-      h('label', { class: 'field' }, h('span', {}, 'Cutting-force deflection (E_ST)'), cutting),
-      h('button', { id: 'kinematics-nc-run', onclick: runNc }, 'Compensate'), ncCancel, ncProgress.el, ncOut),
-    out,
-  );
+  const machineCard = h('div', { class: 'card' }, h('h3', {}, 'Machine and geometric errors'), machineSel.el,
+    exampleBtn, h('small', {}, ' illustrative ISO 230-7 location errors and worm-gear backlash (not measured), then runs the cone-frustum test; the compensation uses the location errors'),
+    errBox);
+  const coneCard = h('div', { class: 'card' }, h('h3', {}, 'ISO 10791-6 cone-frustum ball-bar test'),
+    incl.el, feed.el, bar.el, cx.el, cy.el, cz.el,
+    h('label', { class: 'field' }, h('span', {}, 'Ideal servos'), ideal),
+    coneNote,
+    h('button', { id: 'kinematics-cone-run', dataset: { run: '' }, onclick: runCone }, 'Run 15°/45° × perpendicular/parallel'),
+    progress.el, coneOut);
+  const ncCard = h('div', { class: 'card' }, h('h3', {}, '5-axis NC compensation'),
+    h('button', { id: 'kinematics-sshape', onclick: loadSShape }, 'Load the ISO 10791-7 S-shape program (selects the Pocket NC, 15 %)'),
+    ncInfo, ncText, seed.el, runs.el, sigMm.el, sigRad.el,
+    h('label', { class: 'field' }, h('span', {}, 'Cutting-force deflection (E_ST)'), cutting),
+    h('button', { id: 'kinematics-nc-run', onclick: runNc }, 'Compensate'), ncCancel, ncProgress.el, ncOut);
+  // Results shown are marked outdated as soon as an input they came from is edited.
+  coneUi.dependsOn(machineCard, coneCard);
+  ncUi.dependsOn(machineCard, ncCard);
+  root.replaceChildren(machineCard, coneCard, ncCard, out);
   await loadMachine();
 }

@@ -389,6 +389,13 @@ export async function mount(root, api) {
     downloadText('feed-vector-test.json', JSON.stringify({ machine: last.m, condition: last.cond, before: last.before.summary, bestKffp: last.best, after: last.after?.summary, trace: last.trace?.summary }, null, 2), 'application/json');
   };
 
+  // Results shown are marked outdated as soon as an input they came from is
+  // edited: the axis table feeds every result, the condition every run.
+  const conditionFields = [j1.el, mode.el, omega.el, feed.el, rc.el, rw.el, accel.el, dt.el];
+  runUi.dependsOn(paramTable, readingSel.el, ...conditionFields);
+  sweepUi.dependsOn(paramTable, readingSel.el);
+  traceUi.dependsOn(paramTable, readingSel.el, mapBox, ...conditionFields);
+  recUi.dependsOn(paramTable, readingSel.el, mapBox, recCard, ...conditionFields);
   root.replaceChildren(
     h('div', { class: 'card' }, h('h3', {}, `Preset ${machine.name}`), h('p', {}, machine.description), h('p', { class: 'lead' }, `Source: ${machine.source}. Edit any value; the C torque limit is ${machine.axes.c.torqueMax} N·m.`), ...(readings.length > 1 ? [readingSel.el, h('p', { class: 'note' }, 'The paper leaves open how to read Table 1 for the X loop; only the load-side X inertia gives its ΔR > 0 on X (docs/readings.md).')] : []), paramTable),
     h('div', { class: 'card' }, h('h3', {}, 'Constant-feed-speed-vector test (§2.3, §3)'), h('div', { class: 'row' }, j1.el, mode.el, omega.el, feed.el, rc.el, rw.el, accel.el, dt.el, freqUnit.el),

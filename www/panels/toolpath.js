@@ -317,6 +317,11 @@ export async function mount(root, api) {
     }
   }
 
+  // Results shown are marked outdated as soon as a model input is edited
+  // (a new program clears them: programChanged).
+  const modelFields = [tA.el, tx.el, ty.el, tz.el, ovr.el, dt.el, radiiField];
+  simUi.dependsOn(...modelFields);
+  compUi.dependsOn(...modelFields, budget.el);
   run.addEventListener('click', simulate);
   comp.addEventListener('click', compensate);
   root.replaceChildren(
