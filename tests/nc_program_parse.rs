@@ -129,3 +129,42 @@ fn canonical_absolute_program_is_written_back_verbatim() {
     let src = "N10 G90 G17 G21\nN20 G0 X0 Y0\nN30 G1 X10. Y0 F2000 (cut)\nN40 G2 X20. Y0 R5.\nN50 G4 P100";
     assert_eq!(parse(src).unwrap().write(), src);
 }
+
+/// A binary file (here a PNG as a browser decodes it: its bytes ≥ 0x80 as
+/// U+FFFD) gets one error at line 1 that names what it is, not one error
+/// per line of its bytes; a program that mentions PNG in a comment is read.
+#[test]
+fn a_binary_file_is_one_named_error() {
+    use mtmotion::nc::program::{parse_all, ParseOptions};
+    let mut png = String::from("\u{fffd}PNG\r\n\u{1a}\n\0\0\0\rIHDR\0\0\u{1}\0");
+    for i in 0..400 {
+        png.push_str(&format!("\u{fffd}x{i}\u{fffd}\u{3}\n"));
+    }
+    let e = parse_all(&png, &ParseOptions::default()).unwrap_err();
+    assert_eq!(
+        e.errors.len(),
+        1,
+        "{:?}",
+        &e.errors[..2.min(e.errors.len())]
+    );
+    assert_eq!((e.errors[0].line, e.errors[0].column), (1, 1));
+    assert!(
+        e.errors[0].message.contains("a PNG image")
+            && e.errors[0].message.contains("not an NC program"),
+        "{}",
+        e.errors[0].message
+    );
+    let pdf = "%PDF-1.7\n%\u{fffd}\u{fffd}\n1 0 obj\n";
+    let e = parse_all(pdf, &ParseOptions::default()).unwrap_err();
+    assert!(
+        e.errors[0].message.contains("a PDF document"),
+        "{}",
+        e.errors[0].message
+    );
+    let p = parse_all(
+        "(PNG drawing, 12/2026)\nG21 G90 G1 X1 Y2 F100\nM30\n",
+        &ParseOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(p.segments.len(), 1);
+}

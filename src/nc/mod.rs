@@ -292,15 +292,16 @@ pub fn lex(text: &str) -> Result<Vec<Block>, NcError> {
 
 /// Lexes a whole program and collects every line's error (one per line,
 /// up to [`MAX_ERRORS`]); a line with an error gives an empty block.
-/// A text over the budget ([`crate::budget::check_text`]) gives no blocks
-/// and one error at line 1, column 1, before any work is done.
+/// A text over the budget ([`crate::budget::check_text`]) or a binary file
+/// ([`crate::trace::binary_kind`]: an image, a PDF, an archive) gives no
+/// blocks and one error at line 1, column 1, before any work is done.
 pub fn lex_all(text: &str) -> (Vec<Block>, NcErrors) {
     let mut errors = NcErrors {
         errors: Vec::new(),
         truncated: false,
     };
-    if let Err(e) = crate::budget::check_text("program", text) {
-        errors.push(NcError::new(1, 1, e.to_string()));
+    if let Some(why) = unreadable(text) {
+        errors.push(NcError::new(1, 1, why));
         return (Vec::new(), errors);
     }
     let blocks = split_lines(text)
@@ -317,6 +318,19 @@ pub fn lex_all(text: &str) -> (Vec<Block>, NcErrors) {
         })
         .collect();
     (blocks, errors)
+}
+
+/// Why `text` is refused as a whole before any line is read, if it is: over
+/// the text budget ([`crate::budget::check_text`]), or a binary file
+/// ([`crate::trace::binary_kind`]: a PNG dropped on the program gave 100+
+/// errors on its bytes; now one error says what the file is).
+pub fn unreadable(text: &str) -> Option<String> {
+    if let Err(e) = crate::budget::check_text("program", text) {
+        return Some(e.to_string());
+    }
+    crate::trace::binary_kind(text).map(|kind| {
+        format!("this file is {kind}, not an NC program (a text file): nothing was read")
+    })
 }
 
 /// Fanuc Macro B keywords: a letter run equal to one of these is a macro

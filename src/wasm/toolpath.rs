@@ -52,7 +52,8 @@ export interface NcSummary {
   cutterCompensation: NcCutterStretch[];
 }
 export interface ParsedNc { segments: NcSegment[]; warnings: NcWarning[]; summary: NcSummary }
-export interface NcCheck { errors: NcWarning[]; truncated: boolean; warnings: NcWarning[]; summary: NcSummary | null }
+/** notRead: the whole text was refused before any line was read (over the text budget, or not a text file: an image, a PDF, an archive). */
+export interface NcCheck { notRead: boolean; errors: NcWarning[]; truncated: boolean; warnings: NcWarning[]; summary: NcSummary | null }
 /** tA and T in s (T one value or [Tx, Ty, Tz]), dt in s, rapidFeed in mm/min, feedOverride as a fraction; dwellExactStop: every G4 first waits tA + 5·max T (exact stop, in-position check). */
 export interface ToolPathConfig {
   files?: NcFile[]; /** [mm or inch] tool radius per D number, in the program's units */ toolRadii?: NcToolRadii; /** [s] */ tA?: number; /** [s] */ T?: number | [number, number, number]; /** [s] */ dt?: number; /** [mm/min] */ rapidFeed?: number;
@@ -206,7 +207,11 @@ fn parse_options(options: JsValue) -> Result<ParseOptions, JsError> {
 }
 
 #[derive(Serialize)]
+#[serde(rename_all = "camelCase")]
 struct Checked<'a> {
+    /// The whole text was refused before any line was read (over the text
+    /// budget, or not a text file): the page keeps the program it had.
+    not_read: bool,
     errors: &'a [NcError],
     truncated: bool,
     warnings: &'a [Warning],
@@ -224,12 +229,19 @@ pub fn check_nc(
 ) -> Result<JsValue, JsError> {
     match parse_args(&text, options)? {
         Ok(p) => to_js(&Checked {
+            not_read: false,
             errors: &[],
             truncated: false,
             warnings: &p.warnings,
             summary: Some(summarize(&p, SimConfig::default().rapid_feed)),
         }),
         Err(e) => to_js(&Checked {
+            // a whole-text refusal is one error at line 1, column 1
+            not_read: e.errors.len() == 1
+                && (e.errors[0].line, e.errors[0].column) == (1, 1)
+                && text
+                    .as_string()
+                    .is_some_and(|t| crate::nc::unreadable(&t).is_some()),
             errors: &e.errors,
             truncated: e.truncated,
             warnings: &[],

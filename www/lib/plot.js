@@ -22,6 +22,9 @@ export function lineChart(el, opts) {
     const width = Math.max(200, el.clientWidth || 600);
     const drawExtras = (u) => {
       const { ctx, bbox } = u;
+      // the visible y range, for readers of the page (and its tests)
+      el.dataset.yMin = String(u.scales.y.min);
+      el.dataset.yMax = String(u.scales.y.max);
       ctx.save();
       for (const b of o.bands || []) {
         const x0 = u.valToPos(b.from, 'x', true);
@@ -45,7 +48,10 @@ export function lineChart(el, opts) {
         if (l.label) {
           ctx.fillStyle = l.color || '#b3261e';
           ctx.font = `${11 * devicePixelRatio}px system-ui`;
-          ctx.fillText(l.label, bbox.left + 4, y - 4);
+          // at the right end, inside the plot, below the line when it is near the top
+          ctx.textAlign = 'right';
+          ctx.fillText(l.label, bbox.left + bbox.width - 4, y - 4 < bbox.top + 12 * devicePixelRatio ? y + 12 * devicePixelRatio : y - 4);
+          ctx.textAlign = 'left';
         }
       }
       ctx.restore();
@@ -55,7 +61,10 @@ export function lineChart(el, opts) {
       {
         width,
         height: o.height || 260,
-        scales: { x: { time: false }, ...(o.scales || {}) },
+        // Horizontal lines (a torque limit) are always in view: the y range
+        // covers them as well as the data (the ±725 N·m limit never showed
+        // on a 0–300 N·m torque).
+        scales: { x: { time: false }, ...(o.hLines?.length ? { y: { range: (_u, min, max) => coverLines(min, max, o.hLines) } } : {}), ...(o.scales || {}) },
         axes: [{ label: o.xLabel }, { label: o.yLabel, size: 60 }],
         series: [{ label: o.xLabel || 'x' }, ...o.series.map((s, i) => ({ label: s.label, stroke: s.color || PALETTE[i % PALETTE.length], width: s.width || 1.5, dash: s.dash, points: { show: false } }))],
         hooks: { draw: [drawExtras] },
@@ -77,6 +86,18 @@ export function lineChart(el, opts) {
       build(opts);
     },
   };
+}
+
+/** A y range [lo, hi] over the data's [min, max] and every line's y, with
+ * 5 % of the span as margin so a line at the edge stays visible. */
+export function coverLines(min, max, lines) {
+  const ys = lines.map((l) => l.y).filter(Number.isFinite);
+  let lo = Math.min(Number.isFinite(min) ? min : Infinity, ...ys);
+  let hi = Math.max(Number.isFinite(max) ? max : -Infinity, ...ys);
+  if (!Number.isFinite(lo) || !Number.isFinite(hi)) return [0, 1];
+  if (lo === hi) [lo, hi] = [lo - 1, hi + 1];
+  const pad = 0.05 * (hi - lo);
+  return [lo - pad, hi + pad];
 }
 
 /** One ResizeObserver per chart element: a redraw into the same element

@@ -176,6 +176,7 @@ export async function mount(root, api) {
     lineChart(els[1], { title: 'Relative angle difference α − β (Figs. 13, 23)', xLabel: 't [s]', yLabel: 'mrad', series, data: diff, bands: band });
     const s = (after || before).series;
     lineChart(els[2], { title: `Angular velocity of each axis${after ? ' (Best K_FFP)' : ''} (Figs. 16, 24)`, xLabel: 't [s]', yLabel: 'rad/s', series: [{ label: 'C' }, { label: 'X–Y about the centre' }], data: [t, s.omegaC, s.omegaL] });
+    els[3].id = 'servo-torque-chart';
     lineChart(els[3], { title: 'C torque against its limit (Figs. 17, 19)', xLabel: 't [s]', yLabel: 'N·m', series: [{ label: 'C torque' }], data: [t, before.series.torqueC], hLines: limit ? [{ y: limit, label: `+${limit} N·m` }, { y: -limit, label: `−${limit} N·m` }] : [] });
     const ws = Float64Array.from({ length: 200 }, (_, i) => 0.1 * 10 ** (i / 50));
     const bode = await Promise.all(axes.map((a) => api.call('frequencyResponse', [{ ...m.axes[a], j1: a === 'c' ? cond.j1 : m.axes[a].j1, kffp: after ? last.best.kffp[a] : m.axes[a].kffp }, ws])));
@@ -277,11 +278,12 @@ export async function mount(root, api) {
       lineChart(els[1], { title: 'Half amplitude of the shape error (Fig. 14)', xLabel: 'ω [rad/s]', yLabel: 'µm', series, data: [paper.omega, ...data.map((d) => d.half)] });
       const rcs = Float64Array.from({ length: 200 }, (_, i) => 0.1 + (i * 5.9) / 199);
       lineChart(els[2], {
-        title: 'R_C – ω_R map with the saturation ω per load (Figs. 5, 21)', xLabel: 'R_C [mm]', yLabel: 'ω_R [rad/s]',
+        title: `R_C – ω_R map with the saturation ω per load; R_C min at ${feedAtCuttingPoint} mm/min (Figs. 5, 21)`, xLabel: 'R_C [mm]', yLabel: 'ω_R [rad/s]',
         series: [100, 200, 400].map((f) => ({ label: `F_C = ${f} mm/min` })),
         data: [rcs, ...[100, 200, 400].map((f) => rcs.map((r) => f / 60 / r))],
         scales: { x: { time: false }, y: { range: [0, 20] } },
-        hLines: sat.map((p, i) => ({ y: p.omegaSat, label: `saturation, J+J1 = ${fmt(p.jTotal, 2)} (R_C min ${fmt(p.rcMin, 2)} mm at ${feedAtCuttingPoint} mm/min)`, color: ['#b3261e', '#d9480f', '#862e9c'][i % 3] })),
+        // Greys, apart from the F_C curves' palette colours; short labels that fit the plot.
+        hLines: sat.map((p, i) => ({ y: p.omegaSat, label: `ω_sat, J+J1 = ${fmt(p.jTotal, 2)} (R_C min ${fmt(p.rcMin, 2)} mm)`, color: ['#212529', '#495057', '#868e96'][i % 3] })),
       });
     } catch (e) {
       progress.done();

@@ -89,24 +89,22 @@ export async function mount(root, api) {
     options: [['arcs', 'Fig. 2-like path, B–D as 43 arcs'], ['lines', 'Fig. 2-like path, B–D as 83 lines']],
     onChange: (v) => { files.clear(); nc.value = examples[v]; fileName = `example-${v}.nc`; programChanged(); checkProgram(); },
   });
-  // A program of megabytes is checked by the core before it goes into the
-  // text area (a text area of 50 MB freezes the page while it lays out):
-  // one the core refuses (its text budget) is named with the error instead.
-  const LARGE_TEXT = 1_000_000;
+  // Every dropped file is checked first: one the core does not read at all
+  // (over its text budget, or not a text file: a PNG dropped on the program
+  // replaced it with binary text and 100+ errors) is refused, and the
+  // program in the text area stays as it was.
   const takeProgram = async (text, name) => {
     let known;
-    if (text.length > LARGE_TEXT) {
-      let problem = null;
-      try {
-        known = await api.call('checkNc', [text, files.options(radiiOption())]);
-        if (known.errors.length && known.errors[0].line <= 1) problem = known.errors[0].message;
-      } catch (e) {
-        problem = e instanceof Error ? e.message : String(e);
-      }
-      if (problem) {
-        showError(check, new Error(`${name} was not loaded: ${problem}`));
-        return;
-      }
+    let problem = null;
+    try {
+      known = await api.call('checkNc', [text, files.options(radiiOption())]);
+      if (known.notRead) problem = known.errors[0].message;
+    } catch (e) {
+      problem = e instanceof Error ? e.message : String(e);
+    }
+    if (problem) {
+      showError(check, new Error(`${name} was not loaded: ${problem}. The program shown is unchanged.`));
+      return;
     }
     nc.value = text;
     fileName = name;

@@ -42,6 +42,10 @@ export default async function (page, check) {
   await page.click('[data-tab="servo"]');
   await page.click('#servo-run');
   await page.waitForFunction(() => document.querySelectorAll('#servo-charts .uplot').length >= 6);
+  // The torque chart shows its limit: ±torqueMax of the C axis is inside the visible range.
+  const limit = Number(await page.inputValue('#servo-p-c-torqueMax'));
+  const [yMin, yMax] = await page.$eval('#servo-torque-chart', (e) => [Number(e.dataset.yMin), Number(e.dataset.yMax)]);
+  check(limit > 0 && yMin < -limit && yMax > limit, `servo: the torque chart's range ${yMin}…${yMax} N·m should include ±${limit} N·m`);
   await page.selectOption('#servo-bode-unit', 'hz');
   await page.waitForFunction(() => /f \[Hz\]/.test(document.querySelector('#servo-charts').textContent));
   out = await labelsOutside(page);
