@@ -135,6 +135,9 @@ function niceTicks(lo, hi, n = 5) {
 // numerical noise (4.4e-14 on a colour bar of a zero range): it reads 0.
 const tick = (v) => (Math.abs(v) < 1e-12 ? '0' : Math.abs(v) >= 1e4 || Math.abs(v) < 1e-3 ? v.toExponential(1) : String(+v.toPrecision(6)));
 
+/** True on a touch screen without a mouse (a phone): hints say pinch, not wheel. */
+const COARSE = () => typeof matchMedia === 'function' && matchMedia('(pointer: coarse)').matches;
+
 function canvasChart(el, opts, draw) {
   // Zoom and pan: the draw function reads state.view (null = fit) and
   // leaves in state.map how to turn canvas pixels into its view.
@@ -154,7 +157,7 @@ function canvasChart(el, opts, draw) {
     ctx.scale(dpr, dpr);
     ctx.font = '11px system-ui';
     const legend = draw(ctx, w, hgt, state) || [];
-    if (state.map) el.append(hint('wheel to zoom, drag to pan, double-click to reset'));
+    if (state.map) el.append(hint(COARSE() ? 'pinch to zoom, drag sideways to pan, double-tap to reset' : 'wheel to zoom, drag to pan, double-click to reset'));
     if (legend.length) {
       const lg = document.createElement('div');
       lg.className = 'legend';
@@ -193,19 +196,48 @@ function canvasChart(el, opts, draw) {
       st.view = st.map.zoom(at(e), Math.exp(Math.sign(e.deltaY) * 0.15));
       el._mtPaint();
     }, { passive: false });
+    // One pointer pans; two (a pinch on a touch screen) zoom about their
+    // midpoint by the change of their distance. The canvas leaves vertical
+    // swipes to the page (touch-action: pan-y, style.css), so a phone still
+    // scrolls past a chart.
     let drag = null;
+    const pointers = new Map();
+    let pinch = null;
+    const spread = () => {
+      const [a, b] = [...pointers.values()];
+      return { d: Math.hypot(a[0] - b[0], a[1] - b[1]), mid: [(a[0] + b[0]) / 2, (a[1] + b[1]) / 2] };
+    };
     el.addEventListener('pointerdown', (e) => {
       if (!el._mtState.map || e.target.tagName !== 'CANVAS') return;
-      drag = { p: at(e), map: el._mtState.map };
+      pointers.set(e.pointerId, at(e));
       e.target.setPointerCapture?.(e.pointerId);
+      if (pointers.size === 2) {
+        drag = null;
+        pinch = spread();
+      } else if (pointers.size === 1) drag = { p: at(e), map: el._mtState.map };
     });
     el.addEventListener('pointermove', (e) => {
+      if (!pointers.has(e.pointerId)) return;
+      pointers.set(e.pointerId, at(e));
+      if (pinch && pointers.size === 2) {
+        const now = spread();
+        if (now.d > 0 && pinch.d > 0) {
+          el._mtState.view = el._mtState.map.zoom(now.mid, pinch.d / now.d);
+          el._mtPaint();
+        }
+        pinch = now;
+        return;
+      }
       if (!drag) return;
       const p = at(e);
       el._mtState.view = drag.map.pan(p[0] - drag.p[0], p[1] - drag.p[1]);
       el._mtPaint();
     });
-    const end = () => (drag = null);
+    const end = (e) => {
+      pointers.delete(e.pointerId);
+      if (pointers.size < 2) pinch = null;
+      drag = null;
+    };
     el.addEventListener('pointerup', end);
     el.addEventListener('pointercancel', end);
     el.addEventListener('dblclick', () => {

@@ -19,8 +19,13 @@ figcaption { font-size: 9pt; color: #4a5562; } pre { font-size: 8pt; max-height:
 @media print { body { margin: 0; max-width: none; } h2 { break-before: auto; } a { color: inherit; } }
 `;
 
-/** The report section of one panel (a detached element). */
+/** True when `el` holds a result area (runState) with a result in it. */
+const hasResult = (el) => [...el.querySelectorAll('[data-result]')].some((a) => a.childElementCount > 0);
+
+/** The report section of one panel (a detached element), or null when
+ * none of its results has been computed. */
 function panelSection(panel) {
+  if (!hasResult(panel)) return null;
   const section = h('section', { class: 'report-panel', id: `report-${panel.dataset.panel}` });
   section.append(h('h2', {}, panel.querySelector('h2')?.textContent || panel.dataset.panel));
   const lead = panel.querySelector('.lead');
@@ -54,6 +59,11 @@ function panelSection(panel) {
     else if (o.tagName === 'TEXTAREA') c.replaceWith(h('pre', {}, v));
     else c.replaceWith(h('span', { class: 'value' }, v === '' ? '—' : v));
   });
+  // Only the cards that were run: a card with result areas, all empty, is left out.
+  [...body.querySelectorAll('.card')].forEach((c, i) => {
+    if (c.querySelector('[data-result]') && !hasResult(c)) clone.querySelectorAll('.card')[i].dataset.notRun = '';
+  });
+  for (const c of clone.querySelectorAll('[data-not-run]')) c.remove();
   for (const d of clone.querySelectorAll('details')) d.open = true;
   for (const x of clone.querySelectorAll('button, .drop, .chart-hint, .progress, [hidden], script')) x.remove();
   for (const x of clone.querySelectorAll('[id]')) x.removeAttribute('id');
@@ -65,15 +75,22 @@ function panelSection(panel) {
 export function reportHtml(names) {
   const version = /Core v([^\s]+)/.exec(document.getElementById('status')?.textContent || '')?.[1] || 'unknown';
   const now = new Date();
-  const panels = names.map((n) => document.getElementById(`panel-${n}`)).filter(Boolean);
+  const all = names.map((n) => document.getElementById(`panel-${n}`)).filter(Boolean);
+  const sections = all.map((p) => [p, panelSection(p)]);
+  const panels = sections.filter(([, s]) => s).map(([p]) => p);
+  const notRun = sections.filter(([, s]) => !s).map(([p]) => p.querySelector('h2')?.textContent || p.dataset.panel);
+  const field = (id) => /** @type {HTMLInputElement | null} */ (document.getElementById(id))?.value.trim() || '—';
   const doc = h('div', {},
     h('h1', {}, 'mtmotion report'),
     h('table', { class: 'meta', id: 'report-meta' }, h('tbody', {},
       h('tr', {}, h('td', {}, 'Date'), h('td', { id: 'report-date' }, now.toISOString().replace('T', ' ').replace(/\.\d+Z$/, ' UTC'))),
       h('tr', {}, h('td', {}, 'Software'), h('td', { id: 'report-version' }, `mtmotion core v${version} (WebAssembly, computed in the browser)`)),
-      h('tr', {}, h('td', {}, 'Contents'), h('td', {}, panels.map((p) => p.querySelector('h2')?.textContent).join('; '))))),
+      h('tr', {}, h('td', {}, 'Machine'), h('td', { id: 'report-machine-value' }, field('report-machine'))),
+      h('tr', {}, h('td', {}, 'Operator'), h('td', { id: 'report-operator-value' }, field('report-operator'))),
+      h('tr', {}, h('td', {}, 'Contents'), h('td', {}, panels.map((p) => p.querySelector('h2')?.textContent).join('; ') || 'nothing has been run yet')),
+      ...(notRun.length ? [h('tr', {}, h('td', {}, 'Not run (left out)'), h('td', { id: 'report-not-run' }, notRun.join('; ')))] : []))),
     h('p', { class: 'unit' }, 'Every value below is as shown on the page when the report was made: inputs as entered, results as computed by the core. Plots are images.'),
-    ...panels.map(panelSection),
+    ...sections.map(([, s]) => s).filter(Boolean),
   );
   return `<!doctype html>\n<html lang="en"><head><meta charset="utf-8"><title>mtmotion report ${now.toISOString().slice(0, 10)}</title><meta name="viewport" content="width=device-width, initial-scale=1"><style>${CSS}</style></head><body>${doc.innerHTML}</body></html>\n`;
 }

@@ -258,6 +258,8 @@ export function fmt(x, digits = 3) {
  * started since. */
 export function runState(main, ...extra) {
   const areas = [main, ...extra];
+  // The report includes only cards whose result areas hold a result.
+  for (const a of areas) a.dataset.result = '';
   let token = 0;
   let dim = null;
   const settle = () => {

@@ -77,7 +77,17 @@ export async function mount(root, api) {
     servo: numberField({ label: 'Servo mismatch (X lags)', unit: 'ms', value: 0, id: 'ballbar-servo' }),
     squareness: numberField({ label: 'Squareness', unit: 'µrad', value: 0, id: 'ballbar-squareness' }),
     maxOrder: numberField({ label: 'Harmonics up to order', value: 10, id: 'ballbar-max-order', min: 2, max: 50, step: 1 }),
+    tolerance: numberField({ label: 'G tolerance (ISO 230-4)', unit: 'µm; blank: none', value: '', id: 'ballbar-tolerance', min: 0, title: 'The circular deviation G allowed: each run is reported as pass or fail against it' }),
   };
+  // The synthetic generator's fields describe no loaded file: they are
+  // hidden (and so left out of the report) while a file is the trace.
+  const SYNTHETIC = ['range', 'offX', 'offY', 'feed', 'backlashX', 'backlashY', 'servo', 'squareness'];
+  const showSource = () => {
+    const file = source.value === 'file';
+    for (const k of SYNTHETIC) f[k].el.hidden = file;
+    harmField.hidden = file;
+  };
+  source.input.addEventListener('change', showSource);
   const harm = h('input', { id: 'ballbar-harmonics-input', value: '2:5, 3:3, 5:2.5', title: 'order:amplitude µm[:phase °], comma-separated (sine convention: A·sin(nθ + φ))' });
   const harmField = h('label', { class: 'field' }, h('span', {}, 'Motion-error harmonics ', h('span', { class: 'unit' }, '[order:µm[:°]]')), harm);
   let loaded = null;
@@ -94,6 +104,7 @@ export async function mount(root, api) {
         const trimmed = loaded.trimming ? loaded.trimming.trimmed.length : 0;
         fileInfo.textContent = `${name}: ${loaded.runs.length} run(s), ${loaded.runs.map((r) => `${r.direction} ${r.angleRad.length} points`).join(', ')}${trimmed ? `; ${trimmed} stretch(es) trimmed (see the results)` : ''}`;
         source.value = 'file';
+        showSource();
         await analyse();
       } catch (e) {
         notLoaded(e, name);
@@ -105,6 +116,7 @@ export async function mount(root, api) {
     loaded = null;
     fileInfo.textContent = `${name}: not loaded (see the error below). No file loaded.`;
     source.value = 'synthetic';
+    showSource();
     outUi.fail(e);
   }
   const run = h('button', { id: 'ballbar-run', class: 'primary', dataset: { run: '' }, onclick: () => analyse() }, 'Analyse');
@@ -358,7 +370,10 @@ export async function mount(root, api) {
     const polarEl = h('div', { id: 'ballbar-polar' });
     const barEl = h('div', { id: 'ballbar-harmonics' });
     const sweepEl = h('div', { id: 'ballbar-sweep' });
-    const isoRows = iso.runs.map((r) => [r.direction.toUpperCase(), fmtRes(r.gUm), fmtRes(r.fMaxUm), fmtRes(r.fMinUm), fmtRes(r.centreXMm / UM), fmtRes(r.centreYMm / UM), fmt(r.spanDeg, 1)]);
+    // Pass/fail against the user's G tolerance, at the display resolution the G is shown with.
+    const tol = f.tolerance.value;
+    const verdict = (g) => (Number.isFinite(tol) ? (Number(fmtRes(g)) <= tol ? 'pass' : 'FAIL') : null);
+    const isoRows = iso.runs.map((r) => [r.direction.toUpperCase(), fmtRes(r.gUm), ...(Number.isFinite(tol) ? [h('strong', { class: `verdict-${verdict(r.gUm)}` }, verdict(r.gUm))] : []), fmtRes(r.fMaxUm), fmtRes(r.fMinUm), fmtRes(r.centreXMm / UM), fmtRes(r.centreYMm / UM), fmt(r.spanDeg, 1)]);
     const d = iso.diagnostics;
     const diagRows = d
       ? [
@@ -374,7 +389,7 @@ export async function mount(root, api) {
           ['Run-model residual RMS (fit quality)', `${fmtLimit(d.residualRmsUm)} µm (the noise the standard errors rest on)`],
         ]
       : [['Diagnostics', 'need a run over a full revolution']];
-    const isoTable = table(['run', 'G [µm]', 'F max [µm]', 'F min [µm]', 'LSC centre X [µm]', 'LSC centre Y [µm]', 'span [°]'], isoRows);
+    const isoTable = table(['run', 'G [µm]', ...(Number.isFinite(tol) ? [`G ≤ ${fmtRes(tol)} µm`] : []), 'F max [µm]', 'F min [µm]', 'LSC centre X [µm]', 'LSC centre Y [µm]', 'span [°]'], isoRows);
     isoTable.querySelector('table').id = 'ballbar-iso';
     const diagTable = table(['diagnostic', 'value'], diagRows);
     diagTable.querySelector('table').id = 'ballbar-diagnostics';

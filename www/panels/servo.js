@@ -12,6 +12,26 @@ const FIELDS = [
 ];
 
 /**
+ * A core error about the axis table in the page's terms: the parameter by
+ * its row label, axis column and unit ("C axis, Kpp [1/s]: empty; …"), not
+ * by its API path ("machine.axes.c: missing key 'kpp'"). Other messages
+ * pass unchanged.
+ * @param {unknown} e
+ */
+export function inTableTerms(e) {
+  const message = e instanceof Error ? e.message : String(e);
+  const label = (a, f) => {
+    const row = FIELDS.find(([k]) => k === f);
+    return row ? `${a.toUpperCase()} axis, ${row[1]} [${row[2]}]` : null;
+  };
+  const said = message
+    .replace(/machine\.axes\.(\w+): missing key '(\w+)'/g, (m, a, f) => (label(a, f) ? `${label(a, f)}: empty; enter a value in the axis table` : m))
+    .replace(/machine\.axes\.(\w+)\.(\w+):/g, (m, a, f) => (label(a, f) ? `${label(a, f)}:` : m))
+    .replace(/axis (\w+): axis parameter `(\w+)`/g, (m, a, f) => label(a, f) ?? m);
+  return new Error(said);
+}
+
+/**
  * @param {HTMLElement} root
  * @param {import('../lib/api.js').Api} api
  */
@@ -136,7 +156,7 @@ export async function mount(root, api) {
       );
       recUi.ok();
     } catch (e) {
-      recUi.fail(e);
+      recUi.fail(inTableTerms(e));
     }
   };
   const recCard = h('div', { class: 'subcard', id: 'servo-tk' },
@@ -232,27 +252,48 @@ export async function mount(root, api) {
       status.textContent = 'done';
     } catch (e) {
       status.textContent = '';
-      runUi.fail(e);
+      runUi.fail(inTableTerms(e));
     }
   };
 
-  // ---- the paper's sweep (Figs. 14, 15, 20, 22) and the saturation map (Fig. 21) ----
+  // ---- the sweep (Figs. 14, 15, 20, 22) and the saturation map (Fig. 21) ----
+  // On the user's axis (the table) and the user's loads and speeds; the
+  // paper's lists are the defaults. The paper's quoted numbers are shown
+  // beside ours only for the paper's own case (preset table, paper's loads).
+  const sweepJ1 = h('input', { id: 'servo-sweep-j1', value: paper.j1.join(', '), size: 18, title: 'Load inertias J1 on C, comma-separated' });
+  const sweepOmega = h('input', { id: 'servo-sweep-omega', value: paper.omega.map((w) => +w.toFixed(6)).join(', '), size: 30, title: 'Angular velocities ω, comma-separated' });
+  /** The numbers of a comma-separated list field, or an error naming the field. */
+  const listOf = (input, label) => {
+    const parts = input.value.split(/[,;\s]+/).filter(Boolean);
+    if (!parts.length) throw new Error(`${label}: enter one value or more, comma-separated`);
+    return parts.map((p) => {
+      const v = Number(p);
+      if (!Number.isFinite(v)) throw new Error(`${label}: '${p.slice(0, 20)}' is not a number`);
+      return v;
+    });
+  };
+  const sameList = (a, b) => a.length === b.length && a.every((v, i) => Math.abs(v - b[i]) <= 1e-6 * Math.max(1, Math.abs(b[i])));
+  /** True when the axis table holds the preset's values (the paper's axis). */
+  const presetTable = () => axes.every((a) => FIELDS.every(([f]) => inputs[`${a}.${f}`].value === shown(machine.axes[a][f])));
   const sweep = async () => {
     const m = currentMachine();
     const rows = [];
-    const data = paper.j1.map(() => ({ before: [], after: [], half: [], kx: [], ky: [] }));
     let done = 0;
     sweepUi.start();
     try {
+      const loads = listOf(sweepJ1, 'Sweep loads J1 [kg·m²]');
+      const omegas = listOf(sweepOmega, 'Sweep ω [rad/s]');
+      const papers = presetTable() && sameList(loads, paper.j1) && sameList(omegas, paper.omega);
+      const data = loads.map(() => ({ before: [], after: [], half: [], kx: [], ky: [] }));
       // J + J1 per load as the core sums it (the C axis' J as edited); the
       // torque limit is the machine's C torqueMax (the core names it if absent).
       const { rc: rcP, rw: rwP, accelTime, feedAtCuttingPoint } = paper;
-      const sat = await api.call('torqueSaturation', [m, { j1: paper.j1, accelTime, feedAtCuttingPoint, dt: dt.value }]);
+      const sat = await api.call('torqueSaturation', [m, { j1: loads, accelTime, feedAtCuttingPoint, dt: dt.value }]);
       // One bestKffp per (J1, ω) on all cores (lib/pool.js), in order.
-      const args = paper.j1.flatMap((jv) => paper.omega.map((w) => [m, { rc: rcP, rw: rwP, omega: w, accelTime, j1: jv, dt: dt.value }]));
+      const args = loads.flatMap((jv) => omegas.map((w) => [m, { rc: rcP, rw: rwP, omega: w, accelTime, j1: jv, dt: dt.value }]));
       const results = await mapCalls(api, 'bestKffp', args, { onProgress: (d, n) => progress.set(d / n, `${d} of ${n} points`) });
-      for (const ji of paper.j1.keys()) {
-        for (const w of paper.omega) {
+      for (const ji of loads.keys()) {
+        for (const w of omegas) {
           const r = results[done];
           data[ji].before.push(r.before.meanAngleDiff * 1e3);
           data[ji].after.push(r.after.meanAngleDiff * 1e3);
@@ -268,14 +309,21 @@ export async function mount(root, api) {
       // paper / ours / why: the points suzuki §5.2 quotes, from the preset (paperSweep.saturation).
       // as the paper prints them
       const quoted = (i, key) => String(paper.saturation[i]?.[key] ?? '—');
-      const satTable = table(['J+J1 [kg·m²]', 'accelSat paper / ours [rad/s²]', 'ωsat paper / ours [rad/s]', `R_C min paper / ours at ${feedAtCuttingPoint} mm/min [mm]`], sat.map((p, i) => [fmt(p.jTotal, 2), `${quoted(i, 'accelSat')} / ${fmt(p.accelSat, 1)}`, `${quoted(i, 'omegaSat')} / ${fmt(p.omegaSat, 3)}`, `${quoted(i, 'rcMin')} / ${fmt(p.rcMin, 3)}`]));
-      satTable.append(h('p', { class: 'note' }, `Why: reading 'preControlOff' (commanded acceleration ω/${accelTime} s, C loop with K_FFP = 0; the paper does not state Fig. 17's K_FFP). The paper's three points scatter ±4.7 % in ω·J, so no reading matches all three within 2 %; see docs/readings.md.`));
+      const satTable = papers
+        ? table(['J+J1 [kg·m²]', 'accelSat paper / ours [rad/s²]', 'ωsat paper / ours [rad/s]', `R_C min paper / ours at ${feedAtCuttingPoint} mm/min [mm]`], sat.map((p, i) => [fmt(p.jTotal, 2), `${quoted(i, 'accelSat')} / ${fmt(p.accelSat, 1)}`, `${quoted(i, 'omegaSat')} / ${fmt(p.omegaSat, 3)}`, `${quoted(i, 'rcMin')} / ${fmt(p.rcMin, 3)}`]))
+        : table(['J+J1 [kg·m²]', 'accelSat, your axis [rad/s²]', 'ωsat, your axis [rad/s]', `R_C min at ${feedAtCuttingPoint} mm/min, your axis [mm]`], sat.map((p) => [fmt(p.jTotal, 2), fmt(p.accelSat, 1), fmt(p.omegaSat, 3), fmt(p.rcMin, 3)]));
+      satTable.append(h('p', { class: 'note', id: 'servo-sweep-whose' }, papers
+        ? `The paper's own case (preset axis table, its loads and speeds), so its quoted points are shown beside ours. Why they differ: reading 'preControlOff' (commanded acceleration ω/${accelTime} s, C loop with K_FFP = 0; the paper does not state Fig. 17's K_FFP). The paper's three points scatter ±4.7 % in ω·J, so no reading matches all three within 2 %; see docs/readings.md.`
+        : `Your axis (the table above${presetTable() ? '' : ', as edited'}) and your loads: the paper's quoted points belong to its own axis and loads and are not shown. Reading 'preControlOff': commanded acceleration ω/${accelTime} s, C loop with K_FFP = 0.`));
       satTable.querySelector('table').id = 'servo-saturation-table';
       sweepBox.replaceChildren(...els, t, h('h4', {}, 'Torque-saturation limits (Figs. 17, 21)'), satTable);
       sweepUi.ok();
       const series = sat.map((p) => ({ label: `J+J1 = ${fmt(p.jTotal, 2)}` }));
-      lineChart(els[0], { title: 'Mean α − β with K_FFP set (Figs. 15, 20)', xLabel: 'ω [rad/s]', yLabel: 'mrad', series, data: [paper.omega, ...data.map((d) => d.before)] });
-      lineChart(els[1], { title: 'Half amplitude of the shape error (Fig. 14)', xLabel: 'ω [rad/s]', yLabel: 'µm', series, data: [paper.omega, ...data.map((d) => d.half)] });
+      // uPlot needs ascending x: the points in ω order
+      const order = [...omegas.keys()].sort((a, b) => omegas[a] - omegas[b]);
+      const byOmega = (v) => order.map((i) => v[i]);
+      lineChart(els[0], { title: 'Mean α − β with K_FFP set (Figs. 15, 20)', xLabel: 'ω [rad/s]', yLabel: 'mrad', series, data: [byOmega(omegas), ...data.map((d) => byOmega(d.before))] });
+      lineChart(els[1], { title: 'Half amplitude of the shape error (Fig. 14)', xLabel: 'ω [rad/s]', yLabel: 'µm', series, data: [byOmega(omegas), ...data.map((d) => byOmega(d.half))] });
       const rcs = Float64Array.from({ length: 200 }, (_, i) => 0.1 + (i * 5.9) / 199);
       lineChart(els[2], {
         title: `R_C – ω_R map with the saturation ω per load; R_C min at ${feedAtCuttingPoint} mm/min (Figs. 5, 21)`, xLabel: 'R_C [mm]', yLabel: 'ω_R [rad/s]',
@@ -287,7 +335,7 @@ export async function mount(root, api) {
       });
     } catch (e) {
       progress.done();
-      sweepUi.fail(e);
+      sweepUi.fail(inTableTerms(e));
     }
   };
 
@@ -372,7 +420,7 @@ export async function mount(root, api) {
         }
       } catch (e) {
         if (last) last.trace = null;
-        traceUi.fail(e);
+        traceUi.fail(inTableTerms(e));
       }
     } }, 'Analyse the trace');
     mapBox.replaceChildren(preview, said, h('div', { class: 'row' }, ...Object.values(cols).map((c) => c.el), tUnit.menu.el, lUnit.menu.el, aUnit.menu.el, rated.el, h('label', { class: 'field' }, h('span', {}, 'displacements from the start'), rel), start.el, steady.el), go);
@@ -395,9 +443,13 @@ export async function mount(root, api) {
   // edited: the axis table feeds every result, the condition every run.
   const conditionFields = [j1.el, mode.el, omega.el, feed.el, rc.el, rw.el, accel.el, dt.el];
   runUi.dependsOn(paramTable, readingSel.el, ...conditionFields);
-  sweepUi.dependsOn(paramTable, readingSel.el);
+  sweepUi.dependsOn(paramTable, readingSel.el, sweepJ1, sweepOmega);
   traceUi.dependsOn(paramTable, readingSel.el, mapBox, ...conditionFields);
   recUi.dependsOn(paramTable, readingSel.el, mapBox, recCard, ...conditionFields);
+  const sweepCard = h('div', { class: 'card' }, h('h3', {}, `Sweep and saturation map on your axis (the table above), at R_C = ${paper.rc} mm, R_W = ${paper.rw} mm (Figs. 14, 15, 20, 21, 22)`),
+    h('p', { class: 'unit' }, `Defaults: the paper's loads and speeds (ω = ${paper.omega.map((w) => `${+(w / Math.PI).toFixed(3)}π`).join(', ')} rad/s); source: ${paper.source}.`),
+    h('div', { class: 'row' }, h('label', { class: 'field' }, h('span', {}, 'Loads J1 ', h('span', { class: 'unit' }, '[kg·m²]')), sweepJ1), h('label', { class: 'field' }, h('span', {}, 'ω ', h('span', { class: 'unit' }, '[rad/s]')), sweepOmega)),
+    h('button', { id: 'servo-sweep', onclick: sweep }, 'Run the sweep'), progress.el, sweepBox);
   root.replaceChildren(
     h('div', { class: 'card' }, h('h3', {}, `Preset ${machine.name}`), h('p', {}, machine.description), h('p', { class: 'lead' }, `Source: ${machine.source}. Edit any value; the C torque limit is ${machine.axes.c.torqueMax} N·m.`), ...(readings.length > 1 ? [readingSel.el, h('p', { class: 'note' }, 'The paper leaves open how to read Table 1 for the X loop; only the load-side X inertia gives its ΔR > 0 on X (docs/readings.md).')] : []), paramTable),
     h('div', { class: 'card' }, h('h3', {}, 'Constant-feed-speed-vector test (§2.3, §3)'), h('div', { class: 'row' }, j1.el, mode.el, omega.el, feed.el, rc.el, rw.el, accel.el, dt.el, freqUnit.el),
@@ -408,8 +460,6 @@ export async function mount(root, api) {
         h('button', { id: 'servo-json', onclick: json }, 'Download JSON')),
       status, out, charts),
     h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ link: 'servo-trace', label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace, onRefused: traceRefused }), traceInfo, mapBox, traceBox, recCard),
-    h('div', { class: 'card' }, h('h3', {}, `The paper's sweep on your axis (the table above): R_C = ${paper.rc} mm, R_W = ${paper.rw} mm, ω = ${paper.omega.map((w) => `${+(w / Math.PI).toFixed(3)}π`).join(', ')} rad/s, J1 = ${paper.j1.map((v) => v.toFixed(2)).join(', ')} kg·m² (Figs. 14, 15, 20, 21, 22)`),
-      h('p', { class: 'unit' }, `Source: ${paper.source}.`),
-      h('button', { id: 'servo-sweep', onclick: sweep }, 'Run the sweep'), progress.el, sweepBox),
+    sweepCard,
   );
 }

@@ -20,6 +20,19 @@ export default async function (page, check) {
   const msg = await page.textContent('#servo-results .error-box');
   check(msg.includes('R_C [mm] = -5') && !/condition `rc`/.test(msg), `servo: the error should name R_C [mm], says "${msg}"`);
 
+  // An emptied axis-table cell is named by its row, axis and unit, not by its API key.
+  await page.fill('#servo-rc', '5');
+  await page.fill('#servo-p-c-kpp', '');
+  await page.click('#servo-run');
+  await page.waitForSelector('#servo-results .error-box');
+  const empty = await page.textContent('#servo-results .error-box');
+  check(/C axis, Kpp \[1\/s\]: empty/.test(empty) && !/missing key|machine\.axes/.test(empty), `servo: an empty Kpp should be named "C axis, Kpp [1/s]", says "${empty}"`);
+  await page.fill('#servo-p-c-kpp', '-3');
+  await page.click('#servo-run');
+  await page.waitForFunction(() => /= -3/.test(document.querySelector('#servo-results .error-box')?.textContent ?? ''));
+  const neg = await page.textContent('#servo-results .error-box');
+  check(/C axis, Kpp \[1\/s\] = -3/.test(neg) && !/axis parameter `kpp`/.test(neg), `servo: a bad Kpp should be named by its label, says "${neg}"`);
+
   // ---- tool path: a good simulation, then a program with an error.
   await page.click('[data-tab="toolpath"]');
   await page.click('#toolpath-run');
