@@ -213,7 +213,8 @@ fn fig6(ex: &mut Example, radius: f64) -> Result<(), AlignmentError> {
             ..p
         });
     }
-    let mag = |p: &SweepPoint| p.error_z.hypot(p.error_x) / UM;
+    // a ratio of two magnitudes: unit-free
+    let mag = |p: &SweepPoint| p.error_z.hypot(p.error_x);
     let ratio = mag(&pts[8]) / mag(&pts[0]);
     ex.paper.push(pv(
         "Fig. 6: |error| of order 10 / order 2",
@@ -339,15 +340,12 @@ fn fig12(ex: &mut Example, radius: f64) -> Result<(), AlignmentError> {
         y,
         offset: o(z, 0.0),
     };
-    let cfg = AngleSweepConfig {
-        sections: vec![s(0.0, 10.0), s(350.0, 20.0), s(-350.0, 0.0)],
+    // The paper's formula uses Y1 and Y2 only (the section at Y = 0, offset
+    // 10 µm, lies on their line and would not change the slope).
+    let two = AngleSweepConfig {
+        sections: vec![s(350.0, 20.0), s(-350.0, 0.0)],
         ranges: fig7_ranges(),
         locus: locus(fig7_harmonics(), radius),
-    };
-    // The paper's formula uses Y1 and Y2 only.
-    let two = AngleSweepConfig {
-        sections: cfg.sections[1..].to_vec(),
-        ..cfg
     };
     ex.angle = angle_sweep(&two)?;
     let at = |w: f64| {
