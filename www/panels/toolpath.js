@@ -6,6 +6,7 @@
 import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState, progressBar, showError, cancelGuard } from '../lib/ui.js';
 import { xyChart, lineChart } from '../lib/plot.js';
 import { programFiles } from './toolpath-files.js';
+import { ncEditor } from '../lib/editor.js';
 
 /**
  * @param {HTMLElement} root
@@ -16,19 +17,14 @@ export async function mount(root, api) {
     arcs: await api.call('toolpathExample', ['arcs']),
     lines: await api.call('toolpathExample', ['lines']),
   };
-  const nc = h('textarea', { id: 'toolpath-nc', rows: 14, spellcheck: false, style: 'width:100%;font-family:monospace' });
+  // The program editor (CodeMirror); `nc` is its textarea handle (value,
+  // selection, input/change events), as the page and its tests know it.
+  const editor = ncEditor({ id: 'toolpath-nc' });
+  const nc = editor.handle;
   // Program check: errors or warnings next to the text, each a
   // link that selects its line; the summary the user checks first.
   const check = h('div', { id: 'toolpath-check', 'aria-live': 'polite', style: 'max-height:330px;overflow:auto;font-size:90%' });
-  function selectLine(line) {
-    const lines = nc.value.split('\n');
-    let start = 0;
-    for (let i = 0; i < line - 1 && i < lines.length; i++) start += lines[i].length + 1;
-    const end = start + (lines[line - 1] ?? '').length;
-    nc.focus();
-    nc.setSelectionRange(start, end);
-    nc.scrollTop = Math.max(0, (line - 3) * (nc.scrollHeight / Math.max(lines.length, 1)));
-  }
+  const selectLine = (line) => editor.selectLine(line);
   // Cutter compensation: the tool radius per D is a text the core reads
   // ("D1=3, D8=0.25", program units); the summary says, per G41/G42
   // stretch, whether the path is offset or the programmed one.
@@ -53,6 +49,7 @@ export async function mount(root, api) {
     try {
       const c = known ?? (await api.call('checkNc', [nc.value, files.options(radiiOption())]));
       if (seq !== checkSeq) return;
+      editor.showCheck(c);
       if (c.errors.length) {
         check.replaceChildren(
           h('p', { class: 'error' }, `${c.errors.length}${c.truncated ? '+' : ''} error(s): the program cannot be simulated until they are fixed.`),
@@ -327,7 +324,7 @@ export async function mount(root, api) {
       h('h3', {}, 'NC program'),
       h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, example.el, drop, radiiField),
       files.note,
-      h('div', { style: 'display:grid;grid-template-columns:repeat(auto-fit,minmax(280px,1fr));gap:12px' }, nc, check)),
+      h('div', { style: 'display:grid;grid-template-columns:repeat(auto-fit,minmax(280px,1fr));gap:12px' }, editor.el, check)),
     h('div', { class: 'card' },
       h('h3', {}, 'Model (Eq. 1 moving average tA, Eq. 2 first-order lag T per axis)'),
       h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, tA.el, tx.el, ty.el, tz.el, ovr.el, dt.el),
