@@ -7,6 +7,8 @@ import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv,
 import { xyChart, lineChart } from '../lib/plot.js';
 import { programFiles } from './toolpath-files.js';
 import { ncEditor } from '../lib/editor.js';
+import { pathView, programPieces } from '../lib/path3d.js';
+import { worstSegments, marksOf, worstLists } from './toolpath-worst.js';
 
 /**
  * @param {HTMLElement} root
@@ -19,7 +21,7 @@ export async function mount(root, api) {
   };
   // The program editor (CodeMirror); `nc` is its textarea handle (value,
   // selection, input/change events), as the page and its tests know it.
-  const editor = ncEditor({ id: 'toolpath-nc' });
+  const editor = ncEditor({ id: 'toolpath-nc', onLine: (n) => view3d.highlightLine(n) });
   const nc = editor.handle;
   // Program check: errors or warnings next to the text, each a
   // link that selects its line; the summary the user checks first.
@@ -131,6 +133,16 @@ export async function mount(root, api) {
   const simRun = cancelGuard(simCancel, simProgress);
   const out = h('div', { id: 'toolpath-out' });
   const pathBox = h('div', { class: 'plot', id: 'toolpath-path' });
+  // The 3D path view (one WebGL context for the panel's life): a click on
+  // the path or a mark selects its line in the editor; a new simulation
+  // starts at the automatic magnification.
+  const view3d = pathView({
+    onPick: (line) => editor.selectLine(line),
+    onMagnification: (k) => {
+      mag.value = String(Math.min(k, Number(mag.max)));
+      magLabel.textContent = `×${k} (auto)`;
+    },
+  });
   const velBox = h('div', { class: 'plot', id: 'toolpath-velocity' });
   const compOut = h('div', { id: 'toolpath-comp-out' });
   // One run state per result area; a new program empties both (its results
@@ -140,7 +152,6 @@ export async function mount(root, api) {
   const programChanged = () => {
     last = null;
     lastComp = null;
-    pathChart = null;
     compCharts.length = 0;
     simUi.clear();
     compUi.clear();
@@ -196,12 +207,11 @@ export async function mount(root, api) {
 
   let last = null;
   let lastComp = null;
-  let pathChart = null;
   const compCharts = [];
   function redraw() {
     const k = Number(mag.value);
     magLabel.textContent = `×${k}`;
-    if (last && pathChart) pathChart.update({ traces: pathTraces(last, k, 'simulated') });
+    if (last) view3d.setMagnification(k);
     if (lastComp && compCharts.length === 2) {
       compCharts[0].update({ traces: pathTraces(lastComp.beforeSim, k, 'before') });
       compCharts[1].update({ traces: pathTraces(lastComp.afterSim, k, 'after') });
@@ -213,6 +223,8 @@ export async function mount(root, api) {
     const token = simUi.start();
     const abort = simRun.start();
     try {
+      // The program's segments (the core's reading) draw the programmed path.
+      const parsed = api.call('parseNc', [nc.value, files.options(radiiOption())]).catch(() => null);
       const s = await api.call('simulateToolPath', [nc.value, files.options({ ...cfg(), ...radiiOption() })], {
         signal: abort.signal,
         onProgress: (f) => {
@@ -221,12 +233,13 @@ export async function mount(root, api) {
         },
       });
       if (!simUi.current(token)) return;
+      const program = await parsed;
+      if (!simUi.current(token)) return;
       last = s;
-      showSimulation(s);
+      showSimulation(s, program ? programPieces(program.segments) : null);
       simUi.ok();
     } catch (e) {
       last = null;
-      pathChart = null;
       if (simUi.current(token)) simRun.failed(abort, e, simUi, 'Simulation');
     } finally {
       simRun.finish(abort);
@@ -234,14 +247,14 @@ export async function mount(root, api) {
   }
 
   /** The table, warnings, CSV button and charts of one simulation. */
-  function showSimulation(s) {
+  function showSimulation(s, pieces) {
     const warn = s.warnings.length
       ? h('details', { class: 'warn-box' }, h('summary', {}, `${s.warnings.length} warning(s)`), h('ul', {}, ...s.warnings.map((w) => h('li', {}, `${w.file ? `${w.file}, ` : ''}line ${w.line}, column ${w.column}: ${w.message}`))))
       : '';
     const thinnedNote = s.seriesStride > 1
       ? h('p', { class: 'note', id: 'toolpath-series-note' }, `${s.samples.toLocaleString('en')} samples simulated; the plots and the CSV keep the sample with the largest error of each ${s.seriesStride} (${s.t.length.toLocaleString('en')} rows). Every number above uses all samples.`)
       : '';
-    const worst = [...s.segments].sort((a, b) => b.maxErrorUm - a.maxErrorUm).slice(0, 8);
+    const worst = worstSegments(s);
     out.replaceChildren(
       table(['quantity', 'value'], [
         ['maximum contour error', h('span', { id: 'toolpath-max-error' }, `${fmt(s.maxErrorUm, 4)} µm`)],
@@ -251,13 +264,15 @@ export async function mount(root, api) {
       ]),
       thinnedNote,
       warn,
-      h('h4', {}, 'Segments with the largest error'),
-      table(['line', 'kind', 'length mm', 'radius mm', 'max error µm', 'mean deviation µm'], worst.map((g) => [g.line, g.kind, fmt(g.length, 4), g.radius ? fmt(g.radius, 4) : '—', fmt(g.maxErrorUm, 4), g.meanDeviation == null ? '—' : fmt(g.meanDeviation * 1e3, 3)])),
+      worstLists(worst, (line) => {
+        editor.selectLine(line);
+        view3d.highlightLine(line);
+      }),
       h('button', { id: 'toolpath-csv', onclick: () => downloadText('toolpath-simulation.csv', toCsv({ t_s: s.t, cmd_x_mm: s.cmdX, cmd_y_mm: s.cmdY, cmd_z_mm: s.cmdZ, sim_x_mm: s.simX, sim_y_mm: s.simY, sim_z_mm: s.simZ, vel_x_mm_s: s.velSimX, vel_y_mm_s: s.velSimY, vel_z_mm_s: s.velSimZ, error_um: s.errorUm }), 'text/csv') }, 'Download CSV'),
     );
-    pathBox.replaceChildren();
+    pathBox.replaceChildren(h('div', { class: 'chart-title' }, 'Programmed and simulated path in 3D (colour: contour error µm)'), view3d.el);
     velBox.replaceChildren();
-    pathChart = xyChart(pathBox, { title: 'Commanded and simulated path (colour: contour error µm)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(s, Number(mag.value), 'simulated'), colorLabel: 'µm', height: 420 });
+    view3d.show({ program: pieces, sim: s, scaleUm: s.maxErrorUm, marks: marksOf(s, worst.cutting, pieces) });
     lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY].map(thinned), height: 260 });
   }
 
