@@ -197,13 +197,22 @@ export function ncEditor({ id, onLine }) {
     view.dispatch({ changes: { from: 0, to: view.state.doc.length, insert: typed }, selection: { anchor: 0 } });
   });
 
-  /** Scrolls to line `n` (1-based), selects it and focuses the editor. */
-  function selectLine(n) {
+  /** Scrolls the editor (only the editor, not the page) so that the line at `pos` is in its middle. */
+  function centre(pos) {
+    const s = view.scrollDOM;
+    s.scrollTop = Math.max(0, view.lineBlockAt(pos).top - s.clientHeight / 2);
+  }
+
+  /** Selects line `n` (1-based) and scrolls the editor to it; `focus`: and
+   * focuses it (the page itself does not scroll: a click in the path view
+   * below keeps the view where it is). */
+  function selectLine(n, { focus = true } = {}) {
     const doc = view.state.doc;
     if (!(n >= 1 && n <= doc.lines)) return;
     const line = doc.line(n);
-    view.dispatch({ selection: { anchor: line.from, head: line.to }, effects: EditorView.scrollIntoView(line.from, { y: 'center' }) });
-    view.focus();
+    view.dispatch({ selection: { anchor: line.from, head: line.to } });
+    centre(line.from);
+    if (focus) view.contentDOM.focus({ preventScroll: true });
   }
 
   /**
@@ -226,7 +235,8 @@ export function ncEditor({ id, onLine }) {
 
   /** Marks line `n` (0: none) without moving the cursor or the focus. */
   function markLine(n) {
-    view.dispatch({ effects: [setMarked.of(n), ...(n >= 1 && n <= view.state.doc.lines ? [EditorView.scrollIntoView(view.state.doc.line(n).from, { y: 'center' })] : [])] });
+    view.dispatch({ effects: setMarked.of(n) });
+    if (n >= 1 && n <= view.state.doc.lines) centre(view.state.doc.line(n).from);
   }
 
   return { el, handle, view, selectLine, showCheck, markLine };

@@ -189,8 +189,8 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   const progMat = new LineBasicMaterial({ vertexColors: true });
   const simMat = new LineBasicMaterial({ vertexColors: true });
   const hiMat = new LineBasicMaterial({ color: HIGHLIGHT });
-  const hiDots = new PointsMaterial({ color: HIGHLIGHT, size: 5, sizeAttenuation: false });
-  const markMat = new PointsMaterial({ color: 0xc8102e, size: 11, sizeAttenuation: false });
+  const hiDots = new PointsMaterial({ color: HIGHLIGHT, size: 9, sizeAttenuation: false });
+  const markMat = new PointsMaterial({ color: 0xc8102e, size: 8, sizeAttenuation: false });
   const progObj = new LineSegments(new BufferGeometry(), progMat);
   const simObj = new Line(new BufferGeometry(), simMat);
   const hiObj = new LineSegments(new BufferGeometry(), hiMat);
@@ -200,8 +200,8 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     o.frustumCulled = false;
     scene.add(o);
   }
-  hiObj.renderOrder = 2;
-  hiPts.renderOrder = 2;
+  hiObj.renderOrder = 4;
+  hiPts.renderOrder = 4;
   markObj.renderOrder = 3;
   hiMat.depthTest = false;
   hiDots.depthTest = false;
@@ -657,6 +657,27 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       const r = canvas.getBoundingClientRect();
       project.set(x - centre[0], y - centre[1], z - centre[2]).project(camera);
       return [r.left + ((project.x + 1) / 2) * r.width, r.top + ((1 - project.y) / 2) * r.height];
+    },
+    /** Screen position (CSS px in the page) of the middle of line `n`'s first segment, or null. */
+    screenOfLine(n) {
+      if (!prog) return null;
+      const g = prog.line.indexOf(n);
+      if (g < 0 || prog.first[g + 1] === prog.first[g]) return null;
+      const mid = (prog.first[g] + prog.first[g + 1] - 1) >> 1;
+      const p = prog.pos;
+      return api.screenOf((p[mid * 6] + p[mid * 6 + 3]) / 2, (p[mid * 6 + 1] + p[mid * 6 + 4]) / 2, (p[mid * 6 + 2] + p[mid * 6 + 5]) / 2);
+    },
+    /** Draws now and counts the pixels within 24 (of 255) of colour 0xRRGGBB (a check that something is drawn). */
+    countPixels(rgb) {
+      render();
+      const gl = renderer.getContext();
+      const w = gl.drawingBufferWidth, hgt = gl.drawingBufferHeight;
+      const px = new Uint8Array(w * hgt * 4);
+      gl.readPixels(0, 0, w, hgt, gl.RGBA, gl.UNSIGNED_BYTE, px);
+      const c = [(rgb >> 16) & 255, (rgb >> 8) & 255, rgb & 255];
+      let n = 0;
+      for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - c[0]) <= 24 && Math.abs(px[i + 1] - c[1]) <= 24 && Math.abs(px[i + 2] - c[2]) <= 24) n++;
+      return n;
     },
     state: () => ({ highlighted, picked, k, autoK, frames, drawnProgram: drawnProg.seg.length, drawnSimulated: drawnSim.idx.length, level }),
   };

@@ -137,7 +137,7 @@ export async function mount(root, api) {
   // the path or a mark selects its line in the editor; a new simulation
   // starts at the automatic magnification.
   const view3d = pathView({
-    onPick: (line) => editor.selectLine(line),
+    onPick: (line) => editor.selectLine(line, { focus: false }),
     onMagnification: (k) => {
       mag.value = String(Math.min(k, Number(mag.max)));
       magLabel.textContent = `×${k} (auto)`;
