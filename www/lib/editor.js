@@ -128,36 +128,30 @@ export function ncEditor({ id, onLine }) {
   const native = Object.getOwnPropertyDescriptor(HTMLTextAreaElement.prototype, 'value');
 
   let editedSinceChange = false;
-  let quiet = false;
-  const view = new EditorView({
-    parent: el,
-    state: EditorState.create({
-      doc: '',
-      extensions: [
-        lineNumbers(), highlightActiveLineGutter(), highlightActiveLine(), drawSelection(), history(),
-        keymap.of([...defaultKeymap, ...historyKeymap]),
-        gcode, syntaxHighlighting(colours), lintGutter(), markedLine, theme,
-        EditorView.contentAttributes.of({ 'aria-label': 'NC program', spellcheck: 'false' }),
-        EditorView.updateListener.of((u) => {
-          if (u.docChanged) mirror();
-          if (u.docChanged && !quiet) {
-            editedSinceChange = true;
-            handle.dispatchEvent(new Event('input', { bubbles: true }));
-          }
-          const user = u.transactions.some((tr) => tr.isUserEvent('select') || tr.isUserEvent('input') || tr.isUserEvent('delete'));
-          if (u.selectionSet && user && onLine) onLine(u.state.doc.lineAt(u.state.selection.main.head).number);
-        }),
-        EditorView.domEventHandlers({
-          blur: () => {
-            if (editedSinceChange) {
-              editedSinceChange = false;
-              handle.dispatchEvent(new Event('change', { bubbles: true }));
-            }
-          },
-        }),
-      ],
+  const extensions = [
+    lineNumbers(), highlightActiveLineGutter(), highlightActiveLine(), drawSelection(), history(),
+    keymap.of([...defaultKeymap, ...historyKeymap]),
+    gcode, syntaxHighlighting(colours), lintGutter(), markedLine, theme,
+    EditorView.contentAttributes.of({ 'aria-label': 'NC program', spellcheck: 'false' }),
+    EditorView.updateListener.of((u) => {
+      if (u.docChanged) mirror();
+      if (u.docChanged) {
+        editedSinceChange = true;
+        handle.dispatchEvent(new Event('input', { bubbles: true }));
+      }
+      const user = u.transactions.some((tr) => tr.isUserEvent('select') || tr.isUserEvent('input') || tr.isUserEvent('delete'));
+      if (u.selectionSet && user && onLine) onLine(u.state.doc.lineAt(u.state.selection.main.head).number);
     }),
-  });
+    EditorView.domEventHandlers({
+      blur: () => {
+        if (editedSinceChange) {
+          editedSinceChange = false;
+          handle.dispatchEvent(new Event('change', { bubbles: true }));
+        }
+      },
+    }),
+  ];
+  const view = new EditorView({ parent: el, state: EditorState.create({ doc: '', extensions }) });
   el.prepend(handle);
 
   // The text as one string, made once per document version.
@@ -170,14 +164,12 @@ export function ncEditor({ id, onLine }) {
     }
     return cachedText;
   };
-  /** Replaces the whole text (no input event, as a textarea's value setter). */
+  /** Replaces the whole text (no input event, as a textarea's value
+   * setter): a new editor state (no undo into the previous program, no
+   * marks of it), cheaper than an edit of the whole text. */
   const setText = (v) => {
-    quiet = true;
-    try {
-      view.dispatch({ changes: { from: 0, to: view.state.doc.length, insert: String(v) }, selection: { anchor: 0 }, effects: [setDiagnostics(view.state, []).effects, setMarked.of(0)].flat() });
-    } finally {
-      quiet = false;
-    }
+    view.setState(EditorState.create({ doc: String(v), extensions }));
+    mirror();
     view.scrollDOM.scrollTop = 0;
   };
   let mirrored = '';
@@ -220,7 +212,16 @@ export function ncEditor({ id, onLine }) {
    * of the main program (a subprogram file's are listed beside, not here).
    * @param {import('../pkg/mtmotion.js').NcCheck | null} check
    */
+  let pendingCheck = null;
+  let checkTimer = 0;
   function showCheck(check) {
+    // Applied in a task of its own: after a new program is set, the editor's
+    // first layout and these marks would otherwise make one long task.
+    pendingCheck = check;
+    clearTimeout(checkTimer);
+    checkTimer = setTimeout(() => applyCheck(pendingCheck));
+  }
+  function applyCheck(check) {
     const doc = view.state.doc;
     const at = (w, severity) => {
       const n = Math.min(Math.max(w.line, 1), doc.lines);

@@ -17,6 +17,8 @@ import {
   Points, PointsMaterial, Vector3, OrbitControls,
 } from '../vendor/three.js';
 
+/** @typedef {import('./pieces.js').ProgramPieces} ProgramPieces */
+
 /** Colour ramp of the contour error, 0 … the scale's maximum. */
 /** @type {[number, number[]][]} */
 const RAMP = [[0, [0.12, 0.31, 0.82]], [0.35, [0.06, 0.63, 0.56]], [0.7, [0.94, 0.55, 0.0]], [1, [0.78, 0.06, 0.18]]];
@@ -39,79 +41,6 @@ function ramp(f, out, o) {
   out[o + 2] = c0[2] + u * (c1[2] - c0[2]);
 }
 
-/**
- * The programmed path as straight pieces for drawing: lines and rapids as
- * they are, arcs (any plane, helical too) as chords of at most 5°. Dwells
- * draw nothing.
- * @param {import('../pkg/mtmotion.js').NcSegment[]} segments the core's parseNc segments
- * @returns {ProgramPieces}
- */
-export function programPieces(segments) {
-  let n = 0;
-  const chords = segments.map((g) => {
-    const m = g.motion;
-    const k = m.type === 'arc' ? Math.min(720, Math.max(1, Math.ceil(Math.abs(m.sweep) / (Math.PI / 36)))) : m.type === 'dwell' ? 0 : 1;
-    n += k;
-    return k;
-  });
-  const pos = new Float64Array(n * 6);
-  const seg = new Int32Array(n);
-  const line = new Int32Array(segments.length);
-  const rapid = new Uint8Array(segments.length);
-  const feed = new Float64Array(segments.length);
-  const first = new Int32Array(segments.length + 1);
-  const plane = { XY: [0, 1, 2], ZX: [2, 0, 1], YZ: [1, 2, 0] };
-  let p = 0;
-  segments.forEach((g, i) => {
-    line[i] = g.line;
-    rapid[i] = g.motion.type === 'rapid' ? 1 : 0;
-    feed[i] = g.feed;
-    first[i] = p;
-    const a = [g.start.x, g.start.y, g.start.z];
-    const b = [g.end.x, g.end.y, g.end.z];
-    const m = g.motion;
-    const k = chords[i];
-    if (m.type === 'arc') {
-      const [u, v, w] = plane[m.plane];
-      const c = m.center;
-      const r0 = Math.hypot(a[u] - c[u], a[v] - c[v]);
-      const th0 = Math.atan2(a[v] - c[v], a[u] - c[u]);
-      let prev = a;
-      for (let j = 1; j <= k; j++) {
-        const f = j / k;
-        let q;
-        if (j === k) q = b;
-        else {
-          q = [0, 0, 0];
-          const th = th0 + m.sweep * f;
-          q[u] = c[u] + r0 * Math.cos(th);
-          q[v] = c[v] + r0 * Math.sin(th);
-          q[w] = a[w] + (b[w] - a[w]) * f;
-        }
-        pos.set(prev, p * 6);
-        pos.set(q, p * 6 + 3);
-        seg[p++] = i;
-        prev = q;
-      }
-    } else if (k) {
-      pos.set(a, p * 6);
-      pos.set(b, p * 6 + 3);
-      seg[p++] = i;
-    }
-  });
-  first[segments.length] = p;
-  return { pos, seg, line, rapid, feed, first };
-}
-
-/**
- * @typedef {object} ProgramPieces the programmed path as straight pieces
- * @property {Float64Array} pos x0 y0 z0 x1 y1 z1 per piece, mm
- * @property {Int32Array} seg the segment of each piece
- * @property {Int32Array} line source line per segment
- * @property {Uint8Array} rapid 1 for a rapid, per segment
- * @property {Float64Array} feed programmed feed per segment, mm/min
- * @property {Int32Array} first first piece of each segment (and the count at the end)
- */
 /**
  * @typedef {object} SimulatedPath the core's simulated series (ToolPathSimulation)
  * @property {Float64Array} t
@@ -233,7 +162,7 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     let dx = s.simX[i] - s.nearX[i];
     let dy = s.simY[i] - s.nearY[i];
     let dz = s.simZ[i] - s.nearZ[i];
-    const d = Math.hypot(dx, dy, dz);
+    const d = Math.sqrt(dx * dx + dy * dy + dz * dz);
     const lim = dmax();
     if (d > lim && d > 0) {
       const f = lim / d;
@@ -249,8 +178,17 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   /** World length of one drawing-buffer pixel at the current zoom. */
   const pixel = () => (camera.top - camera.bottom) / camera.zoom / Math.max(1, renderer.domElement.height);
 
-  /** Rebuilds the drawn (thinned) geometry for a pixel of `px` mm. */
-  function build(px) {
+  /** A new task (the page answers input between chunks of a build). */
+  const tick = () => new Promise((r) => setTimeout(r, 0));
+  /** Longest stretch of building between two ticks, ms. */
+  const SLICE_MS = 25;
+  let gen = 0;
+
+  /** Rebuilds the drawn (thinned) geometry for a pixel of `px` mm, in
+   * slices of SLICE_MS; a newer build or new data stops it. */
+  async function build(px) {
+    const my = ++gen;
+    let t0 = performance.now();
     const px2 = px * px;
     // Programmed path: chains of touching pieces, merged below a pixel
     // (a rapid never merges with a cutting move).
@@ -273,6 +211,11 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
         seg[m++] = oseg;
       };
       for (let i = 0; i < n; i++) {
+        if (!(i & 4095) && performance.now() - t0 > SLICE_MS) {
+          await tick();
+          if (my !== gen) return;
+          t0 = performance.now();
+        }
         const o = i * 6;
         const g = prog.seg[i];
         const joins = open && prog.rapid[g] === prog.rapid[oseg] && src[o] === ex && src[o + 1] === ey && src[o + 2] === ez;
@@ -311,6 +254,11 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       let worst = -1;
       const hideAbove = !showRapids.checked;
       for (let i = 0; i < n; i++) {
+        if (!(i & 4095) && performance.now() - t0 > SLICE_MS) {
+          await tick();
+          if (my !== gen) return;
+          t0 = performance.now();
+        }
         // Above the cutting-move maximum a sample is on a rapid (the scale is
         // the core's maximum over cutting moves): hidden with the rapids.
         if (hideAbove && sim.errorUm[i] > scaleUm) continue;
@@ -342,15 +290,18 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     }
     el.dataset.drawnProgram = String(drawnProg.seg.length);
     el.dataset.drawnSimulated = String(drawnSim.idx.length);
+    requestRender();
   }
 
   /** Rebuilds when the pixel size left its power-of-two level. */
+  let building = Promise.resolve();
   function rebuildIfNeeded(force = false) {
     const px = pixel();
     const l = Math.floor(Math.log2(px));
-    if (!force && l === level) return;
+    if (!force && l === level) return building;
     level = l;
-    build(2 ** l);
+    building = build(2 ** l);
+    return building;
   }
 
   function setPoints(obj, coords) {
@@ -634,10 +585,11 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       return b;
     }));
     highlightLine(0);
+    level = NaN; // new data: rebuilt at the view's pixel size (resetView → resize)
     resetView();
-    rebuildIfNeeded(true);
     legendText();
     onMagnification?.(k);
+    return building;
   }
 
   /** Sets the simulated path's error magnification. */

@@ -30,7 +30,9 @@ export function worstSegments(s, n = 10) {
 export function marksOf(s, worst, pieces) {
   const want = new Map(worst.map((g) => [g.maxErrorUm, -1]));
   const e = s.errorUm;
+  const least = Math.min(...want.keys());
   for (let i = 0; i < e.length; i++) {
+    if (e[i] < least) continue;
     const v = want.get(e[i]);
     if (v === undefined) continue;
     want.set(e[i], v === -1 ? i : -2); // -2: found twice, not a single spot

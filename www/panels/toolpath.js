@@ -7,7 +7,7 @@ import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv,
 import { xyChart, lineChart } from '../lib/plot.js';
 import { programFiles } from './toolpath-files.js';
 import { ncEditor } from '../lib/editor.js';
-import { pathView, programPieces } from '../lib/path3d.js';
+import { pathView } from '../lib/path3d.js';
 import { worstSegments, marksOf, worstLists } from './toolpath-worst.js';
 
 /**
@@ -223,8 +223,8 @@ export async function mount(root, api) {
     const token = simUi.start();
     const abort = simRun.start();
     try {
-      // The program's segments (the core's reading) draw the programmed path.
-      const parsed = api.call('parseNc', [nc.value, files.options(radiiOption())]).catch(() => null);
+      // The program's segments (the core's parseNc reading) draw the programmed path.
+      const parsed = api.call('programPieces', [nc.value, files.options(radiiOption())]).catch(() => null);
       const s = await api.call('simulateToolPath', [nc.value, files.options({ ...cfg(), ...radiiOption() })], {
         signal: abort.signal,
         onProgress: (f) => {
@@ -236,7 +236,7 @@ export async function mount(root, api) {
       const program = await parsed;
       if (!simUi.current(token)) return;
       last = s;
-      showSimulation(s, program ? programPieces(program.segments) : null);
+      if (!(await showSimulation(s, program, token))) return;
       simUi.ok();
     } catch (e) {
       last = null;
@@ -246,8 +246,16 @@ export async function mount(root, api) {
     }
   }
 
-  /** The table, warnings, CSV button and charts of one simulation. */
-  function showSimulation(s, pieces) {
+  /** The table, warnings, CSV button and charts of one simulation; the
+   * drawing in tasks of their own (false: a newer state came meanwhile). */
+  async function showSimulation(s, program, token) {
+    const later = async () => {
+      await new Promise((r) => setTimeout(r, 0));
+      return simUi.current(token);
+    };
+    // Not in the task that received the result (its copy is long enough).
+    if (!(await later())) return false;
+    const pieces = program;
     const warn = s.warnings.length
       ? h('details', { class: 'warn-box' }, h('summary', {}, `${s.warnings.length} warning(s)`), h('ul', {}, ...s.warnings.map((w) => h('li', {}, `${w.file ? `${w.file}, ` : ''}line ${w.line}, column ${w.column}: ${w.message}`))))
       : '';
@@ -270,10 +278,13 @@ export async function mount(root, api) {
       }),
       h('button', { id: 'toolpath-csv', onclick: () => downloadText('toolpath-simulation.csv', toCsv({ t_s: s.t, cmd_x_mm: s.cmdX, cmd_y_mm: s.cmdY, cmd_z_mm: s.cmdZ, sim_x_mm: s.simX, sim_y_mm: s.simY, sim_z_mm: s.simZ, vel_x_mm_s: s.velSimX, vel_y_mm_s: s.velSimY, vel_z_mm_s: s.velSimZ, error_um: s.errorUm }), 'text/csv') }, 'Download CSV'),
     );
+    if (!(await later())) return false;
     pathBox.replaceChildren(h('div', { class: 'chart-title' }, 'Programmed and simulated path in 3D (colour: contour error µm)'), view3d.el);
     velBox.replaceChildren();
-    view3d.show({ program: pieces, sim: s, scaleUm: s.maxErrorUm, marks: marksOf(s, worst.cutting, pieces) });
+    await view3d.show({ program: pieces, sim: s, scaleUm: s.maxErrorUm, marks: marksOf(s, worst.cutting, pieces) });
+    if (!(await later())) return false;
     lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY].map(thinned), height: 260 });
+    return true;
   }
 
   async function compensate() {
