@@ -122,10 +122,16 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   const markMat = new PointsMaterial({ color: 0xc8102e, size: 8, sizeAttenuation: false });
   const progObj = new LineSegments(new BufferGeometry(), progMat);
   const simObj = new Line(new BufferGeometry(), simMat);
+  // The point clouds drawn while the camera moves (see MOVING_POINTS).
+  const cloudMat = new PointsMaterial({ vertexColors: true, size: 2, sizeAttenuation: false });
+  const progMove = new Points(new BufferGeometry(), cloudMat);
+  const simMove = new Points(new BufferGeometry(), cloudMat);
+  progMove.visible = false;
+  simMove.visible = false;
   const hiObj = new LineSegments(new BufferGeometry(), hiMat);
   const hiPts = new Points(new BufferGeometry(), hiDots);
   const markObj = new Points(new BufferGeometry(), markMat);
-  for (const o of [progObj, simObj, hiObj, hiPts, markObj]) {
+  for (const o of [progObj, simObj, progMove, simMove, hiObj, hiPts, markObj]) {
     o.frustumCulled = false;
     scene.add(o);
   }
@@ -175,19 +181,37 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     out[o + 2] = s.nearZ[i] + k * dz - centre[2];
   }
 
-  /** World length of one drawing-buffer pixel at the current zoom. */
-  const pixel = () => (camera.top - camera.bottom) / camera.zoom / Math.max(1, renderer.domElement.height);
+  const sizeOf = () => [canvas.clientWidth || 1, canvas.clientHeight || 1];
+  /** World length of one (CSS) pixel at the current zoom. */
+  const pixel = () => (camera.top - camera.bottom) / camera.zoom / sizeOf()[1];
 
   /** A new task (the page answers input between chunks of a build). */
   const tick = () => new Promise((r) => setTimeout(r, 0));
   /** Longest stretch of building between two ticks, ms. */
   const SLICE_MS = 25;
+  /** While the camera moves, a path drawn with more vertices than this is
+   * drawn as a point cloud of at most about this many points each for the
+   * program and the simulation: one per occupied cube of a 3D grid (the
+   * vertex of largest error in it), made after each full level. A
+   * sequential thinning cannot go below two vertices per raster row, and
+   * in headless Chromium's software WebGL (SwiftShader) on a busy 2-core
+   * machine a line cost ~2 µs whatever its length (1 M lines 0.4–0.9 s,
+   * 15k 18–33 ms). At rest the full level (one pixel) is drawn again. */
+  const MOVING_POINTS = 10_000;
   let gen = 0;
+  let genMove = 0;
+  let moveReady = false;
+  let moving = false;
 
   /** Rebuilds the drawn (thinned) geometry for a pixel of `px` mm, in
-   * slices of SLICE_MS; a newer build or new data stops it. */
+   * slices of SLICE_MS; a newer build or new data stops it. `coarse`: the
+   * level drawn while the camera moves (after a full one, which cancels it). */
   async function build(px) {
     const my = ++gen;
+    genMove++;
+    moveReady = false;
+    const stale = () => my !== gen;
+    const [progTo, simTo] = [progObj, simObj];
     let t0 = performance.now();
     const px2 = px * px;
     // Programmed path: chains of touching pieces, merged below a pixel
@@ -213,7 +237,7 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       for (let i = 0; i < n; i++) {
         if (!(i & 4095) && performance.now() - t0 > SLICE_MS) {
           await tick();
-          if (my !== gen) return;
+          if (stale()) return;
           t0 = performance.now();
         }
         const o = i * 6;
@@ -241,8 +265,8 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       const g = new BufferGeometry();
       g.setAttribute('position', new BufferAttribute(pos.slice(0, m * 6), 3));
       g.setAttribute('color', new BufferAttribute(col.slice(0, m * 6), 3));
-      progObj.geometry.dispose();
-      progObj.geometry = g;
+      progTo.geometry.dispose();
+      progTo.geometry = g;
     }
     if (sim) {
       const n = sim.errorUm.length;
@@ -256,7 +280,7 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       for (let i = 0; i < n; i++) {
         if (!(i & 4095) && performance.now() - t0 > SLICE_MS) {
           await tick();
-          if (my !== gen) return;
+          if (stale()) return;
           t0 = performance.now();
         }
         // Above the cutting-move maximum a sample is on a rapid (the scale is
@@ -285,12 +309,71 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       const g = new BufferGeometry();
       g.setAttribute('position', new BufferAttribute(pos.slice(0, m * 3), 3));
       g.setAttribute('color', new BufferAttribute(col.slice(0, m * 3), 3));
-      simObj.geometry.dispose();
-      simObj.geometry = g;
+      simTo.geometry.dispose();
+      simTo.geometry = g;
     }
     el.dataset.drawnProgram = String(drawnProg.seg.length);
     el.dataset.drawnSimulated = String(drawnSim.idx.length);
     requestRender();
+    if (drawnProg.seg.length > MOVING_POINTS || drawnSim.idx.length > MOVING_POINTS) buildClouds();
+  }
+  let movingCounts = [0, 0];
+
+  /** One point per occupied grid cube of the drawn vertices `pos` (stride
+   * `step` floats, the first three a position), the cube's edge grown until
+   * at most MOVING_POINTS are left; `weight(i)` picks the cube's vertex
+   * (the largest), `colour(i, out, o)` colours it. Null when stale. */
+  async function cloud(pos, step, weight, colour, my) {
+    const n = Math.floor(pos.length / step);
+    let edge = (2 * radius) / Math.sqrt(MOVING_POINTS);
+    let t0 = performance.now();
+    for (;;) {
+      const cells = new Map();
+      for (let i = 0; i < n; i++) {
+        if (!(i & 4095) && performance.now() - t0 > SLICE_MS) {
+          await tick();
+          if (my !== genMove) return null;
+          t0 = performance.now();
+        }
+        const o = i * step;
+        const key = Math.floor(pos[o] / edge + 65536) + 131072 * (Math.floor(pos[o + 1] / edge + 65536) + 131072 * Math.floor(pos[o + 2] / edge + 65536));
+        const j = cells.get(key);
+        if (j === undefined || weight(i) > weight(j)) cells.set(key, i);
+      }
+      if (cells.size > MOVING_POINTS * 1.5) {
+        edge *= Math.sqrt(cells.size / MOVING_POINTS);
+        continue;
+      }
+      const out = new Float32Array(cells.size * 3);
+      const col = new Float32Array(cells.size * 3);
+      let m = 0;
+      for (const i of cells.values()) {
+        out[m * 3] = pos[i * step]; out[m * 3 + 1] = pos[i * step + 1]; out[m * 3 + 2] = pos[i * step + 2];
+        colour(i, col, m * 3);
+        m++;
+      }
+      const g = new BufferGeometry();
+      g.setAttribute('position', new BufferAttribute(out, 3));
+      g.setAttribute('color', new BufferAttribute(col, 3));
+      return g;
+    }
+  }
+
+  /** The clouds drawn while the camera moves. */
+  async function buildClouds() {
+    const my = ++genMove;
+    const grey = (_i, out, o) => out.set(PROGRAM_RGB, o);
+    const pg = await cloud(drawnProg.pos, 6, () => 0, grey, my);
+    if (!pg) return;
+    const ds = drawnSim;
+    const sg = await cloud(ds.pos, 3, (i) => sim.errorUm[ds.idx[i]], (i, out, o) => ramp(sim.errorUm[ds.idx[i]] / scaleUm, out, o), my);
+    if (!sg) return;
+    progMove.geometry.dispose();
+    progMove.geometry = pg;
+    simMove.geometry.dispose();
+    simMove.geometry = sg;
+    movingCounts = [pg.getAttribute('position').count, sg.getAttribute('position').count];
+    moveReady = true;
   }
 
   /** Rebuilds when the pixel size left its power-of-two level. */
@@ -312,7 +395,7 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   }
 
   const project = new Vector3();
-  const sizeOf = () => [canvas.clientWidth || 1, canvas.clientHeight || 1];
+
   function placeLabels() {
     const [w, hgt] = sizeOf();
     // Labels of marks that fall together are set side by side.
@@ -332,8 +415,12 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   let pending = 0;
   function render() {
     pending = 0;
-    progObj.visible = showProgram.checked;
-    simObj.visible = showSim.checked;
+    const coarse = moving && moveReady;
+
+    progObj.visible = showProgram.checked && !coarse;
+    simObj.visible = showSim.checked && !coarse;
+    progMove.visible = showProgram.checked && coarse;
+    simMove.visible = showSim.checked && coarse;
     renderer.render(scene, camera);
     placeLabels();
     frames++;
@@ -344,9 +431,11 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   let settle = 0;
   controls.addEventListener('change', () => {
     tip.hidden = true;
+    moving = true;
     requestRender();
     clearTimeout(settle);
     settle = setTimeout(() => {
+      moving = false;
       rebuildIfNeeded();
       requestRender();
     }, 150);
@@ -602,7 +691,7 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   }
 
   const api = {
-    el, show, highlightLine, setMagnification, render, controls, camera,
+    el, show, highlightLine, setMagnification, render, controls, camera, scene, renderer,
     autoMagnification: () => autoK,
     /** Screen position (CSS px in the page) of model point (x, y, z) mm. */
     screenOf(x, y, z) {
@@ -631,7 +720,7 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - c[0]) <= 24 && Math.abs(px[i + 1] - c[1]) <= 24 && Math.abs(px[i + 2] - c[2]) <= 24) n++;
       return n;
     },
-    state: () => ({ highlighted, picked, k, autoK, frames, drawnProgram: drawnProg.seg.length, drawnSimulated: drawnSim.idx.length, level }),
+    state: () => ({ highlighted, picked, k, autoK, frames, drawnProgram: drawnProg.seg.length, drawnSimulated: drawnSim.idx.length, level, moving, moveReady, movingPoints: moveReady ? movingCounts[0] + movingCounts[1] : null }),
   };
   // Test hook: the view's handle on its element.
   /** @type {any} */ (el).pathView = api;
