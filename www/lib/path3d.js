@@ -138,6 +138,9 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   hiObj.renderOrder = 4;
   hiPts.renderOrder = 4;
   markObj.renderOrder = 3;
+  // The shaders are compiled once, while the page is idle: the first draw
+  // of a large result (cameo) otherwise spent ~0.1 s compiling them.
+  (window.requestIdleCallback ?? setTimeout)(() => renderer.compile(scene, camera));
   hiMat.depthTest = false;
   hiDots.depthTest = false;
   markMat.depthTest = false;

@@ -8,6 +8,7 @@ import { xyChart, lineChart } from '../lib/plot.js';
 import { programFiles } from './toolpath-files.js';
 import { ncEditor } from '../lib/editor.js';
 import { pathView } from '../lib/path3d.js';
+import { unpackSimulation } from '../lib/derived.js';
 import { worstSegments, marksOf, worstLists } from './toolpath-worst.js';
 
 /**
@@ -225,13 +226,14 @@ export async function mount(root, api) {
     try {
       // The program's segments (the core's parseNc reading) draw the programmed path.
       const parsed = api.call('programPieces', [nc.value, files.options(radiiOption())]).catch(() => null);
-      const s = await api.call('simulateToolPath', [nc.value, files.options({ ...cfg(), ...radiiOption() })], {
+      const packed = await api.call('simulateToolPathPacked', [nc.value, files.options({ ...cfg(), ...radiiOption() })], {
         signal: abort.signal,
         onProgress: (f) => {
           simCancel.hidden = false;
           simProgress.set(f, `simulating: ${Math.round(f * 100)} %`);
         },
       });
+      const s = unpackSimulation(packed);
       if (!simUi.current(token)) return;
       const program = await parsed;
       if (!simUi.current(token)) return;
