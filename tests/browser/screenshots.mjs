@@ -1,5 +1,6 @@
 // Screenshots of every tab at desktop (1366×900) and phone (390×844) size,
-// after the tab's main action has run, into docs/screenshots/. Run after
+// after the tab's main action has run, into docs/screenshots/; for the
+// tool path also its 3D view (toolpath-3d-*.png). Run after
 // ./scripts/build: node tests/browser/screenshots.mjs
 import { mkdirSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -27,6 +28,18 @@ for (const [size, viewport] of Object.entries(sizes)) {
     await page.evaluate(() => window.scrollTo(0, 0));
     await page.screenshot({ path: `${out}${tab}-${size}.png` });
     console.log(`docs/screenshots/${tab}-${size}.png`);
+    if (tab === 'toolpath') {
+      // The 3D path view with the worst spots marked and the worst one's
+      // line selected in the editor and highlighted in the view.
+      await page.waitForSelector('#toolpath-path3d .path3d-mark');
+      await page.click('#toolpath-worst a[data-rank="1"][data-kind="cutting"]');
+      await page.waitForTimeout(300);
+      const view = await page.$('#toolpath-path');
+      await view.scrollIntoViewIfNeeded();
+      await page.waitForTimeout(300);
+      await view.screenshot({ path: `${out}toolpath-3d-${size}.png` });
+      console.log(`docs/screenshots/toolpath-3d-${size}.png`);
+    }
   }
   await page.close();
 }

@@ -94,7 +94,7 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   stage.append(canvas, labels, tip);
   const hint = document.createElement('p');
   hint.className = 'chart-hint';
-  hint.textContent = 'Drag to orbit, right-drag or shift-drag to pan, wheel or pinch to zoom; keys: arrows pan, shift+arrows orbit, + − zoom, 0 resets. Click the path to select its line.';
+  hint.textContent = 'Drag to orbit, right-drag or shift-drag to pan, wheel or pinch to zoom, double-click to reset; keys: arrows pan, shift+arrows orbit, + − zoom, 0 resets. Click the path to select its line.';
   el.append(bar, legend, stage, hint);
 
   let renderer;
@@ -485,6 +485,7 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     resize();
   }
   reset.addEventListener('click', resetView);
+  canvas.addEventListener('dblclick', resetView);
   canvas.addEventListener('keydown', (e) => {
     if (e.key === '+' || e.key === '=' || e.key === '-' || e.key === '_') {
       camera.zoom *= e.key === '+' || e.key === '=' ? 1.25 : 0.8;
