@@ -14,8 +14,12 @@
 // the pixel size by a factor of two.
 import {
   WebGLRenderer, Scene, OrthographicCamera, BufferGeometry, BufferAttribute, LineSegments, Line, LineBasicMaterial,
-  Points, PointsMaterial, Vector3, OrbitControls,
+  Points, PointsMaterial, Vector3, OrbitControls, ColorManagement, LinearSRGBColorSpace,
 } from '../vendor/three.js';
+
+// Colours are drawn as given (the legend's CSS gradient uses the same
+// numbers): no conversion to linear light and back.
+ColorManagement.enabled = false;
 
 /** @typedef {import('./pieces.js').ProgramPieces} ProgramPieces */
 
@@ -105,6 +109,7 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     return { el, show() {}, highlightLine() {}, setMagnification() {}, autoMagnification: () => 1, render() {}, state: () => ({}) };
   }
   renderer.setPixelRatio(1);
+  renderer.outputColorSpace = LinearSRGBColorSpace;
   renderer.setClearColor(0xfbfbfd);
   const scene = new Scene();
   const camera = new OrthographicCamera(-1, 1, 1, -1, -1000, 1000);
@@ -463,12 +468,12 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   }
   new ResizeObserver(resize).observe(stage);
 
-  // A flat path (Z range under 5 % of its size) is first seen from above,
+  // A flat path (Z range under 1 % of its size) is first seen from above,
   // any other from the front right, above.
   let half = [1, 1, 1];
   function resetView() {
     controls.target.set(0, 0, 0);
-    const flat = half[2] < 0.05 * Math.max(half[0], half[1]);
+    const flat = half[2] < 0.01 * Math.max(half[0], half[1]);
     if (flat) camera.position.set(0, -1e-3, 1);
     else camera.position.set(0.55, -0.9, 0.75);
     camera.position.normalize().multiplyScalar(radius * 4);
