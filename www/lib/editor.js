@@ -14,13 +14,15 @@
 // textarea itself goes to the editor. So boot.js's shared links and the
 // run-state marks keep working unchanged.
 import {
-  EditorState, EditorView, StateEffect, StateField, Decoration, lineNumbers, highlightActiveLine, highlightActiveLineGutter,
+  EditorState, Text, EditorView, StateEffect, StateField, Decoration, lineNumbers, highlightActiveLine, highlightActiveLineGutter,
   keymap, drawSelection, StreamLanguage, HighlightStyle, syntaxHighlighting, lintGutter, setDiagnostics,
   defaultKeymap, history, historyKeymap, tags,
 } from '../vendor/codemirror.js';
 
 /** Longest text the handle's own value mirrors (characters). */
 const MIRROR_MAX = 200_000;
+/** A text longer than this (characters) is split into lines in slices. */
+const SPLIT_IN_SLICES = 1_000_000;
 
 /** G-code words, as a StreamLanguage (RS274/NGC, Fanuc and macro B). */
 const gcode = StreamLanguage.define({
@@ -157,7 +159,11 @@ export function ncEditor({ id, onLine }) {
   // The text as one string, made once per document version.
   let cachedDoc = null;
   let cachedText = '';
+  /** A large text being split into lines (it is the value meanwhile). */
+  let pending = null;
+  let installs = 0;
   const text = () => {
+    if (pending !== null) return pending;
     if (cachedDoc !== view.state.doc) {
       cachedDoc = view.state.doc;
       cachedText = cachedDoc.toString();
@@ -167,10 +173,43 @@ export function ncEditor({ id, onLine }) {
   /** Replaces the whole text (no input event, as a textarea's value
    * setter): a new editor state (no undo into the previous program, no
    * marks of it), cheaper than an edit of the whole text. */
-  const setText = (v) => {
-    view.setState(EditorState.create({ doc: String(v), extensions }));
+  const install = (doc, str) => {
+    view.setState(EditorState.create({ doc, extensions }));
+    cachedDoc = view.state.doc;
+    cachedText = str;
     mirror();
     view.scrollDOM.scrollTop = 0;
+  };
+  // Line ends as a textarea's value has them.
+  const setText = (v) => {
+    const str = String(v).replace(/\r\n?/g, '\n');
+    const my = ++installs;
+    if (str.length <= SPLIT_IN_SLICES) {
+      pending = null;
+      install(str, str);
+      return;
+    }
+    // A large text is split into lines in slices of 25 ms (1 M lines in
+    // one go, with its garbage collection, held the page for ~0.6 s).
+    pending = str;
+    (async () => {
+      const lines = [];
+      let t0 = performance.now();
+      for (let at = 0; ;) {
+        const nl = str.indexOf('\n', at);
+        lines.push(str.slice(at, nl < 0 ? str.length : nl));
+        if (nl < 0) break;
+        at = nl + 1;
+        if (!(lines.length & 8191) && performance.now() - t0 > 25) {
+          await new Promise((r) => setTimeout(r, 0));
+          if (my !== installs) return;
+          t0 = performance.now();
+        }
+      }
+      if (my !== installs) return;
+      pending = null;
+      install(Text.of(lines), str);
+    })();
   };
   let mirrored = '';
   function mirror() {
@@ -222,6 +261,10 @@ export function ncEditor({ id, onLine }) {
     checkTimer = setTimeout(() => applyCheck(pendingCheck));
   }
   function applyCheck(check) {
+    if (pending !== null) {
+      checkTimer = setTimeout(() => applyCheck(pendingCheck), 50);
+      return;
+    }
     const doc = view.state.doc;
     const at = (w, severity) => {
       const n = Math.min(Math.max(w.line, 1), doc.lines);
