@@ -4,7 +4,8 @@
 // the list, scrolls the editor to its line and selects it; putting the
 // cursor on a line in the editor highlights its segment in the view (the
 // highlight colour is drawn); clicking the path selects its line; hover
-// shows line, time, error and feed; a mouse drag orbits the camera.
+// shows line, time, error and feed; a mouse drag orbits the camera; keys
+// zoom, pan and reset.
 const HIGHLIGHT = 0xd6336c;
 
 /** The editor's selected line (1-based) and whether it is inside the
@@ -100,4 +101,16 @@ export default async function (page, check) {
   await page.mouse.up();
   const after = await view(page, (v) => v.camera.position.toArray());
   check(before.some((x, i) => Math.abs(x - after[i]) > 1e-6), `a drag should orbit the camera: ${before} → ${after}`);
+
+  // Keys on the focused view: + zooms, an arrow pans, 0 resets.
+  await page.focus('#toolpath-path3d canvas');
+  await page.keyboard.press('0');
+  const rest = await view(page, (v) => [v.camera.zoom, ...v.controls.target.toArray()]);
+  await page.keyboard.press('+');
+  const zoomed = await view(page, (v) => v.camera.zoom);
+  await page.keyboard.press('ArrowLeft');
+  const panned = await view(page, (v) => v.controls.target.toArray());
+  await page.keyboard.press('0');
+  const reset = await view(page, (v) => [v.camera.zoom, ...v.controls.target.toArray()]);
+  check(zoomed > rest[0] && panned.some((x, i) => Math.abs(x - rest[i + 1]) > 1e-9) && reset.every((x, i) => Math.abs(x - rest[i]) < 1e-9), `keys: + zooms (${rest[0]} → ${zoomed}), ArrowLeft pans (${panned}), 0 resets (${reset})`);
 }
