@@ -271,8 +271,8 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       if (open && !fresh) emit();
       drawnProg = { pos: pos.subarray(0, m * 6), seg: seg.subarray(0, m) };
       const g = new BufferGeometry();
-      g.setAttribute('position', new BufferAttribute(pos.slice(0, m * 6), 3));
-      g.setAttribute('color', new BufferAttribute(col.slice(0, m * 6), 3));
+      g.setAttribute('position', new BufferAttribute(pos.subarray(0, m * 6), 3));
+      g.setAttribute('color', new BufferAttribute(col.subarray(0, m * 6), 3));
       progTo.geometry.dispose();
       progTo.geometry = g;
     }
@@ -315,8 +315,8 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       }
       drawnSim = { pos: pos.subarray(0, m * 3), idx: idx.subarray(0, m) };
       const g = new BufferGeometry();
-      g.setAttribute('position', new BufferAttribute(pos.slice(0, m * 3), 3));
-      g.setAttribute('color', new BufferAttribute(col.slice(0, m * 3), 3));
+      g.setAttribute('position', new BufferAttribute(pos.subarray(0, m * 3), 3));
+      g.setAttribute('color', new BufferAttribute(col.subarray(0, m * 3), 3));
       simTo.geometry.dispose();
       simTo.geometry = g;
     }

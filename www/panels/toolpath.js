@@ -248,8 +248,8 @@ export async function mount(root, api) {
     }
   }
 
-  /** The table, warnings, CSV button and charts of one simulation; the
-   * drawing in tasks of their own (false: a newer state came meanwhile). */
+  /** The charts, table, warnings and CSV button of one simulation, in
+   * tasks of their own (false: a newer state came meanwhile). */
   async function showSimulation(s, program, token) {
     const later = async () => {
       await new Promise((r) => setTimeout(r, 0));
@@ -265,6 +265,15 @@ export async function mount(root, api) {
       ? h('p', { class: 'note', id: 'toolpath-series-note' }, `${s.samples.toLocaleString('en')} samples simulated; the plots and the CSV keep the sample with the largest error of each ${s.seriesStride} (${s.t.length.toLocaleString('en')} rows). Every number above uses all samples.`)
       : '';
     const worst = worstSegments(s);
+    if (!(await later())) return false;
+    pathBox.replaceChildren(h('div', { class: 'chart-title' }, 'Programmed and simulated path in 3D (colour: contour error µm)'), view3d.el);
+    velBox.replaceChildren();
+    await view3d.show({ program: pieces, sim: s, scaleUm: s.maxErrorUm, marks: marksOf(s, worst.cutting, pieces) });
+    if (!(await later())) return false;
+    lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY].map(thinned), height: 260 });
+    // The numbers last, in the task that ends the run (the caller's ok()):
+    // a run is done when its table shows.
+    if (!(await later())) return false;
     out.replaceChildren(
       table(['quantity', 'value'], [
         ['maximum contour error', h('span', { id: 'toolpath-max-error' }, `${fmt(s.maxErrorUm, 4)} µm`)],
@@ -280,12 +289,6 @@ export async function mount(root, api) {
       }),
       h('button', { id: 'toolpath-csv', onclick: () => downloadText('toolpath-simulation.csv', toCsv({ t_s: s.t, cmd_x_mm: s.cmdX, cmd_y_mm: s.cmdY, cmd_z_mm: s.cmdZ, sim_x_mm: s.simX, sim_y_mm: s.simY, sim_z_mm: s.simZ, vel_x_mm_s: s.velSimX, vel_y_mm_s: s.velSimY, vel_z_mm_s: s.velSimZ, error_um: s.errorUm }), 'text/csv') }, 'Download CSV'),
     );
-    if (!(await later())) return false;
-    pathBox.replaceChildren(h('div', { class: 'chart-title' }, 'Programmed and simulated path in 3D (colour: contour error µm)'), view3d.el);
-    velBox.replaceChildren();
-    await view3d.show({ program: pieces, sim: s, scaleUm: s.maxErrorUm, marks: marksOf(s, worst.cutting, pieces) });
-    if (!(await later())) return false;
-    lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY].map(thinned), height: 260 });
     return true;
   }
 
