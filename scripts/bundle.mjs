@@ -1,4 +1,5 @@
 // Bundles for delivery, run by scripts/build after dist/ is assembled:
+// - dist/vendor/codemirror.js and three.js (scripts/vendor.mjs);
 // - dist/mtmotion-standalone.html: one file with the page, its CSS, the
 //   bundled JS (panels, uPlot, wasm-bindgen glue), the worker's code and the
 //   wasm inlined as base64 — it opens from file:// with no other file;
@@ -8,9 +9,13 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { gzipSync } from 'node:zlib';
 import { build } from 'esbuild';
+import { bundleVendor } from './vendor.mjs';
 
 const dist = new URL('../dist/', import.meta.url);
 const read = (p) => readFileSync(new URL(p, dist), 'utf8');
+// The vendor bundles first: the served page imports them, and the
+// single-file page bundles them in.
+await bundleVendor(dist);
 
 async function bundle(entry, define = {}, format = 'esm') {
   const out = await build({

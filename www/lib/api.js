@@ -9,13 +9,21 @@
 // unusable. Calls queued behind the one that ended are sent to the new
 // worker; only that one call fails, with a message in words.
 
+import { derived } from './derived.js';
+
 /**
  * Options of one call: `onProgress(fraction, message)` for the functions
  * that report progress, `signal` cancels, `timeoutMs` limits the time.
  * @typedef {{ onProgress?: (fraction: number, message: string) => void, signal?: AbortSignal, timeoutMs?: number }} CallOptions
  */
 
-/** @typedef {typeof import('../pkg/mtmotion.js')} Core the wasm module's exports (pkg/mtmotion.d.ts) */
+/** @typedef {typeof import('../pkg/mtmotion.js')} Wasm the wasm module's exports (pkg/mtmotion.d.ts) */
+/** @typedef {typeof import('./derived.js').derived} Derived */
+/**
+ * The core's exports and the page's derived calls (lib/derived.js, their
+ * first argument, the module, supplied where they run).
+ * @typedef {Wasm & { [K in keyof Derived]: Derived[K] extends (wasm: any, ...args: infer A) => infer R ? (...args: A) => R : never }} Core
+ */
 /**
  * The name of a core function the page may call (not the module's own
  * initialisers).
@@ -205,7 +213,7 @@ export function inPageApi(wasm) {
    * @param {CallOptions} [options]
    */
   async function callInPage(fn, args = [], { onProgress, signal } = {}) {
-    const f = wasm[fn];
+    const f = Object.hasOwn(derived, fn) ? (...a) => derived[fn](wasm, ...a) : wasm[fn];
     if (typeof f !== 'function' || fn === 'default' || fn.startsWith('init')) throw new Error(`unknown function '${fn}'`);
     // Yield once so the page can paint the "running" state first.
     await new Promise((r) => setTimeout(r, 0));

@@ -4,6 +4,8 @@
 // {id, progress: [fraction, message]} out. `trap` marks a failure inside the
 // WebAssembly instance (a RuntimeError: unreachable, out-of-bounds access):
 // the instance may be left unusable, so the page replaces this worker.
+// Besides the core's functions, the page's derived calls (lib/derived.js).
+import { derived } from './derived.js';
 
 // Float64Array buffers in a result are transferred, not copied.
 function transferables(value, out = [], depth = 0) {
@@ -27,7 +29,7 @@ export function serveCalls(wasm, ready) {
     try {
       // The browser test's way to prove the page recovers from a trap.
       if (fn === '__simulateTrap') throw new WebAssembly.RuntimeError('unreachable (simulated by the test)');
-      const f = wasm[fn];
+      const f = Object.hasOwn(derived, fn) ? (...a) => derived[fn](wasm, ...a) : wasm[fn];
       if (typeof f !== 'function' || fn === 'default' || fn.startsWith('init')) throw new Error(`unknown function '${fn}'`);
       const callArgs = progress ? [...args, (fraction, message) => self.postMessage({ id, progress: [fraction, message] })] : args;
       const result = f(...callArgs);

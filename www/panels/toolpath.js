@@ -6,6 +6,10 @@
 import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState, progressBar, showError, cancelGuard } from '../lib/ui.js';
 import { xyChart, lineChart } from '../lib/plot.js';
 import { programFiles } from './toolpath-files.js';
+import { ncEditor } from '../lib/editor.js';
+import { pathView } from '../lib/path3d.js';
+import { unpackSimulation } from '../lib/derived.js';
+import { worstSegments, marksOf, worstLists } from './toolpath-worst.js';
 
 /**
  * @param {HTMLElement} root
@@ -16,19 +20,14 @@ export async function mount(root, api) {
     arcs: await api.call('toolpathExample', ['arcs']),
     lines: await api.call('toolpathExample', ['lines']),
   };
-  const nc = h('textarea', { id: 'toolpath-nc', rows: 14, spellcheck: false, style: 'width:100%;font-family:monospace' });
+  // The program editor (CodeMirror); `nc` is its textarea handle (value,
+  // selection, input/change events), as the page and its tests know it.
+  const editor = ncEditor({ id: 'toolpath-nc', onLine: (n) => view3d.highlightLine(n) });
+  const nc = editor.handle;
   // Program check: errors or warnings next to the text, each a
   // link that selects its line; the summary the user checks first.
   const check = h('div', { id: 'toolpath-check', 'aria-live': 'polite', style: 'max-height:330px;overflow:auto;font-size:90%' });
-  function selectLine(line) {
-    const lines = nc.value.split('\n');
-    let start = 0;
-    for (let i = 0; i < line - 1 && i < lines.length; i++) start += lines[i].length + 1;
-    const end = start + (lines[line - 1] ?? '').length;
-    nc.focus();
-    nc.setSelectionRange(start, end);
-    nc.scrollTop = Math.max(0, (line - 3) * (nc.scrollHeight / Math.max(lines.length, 1)));
-  }
+  const selectLine = (line) => editor.selectLine(line);
   // Cutter compensation: the tool radius per D is a text the core reads
   // ("D1=3, D8=0.25", program units); the summary says, per G41/G42
   // stretch, whether the path is offset or the programmed one.
@@ -53,6 +52,7 @@ export async function mount(root, api) {
     try {
       const c = known ?? (await api.call('checkNc', [nc.value, files.options(radiiOption())]));
       if (seq !== checkSeq) return;
+      editor.showCheck(c);
       if (c.errors.length) {
         check.replaceChildren(
           h('p', { class: 'error' }, `${c.errors.length}${c.truncated ? '+' : ''} error(s): the program cannot be simulated until they are fixed.`),
@@ -134,6 +134,16 @@ export async function mount(root, api) {
   const simRun = cancelGuard(simCancel, simProgress);
   const out = h('div', { id: 'toolpath-out' });
   const pathBox = h('div', { class: 'plot', id: 'toolpath-path' });
+  // The 3D path view (one WebGL context for the panel's life): a click on
+  // the path or a mark selects its line in the editor; a new simulation
+  // starts at the automatic magnification.
+  const view3d = pathView({
+    onPick: (line) => editor.selectLine(line, { focus: false }),
+    onMagnification: (k) => {
+      mag.value = String(Math.min(k, Number(mag.max)));
+      magLabel.textContent = `×${k} (auto)`;
+    },
+  });
   const velBox = h('div', { class: 'plot', id: 'toolpath-velocity' });
   const compOut = h('div', { id: 'toolpath-comp-out' });
   // One run state per result area; a new program empties both (its results
@@ -143,7 +153,6 @@ export async function mount(root, api) {
   const programChanged = () => {
     last = null;
     lastComp = null;
-    pathChart = null;
     compCharts.length = 0;
     simUi.clear();
     compUi.clear();
@@ -199,12 +208,11 @@ export async function mount(root, api) {
 
   let last = null;
   let lastComp = null;
-  let pathChart = null;
   const compCharts = [];
   function redraw() {
     const k = Number(mag.value);
     magLabel.textContent = `×${k}`;
-    if (last && pathChart) pathChart.update({ traces: pathTraces(last, k, 'simulated') });
+    if (last) view3d.setMagnification(k);
     if (lastComp && compCharts.length === 2) {
       compCharts[0].update({ traces: pathTraces(lastComp.beforeSim, k, 'before') });
       compCharts[1].update({ traces: pathTraces(lastComp.afterSim, k, 'after') });
@@ -216,35 +224,56 @@ export async function mount(root, api) {
     const token = simUi.start();
     const abort = simRun.start();
     try {
-      const s = await api.call('simulateToolPath', [nc.value, files.options({ ...cfg(), ...radiiOption() })], {
+      // The program's segments (the core's parseNc reading) draw the programmed path.
+      const parsed = api.call('programPieces', [nc.value, files.options(radiiOption())]).catch(() => null);
+      const packed = await api.call('simulateToolPathPacked', [nc.value, files.options({ ...cfg(), ...radiiOption() })], {
         signal: abort.signal,
         onProgress: (f) => {
           simCancel.hidden = false;
           simProgress.set(f, `simulating: ${Math.round(f * 100)} %`);
         },
       });
+      const s = unpackSimulation(packed);
+      if (!simUi.current(token)) return;
+      const program = await parsed;
       if (!simUi.current(token)) return;
       last = s;
-      showSimulation(s);
+      if (!(await showSimulation(s, program, token))) return;
       simUi.ok();
     } catch (e) {
       last = null;
-      pathChart = null;
       if (simUi.current(token)) simRun.failed(abort, e, simUi, 'Simulation');
     } finally {
       simRun.finish(abort);
     }
   }
 
-  /** The table, warnings, CSV button and charts of one simulation. */
-  function showSimulation(s) {
+  /** The charts, table, warnings and CSV button of one simulation, in
+   * tasks of their own (false: a newer state came meanwhile). */
+  async function showSimulation(s, program, token) {
+    const later = async () => {
+      await new Promise((r) => setTimeout(r, 0));
+      return simUi.current(token);
+    };
+    // Not in the task that received the result (its copy is long enough).
+    if (!(await later())) return false;
+    const pieces = program;
     const warn = s.warnings.length
       ? h('details', { class: 'warn-box' }, h('summary', {}, `${s.warnings.length} warning(s)`), h('ul', {}, ...s.warnings.map((w) => h('li', {}, `${w.file ? `${w.file}, ` : ''}line ${w.line}, column ${w.column}: ${w.message}`))))
       : '';
     const thinnedNote = s.seriesStride > 1
       ? h('p', { class: 'note', id: 'toolpath-series-note' }, `${s.samples.toLocaleString('en')} samples simulated; the plots and the CSV keep the sample with the largest error of each ${s.seriesStride} (${s.t.length.toLocaleString('en')} rows). Every number above uses all samples.`)
       : '';
-    const worst = [...s.segments].sort((a, b) => b.maxErrorUm - a.maxErrorUm).slice(0, 8);
+    const worst = worstSegments(s);
+    if (!(await later())) return false;
+    pathBox.replaceChildren(h('div', { class: 'chart-title' }, 'Programmed and simulated path in 3D (colour: contour error µm)'), view3d.el);
+    velBox.replaceChildren();
+    await view3d.show({ program: pieces, sim: s, scaleUm: s.maxErrorUm, marks: marksOf(s, worst.cutting, pieces) });
+    if (!(await later())) return false;
+    lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY].map(thinned), height: 260 });
+    // The numbers last, in the task that ends the run (the caller's ok()):
+    // a run is done when its table shows.
+    if (!(await later())) return false;
     out.replaceChildren(
       table(['quantity', 'value'], [
         ['maximum contour error', h('span', { id: 'toolpath-max-error' }, `${fmt(s.maxErrorUm, 4)} µm`)],
@@ -254,14 +283,13 @@ export async function mount(root, api) {
       ]),
       thinnedNote,
       warn,
-      h('h4', {}, 'Segments with the largest error'),
-      table(['line', 'kind', 'length mm', 'radius mm', 'max error µm', 'mean deviation µm'], worst.map((g) => [g.line, g.kind, fmt(g.length, 4), g.radius ? fmt(g.radius, 4) : '—', fmt(g.maxErrorUm, 4), g.meanDeviation == null ? '—' : fmt(g.meanDeviation * 1e3, 3)])),
+      worstLists(worst, (line) => {
+        editor.selectLine(line);
+        view3d.highlightLine(line);
+      }),
       h('button', { id: 'toolpath-csv', onclick: () => downloadText('toolpath-simulation.csv', toCsv({ t_s: s.t, cmd_x_mm: s.cmdX, cmd_y_mm: s.cmdY, cmd_z_mm: s.cmdZ, sim_x_mm: s.simX, sim_y_mm: s.simY, sim_z_mm: s.simZ, vel_x_mm_s: s.velSimX, vel_y_mm_s: s.velSimY, vel_z_mm_s: s.velSimZ, error_um: s.errorUm }), 'text/csv') }, 'Download CSV'),
     );
-    pathBox.replaceChildren();
-    velBox.replaceChildren();
-    pathChart = xyChart(pathBox, { title: 'Commanded and simulated path (colour: contour error µm)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(s, Number(mag.value), 'simulated'), colorLabel: 'µm', height: 420 });
-    lineChart(velBox, { title: 'Axis velocity', xLabel: 't s', yLabel: 'mm/s', series: [{ label: 'X commanded', dash: [4, 4] }, { label: 'Y commanded', dash: [4, 4] }, { label: 'X simulated' }, { label: 'Y simulated' }], data: [s.t, s.velCmdX, s.velCmdY, s.velSimX, s.velSimY].map(thinned), height: 260 });
+    return true;
   }
 
   async function compensate() {
@@ -327,7 +355,7 @@ export async function mount(root, api) {
       h('h3', {}, 'NC program'),
       h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, example.el, drop, radiiField),
       files.note,
-      h('div', { style: 'display:grid;grid-template-columns:repeat(auto-fit,minmax(280px,1fr));gap:12px' }, nc, check)),
+      h('div', { style: 'display:grid;grid-template-columns:repeat(auto-fit,minmax(280px,1fr));gap:12px' }, editor.el, check)),
     h('div', { class: 'card' },
       h('h3', {}, 'Model (Eq. 1 moving average tA, Eq. 2 first-order lag T per axis)'),
       h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, tA.el, tx.el, ty.el, tz.el, ovr.el, dt.el),

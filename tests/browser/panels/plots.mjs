@@ -1,6 +1,6 @@
 // Plots: every chart shows its zoom hint; no title, legend, hint or axis
-// label box lies outside its chart's box; the tool-path plot zooms with the
-// wheel and a double-click restores it exactly; the Bode plots switch to Hz.
+// label box lies outside its chart's box; the tool-path 3D view zooms with
+// the wheel and a double-click restores it exactly; the Bode plots switch to Hz.
 async function labelsOutside(page) {
   return page.evaluate(() => {
     const bad = [];
@@ -20,21 +20,26 @@ async function labelsOutside(page) {
 export default async function (page, check) {
   await page.click('[data-tab="toolpath"]');
   await page.click('#toolpath-run');
-  await page.waitForSelector('#toolpath-path canvas');
-  const canvas = await page.$('#toolpath-path canvas');
-  const img = () => page.$eval('#toolpath-path canvas', (c) => c.toDataURL());
-  const before = await img();
+  // The path is a 3D view (lib/path3d.js): the wheel zooms the camera,
+  // a double-click restores the view exactly.
+  await page.waitForSelector('#toolpath-path3d canvas');
+  const canvas = await page.$('#toolpath-path3d canvas');
+  const cam = () => page.evaluate(() => {
+    const v = /** @type {any} */ (document.querySelector('#toolpath-path3d')).pathView;
+    return [v.camera.zoom, ...v.camera.position.toArray()].map((x) => x.toFixed(9)).join(' ');
+  });
+  const before = await cam();
   await canvas.scrollIntoViewIfNeeded();
   const b = await canvas.boundingBox();
   await page.mouse.move(b.x + b.width / 2, b.y + b.height / 2);
   await page.mouse.wheel(0, -300);
   await page.waitForTimeout(100);
-  const zoomed = await img();
-  check(zoomed !== before, 'the wheel should zoom the tool-path plot');
-  await page.dblclick('#toolpath-path canvas');
+  const zoomed = await cam();
+  check(zoomed !== before, `the wheel should zoom the tool-path view (${before} → ${zoomed})`);
+  await page.dblclick('#toolpath-path3d canvas');
   await page.waitForTimeout(100);
-  check((await img()) === before, 'a double-click should restore the unzoomed view');
-  check(/wheel to zoom, drag to pan, double-click to reset/.test(await page.textContent('#toolpath-path')), 'the path plot should say how to zoom');
+  check((await cam()) === before, 'a double-click should restore the unzoomed view');
+  check(/wheel or pinch to zoom, double-click to reset/.test(await page.textContent('#toolpath-path')), 'the path view should say how to zoom');
   check(/drag to zoom, double-click to reset/.test(await page.textContent('#toolpath-velocity')), 'the velocity plot should say how to zoom');
   let out = await labelsOutside(page);
   check(out.length === 0, `tool path: labels outside their chart: ${out.join('; ')}`);
