@@ -141,3 +141,108 @@ fn partial_range_centre_can_be_moved() {
         (s[0].error_z - c[0].error_z).abs() > 1e-5 || (s[0].error_x - c[0].error_x).abs() > 1e-5
     );
 }
+
+/// The travel range is cut about `centre_deg`, with the angle wrapped:
+/// `fit_range` equals a circle fitted to the points picked independently
+/// (angular distance from the centre by atan2, |Δ| ≤ W/2), for centres off
+/// 0°, one near ±180° (the cut straddles the wrap), and a range that does
+/// not (the picked arcs differ, so a wrong centre or wrap is seen).
+#[test]
+fn the_range_is_cut_about_its_centre_across_the_wrap() {
+    use mtmotion::ballbar::fit_circle;
+    let c = Offset {
+        z: 0.004,
+        x: -0.007,
+    };
+    for (centre, w) in [
+        (50.0, 120.0),
+        (-170.0, 90.0),
+        (175.0, 200.0),
+        (-30.0, 300.0),
+    ] {
+        let locus = Locus {
+            centre_deg: centre,
+            ..fig7_locus(100.0)
+        };
+        let pts = locus.points(c);
+        let got = locus.fit_range(&pts, w).unwrap();
+        let (mut zs, mut xs) = (Vec::new(), Vec::new());
+        for i in 0..pts.0.len() {
+            let d = pts.0[i] - f64::to_radians(centre);
+            let d = d.sin().atan2(d.cos()).to_degrees();
+            if d.abs() <= w / 2.0 + 1e-9 {
+                zs.push(pts.1[i]);
+                xs.push(pts.2[i]);
+            }
+        }
+        // the count picked is the range's share of the 1000 samples
+        assert!(
+            (zs.len() as f64 - 1000.0 * w / 360.0).abs() <= 2.0,
+            "centre {centre}°, {w}°: {} points",
+            zs.len()
+        );
+        let want = fit_circle(&zs, &xs).unwrap();
+        assert!(
+            (got.z - want.cx).abs() < 1e-12 && (got.x - want.cy).abs() < 1e-12,
+            "centre {centre}°, {w}°: {got:?} against {:?}",
+            (want.cx, want.cy)
+        );
+        // and the cut is not the one about 0°: the harmonics bias it differently
+        let at0 = Locus {
+            centre_deg: 0.0,
+            ..locus.clone()
+        }
+        .fit_range(&pts, w)
+        .unwrap();
+        assert!(
+            (at0.z - got.z).hypot(at0.x - got.x) > 1e-5,
+            "centre {centre}°, {w}°: the cut about 0° gave the same centre"
+        );
+    }
+}
+
+/// Bad sweeps are refused by name before any work: a range of 0° (the
+/// range is in (0, 360]), an offset with one non-finite part, and a sweep
+/// whose work, (ranges + harmonics) × samples, is over the budget even
+/// with no harmonic at all.
+#[test]
+fn bad_sweeps_are_refused_by_name() {
+    let cfg = |offset: Offset, ranges: Vec<f64>, locus: Locus| SweepConfig {
+        offset,
+        ranges,
+        locus,
+    };
+    let good = Offset { z: 0.0, x: 0.01 };
+    let e = travel_range_sweep(&cfg(good, vec![90.0, 0.0], fig7_locus(100.0))).unwrap_err();
+    assert!(
+        e.to_string().contains("ranges[1]") && e.to_string().contains("(0, 360]"),
+        "{e}"
+    );
+    for off in [
+        Offset {
+            z: 0.0,
+            x: f64::NAN,
+        },
+        Offset {
+            z: f64::INFINITY,
+            x: 0.0,
+        },
+    ] {
+        let e = travel_range_sweep(&cfg(off, vec![90.0], fig7_locus(100.0))).unwrap_err();
+        assert!(e.to_string().contains("offset"), "{e}");
+    }
+    let big = Locus {
+        harmonics: vec![],
+        samples: mtmotion::budget::MAX_SWEEP_POINTS / 3 + 1,
+        ..fig7_locus(100.0)
+    };
+    let e = travel_range_sweep(&cfg(good, vec![90.0, 180.0, 270.0], big)).unwrap_err();
+    assert!(e.to_string().contains("travel-range sweep"), "{e}");
+    // at 1000 samples the same sweep runs
+    assert_eq!(
+        travel_range_sweep(&cfg(good, vec![90.0, 180.0, 270.0], fig7_locus(100.0)))
+            .unwrap()
+            .len(),
+        3
+    );
+}
