@@ -5,8 +5,8 @@
 //! What is read, from the coordinate words X Y Z I J K R (their text as
 //! written, sign aside):
 //! - *leading zero*: `0.5` or `.5`, by vote of the words below 1 with
-//!   digits after the point (`0.` and `0` are zero with a point or none,
-//!   no evidence either way);
+//!   digits after the point and a value other than zero (posts that
+//!   write `.5` write zero as `0.` or `0.000`, so zero keeps its `0`);
 //! - *most decimals*: the most any word has; raised to 3 in mm or 4 in
 //!   inch (1 µm, 2.5 µm) when the program is coarser, so a compensation is
 //!   not rounded away (a 3-decimal inch program gets `-.7512`, never a
@@ -84,7 +84,9 @@ fn tally<'a>(words: impl Iterator<Item = &'a super::Word>) -> Tally {
                     t.ints += usize::from(w.value != 0.0);
                     continue;
                 }
-                if p == 0 {
+                if w.value == 0.0 {
+                    // `0.000` or `.000`: zero, often written apart
+                } else if p == 0 {
                     t.nolead += 1;
                 } else if &s[..p] == "0" {
                     t.lead += 1;
@@ -224,7 +226,7 @@ impl NumStyle {
         }
         if !self.lead_zero {
             if let Some(rest) = s.strip_prefix("0.") {
-                if !rest.is_empty() {
+                if !rest.is_empty() && !rest.bytes().all(|c| c == b'0') {
                     s = format!(".{rest}");
                 }
             } else if let Some(rest) = s.strip_prefix("-0.") {

@@ -457,7 +457,9 @@ impl Writer<'_> {
                         continue;
                     }
                     let next = segments[k + 1..].iter().find_map(|s| s.block);
-                    let (text, new_pos) = self.new_line(seg, pos, next);
+                    let Some((text, new_pos)) = self.new_line(seg, pos, next) else {
+                        continue;
+                    };
                     pos = new_pos;
                     match next.and_then(|b| self.line_of(b)) {
                         Some(l) => self.before[l].push(text),
@@ -472,8 +474,16 @@ impl Writer<'_> {
         }
     }
 
-    /// A new G1 line to `seg.end` from `pos`, in the modes in force before `next`.
-    fn new_line(&self, seg: &Segment, pos: [f64; 3], next: Option<usize>) -> (String, [f64; 3]) {
+    /// A new G1 line to `seg.end` from `pos`, in the modes in force before
+    /// `next`; `None` when no axis moves at the written resolution (a
+    /// connecting line of less than a digit is left out, not written as a
+    /// bare `G1`).
+    fn new_line(
+        &self,
+        seg: &Segment,
+        pos: [f64; 3],
+        next: Option<usize>,
+    ) -> Option<(String, [f64; 3])> {
         let m = match next {
             Some(b) if b > 0 => self.modal(b - 1),
             Some(_) => Modal::default(),
@@ -491,6 +501,9 @@ impl Writer<'_> {
                 parts.push(format!("{}{t}", self.d.letter(letter)));
                 out[k] = v;
             }
+        }
+        if parts.len() == 1 {
+            return None;
         }
         let out = machine_point(&m, out);
         let length = seg.timed_length();
@@ -518,7 +531,7 @@ impl Writer<'_> {
                 .format(seg.feed / u)
             ));
         }
-        (parts.join(self.d.space), out)
+        Some((parts.join(self.d.space), out))
     }
 
     /// The text of coordinate `target` (mm) on axis `k` from `pos` in mode
