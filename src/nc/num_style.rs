@@ -18,8 +18,10 @@
 //!   does not. The largest kept count that the words showing it
 //!   outnumber the words against it is taken: `1.500` → 3,
 //!   `3.0` → 1, `3.` → 0;
-//! - *integer point*: with no decimals kept, `75.` or `75`, by vote
-//!   (`75.` when the program has no integer at all and uses points);
+//! - *integer point*: with no decimals kept, `75.` or `75`, by vote of
+//!   the integers other than zero (a Fanuc post may write `X0` and `X10.`;
+//!   `X10` without a point is 10 µm there), else of the zeros (`75.` when
+//!   the program has no integer at all);
 //! - a *block* that shows its own style overrides the program's: one
 //!   whose words with decimals all have the same count and one of them a
 //!   trailing zero is fixed to that count (`X1.50 Y2.25` in a 4-decimal
@@ -59,8 +61,9 @@ struct Tally {
     nolead: usize,
     point: usize,
     nopoint: usize,
-    /// Integers (with a point or without) other than zero.
-    ints: usize,
+    /// Integers other than zero with a point (`75.`) and without (`75`).
+    ipoint: usize,
+    inopoint: usize,
     /// Decimals of each word with decimals, and whether it ends in `0`.
     fracs: Vec<(usize, bool)>,
 }
@@ -81,7 +84,7 @@ fn tally<'a>(words: impl Iterator<Item = &'a super::Word>) -> Tally {
                 t.decimals = t.decimals.max(d);
                 if d == 0 {
                     t.point += 1;
-                    t.ints += usize::from(w.value != 0.0);
+                    t.ipoint += usize::from(w.value != 0.0);
                     continue;
                 }
                 if w.value == 0.0 {
@@ -95,7 +98,7 @@ fn tally<'a>(words: impl Iterator<Item = &'a super::Word>) -> Tally {
             }
             None => {
                 t.nopoint += 1;
-                t.ints += usize::from(w.value != 0.0);
+                t.inopoint += usize::from(w.value != 0.0);
             }
         }
     }
@@ -103,6 +106,19 @@ fn tally<'a>(words: impl Iterator<Item = &'a super::Word>) -> Tally {
 }
 
 impl Tally {
+    /// Integers with a point, by the vote of the integers other than zero
+    /// (a Fanuc post may write zero `X0` and every other integer `X10.`,
+    /// and `X10` without a point is 10 µm there), else of the zeros.
+    fn int_point(&self) -> Option<bool> {
+        if self.ipoint != self.inopoint {
+            Some(self.ipoint > self.inopoint)
+        } else if self.ipoint == 0 && self.point != self.nopoint {
+            Some(self.point > self.nopoint)
+        } else {
+            None
+        }
+    }
+
     /// The fewest decimals these words keep (see the module header).
     fn min_decimals(&self) -> usize {
         let mut kept: Vec<usize> = self
@@ -168,7 +184,7 @@ impl NumStyle {
             decimals,
             min_decimals: t.min_decimals().min(decimals),
             lead_zero: t.lead >= t.nolead,
-            int_point: t.point >= t.nopoint || t.decimals == 0 && t.nopoint == 0,
+            int_point: t.int_point().unwrap_or(true),
         }
     }
 
@@ -190,15 +206,15 @@ impl NumStyle {
         if let Some(d) = t.fixed() {
             s.decimals = d.max(floor(inch));
             s.min_decimals = d;
-        } else if t.fracs.is_empty() && t.ints > 0 {
+        } else if t.fracs.is_empty() && t.ipoint + t.inopoint > 0 {
             // Integers other than zero and no fraction: `X2 Y3`, `X2. Y3.`.
             s.min_decimals = 0;
         }
         if t.lead != t.nolead {
             s.lead_zero = t.lead > t.nolead;
         }
-        if t.point != t.nopoint {
-            s.int_point = t.point > t.nopoint;
+        if t.ipoint != t.inopoint {
+            s.int_point = t.ipoint > t.inopoint;
         }
         s
     }
@@ -276,6 +292,9 @@ mod tests {
             (s.format(3.0), s.format(2.125)),
             ("3.0".into(), "2.125".into())
         );
+        // Zeros without a point, other integers with one (Fanuc).
+        let s = style("G0 X0 Y0 Z0\nG1 X10. Y-1.5", false);
+        assert_eq!(s.format(11.0), "11.");
         // Integers without a point (LinuxCNC style).
         let s = style("G1 X10 Y20 Z-1.5", false);
         assert_eq!(s.format(10.0), "10");
