@@ -354,19 +354,19 @@ fn new_lines_are_numbered_like_the_program() {
     };
     assert_eq!(
         with_dwells("N10 G0 X0 Y0\nN20 G1 X10 F600\nN30 G1 Y10\n", &[1]),
-        "N10 G0 X0 Y0\nN20 G1 X10 F600\nN21 G4 P0.1\nN30 G1 Y10\n"
+        "N10 G0 X0 Y0\nN20 G1 X10 F600\nN21 G4 P100\nN30 G1 Y10\n"
     );
     assert_eq!(
         with_dwells("N0010 G0 X0 Y0\nN0020 G1 X10 F600\nN0030 G1 Y10\n", &[1, 2]),
-        "N0010 G0 X0 Y0\nN0020 G1 X10 F600\nN0021 G4 P0.1\nN0030 G1 Y10\nN0031 G4 P0.1\n"
+        "N0010 G0 X0 Y0\nN0020 G1 X10 F600\nN0021 G4 P100\nN0030 G1 Y10\nN0031 G4 P100\n"
     );
     assert_eq!(
         with_dwells("N1 G0 X0 Y0\nN2 G1 X10 F600\nN3 G1 Y10\n", &[1]),
-        "N1 G0 X0 Y0\nN2 G1 X10 F600\nG4 P0.1\nN3 G1 Y10\n"
+        "N1 G0 X0 Y0\nN2 G1 X10 F600\nG4 P100\nN3 G1 Y10\n"
     );
     assert_eq!(
         with_dwells("G0 X0 Y0\nG1 X10 F600\nN30 G1 Y10\n", &[1]),
-        "G0 X0 Y0\nG1 X10 F600\nG4 P0.1\nN30 G1 Y10\n"
+        "G0 X0 Y0\nG1 X10 F600\nG4 P100\nN30 G1 Y10\n"
     );
     // A reverse compensation of a numbered program: every line it adds is
     // numbered and the numbers still rise.

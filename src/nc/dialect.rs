@@ -5,6 +5,148 @@
 //! `TOOL CALL`, `CYCL DEF`). A decimal comma (`X1,5`, European number
 //! formatting) is named too. Okuma OSP is recognised in
 //! [`super::macro_expr`] (its macro words overlap Fanuc Macro B's).
+//!
+//! Among the ISO dialects the reader takes, the one that matters to a
+//! writer is how a dwell's time is read ([`dwell_form`]): the form a G4
+//! that a compensation inserts is written in, so that the control reads
+//! the time meant:
+//! - a LinuxCNC program — `dwellP: 'seconds'`, or a word only LinuxCNC
+//!   writes ([`linuxcnc_sign`]: o-words or `#<named>` parameters, polar
+//!   `@`/`^` words, `G64 P`/`Q`, `G41.1`/`G42.1`, `G33.1`, a `(MSG,` /
+//!   `(DEBUG,` / `(PRINT,` / `(LOG…` comment) — gets `G4 P<seconds>` with
+//!   a decimal point, which LinuxCNC and Grbl read as seconds and so does
+//!   the reader's `auto` (a LinuxCNC `G4 P2` already in it is not copied:
+//!   without a point `auto` would read the copy as milliseconds);
+//! - otherwise (Fanuc, Haas and their kind) the program's own first G4
+//!   time word: `X`/`U` is seconds on Fanuc (written with a point, since
+//!   without one it is counted in least input increments); a `P` with a
+//!   point is seconds (Haas `P1.5`; the program shows the control takes
+//!   it) and is copied; a `P` without one, or no G4 at all, gives
+//!   `P<integer milliseconds>` — the form Fanuc (`P` takes no decimal
+//!   point; `G04 P0.1` is an alarm or 0.1 ms) and Haas (no point:
+//!   milliseconds) both read as meant. Under `dwellP: 'milliseconds'` a
+//!   `P` is always whole milliseconds.
+//!
+//! The G word is the program's own first G4 (`G04`, `g4`) when it has
+//! one. What the reader cannot tell: a Grbl program with a `G4 P3` meant
+//! as 3 s (the reader warns that it reads 3 ms); there `dwellP` says it.
+
+use super::program::{DwellP, Program};
+use super::Block;
+
+/// The time word of a dwell the writer inserts (see the module header).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DwellTime {
+    /// `X` or `U` (the letter) in seconds with a decimal point.
+    Seconds(char),
+    /// `P` in seconds with a decimal point.
+    SecondsP,
+    /// `P` in whole milliseconds, without a point.
+    MillisecondsP,
+}
+
+/// How a dwell the writer inserts is spelled.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DwellForm {
+    /// The number of the program's own first G4 word (`04`, `4`), when it
+    /// has one.
+    pub g: Option<String>,
+    /// The time word.
+    pub time: DwellTime,
+}
+
+/// The first word or comment of `blocks` that only LinuxCNC writes: its
+/// line and what it is.
+///
+/// # Examples
+/// ```
+/// use mtmotion::nc::{dialect::linuxcnc_sign, lex};
+/// let b = lex("G21\nG64 P0.01\nG1 X1 F100").unwrap();
+/// assert_eq!(linuxcnc_sign(&b), Some((2, "G64 P (path blending)".to_string())));
+/// assert_eq!(linuxcnc_sign(&lex("G21 G64\nG4 P2").unwrap()), None);
+/// ```
+pub fn linuxcnc_sign(blocks: &[Block]) -> Option<(usize, String)> {
+    blocks
+        .iter()
+        .find_map(|b| block_sign(b).map(|s| (b.line, s)))
+}
+
+fn block_sign(b: &Block) -> Option<String> {
+    if let Some(m) = &b.macro_line {
+        if matches!(m.stmt, super::macro_line::Stmt::O(..)) {
+            return Some("an o-word".into());
+        }
+        if m.src.contains("#<") {
+            return Some("a #<named> parameter".into());
+        }
+    }
+    if let Some(w) = b.words.iter().find(|w| matches!(w.letter, '@' | '^')) {
+        return Some(format!("the polar word {}", w.letter));
+    }
+    let g = |code: i64| {
+        b.words
+            .iter()
+            .any(|w| w.letter == 'G' && (w.value * 10.0).round() as i64 == code)
+    };
+    if g(640) && (b.word('P').is_some() || b.word('Q').is_some()) {
+        return Some("G64 P (path blending)".into());
+    }
+    for (code, name) in [(411, "G41.1"), (421, "G42.1"), (331, "G33.1")] {
+        if g(code) {
+            return Some(name.into());
+        }
+    }
+    b.comments.iter().find_map(|c| {
+        let c = c.trim_start().to_ascii_uppercase();
+        [
+            "MSG,",
+            "DEBUG,",
+            "PRINT,",
+            "LOGOPEN,",
+            "LOGAPPEND,",
+            "LOG,",
+            "PROBEOPEN",
+        ]
+        .iter()
+        .find(|k| c.starts_with(*k))
+        .map(|k| format!("a ({k} comment"))
+    })
+}
+
+/// The form of a dwell the writer inserts into `program` (see the module
+/// header).
+///
+/// # Examples
+/// ```
+/// use mtmotion::nc::{dialect::{dwell_form, DwellTime}, program::parse};
+/// let t = |src: &str| dwell_form(&parse(src).unwrap()).time;
+/// assert_eq!(t("G0 X0\nG1 X1 F100"), DwellTime::MillisecondsP);
+/// assert_eq!(t("G0 X0\nG04 X0.5\nG1 X1 F100"), DwellTime::Seconds('X'));
+/// assert_eq!(t("G0 X0\nG64 P0.01\nG1 X1 F100"), DwellTime::SecondsP);
+/// ```
+pub fn dwell_form(program: &Program) -> DwellForm {
+    let first = program.blocks.iter().find_map(|b| {
+        let g = b.words.iter().find(|w| w.letter == 'G' && w.value == 4.0)?;
+        let t = b
+            .words
+            .iter()
+            .find(|w| matches!(w.letter, 'P' | 'X' | 'U'))?;
+        Some((g.text.clone(), t.letter, t.text.contains('.')))
+    });
+    let g = first.as_ref().map(|(text, ..)| text.clone());
+    let linuxcnc =
+        program.options.dwell_p == DwellP::Seconds || linuxcnc_sign(&program.blocks).is_some();
+    let time = if linuxcnc {
+        DwellTime::SecondsP
+    } else {
+        match first {
+            Some((_, l @ ('X' | 'U'), _)) => DwellTime::Seconds(l),
+            Some((_, 'P', true)) if program.options.dwell_p == DwellP::Auto => DwellTime::SecondsP,
+            _ => DwellTime::MillisecondsP,
+        }
+    };
+    DwellForm { g, time }
+}
 
 /// Letter runs (at the start of a multi-letter word) that only Siemens
 /// Sinumerik programs use.

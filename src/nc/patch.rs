@@ -19,10 +19,12 @@
 //!   increments as vectors, R unchanged; the read-back end is turned
 //!   forward again, so the next block starts from what the control will
 //!   compute;
-//! - numbers follow the program's style ([`NumStyle`]): its number of
-//!   decimals (raised to 3 in mm or 4 in inch — 1 µm, 2.5 µm — when the
-//!   program is coarser, so a compensation is not rounded away), padded or
-//!   trimmed trailing zeros, `.5` or `0.5`, `75.` or `75`;
+//! - numbers follow the program's style ([`NumStyle`], in the block's
+//!   own style where it shows one): its number of decimals (raised to 3
+//!   in mm or 4 in inch — 1 µm, 2.5 µm — when the program is coarser, so
+//!   a compensation is not rounded away), trailing zeros kept as it keeps
+//!   them (`1.500`, `3.0`, `3.`), `.5` or `0.5`, `75.` or `75`; a number
+//!   whose new value reads as the old one keeps its text byte for byte;
 //! - each coordinate is written once and read back, and the next block is
 //!   computed from the read-back value, so rounding never accumulates; an
 //!   axis the edit leaves where the segment started (a full circle's end, a
@@ -31,10 +33,10 @@
 //! - a segment without a source block (`block: None`) becomes a new line:
 //!   a connecting `G1` just before the next source block (whose motion code
 //!   is then written on it if it relied on a modal G2/G3/G0), or a dwell
-//!   just after the previous one, in the program's dwell form (the first
-//!   `G4` of the program, else `P` in seconds with a decimal point, read as
-//!   seconds by LinuxCNC, Haas and [`DwellP::Auto`]; integer milliseconds
-//!   under [`DwellP::Milliseconds`]);
+//!   just after the previous one, in the dialect's safe dwell form
+//!   ([`super::dialect::dwell_form`]: `G4 P<seconds>` in a LinuxCNC
+//!   program, else the program's own `X`/`U` seconds or `P` seconds, else
+//!   `P<whole milliseconds>`);
 //! - in a program that numbers its blocks (N words on at least half of
 //!   them) a new line gets the next free number after its predecessor's
 //!   (`N21` between `N20` and `N30`, zero-padded like it), or none where
@@ -45,121 +47,15 @@
 //! Units: mm, mm/min inside; the text in the program's own units.
 
 use super::block::length_scale;
-use super::program::{DwellP, FeedMode, Modal, Motion, Program, Segment};
+use super::dialect::{dwell_form, DwellForm, DwellTime};
+use super::program::{FeedMode, Modal, Motion, Program, Segment};
 use super::Block;
 
-/// Coordinate-number style of a program.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct NumStyle {
-    /// Decimals written.
-    pub decimals: usize,
-    /// Trailing zeros kept (`1.500`).
-    pub pad: bool,
-    /// `0.5` rather than `.5`.
-    pub lead_zero: bool,
-    /// Integers with a decimal point (`75.`).
-    pub int_point: bool,
-}
+use super::num_style::same_number;
+pub use super::num_style::NumStyle;
 
-/// Finest resolution written in mm programs (1 µm), decimals.
-const MIN_DECIMALS_MM: usize = 3;
-/// Finest resolution written in inch programs (0.1 thou = 2.54 µm), decimals.
-const MIN_DECIMALS_INCH: usize = 4;
 /// Position differences below this are no move, mm (below any written resolution).
 const SAME: f64 = 1e-9;
-
-impl NumStyle {
-    /// The style of the coordinate words (X Y Z I J K R) of `blocks`.
-    ///
-    /// # Examples
-    /// ```
-    /// use mtmotion::nc::patch::NumStyle;
-    /// let b = mtmotion::nc::lex("G1 X0.250 Y1.500\nX2.000").unwrap();
-    /// let s = NumStyle::of(&b, false);
-    /// assert_eq!(s.format(-0.5), "-0.500");
-    /// assert_eq!(s.format(3.0), "3.000");
-    /// let b = mtmotion::nc::lex("g1x.25y1.5\nx75.").unwrap();
-    /// let s = NumStyle::of(&b, false);
-    /// assert_eq!(s.format(-0.5), "-.5");
-    /// assert_eq!(s.format(3.0), "3.");
-    /// assert_eq!(s.format(0.12345), ".123");
-    /// ```
-    pub fn of(blocks: &[Block], inch: bool) -> Self {
-        let mut decimals = 0;
-        // Votes: (with, without) a leading zero below 1; integers with and
-        // without a point; fractions with all decimals and a trailing zero.
-        let (mut lead, mut nolead, mut point, mut nopoint) = (0usize, 0usize, 0usize, 0usize);
-        let mut fracs: Vec<(usize, bool)> = Vec::new();
-        for w in blocks.iter().flat_map(|b| b.words.iter()) {
-            if !"XYZIJKR".contains(w.letter) {
-                continue;
-            }
-            let t = w.text.trim_start_matches(['+', '-']);
-            match t.find('.') {
-                Some(p) => {
-                    let d = t.len() - p - 1;
-                    decimals = decimals.max(d);
-                    if p == 0 {
-                        nolead += 1;
-                    } else if t.starts_with("0.") {
-                        lead += 1;
-                    }
-                    if d == 0 {
-                        point += 1;
-                    } else {
-                        fracs.push((d, t.ends_with('0')));
-                    }
-                }
-                None => nopoint += 1,
-            }
-        }
-        let full = fracs.iter().filter(|(d, _)| *d == decimals).count();
-        let zeros = fracs.iter().any(|(d, z)| *d == decimals && *z);
-        let min = if inch {
-            MIN_DECIMALS_INCH
-        } else {
-            MIN_DECIMALS_MM
-        };
-        Self {
-            decimals: decimals.max(min),
-            pad: decimals >= min && zeros && 10 * full >= 9 * fracs.len(),
-            lead_zero: lead >= nolead,
-            int_point: point >= nopoint || decimals == 0 && nopoint == 0,
-        }
-    }
-
-    /// `v` in this style.
-    pub fn format(&self, v: f64) -> String {
-        let mut s = format!("{v:.*}", self.decimals);
-        if s.trim_start_matches('-')
-            .chars()
-            .all(|c| c == '0' || c == '.')
-        {
-            s = s.trim_start_matches('-').to_string();
-        }
-        if !self.pad && s.contains('.') {
-            while s.ends_with('0') {
-                s.pop();
-            }
-        }
-        if s.ends_with('.') && !self.int_point {
-            s.pop();
-        }
-        if !s.contains('.') && self.int_point {
-            s.push('.');
-        }
-        if !self.lead_zero {
-            if let Some(rest) = s.strip_prefix("0.") {
-                if !rest.is_empty() {
-                    s = format!(".{rest}");
-                }
-            } else if let Some(rest) = s.strip_prefix("-0.") {
-                s = format!("-.{rest}");
-            }
-        }
-        s
-    }
-}
 
 /// The text split into lines that keep their terminators; concatenating
 /// `head`, every `(content, end)` and `tail` gives the text back.
@@ -217,29 +113,17 @@ struct Dialect {
     lower: bool,
     space: &'static str,
     g_pad: bool,
-    dwell: Option<(String, char, bool)>,
-    dwell_p: DwellP,
+    dwell: DwellForm,
 }
 
 impl Dialect {
     fn of(p: &Program, raw: &[&str]) -> Self {
         let inch_used = p.modal.iter().any(|m| m.inch);
-        let mut g_pad = false;
-        let mut dwell = None;
-        for b in &p.blocks {
-            for w in &b.words {
-                if w.letter == 'G' && w.text.len() == 2 && w.text.starts_with('0') {
-                    g_pad = true;
-                }
-            }
-            if dwell.is_none() {
-                if let Some(g) = b.words.iter().find(|w| w.letter == 'G' && w.value == 4.0) {
-                    if let Some(d) = b.words.iter().find(|w| matches!(w.letter, 'P' | 'X' | 'U')) {
-                        dwell = Some((g.text.clone(), d.letter, d.text.contains('.')));
-                    }
-                }
-            }
-        }
+        let g_pad = p
+            .blocks
+            .iter()
+            .flat_map(|b| &b.words)
+            .any(|w| w.letter == 'G' && w.text.len() == 2 && w.text.starts_with('0'));
         // Spacing and case from the first block with two words.
         let (mut spaced, mut lower) = (true, false);
         if let Some(b) = p.blocks.iter().find(|b| b.words.len() >= 2) {
@@ -261,8 +145,7 @@ impl Dialect {
             lower,
             space: if spaced { " " } else { "" },
             g_pad,
-            dwell,
-            dwell_p: p.options.dwell_p,
+            dwell: dwell_form(p),
         }
     }
 
@@ -290,27 +173,27 @@ impl Dialect {
         }
     }
 
+    /// A dwell of `seconds` in the dialect's form
+    /// ([`super::dialect::dwell_form`]).
     fn dwell_line(&self, seconds: f64) -> String {
         let sec = NumStyle {
             decimals: 3,
-            pad: false,
-            lead_zero: true,
+            min_decimals: 0,
+            lead_zero: self.mm.lead_zero,
             int_point: true,
         };
-        let (g, letter, point) = match &self.dwell {
-            Some((g, l, point)) => (format!("{}{g}", self.letter('G')), *l, *point),
-            None => (self.g(4), 'P', self.dwell_p != DwellP::Milliseconds),
+        let g = match &self.dwell.g {
+            Some(t) => format!("{}{t}", self.letter('G')),
+            None => self.g(4),
         };
-        let ms = letter == 'P'
-            && match self.dwell_p {
-                DwellP::Milliseconds => true,
-                DwellP::Seconds => false,
-                DwellP::Auto => !point,
-            };
-        let v = if ms {
-            format!("{}", (seconds * 1e3).round() as i64)
-        } else {
-            sec.format(seconds)
+        let (letter, v) = match self.dwell.time {
+            DwellTime::Seconds(l) => (l, sec.format(seconds)),
+            DwellTime::SecondsP => ('P', sec.format(seconds)),
+            DwellTime::MillisecondsP => {
+                let ms = (seconds * 1e3).round();
+                let ms = if seconds > 0.0 { ms.max(1.0) } else { ms };
+                ('P', format!("{ms:.0}"))
+            }
         };
         format!("{g}{}{}{v}", self.space, self.letter(letter))
     }
@@ -528,6 +411,8 @@ struct Edit<'a> {
     o: &'a Segment,
     pos: [f64; 3],
     same_start: bool,
+    /// The number style of the block.
+    st: NumStyle,
 }
 
 impl Writer<'_> {
@@ -572,7 +457,9 @@ impl Writer<'_> {
                         continue;
                     }
                     let next = segments[k + 1..].iter().find_map(|s| s.block);
-                    let (text, new_pos) = self.new_line(seg, pos, next);
+                    let Some((text, new_pos)) = self.new_line(seg, pos, next) else {
+                        continue;
+                    };
                     pos = new_pos;
                     match next.and_then(|b| self.line_of(b)) {
                         Some(l) => self.before[l].push(text),
@@ -587,8 +474,16 @@ impl Writer<'_> {
         }
     }
 
-    /// A new G1 line to `seg.end` from `pos`, in the modes in force before `next`.
-    fn new_line(&self, seg: &Segment, pos: [f64; 3], next: Option<usize>) -> (String, [f64; 3]) {
+    /// A new G1 line to `seg.end` from `pos`, in the modes in force before
+    /// `next`; `None` when no axis moves at the written resolution (a
+    /// connecting line of less than a digit is left out, not written as a
+    /// bare `G1`).
+    fn new_line(
+        &self,
+        seg: &Segment,
+        pos: [f64; 3],
+        next: Option<usize>,
+    ) -> Option<(String, [f64; 3])> {
         let m = match next {
             Some(b) if b > 0 => self.modal(b - 1),
             Some(_) => Modal::default(),
@@ -601,11 +496,14 @@ impl Writer<'_> {
             if (to[k] - pos[k]).abs() <= SAME {
                 continue;
             }
-            let (t, v) = self.coord(&m, to[k], pos[k], k);
+            let (t, v) = self.coord(&m, self.d.style(&m), to[k], pos[k], k);
             if (v - pos[k]).abs() > SAME {
                 parts.push(format!("{}{t}", self.d.letter(letter)));
                 out[k] = v;
             }
+        }
+        if parts.len() == 1 {
+            return None;
         }
         let out = machine_point(&m, out);
         let length = seg.timed_length();
@@ -626,21 +524,20 @@ impl Writer<'_> {
                 self.d.letter('F'),
                 NumStyle {
                     decimals: if inverse { 6 } else { 3 },
-                    pad: false,
+                    min_decimals: 0,
                     lead_zero: true,
                     int_point: false
                 }
                 .format(seg.feed / u)
             ));
         }
-        (parts.join(self.d.space), out)
+        Some((parts.join(self.d.space), out))
     }
 
     /// The text of coordinate `target` (mm) on axis `k` from `pos` in mode
     /// `m`, and the position it is read back as.
-    fn coord(&self, m: &Modal, target: f64, pos: f64, k: usize) -> (String, f64) {
+    fn coord(&self, m: &Modal, st: &NumStyle, target: f64, pos: f64, k: usize) -> (String, f64) {
         let u = length_scale(m);
-        let st = self.d.style(m);
         let v = if m.incremental {
             (target - pos) / u
         } else {
@@ -675,7 +572,7 @@ impl Writer<'_> {
             return (o.end.p(), false);
         }
         let m = self.modal(b);
-        let st = *self.d.style(&m);
+        let st = self.d.style(&m).in_block(block, m.inch);
         let line: Vec<char> = match &self.content[l] {
             Some(c) => c.chars().collect(),
             None => self.p_line(l),
@@ -688,6 +585,7 @@ impl Writer<'_> {
             o,
             pos,
             same_start,
+            st,
         };
         let mut splices = Vec::new();
         let end = self.axis_splices(&e, &mut splices);
@@ -736,9 +634,9 @@ impl Writer<'_> {
                     if keep {
                         end[k] = o1[k];
                     } else {
-                        let (t, v) = self.coord(m, target, pos[k], k);
+                        let (t, v) = self.coord(m, &e.st, target, pos[k], k);
                         end[k] = v;
-                        if t != wd.text {
+                        if !same_number(&t, &wd.text) {
                             if let Some((at, len)) = number_span(e.line, wd.column, &wd.text) {
                                 splices.push(Splice { at, len, text: t });
                             }
@@ -747,7 +645,7 @@ impl Writer<'_> {
                 }
                 None => {
                     if (target - pos[k]).abs() > SAME {
-                        let (t, v) = self.coord(m, target, pos[k], k);
+                        let (t, v) = self.coord(m, &e.st, target, pos[k], k);
                         if (v - pos[k]).abs() > SAME {
                             end[k] = v;
                             splices.push(self.insert_word(e.block, e.line, letter, t));
@@ -873,7 +771,7 @@ impl Writer<'_> {
                 a.radius
             };
             let t = st.format(r / u);
-            if t != wd.text {
+            if !same_number(&t, &wd.text) {
                 if let Some((at, len)) = number_span(line, wd.column, &wd.text) {
                     splices.push(Splice { at, len, text: t });
                 }
@@ -897,7 +795,7 @@ impl Writer<'_> {
             };
             let t = st.format(v);
             match block.word(letter) {
-                Some(wd) if t != wd.text => {
+                Some(wd) if !same_number(&t, &wd.text) => {
                     if let Some((at, len)) = number_span(line, wd.column, &wd.text) {
                         splices.push(Splice { at, len, text: t });
                     }

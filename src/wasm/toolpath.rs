@@ -80,8 +80,8 @@ export interface ToolPathSimulation {
 export interface RadiusReductionInput { /** [mm/min] */ feed: number; /** [mm] */ radius: number; /** [s] */ tA: number; /** [s] */ T: number }
 export interface CircleLoss { /** [mm/min] */ feed: number; /** [mm] */ radius: number; /** [mm] */ radiusLoss: number }
 export interface AccDec { /** [s] */ tA: number; /** [s] */ T: number; /** [mm] RMS of the Δr residuals */ residual: number }
-/** dwell (unset: automatic 0.1 s, 0: none); timeBudget: largest motion-time growth as a fraction (default 0.05). */
-export interface ReverseConfig extends Omit<ToolPathConfig, 'files' | 'toolRadii'> { /** [s] */ dwell?: number; /** [-] */ iterations?: number; /** [-] fraction */ timeBudget?: number }
+/** dwell (unset: automatic 0.1 s, 0: none); timeBudget: largest motion-time growth as a fraction (default 0.05); dwellP: how G4 P is read, and so how an inserted dwell is written ('auto': P100 whole ms for Fanuc/Haas, G4 P0.1 seconds when the program shows LinuxCNC words; 'seconds': LinuxCNC/Grbl; 'milliseconds': Fanuc); fromLine, toLine: the program's own text lines to compensate, 1-based and inclusive (unset: first, last); every line outside stays byte for byte and its error is not made worse. */
+export interface ReverseConfig extends Omit<ToolPathConfig, 'files' | 'toolRadii'> { /** [s] */ dwell?: number; /** [-] */ iterations?: number; /** [-] fraction */ timeBudget?: number; dwellP?: 'auto' | 'milliseconds' | 'seconds'; /** [-] 1-based line */ fromLine?: number; /** [-] 1-based line */ toLine?: number }
 /** One region (cutting moves between rapids and fixed segments); reason says why it was left unchanged. */
 export interface RegionNote {
   /** [-] */ firstLine: number; /** [-] */ lastLine: number; /** [-] */ arcs: number; /** [-] */ lines: number;

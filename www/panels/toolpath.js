@@ -125,6 +125,15 @@ export async function mount(root, api) {
   const comp = h('button', { id: 'toolpath-compensate' }, 'Compensate');
   const cancel = h('button', { id: 'toolpath-cancel', hidden: true }, 'Cancel');
   const budget = numberField({ label: 'Time budget', value: 5, unit: '%', step: 1, min: 0, id: 'toolpath-budget' });
+  // The lines to compensate (fromLine, toLine): the text's own line
+  // numbers, blank for the first and the last; the core checks them.
+  const fromLine = numberField({ label: 'Compensate from line', value: '', step: 1, min: 1, id: 'toolpath-from', title: 'fromLine: the first line to compensate (blank: the first); lines outside stay as written' });
+  const toLine = numberField({ label: 'to line', value: '', step: 1, min: 1, id: 'toolpath-to', title: 'toLine: the last line to compensate, inclusive (blank: the last)' });
+  /** The line range of the compensation: only the ends given. */
+  const lineRange = () => ({
+    ...(fromLine.input.value.trim() === '' ? {} : { fromLine: fromLine.value }),
+    ...(toLine.input.value.trim() === '' ? {} : { toLine: toLine.value }),
+  });
   const compProgress = progressBar();
   const compRun = cancelGuard(cancel, compProgress);
   // A long program simulates for seconds: progress and Cancel, as for
@@ -298,7 +307,7 @@ export async function mount(root, api) {
     cancel.hidden = false;
     compProgress.set(0, 'starting');
     try {
-      const c = await api.call('reverseCompensate', [nc.value, { ...cfg(), timeBudget: budget.value / 100 }], {
+      const c = await api.call('reverseCompensate', [nc.value, { ...cfg(), timeBudget: budget.value / 100, ...lineRange() }], {
         signal: abort.signal,
         onProgress: (f, stage) => compProgress.set(f, stage),
       });
@@ -359,7 +368,7 @@ export async function mount(root, api) {
     h('div', { class: 'card' },
       h('h3', {}, 'Model (Eq. 1 moving average tA, Eq. 2 first-order lag T per axis)'),
       h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, tA.el, tx.el, ty.el, tz.el, ovr.el, dt.el),
-      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, run, simCancel, budget.el, comp, cancel, h('label', {}, 'Error magnification ', mag, ' ', magLabel))),
+      h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, run, simCancel, budget.el, fromLine.el, toLine.el, comp, cancel, h('label', {}, 'Error magnification ', mag, ' ', magLabel))),
     h('div', { class: 'card' }, h('h3', {}, 'Simulation'), simProgress.el, out, pathBox, velBox),
     h('div', { class: 'card' }, h('h3', {}, 'Reverse compensation (§4-3)'), compProgress.el, compOut),
   );

@@ -48,16 +48,18 @@
 //! Units: mm, s; errors reported in µm where the field says so.
 
 pub mod geometry;
+pub mod lines;
 pub mod region;
 pub mod rounds;
 
 use serde::{Deserialize, Serialize};
 
 use crate::nc::patch::write_source;
-use crate::nc::program::{dist, parse, Motion, Program, Segment};
+use crate::nc::program::{dist, parse_with, DwellP, Motion, ParseOptions, Program, Segment};
 use crate::toolpath::{sample_estimate, simulate, SimConfig, Simulation, ToolpathError};
 use geometry::{rebuild, Edit};
-use region::{kinds, region_errors, regions, Regions};
+use lines::{line_range, outside_notes, LineRange};
+use region::{kinds, region_errors, regions_in, segment_errors, Regions};
 use rounds::{copy_region, identity, Work};
 
 /// Dwell candidates are removed one by one (each trial costs a full set
@@ -88,6 +90,16 @@ pub struct ReverseConfig {
     /// Largest allowed growth of the motion time, as a fraction (0.05 = +5 %).
     #[serde(rename = "timeBudget")]
     pub time_budget: f64,
+    /// How G4 P is read, and so the form of an inserted dwell
+    /// ([`crate::nc::dialect::dwell_form`]).
+    #[serde(rename = "dwellP")]
+    pub dwell_p: DwellP,
+    /// First line to compensate (1-based; unset: the first), see [`lines`].
+    #[serde(rename = "fromLine")]
+    pub from_line: Option<usize>,
+    /// Last line to compensate (inclusive; unset: the last).
+    #[serde(rename = "toLine")]
+    pub to_line: Option<usize>,
 }
 
 /// [`ReverseConfig`] as read: every key named, no other key accepted.
@@ -109,6 +121,12 @@ struct ReverseConfigIn {
     iterations: usize,
     #[serde(rename = "timeBudget")]
     time_budget: f64,
+    #[serde(rename = "dwellP")]
+    dwell_p: DwellP,
+    #[serde(rename = "fromLine")]
+    from_line: Option<usize>,
+    #[serde(rename = "toLine")]
+    to_line: Option<usize>,
 }
 
 impl Default for ReverseConfigIn {
@@ -124,6 +142,9 @@ impl Default for ReverseConfigIn {
             dwell: c.dwell,
             iterations: c.iterations,
             time_budget: c.time_budget,
+            dwell_p: c.dwell_p,
+            from_line: c.from_line,
+            to_line: c.to_line,
         }
     }
 }
@@ -142,6 +163,9 @@ impl From<ReverseConfigIn> for ReverseConfig {
             dwell: c.dwell,
             iterations: c.iterations,
             time_budget: c.time_budget,
+            dwell_p: c.dwell_p,
+            from_line: c.from_line,
+            to_line: c.to_line,
         }
     }
 }
@@ -153,6 +177,9 @@ impl Default for ReverseConfig {
             dwell: None,
             iterations: 6,
             time_budget: DEFAULT_TIME_BUDGET,
+            dwell_p: DwellP::default(),
+            from_line: None,
+            to_line: None,
         }
     }
 }
@@ -379,7 +406,12 @@ pub fn reverse_compensate_with(
     progress: &mut dyn FnMut(f64, &str) -> bool,
 ) -> Result<Compensation, ToolpathError> {
     validate(cfg)?;
-    let program = parse(text)?;
+    let opts = ParseOptions {
+        dwell_p: cfg.dwell_p,
+        ..ParseOptions::default()
+    };
+    let program = parse_with(text, &opts)?;
+    let range = line_range(&program, cfg.from_line, cfg.to_line)?;
     let orig = &program.segments;
     let mut work = Work::for_program(sample_estimate(orig, &cfg.sim)? as u64)?;
     let mut tick = |f: f64, s: &str| {
@@ -391,7 +423,7 @@ pub fn reverse_compensate_with(
     };
     tick(0.0, "simulating the original program")?;
     let sim_before = simulate(orig, orig, &cfg.sim)?;
-    let rg = regions(&program);
+    let rg = regions_in(&program, &|l| range.contains(l));
     let before_err = region_errors(&rg, &sim_before.segments);
     tick(0.15, "correction rounds")?;
     let plain = rounds::run(
@@ -428,6 +460,7 @@ pub fn reverse_compensate_with(
     let checked = check(
         text,
         &program,
+        (&opts, range.whole),
         &rg,
         &before_err,
         cfg,
@@ -439,6 +472,7 @@ pub fn reverse_compensate_with(
     tick(1.0, "done")?;
     let mut c = finish(
         &program,
+        &range,
         &rg,
         &before_err,
         &sim_before,
@@ -447,16 +481,20 @@ pub fn reverse_compensate_with(
         history,
     );
     c.budget_note = work.note();
-    c.unchanged = (c.nc == text).then(|| unchanged_reason(&c.regions));
+    c.unchanged = (c.nc == text).then(|| unchanged_reason(&c.regions, &range));
     Ok(c)
 }
 
 /// Why a program came back as it was: the worst region's reason, with its
-/// lines and error; or that it has no cutting region at all.
-fn unchanged_reason(regions: &[RegionNote]) -> String {
+/// lines and error (inside the line range, when one is given); or that it
+/// has no cutting region at all.
+fn unchanged_reason(regions: &[RegionNote], range: &LineRange) -> String {
+    let inside =
+        |r: &&RegionNote| range.whole || r.last_line >= range.first && r.first_line <= range.last;
     let worst = regions
         .iter()
         .filter(|r| !r.reason.is_empty())
+        .filter(inside)
         .max_by(|a, b| a.before_um.total_cmp(&b.before_um));
     match worst {
         Some(r) => format!(
@@ -464,7 +502,13 @@ fn unchanged_reason(regions: &[RegionNote]) -> String {
              as it was because {}",
             r.before_um, r.first_line, r.last_line, r.reason
         ),
-        None => "nothing in the program changed: it has no cutting move to correct".to_string(),
+        None if range.whole => {
+            "nothing in the program changed: it has no cutting move to correct".to_string()
+        }
+        None => format!(
+            "nothing in the program changed: lines {}–{} hold no cutting move to correct",
+            range.first, range.last
+        ),
     }
 }
 
@@ -575,6 +619,7 @@ fn changed(rg: &Regions, r: usize, edit: &Edit, id: &Edit) -> bool {
 fn check(
     text: &str,
     program: &Program,
+    (opts, whole): (&ParseOptions, bool),
     rg: &Regions,
     before_err: &[f64],
     cfg: &ReverseConfig,
@@ -588,11 +633,14 @@ fn check(
         orig,
         rg,
         before_err,
+        before_seg: segment_errors(orig.len(), &before.segments),
         id: identity(orig, vec![0.0; orig.len()]),
         edit,
         reverted: vec![None; rg.members.len()],
     };
     let limit = before.motion_time * (1.0 + cfg.time_budget) + cfg.sim.dt;
+    // The NC filter forgets a change after tA, the servo lag after a few T.
+    let memory = cfg.sim.t_a + 7.0 * cfg.sim.t.per_axis().into_iter().fold(0.0, f64::max);
     for round in 0..MAX_CHECKS {
         tick(0.7 + 0.07 * round as f64, "checking the written program")?;
         if (0..rg.members.len()).all(|r| !rv.changed(r)) {
@@ -600,7 +648,7 @@ fn check(
         }
         let segments = rebuild(orig, &rv.edit);
         let nc = write_source(text, program, &segments);
-        let Ok(written) = parse(&nc) else {
+        let Ok(written) = parse_with(&nc, opts) else {
             // A writer limit: never hand out a program that does not read back.
             break;
         };
@@ -613,8 +661,12 @@ fn check(
         let over_time = sim.motion_time > limit;
         let unimproved = rv.revert_unimproved(&after, over_time);
         let raised = rv.revert_neighbours(&after);
-        let bad = unimproved || raised;
-        let worse = sim.max_error > before.max_error;
+        let strays =
+            rv.revert_near_strays(&segment_errors(orig.len(), &sim.segments), memory, &cfg.sim);
+        let bad = unimproved || raised || strays;
+        // With a line range the largest error may lie outside, past the
+        // changes' reach, where only the sampling phase differs (nm).
+        let worse = sim.max_error > before.max_error + if whole { 0.0 } else { NEIGHBOUR_SLACK };
         if !bad && !worse && !over_time {
             return Ok(Checked {
                 nc,
@@ -640,6 +692,8 @@ struct Review<'a> {
     rg: &'a Regions,
     /// Maximum error per region of the original program, mm.
     before_err: &'a [f64],
+    /// Maximum error per segment of the original program, mm.
+    before_seg: Vec<f64>,
     /// The unchanged program's edit.
     id: Edit,
     edit: Edit,
@@ -738,6 +792,60 @@ impl Review<'_> {
     }
 }
 
+impl Review<'_> {
+    /// A cutting move in no region (fixed, or outside the line range)
+    /// whose error rose (`after`, mm per segment) while within `memory`
+    /// seconds (nominal) after a changed region: that region reached it
+    /// (no stop between them); it goes back, and so does the changed
+    /// region after the move, if any. Whether any was reverted.
+    ///
+    /// Past that memory the command is the original's and only the
+    /// sampling phase differs (the changed region's time shifts the grid),
+    /// which moves a sampled maximum by up to its change in one step: no
+    /// sign of the edit, so not judged.
+    fn revert_near_strays(&mut self, after: &[f64], memory: f64, sim: &SimConfig) -> bool {
+        let (orig, rg) = (self.orig, self.rg);
+        let changed: Vec<usize> = (0..rg.members.len()).filter(|&r| self.changed(r)).collect();
+        let mut reach = vec![None; orig.len()];
+        for &r in &changed {
+            let mut t = 0.0;
+            for k in rg.members[r][rg.members[r].len() - 1] + 1..orig.len() {
+                if t >= memory || rg.of[k].is_some_and(|q| q != r) {
+                    break;
+                }
+                reach[k] = Some(r);
+                t += match orig[k].motion {
+                    Motion::Dwell { seconds } => seconds,
+                    Motion::Rapid => break,
+                    _ => orig[k].length() / (orig[k].feed * sim.feed_override / 60.0),
+                };
+            }
+        }
+        let mut bad = false;
+        for i in 0..orig.len() {
+            let (b, a) = (self.before_seg[i], after.get(i).copied().unwrap_or(0.0));
+            let Some(r) = reach[i] else { continue };
+            if rg.of[i].is_some() || !orig[i].is_cutting() || a <= b + NEIGHBOUR_SLACK {
+                continue;
+            }
+            let next = changed.iter().copied().find(|&q| rg.members[q][0] > i);
+            for q in std::iter::once(r).chain(next) {
+                self.revert(
+                    q,
+                    format!(
+                        "it raised the error of line {}, which may not change (a fixed move or outside the lines to compensate), from {} to {} µm",
+                        orig[i].line,
+                        crate::numeric::compact(b * 1e3),
+                        crate::numeric::compact(a * 1e3)
+                    ),
+                );
+                bad = true;
+            }
+        }
+        bad
+    }
+}
+
 /// Why region `r` is unchanged.
 fn reason(
     rg: &Regions,
@@ -770,6 +878,7 @@ fn reason(
 #[allow(clippy::too_many_arguments)]
 fn finish(
     program: &Program,
+    range: &LineRange,
     rg: &Regions,
     before_err: &[f64],
     sim_before: &Simulation,
@@ -803,7 +912,8 @@ fn finish(
             }
         })
         .collect();
-    regions.extend(fixed_moves_note(program, rg, sim_before, &c.sim));
+    regions.extend(fixed_moves_note(program, range, rg, sim_before, &c.sim));
+    regions.extend(outside_notes(program, rg, range, sim_before, &c.sim));
     let dwells = c
         .edit
         .dwell_after
@@ -838,13 +948,14 @@ fn finish(
 /// `None` when every cutting move belongs to a region.
 fn fixed_moves_note(
     program: &Program,
+    range: &LineRange,
     rg: &Regions,
     sim_before: &Simulation,
     sim_after: &Simulation,
 ) -> Option<RegionNote> {
     let segs = &program.segments;
     let fixed: Vec<usize> = (0..segs.len())
-        .filter(|&i| segs[i].is_cutting() && rg.of[i].is_none())
+        .filter(|&i| segs[i].is_cutting() && rg.of[i].is_none() && range.contains(segs[i].line))
         .collect();
     let (first, last) = (*fixed.first()?, *fixed.last()?);
     let arcs = fixed

@@ -10,7 +10,8 @@
 //! the program's maximum cannot rise either.
 //!
 //! What may move (the writer edits only blocks that carry exactly one
-//! segment, and never a fixed one):
+//! segment, and never a fixed one; with a line range, only moves on its
+//! lines, [`super::lines`]):
 //! - an arc's radius, unless it touches a fixed segment (a connecting
 //!   line before a fixed block would change the modes it runs in);
 //! - the vertex between two consecutive lines of one region.
@@ -48,6 +49,13 @@ pub struct Regions {
 
 /// Splits `program` into regions (see the module header).
 pub fn regions(program: &Program) -> Regions {
+    regions_in(program, &|_| true)
+}
+
+/// Splits `program` into regions of the moves on the source lines for
+/// which `inside` holds; a move on another line is pinned as a fixed one
+/// ([`super::lines`]).
+pub fn regions_in(program: &Program, inside: &dyn Fn(usize) -> bool) -> Regions {
     let segs = &program.segments;
     let n = segs.len();
     let mut count = vec![0usize; program.blocks.len()];
@@ -58,7 +66,7 @@ pub fn regions(program: &Program) -> Regions {
     }
     let editable: Vec<bool> = segs
         .iter()
-        .map(|s| !s.fixed && s.block.is_some_and(|b| count.get(b) == Some(&1)))
+        .map(|s| !s.fixed && s.block.is_some_and(|b| count.get(b) == Some(&1)) && inside(s.line))
         .collect();
     let mut rg = Regions {
         of: vec![None; n],
@@ -119,6 +127,18 @@ pub fn region_errors(rg: &Regions, stats: &[SegmentStats]) -> Vec<f64> {
     for st in stats {
         if let Some(Some(r)) = rg.of.get(st.segment) {
             e[*r] = e[*r].max(st.max_error_um * 1e-3);
+        }
+    }
+    e
+}
+
+/// The maximum error of each segment from a simulation's per-segment
+/// statistics (`n` segments), mm.
+pub fn segment_errors(n: usize, stats: &[SegmentStats]) -> Vec<f64> {
+    let mut e = vec![0.0f64; n];
+    for st in stats {
+        if let Some(x) = e.get_mut(st.segment) {
+            *x = x.max(st.max_error_um * 1e-3);
         }
     }
     e

@@ -4,7 +4,8 @@
 // check the shown before/after figures (≥ 60 % less error, ≤ 5 % more time)
 // and that the corrected program is offered for download, with the
 // per-region notes; a program with nothing to rewrite is refused a download,
-// with the reason; then start the compensation of a real program
+// with the reason; a line range keeps the lines outside it and a reversed
+// one is refused by name; then start the compensation of a real program
 // (LinuxCNC cds.ngc, seconds), cancel it, and check that the page says so
 // and the engine still simulates. Last, a real 40,306-line CAM pocket
 // (5.2 M samples): its simulation shows progress and can be cancelled,
@@ -41,6 +42,29 @@ export default async function (page, check) {
   check(/region\(s\) changed/.test(regions), `region notes shown: ${regions.slice(0, 80)}`);
   check(!(await page.isVisible('#toolpath-cancel')), 'cancel hidden when done');
   check(!(await page.$('#toolpath-unchanged')) && !(await page.isDisabled('#toolpath-download')), 'a compensated program is offered for download');
+
+  // A line range (fromLine 6, toLine 27: the arcs from B to C): the lines
+  // outside are the example's byte for byte, some inside changed, and the
+  // region notes say which moves were outside; a reversed range is refused
+  // naming the field.
+  const src = (await page.inputValue('#toolpath-nc')).split('\n');
+  await page.fill('#toolpath-from', '6');
+  await page.fill('#toolpath-to', '27');
+  await page.click('#toolpath-compensate');
+  await page.waitForFunction(() => /outside the lines to compensate \(6–27\)/.test(document.querySelector('#toolpath-regions')?.textContent ?? ''), null, { timeout: 60_000 });
+  const ranged = ((await page.textContent('#toolpath-comp-nc')) ?? '').split('\n');
+  const tail = src.length - 27;
+  check(ranged.slice(0, 5).join('\n') === src.slice(0, 5).join('\n') && ranged.slice(ranged.length - tail).join('\n') === src.slice(27).join('\n'), 'a line range keeps every line outside it');
+  check(ranged.slice(5, ranged.length - tail).join('\n') !== src.slice(5, 27).join('\n'), 'a line range changes lines inside it');
+  check(!(await page.isDisabled('#toolpath-download')), 'a compensated range is offered for download');
+  await page.fill('#toolpath-from', '30');
+  await page.fill('#toolpath-to', '29');
+  await page.click('#toolpath-compensate');
+  await page.waitForFunction(() => /fromLine/.test(document.querySelector('#toolpath-comp-out')?.textContent ?? ''), null, { timeout: 60_000 });
+  const refused = (await page.textContent('#toolpath-comp-out')) ?? '';
+  check(/fromLine: line 30 comes after toLine 29/.test(refused), `a reversed range is refused by name: ${refused.slice(0, 160)}`);
+  await page.fill('#toolpath-from', '');
+  await page.fill('#toolpath-to', '');
 
   // A program whose every word is a macro expression cannot be rewritten:
   // the core returns it byte for byte and says why; no download is offered.
