@@ -75,7 +75,8 @@ const textsOf = (tab) => /** @type {NodeListOf<HTMLTextAreaElement>} */ (documen
 async function addTexts(tab, q) {
   for (const t of textsOf(tab)) {
     // Megabytes never fit a link; do not compress them on every change.
-    const packed = t.value && t.value.length <= LINK_PACK_MAX ? await packText(t.value) : null;
+    // A text area that shows part of a program (data-partial) cannot carry it.
+    const packed = t.value && t.value.length <= LINK_PACK_MAX && !t.dataset.partial ? await packText(t.value) : null;
     if (packed && packed.length <= LINK_TEXT_LIMIT) q.set(`${t.id}.z`, packed);
     else if (t.value) q.set(`${t.id}.z`, 'too-large');
   }
