@@ -11,8 +11,8 @@ use super::convert::{
     Obj,
 };
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
-use crate::nc::files::{main_file, parse_files, NcFile};
-use crate::nc::program::{ParseOptions, Program, Segment, ToolRadii, Warning};
+use crate::nc::files::{main_file, parse_files_keeping, NcFile};
+use crate::nc::program::{Keep, ParseOptions, Program, Segment, ToolRadii, Warning};
 use crate::nc::summary::{summarize, Summary};
 use crate::nc::{NcError, NcErrors};
 use crate::toolpath::identify::{
@@ -129,7 +129,7 @@ fn parse_args(text: &JsValue, options: JsValue) -> Result<Result<Program, NcErro
     let text: &str = &string_arg(text, "text")?;
     let (files, options) = take_files(options)?;
     let opts = parse_options(options)?;
-    Ok(parse_files(text, &files, &opts))
+    Ok(parse_files_keeping(text, &files, &opts, Keep::Motion))
 }
 
 /// Splits the optional `files` key off an options object: the extra files
@@ -292,7 +292,7 @@ pub fn simulate_tool_path(
     #[wasm_bindgen(unchecked_param_type = "ToolPathConfig")] config: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "Function | null")] on_progress: JsValue,
 ) -> Result<JsValue, JsError> {
-    let text: &str = &string_arg(&text, "text")?;
+    let text = string_arg(&text, "text")?;
     let (files, config) = take_files(config)?;
     let (radii, config) = take_key(config, "toolRadii")?;
     let cfg: SimConfig = if config.is_undefined() || config.is_null() {
@@ -309,7 +309,13 @@ pub fn simulate_tool_path(
         ..ParseOptions::default()
     };
     let on_progress = callback_arg(on_progress, "onProgress")?;
-    let p = parse_files(text, &files, &opts).map_err(|e| JsError::new(&e.first().to_string()))?;
+    let mut p = parse_files_keeping(&text, &files, &opts, Keep::Motion)
+        .map_err(|e| JsError::new(&e.first().to_string()))?;
+    // Neither the text nor the blocks are simulated: their memory goes to
+    // the simulation.
+    drop(text);
+    drop(files);
+    drop(std::mem::take(&mut p.blocks));
     let mut progress = js_progress(&on_progress);
     let s = crate::toolpath::simulate_with_progress(&p.segments, &p.segments, &cfg, &mut |f| {
         progress(f, "simulating")
