@@ -119,7 +119,7 @@ const CASES = {
   parseNc: {
     good: () => mt.parseNc(arcs),
     bad: [['G2 X10 Y0 F100'], ['G1 X1e999 F100'], ['G2 X10 Y0 R1 F100'], ['G1 X1'], ['G4 P-1'], ['(unclosed'], ['\u0000\u0001'], ['G1 X1 F0'],
-      ['G1 X1 F100', { bogus: 1 }], ['G1 X1 F100\n'.repeat(300000)], [`G1 X1 F${'9'.repeat(309)}`]],
+      ['G1 X1 F100', { bogus: 1 }], ['G1 X1 F100\n' + '\n'.repeat(4_000_000)], [`G1 X1 F${'9'.repeat(309)}`]],
   },
   checkNc: { good: () => mt.checkNc(arcs), bad: [[42], ['G1 X1 F100', { dwellP: 'weeks' }], ['G1 X1 F100', []],
     ['G1 X1 F100', { toolRadii: { D1: -1 } }], ['G1 X1 F100', { toolRadii: 'D1=NaN' }], ['G1 X1 F100', { toolRadii: 3 }], ['G1 X1 F100', { toolRadii: { X1: 1 } }]] },
