@@ -328,8 +328,8 @@ pub const TEXT_ADVICE: &str = "split the file or remove what the calculation doe
 /// ```
 /// use mtmotion::budget::{check_bytes, MAX_TEXT_BYTES};
 /// assert!(check_bytes("file", MAX_TEXT_BYTES as u64).is_ok());
-/// let e = check_bytes("file", 50 << 20).unwrap_err();
-/// assert!(e.to_string().starts_with("file: 52428800 bytes, more than the limit of 8388608"));
+/// let e = check_bytes("file", 100 << 20).unwrap_err();
+/// assert!(e.to_string().starts_with("file: 104857600 bytes, more than the limit of 67108864"));
 /// ```
 pub fn check_bytes(what: &'static str, bytes: u64) -> Result<(), BudgetError> {
     check(what, bytes, MAX_TEXT_BYTES, "bytes", TEXT_ADVICE)
