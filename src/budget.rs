@@ -8,34 +8,62 @@
 //! microseconds, not the work it avoids.
 //!
 //! The limits are chosen so that no call needs more than about 512 MB of
-//! memory or 10 s. Measured with the wasm build in Node on the project's
-//! 2-core build machine, while other builds shared it: a 2 M-sample tool
-//! path 4.3 s and 276 MiB of wasm memory, a 1 M-sample feed-vector test
-//! 4.7 s and 161 MiB, a 10 M-point travel-range sweep 2.1 s and 52 MiB, NC
-//! parsing 20–40 µs per line. README's "Bad input" section lists them.
+//! memory or 10 s, except NC programs: they are bounded by what a 1 GB wasm
+//! memory holds (see the NC budgets below). Measured with the wasm build in
+//! Node on the project's 2-core build machine, while other builds shared
+//! it: a 2 M-sample tool path 4.3 s and 276 MiB of wasm memory, a 1
+//! M-sample feed-vector test 4.7 s and 161 MiB, a 10 M-point travel-range
+//! sweep 2.1 s and 52 MiB. README's "Bad input" section lists them;
+//! docs/performance.md gives the NC measurements
+//! (`bench/node/large-program.bench.mjs`).
 //!
 //! Source: none (engineering limits, not a model).
 
-/// Largest program or trace text, bytes (UTF-8): 8 MiB is 100,000 lines
-/// of 80 characters.
-pub const MAX_TEXT_BYTES: usize = 8 << 20;
+/// Largest text one argument may be, bytes (UTF-8): an NC program (with
+/// its files), and any file the page is given (`checkFileSize`), which may
+/// be a program. 64 MiB is a 2 M-line finishing program of 32 characters
+/// a line. Traces are held to [`MAX_TRACE_BYTES`].
+pub const MAX_TEXT_BYTES: usize = 64 << 20;
 
-/// Most lines in one program or trace: an NC line costs 20–40 µs to parse
-/// in the wasm build (100,000 lines: about 2–4 s and 80 MB).
+/// Largest trace text, bytes (UTF-8): 8 MiB is 100,000 lines of 80
+/// characters.
+pub const MAX_TRACE_BYTES: usize = 8 << 20;
+
+/// Most lines in one trace (each row is parsed into numbers of every
+/// column; 100,000 rows: about 1 s).
 pub const MAX_LINES: usize = 100_000;
 
-/// Most NC blocks one program may execute, subprogram and cycle repeats
-/// included: each gives a segment of about 200 B, and the tool path
-/// downstream samples every one.
-pub const MAX_EXECUTED_BLOCKS: usize = 1_000_000;
+/// Most lines in one NC program and its files: each line is a block held
+/// while the program runs (calls and jumps may go back to any), about 72 B
+/// of wasm memory with no words (4 M: 290 MB). A program's time and the
+/// rest of its memory are counted by [`MAX_NC_WORDS`], the executed
+/// blocks and the segments.
+pub const MAX_NC_LINES: usize = 4_000_000;
 
-/// Most segments (moves and dwells) one NC program may give: as many as
-/// it may execute blocks, because most blocks give one, but a canned-cycle
-/// block gives several per hole (2–3 per peck, up to
-/// `nc::cycles::MAX_PECKS` pecks, K/L up to 9,999 holes), so without
-/// this one G83 line could ask for 3·10⁸ segments (60 GB). About 200 MB;
-/// the tool path downstream samples every segment.
-pub const MAX_SEGMENTS: usize = MAX_EXECUTED_BLOCKS;
+/// Most address words (`X12.5`, `G1`, …) in one NC program and its files,
+/// counted as they are lexed: each is about 48 B of wasm memory (32 B and
+/// its number as written, kept for writing the program back), and the
+/// lexing time grows with them (10 M words: about 480 MB). A 2 M-line
+/// finishing program with X, Y and Z on every G1 line has about 8 M.
+pub const MAX_NC_WORDS: usize = 10_000_000;
+
+/// Most NC blocks one program may execute, subprogram and cycle repeats
+/// included (the interpreter's time: a 2 M-line program executes 2 M).
+pub const MAX_EXECUTED_BLOCKS: usize = 4_000_000;
+
+/// Most segments (moves and dwells) one NC program may give: 176 B of
+/// wasm memory each (2.5 M: 440 MB). Most blocks give one, but a
+/// canned-cycle block gives several per hole (2–3 per peck, up to
+/// `nc::cycles::MAX_PECKS` pecks, K/L up to 9,999 holes), so without this
+/// one G83 line could ask for 3·10⁸ segments (60 GB).
+pub const MAX_SEGMENTS: usize = 2_500_000;
+
+/// Most segments one tool-path simulation (or reverse compensation) may
+/// simulate: each holds about 1.1 KB of wasm memory while it runs (its
+/// timed command, its reference-path element, its running statistics and
+/// the statistics returned to JS), so 1 M segments need about 1.1 GB; the
+/// samples are budgeted apart ([`MAX_TOOLPATH_SAMPLES`]).
+pub const MAX_TOOLPATH_SEGMENTS: usize = 1_000_000;
 
 /// Loop iterations (backward jumps: END, endwhile, GOTO back) a macro
 /// program may make before it is stopped as endless. A quarter of
@@ -72,15 +100,16 @@ pub const MAX_TOOLPATH_SAMPLES: usize = 20_000_000;
 /// samples, the one with the largest contour error.
 pub const MAX_TOOLPATH_SERIES: usize = 1_000_000;
 
-/// Checks texts read in one call together (a program and its files): their
-/// count against [`MAX_FILES`], then their bytes and lines summed against
-/// [`MAX_TEXT_BYTES`] and [`MAX_LINES`], each text's bytes first, so that
-/// 20 files of 100,000 lines are refused before any is read.
+/// Checks NC texts read in one call together (a program and its files):
+/// their count against [`MAX_FILES`], then their bytes and lines summed
+/// against [`MAX_TEXT_BYTES`] and [`MAX_NC_LINES`], each text's bytes
+/// first, so that 20 files of 10 MB are refused before any is read. Their
+/// words are counted as they are lexed ([`MAX_NC_WORDS`]).
 ///
 /// # Examples
 /// ```
 /// use mtmotion::budget::check_texts;
-/// let line = "G1 X1\n".repeat(60_000);
+/// let line = "G1\n".repeat(3_000_000);
 /// assert!(check_texts("program and files", [line.as_str()]).is_ok());
 /// let e = check_texts("program and files", [line.as_str(), line.as_str()]).unwrap_err();
 /// assert_eq!(e.unit, "lines");
@@ -103,7 +132,7 @@ pub fn check_texts<'a>(
     check(
         what,
         n,
-        MAX_LINES,
+        MAX_NC_LINES,
         "lines",
         "split the program into parts and run each",
     )
@@ -174,7 +203,7 @@ pub const MAX_TOOL_RADII: usize = 1000;
 
 /// Most program texts or extra files of one call (`ncMainFile`,
 /// `files` of parseNc); their bytes and lines together are held to
-/// [`MAX_TEXT_BYTES`] and [`MAX_LINES`].
+/// [`MAX_TEXT_BYTES`] and [`MAX_NC_LINES`].
 pub const MAX_FILES: usize = 1000;
 
 /// Deserializes a list of at most [`MAX_PITCH_HARMONICS`] items, refusing
@@ -259,9 +288,10 @@ pub fn check(
     }
 }
 
-/// Checks a text's size in bytes, then its lines (LF, CRLF or CR alone; a
-/// last line without an end counts). The bytes are checked first, so the
-/// line count is one pass over at most [`MAX_TEXT_BYTES`].
+/// Checks a trace's size in bytes ([`MAX_TRACE_BYTES`]), then its lines
+/// ([`MAX_LINES`]; LF, CRLF or CR alone; a last line without an end
+/// counts). The bytes are checked first, so the line count is one pass
+/// over at most [`MAX_TRACE_BYTES`]. NC programs: [`check_texts`].
 ///
 /// # Examples
 /// ```
@@ -271,7 +301,13 @@ pub fn check(
 /// assert!(check_text("trace", &"\r".repeat(300_000)).is_err());
 /// ```
 pub fn check_text(what: &'static str, text: &str) -> Result<(), BudgetError> {
-    check_bytes(what, text.len() as u64)?;
+    check(
+        what,
+        text.len() as u64,
+        MAX_TRACE_BYTES,
+        "bytes",
+        TEXT_ADVICE,
+    )?;
     check(
         what,
         lines(text) as u64,
@@ -292,8 +328,8 @@ pub const TEXT_ADVICE: &str = "split the file or remove what the calculation doe
 /// ```
 /// use mtmotion::budget::{check_bytes, MAX_TEXT_BYTES};
 /// assert!(check_bytes("file", MAX_TEXT_BYTES as u64).is_ok());
-/// let e = check_bytes("file", 50 << 20).unwrap_err();
-/// assert!(e.to_string().starts_with("file: 52428800 bytes, more than the limit of 8388608"));
+/// let e = check_bytes("file", 100 << 20).unwrap_err();
+/// assert!(e.to_string().starts_with("file: 104857600 bytes, more than the limit of 67108864"));
 /// ```
 pub fn check_bytes(what: &'static str, bytes: u64) -> Result<(), BudgetError> {
     check(what, bytes, MAX_TEXT_BYTES, "bytes", TEXT_ADVICE)
@@ -382,8 +418,25 @@ mod tests {
             let e = check_text("p", &long).unwrap_err();
             assert_eq!(e.unit, "lines", "{end:?}");
         }
-        let big = "x".repeat(MAX_TEXT_BYTES + 1);
+        let big = "x".repeat(MAX_TRACE_BYTES + 1);
         assert_eq!(check_text("p", &big).unwrap_err().unit, "bytes");
+    }
+
+    #[test]
+    fn program_texts_are_held_to_the_nc_budgets() {
+        // A program may be far longer than a trace: 200,000 lines and
+        // 9 MiB pass, the NC line budget is counted over all the texts,
+        // and the bytes are checked before the lines.
+        let long = "G1 X12.3456 Y65.4321 Z-1.2345 F1000\n".repeat(270_000);
+        assert!(long.len() > MAX_TRACE_BYTES);
+        assert!(check_texts("p", [long.as_str()]).is_ok());
+        assert!(check_text("t", &long).is_err());
+        let lines = "\n".repeat(MAX_NC_LINES / 2 + 1);
+        let e = check_texts("p", [lines.as_str(), lines.as_str()]).unwrap_err();
+        assert_eq!((e.unit, e.amount), ("lines", MAX_NC_LINES as u64 + 2));
+        let big = "x".repeat(MAX_TEXT_BYTES / 2 + 1);
+        let e = check_texts("p", [big.as_str(), big.as_str()]).unwrap_err();
+        assert_eq!(e.unit, "bytes");
     }
 
     #[test]

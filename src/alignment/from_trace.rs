@@ -65,7 +65,13 @@ pub fn sections_from_traces(
     centre: Option<PlanePoint>,
 ) -> Result<Vec<Section>, AlignmentError> {
     let total: u64 = traces.iter().map(|t| t.text.len() as u64).sum();
-    crate::budget::check_bytes("alignment traces", total)?;
+    crate::budget::check(
+        "alignment traces",
+        total,
+        crate::budget::MAX_TRACE_BYTES,
+        "bytes",
+        crate::budget::TEXT_ADVICE,
+    )?;
     let opts = ParseOptions {
         nominal_radius: Some(radius),
         centre,

@@ -15,7 +15,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::macro_line::{OKw, Stmt};
-use super::program::{interpret_all, ParseOptions, Program};
+use super::program::{interpret_keeping, Keep, ParseOptions, Program};
 use super::{Block, NcError, NcErrors};
 
 /// One extra program file.
@@ -51,9 +51,24 @@ pub fn parse_files(
     files: &[NcFile],
     options: &ParseOptions,
 ) -> Result<Program, NcErrors> {
+    parse_files_keeping(text, files, options, Keep::All)
+}
+
+/// As [`parse_files`], keeping what `keep` says ([`Keep::Motion`]: the
+/// segments and warnings of a program that is simulated or checked, not
+/// written back).
+///
+/// # Errors
+/// As [`parse_files`].
+pub fn parse_files_keeping(
+    text: &str,
+    files: &[NcFile],
+    options: &ParseOptions,
+    keep: Keep,
+) -> Result<Program, NcErrors> {
     if !files.is_empty() {
         // one budget spans the program and its files (20 files of 100,000
-        // lines took 1.25 GB)
+        // lines took 1.25 GB when every block kept its modal state)
         let texts = std::iter::once(text).chain(files.iter().map(|f| f.text.as_str()));
         if let Err(e) = crate::budget::check_texts("program and its files", texts) {
             let mut errors = NcErrors {
@@ -64,11 +79,12 @@ pub fn parse_files(
             return Err(errors);
         }
     }
-    let (mut blocks, mut errors) = super::lex_all(text);
+    let mut words = 0;
+    let (mut blocks, mut errors) = super::lex_counting(text, &mut words);
     let mut spans: Vec<(usize, &str)> = Vec::new();
     let mut offset = blocks.len();
     for (k, f) in files.iter().enumerate() {
-        let (bs, es) = super::lex_all(&f.text);
+        let (bs, es) = super::lex_counting(&f.text, &mut words);
         for mut e in es.errors {
             e.file = Some(f.name.clone());
             errors.push(e);
@@ -89,7 +105,7 @@ pub fn parse_files(
     {
         return Err(NcErrors::from(e.clone()));
     }
-    match interpret_all(blocks, options) {
+    match interpret_keeping(blocks, options, keep) {
         Ok(mut p) if errors.is_empty() => {
             relocate_program(&mut p, &spans);
             Ok(p)

@@ -293,10 +293,20 @@ pub fn lex(text: &str) -> Result<Vec<Block>, NcError> {
 
 /// Lexes a whole program and collects every line's error (one per line,
 /// up to [`MAX_ERRORS`]); a line with an error gives an empty block.
-/// A text over the budget ([`crate::budget::check_text`]) or a binary file
-/// ([`crate::trace::binary_kind`]: an image, a PDF, an archive) gives no
-/// blocks and one error at line 1, column 1, before any work is done.
+/// A text over the budget ([`crate::budget::check_texts`]: its bytes and
+/// lines) or a binary file ([`crate::trace::binary_kind`]: an image, a PDF,
+/// an archive) gives no blocks and one error at line 1, column 1, before
+/// any work is done ([`unreadable`]); the words are counted as they are
+/// lexed, and the line that takes them past [`crate::budget::MAX_NC_WORDS`]
+/// stops the lexing with an error there.
 pub fn lex_all(text: &str) -> (Vec<Block>, NcErrors) {
+    let mut words = 0;
+    lex_counting(text, &mut words)
+}
+
+/// As [`lex_all`], adding the words lexed to `words` (the count of the
+/// texts lexed before, which share the budget).
+pub(crate) fn lex_counting(text: &str, words: &mut usize) -> (Vec<Block>, NcErrors) {
     let mut errors = NcErrors {
         errors: Vec::new(),
         truncated: false,
@@ -305,28 +315,43 @@ pub fn lex_all(text: &str) -> (Vec<Block>, NcErrors) {
         errors.push(NcError::new(1, 1, why));
         return (Vec::new(), errors);
     }
-    let blocks = split_lines(text)
-        .into_iter()
-        .enumerate()
-        .map(|(i, l)| {
-            lex_line(l, i + 1).unwrap_or_else(|e| {
-                errors.push(e);
-                Block {
-                    line: i + 1,
-                    ..Block::default()
-                }
-            })
-        })
-        .collect();
+    let lines = split_lines(text);
+    let mut blocks = Vec::with_capacity(lines.len());
+    for (i, l) in lines.into_iter().enumerate() {
+        // Every word starts with a letter: a line whose letters could take
+        // the words past the budget is refused before it is lexed (one
+        // 64 MiB line of `X1X1…` would be 32 M words, 1.5 GB).
+        let letters = l.bytes().filter(u8::is_ascii_alphabetic).count();
+        if *words + letters > crate::budget::MAX_NC_WORDS {
+            let e = crate::budget::BudgetError {
+                what: "program",
+                amount: (*words + letters) as u64,
+                limit: crate::budget::MAX_NC_WORDS,
+                unit: "address words by this line (its own counted by their letters)",
+                advice: "each word is held in memory while the program runs; split the program into parts and run each",
+            };
+            errors.push(NcError::new(i + 1, 1, e.to_string()));
+            return (Vec::new(), errors);
+        }
+        let b = lex_line(l, i + 1).unwrap_or_else(|e| {
+            errors.push(e);
+            Block {
+                line: i + 1,
+                ..Block::default()
+            }
+        });
+        *words += b.words.len() + b.comma_words.len();
+        blocks.push(b);
+    }
     (blocks, errors)
 }
 
 /// Why `text` is refused as a whole before any line is read, if it is: over
-/// the text budget ([`crate::budget::check_text`]), or a binary file
+/// the text budget ([`crate::budget::check_texts`]: bytes and lines), or a binary file
 /// ([`crate::trace::binary_kind`]: a PNG dropped on the program gave 100+
 /// errors on its bytes; now one error says what the file is).
 pub fn unreadable(text: &str) -> Option<String> {
-    if let Err(e) = crate::budget::check_text("program", text) {
+    if let Err(e) = crate::budget::check_texts("program", [text]) {
         return Some(e.to_string());
     }
     crate::trace::binary_kind(text).map(|kind| {
@@ -811,6 +836,33 @@ fn lex_word(chars: &[char], i: &mut usize, line: usize) -> Result<Word, NcError>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_word_budget_refuses_the_line_that_would_pass_it_before_lexing_it() {
+        use crate::budget::MAX_NC_WORDS;
+        // One line of MAX_NC_WORDS / 2 + 1 words passes (with the one
+        // before it); a line that would take the words past the budget is
+        // named, and nothing is lexed for it.
+        let half = "X1".repeat(MAX_NC_WORDS / 2 + 1);
+        let (blocks, errors) = lex_all(&format!("G0 X0\n{half}"));
+        assert!(errors.is_empty(), "{:?}", errors.errors.first());
+        assert_eq!(blocks[1].words.len(), MAX_NC_WORDS / 2 + 1);
+        let (blocks, errors) = lex_all(&format!("G0 X0\n{half}\nG1 X2 F1\n{half}"));
+        assert!(blocks.is_empty());
+        let e = &errors.errors[0];
+        assert_eq!((e.line, e.column), (4, 1), "{e}");
+        let want = format!(
+            "program: {} address words by this line (its own counted by their letters), more than the limit of {MAX_NC_WORDS}",
+            2 + 2 * (MAX_NC_WORDS / 2 + 1) + 3
+        );
+        assert!(e.message.starts_with(&want), "{e}");
+        // The words of the program and its files share the budget.
+        let mut words = MAX_NC_WORDS - 2;
+        let (_, errors) = lex_counting("G1 X1", &mut words);
+        assert!(errors.is_empty());
+        let (_, errors) = lex_counting("Y1", &mut words);
+        assert_eq!(errors.errors[0].line, 1);
+    }
 
     #[test]
     fn words_comments_and_columns() {

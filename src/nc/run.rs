@@ -40,7 +40,8 @@ use super::block::interpret_block;
 use super::gcodes::code10;
 use super::macro_exec::{has_macros, Macros, Step};
 use super::program::{
-    err, Corner, Ctx, CutterStretch, Modal, ParseOptions, Program, Segment, Warning, MAX_NESTING,
+    err, Corner, Ctx, CutterStretch, Keep, Modal, ParseOptions, Program, Segment, Warning,
+    MAX_NESTING,
 };
 use super::sequence::Sequences;
 use super::{Block, NcError, NcErrors, Word};
@@ -55,8 +56,13 @@ pub(super) struct Run<'a> {
     warnings: Vec<Warning>,
     errors: NcErrors,
     corners: Vec<Corner>,
-    /// Modal state after each block (`None`: not run yet).
+    /// Modal state after each block (`None`: not run yet); empty when the
+    /// run keeps none ([`Keep::Motion`]).
     modal: Vec<Option<Modal>>,
+    /// What the program keeps for a writer.
+    keep: Keep,
+    /// Moves were made in mm (`[0]`) and in inch (`[1]`) units.
+    moved_units: [bool; 2],
     /// The blocks after the program end have been warned about.
     after_end_warned: bool,
     /// O-number → index of its `O` block.
@@ -127,7 +133,7 @@ impl<'a> Run<'a> {
     ///
     /// # Errors
     /// The macro code's structure errors ([`Macros::new`]).
-    pub fn new(blocks: &[Block], opt: &'a ParseOptions) -> Result<Self, NcErrors> {
+    pub fn new(blocks: &[Block], opt: &'a ParseOptions, keep: Keep) -> Result<Self, NcErrors> {
         Ok(Self {
             opt,
             st: Modal {
@@ -135,14 +141,21 @@ impl<'a> Run<'a> {
                 inch: opt.units == super::program::Units::Inch,
                 ..Modal::default()
             },
-            segments: Vec::new(),
+            // most blocks with words give one segment: one allocation, not
+            // a doubling copy (2 M segments are 350 MB)
+            segments: Vec::with_capacity(blocks.iter().filter(|b| !b.words.is_empty()).count()),
             warnings: Vec::new(),
             errors: NcErrors {
                 errors: Vec::new(),
                 truncated: false,
             },
             corners: Vec::new(),
-            modal: vec![None; blocks.len()],
+            modal: match keep {
+                Keep::All => vec![None; blocks.len()],
+                Keep::Motion => Vec::new(),
+            },
+            keep,
+            moved_units: [false; 2],
             after_end_warned: false,
             subs: subprogram_index(blocks),
             seqs: Sequences::new(blocks),
@@ -187,7 +200,7 @@ impl<'a> Run<'a> {
                 1,
                 "block delete '/': this block is skipped (set skipBlockDelete: false to run it)",
             ));
-            self.modal[bi] = Some(self.st);
+            self.record(bi);
             return true;
         }
         self.runs[bi] = self.runs[bi].saturating_add(1);
@@ -201,15 +214,19 @@ impl<'a> Run<'a> {
                 &evaluated
             }
             Some(Flow::Next) => {
-                self.modal[bi] = Some(self.st);
+                self.record(bi);
                 return true;
             }
             Some(Flow::Stop) => return false,
         };
+        let made = self.segments.len();
         if !self.run_block(b, bi, computed) {
             return false;
         }
-        self.modal[bi] = Some(self.st);
+        if self.segments.len() > made {
+            self.moved_units[usize::from(self.st.inch)] = true;
+        }
+        self.record(bi);
         self.call_or_return(b, bi);
         if !self.modal_call_after(b) {
             return false;
@@ -233,7 +250,16 @@ impl<'a> Run<'a> {
                 ));
             }
         }
-        self.modal[bi].get_or_insert(self.st);
+        if let Some(m) = self.modal.get_mut(bi) {
+            m.get_or_insert(self.st);
+        }
+    }
+
+    /// Records the modal state after block `bi` (when the run keeps them).
+    fn record(&mut self, bi: usize) {
+        if let Some(m) = self.modal.get_mut(bi) {
+            *m = Some(self.st);
+        }
     }
 
     /// Counts the block against the executed-block budget; the error that
@@ -356,7 +382,7 @@ impl<'a> Run<'a> {
                 b.line,
                 1,
                 format!(
-                    "more than {budget} segments: the canned-cycle holes and pecks, subprogram calls or loops make too many moves; check the K/L hole counts, the Q peck depths, the M97/M98 repeat counts and the loop conditions"
+                    "more than {budget} segments: the canned-cycle holes and pecks, subprogram calls or loops make too many moves; check the K/L hole counts, the Q peck depths, the M97/M98 repeat counts and the loop conditions (a program with more moves than that: split it into parts)"
                 ),
             ));
             return false;
@@ -483,6 +509,9 @@ impl<'a> Run<'a> {
             runs,
             stretches,
             mut tags,
+            keep,
+            moved_units,
+            st,
             ..
         } = self;
         if let (Some(f), true) = (stack.last(), errors.is_empty()) {
@@ -497,15 +526,18 @@ impl<'a> Run<'a> {
             inch: opt.units == super::program::Units::Inch,
             ..Modal::default()
         };
-        let modal: Vec<Modal> = modal
-            .into_iter()
-            .map(|m| {
-                if let Some(m) = m {
-                    last = m;
-                }
-                last
-            })
-            .collect();
+        let modal: Vec<Modal> = match keep {
+            Keep::All => modal
+                .into_iter()
+                .map(|m| {
+                    if let Some(m) = m {
+                        last = m;
+                    }
+                    last
+                })
+                .collect(),
+            Keep::Motion => vec![st],
+        };
         for s in &mut segments {
             if s.block
                 .is_some_and(|bi| runs.get(bi).is_some_and(|&n| n > 1))
@@ -533,6 +565,7 @@ impl<'a> Run<'a> {
         Ok(Program {
             blocks,
             modal,
+            moved_units,
             segments,
             warnings,
             cutter: stretches,

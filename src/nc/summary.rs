@@ -242,17 +242,13 @@ impl Tally {
 /// does not make an inch program "mm and inch"); with no move, the units
 /// at its end.
 fn units(p: &Program) -> &'static str {
-    let moving: Vec<bool> = p
-        .segments
-        .iter()
-        .filter_map(|s| s.block.and_then(|bi| p.modal.get(bi)).map(|m| m.inch))
-        .collect();
-    let states = if moving.is_empty() {
-        p.modal.last().map(|m| m.inch).into_iter().collect()
+    let [mm, inch] = if p.moved_units.iter().any(|&u| u) {
+        p.moved_units
     } else {
-        moving
+        let inch = p.modal.last().is_some_and(|m| m.inch);
+        [!inch, inch]
     };
-    match (states.iter().any(|i| !i), states.iter().any(|&i| i)) {
+    match (mm, inch) {
         (true, true) => "mm and inch",
         (false, true) => "inch",
         _ => "mm",

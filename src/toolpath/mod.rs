@@ -152,6 +152,19 @@ pub enum ToolpathError {
     #[error(transparent)]
     Budget(#[from] crate::budget::BudgetError),
     /// The run would need too many samples.
+    /// More segments than [`crate::budget::MAX_TOOLPATH_SEGMENTS`]: each
+    /// holds memory while the simulation runs.
+    #[error("the simulation would hold {segments} segments, more than the limit of {limit} (each holds about 1.1 KB of memory while it runs); segment {next} is line {line}: split the program there or earlier and simulate each part")]
+    TooManySegments {
+        /// Segments of the program.
+        segments: usize,
+        /// The budget.
+        limit: usize,
+        /// The first segment over it (1-based).
+        next: usize,
+        /// Its source line.
+        line: usize,
+    },
     #[error("the simulation would need {samples:.3e} samples (limit {limit}){slowest}; increase dt or shorten the program, or check a very low feed")]
     TooLong {
         /// Samples needed (a float: a feed of 1e-21 mm/min asks for more

@@ -205,6 +205,8 @@ fn simulate_keeping(
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Simulation, ToolpathError> {
     cfg.validate()?;
+    check_segments(command)?;
+    check_segments(reference)?;
     let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
     let tl = timeline(command, cfg, tmax);
     let path = Path::new(reference);
@@ -267,6 +269,21 @@ pub fn sample_estimate(command: &[Segment], cfg: &SimConfig) -> Result<usize, To
     cfg.validate()?;
     let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
     sample_count(&timeline(command, cfg, tmax), cfg, tmax, command)
+}
+
+/// [`ToolpathError::TooManySegments`] when `segments` are more than the
+/// simulation may hold, naming the line of the first one over the budget.
+fn check_segments(segments: &[Segment]) -> Result<(), ToolpathError> {
+    let limit = crate::budget::MAX_TOOLPATH_SEGMENTS;
+    match segments.get(limit) {
+        None => Ok(()),
+        Some(s) => Err(ToolpathError::TooManySegments {
+            segments: segments.len(),
+            limit,
+            next: limit + 1,
+            line: s.line,
+        }),
+    }
 }
 
 /// The timed command: a G0 ends in an exact stop of `tA + 10·max T`, and

@@ -361,7 +361,48 @@ pub fn string_arg(value: &JsValue, what: &str) -> Result<String, JsError> {
     Ok(String::from(s))
 }
 
-/// A name argument (a preset, an axis, a reading, a file name): a string
+/// Grows the wasm memory in large steps for a call that will allocate about
+/// `bytes` (more than [`RESERVE_FROM`]), by allocating blocks of
+/// [`RESERVE_STEP`] and freeing them: the allocator otherwise grows the
+/// memory by 64 KiB pages as it needs them, and Node 20 took 1.4-1.8 ms
+/// per grow (15,000 one-page grows of a `WebAssembly.Memory` to 938 MiB:
+/// 21-26 s), so a 2 M-line program spent most of its `checkNc` growing the
+/// memory. Blocks go first into the free memory a call before left (the
+/// memory only grows where that is too little), and the freed blocks are
+/// free memory the call's allocations then use. A block the memory cannot
+/// give ends the reservation (the call then grows as before, and fails
+/// where it would have).
+pub fn reserve(bytes: usize) {
+    if bytes <= RESERVE_FROM {
+        return;
+    }
+    let n = bytes.min(RESERVE_AT_MOST).div_ceil(RESERVE_STEP);
+    let mut blocks: Vec<Vec<u8>> = Vec::with_capacity(n);
+    for _ in 0..n {
+        let mut block = Vec::new();
+        if block.try_reserve_exact(RESERVE_STEP).is_err() {
+            break;
+        }
+        blocks.push(block);
+    }
+}
+
+/// Calls that allocate less than this grow the memory as they go.
+pub const RESERVE_FROM: usize = 16 << 20;
+/// The size of one reserved block (256 pages: one grow instead of 256).
+pub const RESERVE_STEP: usize = 16 << 20;
+/// The largest reservation (a quarter of the 4 GiB address space).
+pub const RESERVE_AT_MOST: usize = 1 << 30;
+
+/// Wasm memory an NC program needs while it is read, per byte of its text
+/// (blocks, words, segments: 932 MiB for the 59 MiB of the 2 M-line
+/// program of `bench/node/large-program.bench.mjs`).
+pub const NC_BYTES_PER_TEXT_BYTE: usize = 16;
+
+/// Wasm memory the tool-path simulation holds per segment (timeline,
+/// reference path, statistics; see `budget::MAX_TOOLPATH_SEGMENTS`).
+pub const SIM_BYTES_PER_SEGMENT: usize = 1100;
+
 /// of at most [`budget::MAX_NAME_CHARS`] characters, refused before it is
 /// copied into wasm memory (a 100 MB machine name held 573 MiB of wasm
 /// memory for good and came back in the message).

@@ -7,12 +7,12 @@ use wasm_bindgen::prelude::*;
 
 use super::args::JsArg;
 use super::convert::{
-    callback_arg, from_js, from_plain, name_arg, object, plain, require_object, string_arg, to_js,
-    Obj,
+    callback_arg, from_js, from_plain, name_arg, object, plain, require_object, reserve,
+    string_arg, to_js, Obj, NC_BYTES_PER_TEXT_BYTE, SIM_BYTES_PER_SEGMENT,
 };
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
-use crate::nc::files::{main_file, parse_files, NcFile};
-use crate::nc::program::{ParseOptions, Program, Segment, ToolRadii, Warning};
+use crate::nc::files::{main_file, parse_files_keeping, NcFile};
+use crate::nc::program::{Keep, ParseOptions, Program, Segment, ToolRadii, Warning};
 use crate::nc::summary::{summarize, Summary};
 use crate::nc::{NcError, NcErrors};
 use crate::toolpath::identify::{
@@ -130,7 +130,15 @@ fn parse_args(text: &JsValue, options: JsValue) -> Result<Result<Program, NcErro
     let text: &str = &string_arg(text, "text")?;
     let (files, options) = take_files(options)?;
     let opts = parse_options(options)?;
-    Ok(parse_files(text, &files, &opts))
+    reserve_for_nc(text, &files);
+    Ok(parse_files_keeping(text, &files, &opts, Keep::Motion))
+}
+
+/// Reserves the wasm memory reading `text` and `files` will take, in one
+/// grow ([`reserve`]).
+fn reserve_for_nc(text: &str, files: &[NcFile]) {
+    let bytes = text.len() + files.iter().map(|f| f.text.len()).sum::<usize>();
+    reserve(bytes.saturating_mul(NC_BYTES_PER_TEXT_BYTE));
 }
 
 /// Splits the optional `files` key off an options object: the extra files
@@ -304,7 +312,7 @@ pub fn simulate_tool_path(
     #[wasm_bindgen(unchecked_param_type = "ToolPathConfig")] config: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "Function | null")] on_progress: JsValue,
 ) -> Result<JsValue, JsError> {
-    let text: &str = &string_arg(&text, "text")?;
+    let text = string_arg(&text, "text")?;
     let (files, config) = take_files(config)?;
     let (radii, config) = take_key(config, "toolRadii")?;
     let cfg: SimConfig = if config.is_undefined() || config.is_null() {
@@ -321,7 +329,17 @@ pub fn simulate_tool_path(
         ..ParseOptions::default()
     };
     let on_progress = callback_arg(on_progress, "onProgress")?;
-    let p = parse_files(text, &files, &opts).map_err(|e| JsError::new(&e.first().to_string()))?;
+    reserve_for_nc(&text, &files);
+    let mut p = parse_files_keeping(&text, &files, &opts, Keep::Motion)
+        .map_err(|e| JsError::new(&e.first().to_string()))?;
+    // Neither the text nor the blocks are simulated: their memory goes to
+    // the simulation.
+    drop(text);
+    drop(files);
+    drop(std::mem::take(&mut p.blocks));
+    if p.segments.len() <= crate::budget::MAX_TOOLPATH_SEGMENTS {
+        reserve(p.segments.len() * SIM_BYTES_PER_SEGMENT);
+    }
     let mut progress = js_progress(&on_progress);
     let s = crate::toolpath::simulate_with_progress(&p.segments, &p.segments, &cfg, &mut |f| {
         progress(f, "simulating")
@@ -403,6 +421,7 @@ pub fn reverse_compensate_js(
     };
     let on_progress = callback_arg(on_progress, "onProgress")?;
     let mut progress = js_progress(&on_progress);
+    reserve_for_nc(text, &[]);
     let c = reverse_compensate_with(text, &cfg, &mut progress)?;
     Ok(Obj::new()
         .val("nc", JsValue::from_str(&c.nc))

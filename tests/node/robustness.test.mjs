@@ -58,7 +58,7 @@ const CASES = {
   start: { good: () => mt.start(), bad: [] },
   version: { good: () => mt.version(), bad: [] },
   machines: { good: () => mt.machines(), bad: [] },
-  checkFileSize: { good: () => mt.checkFileSize('part.nc', 8 * 2 ** 20), bad: [['huge.csv', 50 * 2 ** 20], ['a.nc', -1], ['a.nc', 1.5], ['a.nc', NaN], ['a.nc', Infinity], [42, 10], [undefined, 10]] },
+  checkFileSize: { good: () => mt.checkFileSize('part.nc', 8 * 2 ** 20), bad: [['huge.csv', 100 * 2 ** 20], ['a.nc', -1], ['a.nc', 1.5], ['a.nc', NaN], ['a.nc', Infinity], [42, 10], [undefined, 10]] },
   machinePreset: { good: () => mt.machinePreset('nmv5000', 'inertiaAtLoad'), bad: [[''], ['\u0000'], [null], [{ name: 'nmv5000' }], ['nmv5000', 'nope'], ['nmv5000', 3], ['trunnion-ac', 'table']] },
   ncMainFile: { good: () => mt.ncMainFile(['O100\nG1 X1 F100\nM99\n', 'G1 X1 F100\nM98 P100\nM30\n']), bad: [[42], [[1, 2]], [{ length: -1 }]] },
   frequencyResponse: {
@@ -119,7 +119,7 @@ const CASES = {
   parseNc: {
     good: () => mt.parseNc(arcs),
     bad: [['G2 X10 Y0 F100'], ['G1 X1e999 F100'], ['G2 X10 Y0 R1 F100'], ['G1 X1'], ['G4 P-1'], ['(unclosed'], ['\u0000\u0001'], ['G1 X1 F0'],
-      ['G1 X1 F100', { bogus: 1 }], ['G1 X1 F100\n'.repeat(300000)], [`G1 X1 F${'9'.repeat(309)}`]],
+      ['G1 X1 F100', { bogus: 1 }], ['G1 X1 F100\n' + '\n'.repeat(4_000_000)], [`G1 X1 F${'9'.repeat(309)}`]],
   },
   checkNc: { good: () => mt.checkNc(arcs), bad: [[42], ['G1 X1 F100', { dwellP: 'weeks' }], ['G1 X1 F100', []],
     ['G1 X1 F100', { toolRadii: { D1: -1 } }], ['G1 X1 F100', { toolRadii: 'D1=NaN' }], ['G1 X1 F100', { toolRadii: 3 }], ['G1 X1 F100', { toolRadii: { X1: 1 } }]] },
@@ -300,11 +300,13 @@ test('the checks can fail: a returned bad call, a NaN result and a trap are each
 });
 
 test('checkFileSize: the core names the file, its size and the limit; at the limit it passes', () => {
-  assert.throws(() => mt.checkFileSize('huge-trace.csv', 50 * 2 ** 20), {
-    message: 'huge-trace.csv: file size: 52428800 bytes, more than the limit of 8388608; split the file or remove what the calculation does not need',
+  // 64 MiB: the NC program budget (budget::MAX_TEXT_BYTES); any dropped
+  // file may be a program.
+  assert.throws(() => mt.checkFileSize('huge-trace.csv', 100 * 2 ** 20), {
+    message: 'huge-trace.csv: file size: 104857600 bytes, more than the limit of 67108864; split the file or remove what the calculation does not need',
   });
-  assert.equal(mt.checkFileSize('part.nc', 8 * 2 ** 20), undefined);
-  assert.throws(() => mt.checkFileSize('part.nc', 8 * 2 ** 20 + 1), /8388609 bytes/);
+  assert.equal(mt.checkFileSize('part.nc', 64 * 2 ** 20), undefined);
+  assert.throws(() => mt.checkFileSize('part.nc', 64 * 2 ** 20 + 1), /67108865 bytes/);
   assert.throws(() => mt.checkFileSize('x'.repeat(500), 1e9), (e) => e.message.length < 250);
 });
 

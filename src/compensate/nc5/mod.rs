@@ -334,13 +334,13 @@ pub fn compensate_nc5(text: &str, cfg: &Nc5Config) -> Result<Nc5Result, Nc5Error
     // when that text would be over the line budget (a 99,992-line G81
     // program was refused after 4 s as "line 1, column 1: program:
     // 399963 lines", its own expansion)
-    if program.segments.len() > crate::budget::MAX_LINES {
+    if program.segments.len() > crate::budget::MAX_NC_LINES {
         return Err(Nc5Error::Unsupported {
             line: 1,
             why: format!(
                 "the compensated program would have about {} lines (every move written out: canned cycles and subprogram calls expanded), more than the limit of {}; compensate the program in parts",
                 program.segments.len(),
-                crate::budget::MAX_LINES
+                crate::budget::MAX_NC_LINES
             ),
         });
     }
