@@ -6,6 +6,7 @@
 //
 //   node bench/node/worst_case.mjs            # every export
 //   node bench/node/worst_case.mjs coneFrustumTest syntheticBallbarTrace
+//   node bench/node/worst_case.mjs --refusals  # calls over a budget: time to refuse
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 
@@ -56,8 +57,26 @@ const CASES = {
   version: { call: `mt.version()`, note: 'trivial' },
 };
 
+// Refusals: a call over a budget, refused before the work. The lists of
+// 1e6 items are refused by their length before any item is copied into
+// plain data (src/wasm/convert.rs); `--refusals` times them (the list is
+// built before the clock starts).
+const list = (item) => `const list = new Array(1_000_000).fill(${item});`;
+const REFUSALS = {
+  'identifyAccDec 1e6 circles': { prep: list('{ feed: 1000, radius: 1, radiusLoss: 0.001 }'), call: 'mt.identifyAccDec(list)' },
+  'ncMainFile 1e6 texts': { prep: list("'G1 X1'"), call: 'mt.ncMainFile(list)' },
+  'torqueSaturation 1e6 loads': { prep: list('1'), call: "mt.torqueSaturation('nmv5000', { j1: list, torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200 })" },
+  'torqueSaturation 1000 loads at dt 1 µs': { prep: list('1').replace('1_000_000', '1000'), call: "mt.torqueSaturation('nmv5000', { j1: list, torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200, dt: 1e-6 })" },
+  'estimateAlignmentBand 1e6 sections': { prep: list('{ y: 0, angleDeg: [0, 1, 2, 3], deviation: [0, 0, 0, 0] }'), call: 'mt.estimateAlignmentBand({ sections: list })' },
+  'simulateAxis 1e6 pitch harmonics': { prep: list('{ n: 1, w: 1e-5, phi: 0 }'), call: "mt.simulateAxis({ ...mt.machinePreset('nmv5000').axes.c, pitchError: list }, { dt: 1e-3, position: [0, 1] })" },
+  'syntheticBallbarTrace 1e6 harmonics': { prep: list('{ order: 2, amplitude: 1e-3 }'), call: 'mt.syntheticBallbarTrace({ harmonics: list })' },
+  'parseNc 1e6 files': { prep: list("{ name: 'f.nc', text: 'G1' }"), call: "mt.parseNc('G1 X1 F100', { files: list })" },
+  'circularTest 1e6 runs': { prep: list("{ direction: 'ccw', angleRad: [0, 1, 2], deviation: [0, 0, 0] }"), call: 'mt.circularTest({ nominalRadius: 100, feed: null, runs: list })' },
+  'simulateToolPath 1e6 tool radii': { prep: 'const list = {}; for (let i = 0; i < 1e6; i++) list[`D${i}`] = 1;', call: "mt.simulateToolPath('G1 X1 F100', { toolRadii: list })" },
+};
+
 function run(name) {
-  const { prep = '', call } = CASES[name];
+  const { prep = '', call } = CASES[name] ?? REFUSALS[name];
   const src = `import * as mt from '${PKG}mtmotion.js';
 import { readFileSync } from 'node:fs';
 const wasm = mt.initSync({ module: readFileSync(new URL('mtmotion_bg.wasm', '${PKG}')) });
@@ -73,7 +92,14 @@ console.log(JSON.stringify({ ms, mib: wasm.memory.buffer.byteLength / 2 ** 20, b
   return JSON.parse(r.stdout.trim().split('\n').pop());
 }
 
-if (process.argv[1] === fileURLToPath(import.meta.url)) {
+if (process.argv[1] === fileURLToPath(import.meta.url) && process.argv[2] === '--refusals') {
+  console.log('| refused call | time | outcome |\n|---|---:|---|');
+  for (const name of Object.keys(REFUSALS)) {
+    const r = run(name);
+    const t = r.ms === undefined ? '–' : `${r.ms.toFixed(1)} ms`;
+    console.log(`| ${name} | ${t} | ${r.outcome} |`);
+  }
+} else if (process.argv[1] === fileURLToPath(import.meta.url)) {
   const names = process.argv.slice(2).length ? process.argv.slice(2) : Object.keys(CASES);
   console.log('| export | input | time | wasm memory | outcome |\n|---|---|---:|---:|---|');
   for (const name of names) {
@@ -84,4 +110,4 @@ if (process.argv[1] === fileURLToPath(import.meta.url)) {
   }
 }
 
-export { CASES };
+export { CASES, REFUSALS };

@@ -64,8 +64,8 @@ pub fn sections_from_traces(
     radius: f64,
     centre: Option<PlanePoint>,
 ) -> Result<Vec<Section>, AlignmentError> {
-    let total: u64 = traces.iter().map(|t| t.text.len() as u64).sum();
-    crate::budget::check_bytes("alignment traces", total)?;
+    // bytes and lines over every trace together, not each on its own
+    crate::budget::check_texts("alignment traces", traces.iter().map(|t| t.text.as_str()))?;
     let opts = ParseOptions {
         nominal_radius: Some(radius),
         centre,
