@@ -12,7 +12,7 @@
 //! 2-core build machine, while other builds shared it: a 2 M-sample tool
 //! path 4.3 s and 276 MiB of wasm memory, a 1 M-sample feed-vector test
 //! 4.7 s and 161 MiB, a 10 M-point travel-range sweep 2.1 s and 52 MiB, NC
-//! parsing 20–40 µs per line. README's "Bad input" section lists them.
+//! parsing 20–40 µs per line. docs/budgets.md lists them, with what each counts.
 //!
 //! Source: none (engineering limits, not a model).
 
