@@ -1,9 +1,11 @@
 // Issue 29, items 3-12: inputs that used to give a silent wrong answer, a
 // non-finite result, a huge message or a slow or fatal refusal. One
-// regression case per item, then two properties over every export (each
+// regression case per item, then three properties over every export (each
 // enumerated from the pkg module, as revoked_proxy.test.mjs does):
 // - no argument position documented as a number (in pkg/mtmotion.d.ts)
 //   accepts a string, a boolean, a one-element array or a BigInt;
+// - no number inside a good call's configs, at any depth, accepts a
+//   string, a boolean or a one-element array (the error names its key);
 // - every config object, and every object nested in it, refuses a key it
 //   does not name, and the message names the key.
 // Calls that could kill or exhaust an instance run in their own process
@@ -235,6 +237,40 @@ test('item 8 property: no position documented as a number accepts a string, a bo
   }
   assert.ok(checked >= 25, `only ${checked} number positions found`);
   assert.deepEqual(problems, []);
+});
+
+test('item 8 property: no number inside a config, at any depth, accepts a string, a boolean or a one-element array', () => {
+  // every number of every good call's object arguments (plain arrays
+  // included; typed arrays cannot hold anything else), replaced in turn
+  const paths = (v, path, out) => {
+    if (typeof v === 'number') out.push(path);
+    else if (v && typeof v === 'object' && !ArrayBuffer.isView(v)) for (const [k, u] of Object.entries(v)) paths(u, [...path, k], out);
+    return out;
+  };
+  const problems = [];
+  let checked = 0;
+  for (const { name, f } of exported) {
+    GOOD[name]().forEach((arg, i) => {
+      if (!arg || typeof arg !== 'object' || ArrayBuffer.isView(arg)) return;
+      for (const path of paths(arg, [], [])) {
+        for (const bad of ['5', true, [5]]) {
+          const args = goodArgs(name);
+          let o = args[i];
+          for (const k of path.slice(0, -1)) o = o[k];
+          o[path[path.length - 1]] = bad;
+          checked += 1;
+          const m = message(() => f(...args));
+          const key = path[path.length - 1];
+          const named = /^\d+$/.test(key) ? m.includes(`[${key}]`) : m.includes(key);
+          // refused, naming the key and what was expected (a number, a
+          // time constant or [Tx, Ty, Tz], an array of 3, …)
+          if (m === 'returned' || !named || !/expected/.test(m)) problems.push(`${name} #${i}.${path.join('.')} = ${JSON.stringify(bad)}: ${m.slice(0, 140)}`);
+        }
+      }
+    });
+  }
+  assert.ok(checked >= 300, `only ${checked} config numbers checked`);
+  assert.deepEqual(problems.slice(0, 20), []);
 });
 
 test('item 8: checkFileSize says a huge size as given, not as 2^64 - 1', () => {
