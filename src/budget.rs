@@ -13,8 +13,8 @@
 //! Node on the project's 2-core build machine, while other builds shared
 //! it: a 2 M-sample tool path 4.3 s and 276 MiB of wasm memory, a 1
 //! M-sample feed-vector test 4.7 s and 161 MiB, a 10 M-point travel-range
-//! sweep 2.1 s and 52 MiB. README's "Bad input" section lists them;
-//! docs/performance.md gives the NC measurements
+//! sweep 2.1 s and 52 MiB. docs/budgets.md lists them, with what each
+//! counts; docs/performance.md gives the NC measurements
 //! (`bench/node/large-program.bench.mjs`).
 //!
 //! Source: none (engineering limits, not a model).
@@ -194,6 +194,32 @@ pub const MAX_SYNTHETIC_TERMS: usize = 100_000_000;
 /// simulation (Fig. 21 has a handful; 1e6 took 22 s).
 pub const MAX_SATURATION_LOADS: usize = 1000;
 
+/// Most servo steps of one torque-saturation study, over all its loads
+/// (loads × the steps of each load's C-axis run, which grow as 1/dt): 1000
+/// loads at dt = 10 µs were 35 M steps and 2.1 s in wasm (about 0.06 µs a
+/// step); without this, 1000 loads at the finest dt asked for 3.5·10⁸.
+pub const MAX_SATURATION_STEPS: usize = 50_000_000;
+
+/// Most terms of one axis simulation (`simulateAxis`): samples × (1 +
+/// worm-gear pitch-error harmonics), each harmonic one `sin` per sample
+/// (8 M samples with 64 harmonics took 22 s; 8 M samples alone 0.9 s).
+pub const MAX_AXIS_SIM_TERMS: usize = 100_000_000;
+
+/// Most work of one circular test's cyclic-error search: pitches on its
+/// grid (about 2π·R₀ per mm of bar length R₀) × the trace's points merged
+/// by angle (at most 18,000 bins): R₀ = 10 m with 2 × 10⁵ points was
+/// 1.1·10⁹ and took 17.6 s in wasm (about 16 ns per unit).
+pub const MAX_CYCLIC_SEARCH_WORK: usize = 200_000_000;
+
+/// Most sections (measured heights) of one alignment estimate, band or
+/// angle sweep: a section is one ball-bar measurement; the paper uses two.
+pub const MAX_SECTIONS: usize = 1000;
+
+/// Most harmonics of one motion-error model (a synthetic ball-bar trace, a
+/// travel-range or angle sweep): orders above a few hundred are below any
+/// ball bar's resolution, and each costs one `sin` per sample.
+pub const MAX_HARMONICS: usize = 256;
+
 /// Most measured circles of one acc/dec identification (qiu Eq. 3; the
 /// paper fits four).
 pub const MAX_ACCDEC_CIRCLES: usize = 10_000;
@@ -205,6 +231,124 @@ pub const MAX_TOOL_RADII: usize = 1000;
 /// `files` of parseNc); their bytes and lines together are held to
 /// [`MAX_TEXT_BYTES`] and [`MAX_NC_LINES`].
 pub const MAX_FILES: usize = 1000;
+
+/// A list in a JS argument held to a budget by its length (or, for a map
+/// such as tool radii, by its number of keys). The JS boundary checks it
+/// before it copies a single item (`src/wasm/convert.rs`): a list of 10⁶
+/// small objects took 3–9 s to copy before the core could count it. The
+/// core checks the same limits on the data it is given.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ListBudget {
+    /// The key the list is found under (at any depth), e.g. `pitchError`.
+    pub key: &'static str,
+    /// The limit.
+    pub max: usize,
+    /// What the items are, e.g. "harmonics".
+    pub unit: &'static str,
+    /// What to change.
+    pub advice: &'static str,
+    /// Counts the keys of an object (a map), not the items of an array.
+    pub keys: bool,
+}
+
+impl ListBudget {
+    /// `Ok` when `n ≤ max`, else the [`BudgetError`] naming `what`.
+    pub fn check(&self, what: &'static str, n: usize) -> Result<(), BudgetError> {
+        check(what, n as u64, self.max, self.unit, self.advice)
+    }
+}
+
+/// Worm-gear pitch-error harmonics of an axis ([`MAX_PITCH_HARMONICS`]).
+pub const PITCH_HARMONICS_LIST: ListBudget = ListBudget {
+    key: "pitchError",
+    max: MAX_PITCH_HARMONICS,
+    unit: "harmonics",
+    advice: "the work budget; a worm gear shows a handful",
+    keys: false,
+};
+
+/// Harmonics of a motion-error model ([`MAX_HARMONICS`]).
+pub const HARMONICS_LIST: ListBudget = ListBudget {
+    key: "harmonics",
+    max: MAX_HARMONICS,
+    unit: "harmonics",
+    advice: "orders above a few hundred are below any ball bar's resolution",
+    keys: false,
+};
+
+/// Load inertias of a torque-saturation study ([`MAX_SATURATION_LOADS`]).
+pub const SATURATION_LOADS_LIST: ListBudget = ListBudget {
+    key: "j1",
+    max: MAX_SATURATION_LOADS,
+    unit: "load inertias",
+    advice: "each runs a simulation of the C axis",
+    keys: false,
+};
+
+/// Tool radii per D number, keys of a map ([`MAX_TOOL_RADII`]).
+pub const TOOL_RADII_LIST: ListBudget = ListBudget {
+    key: "toolRadii",
+    max: MAX_TOOL_RADII,
+    unit: "tool radii",
+    advice: "give the radii of the D numbers the program uses",
+    keys: true,
+};
+
+/// Extra program files ([`MAX_FILES`]).
+pub const FILES_LIST: ListBudget = ListBudget {
+    key: "files",
+    max: MAX_FILES,
+    unit: "texts",
+    advice: "give fewer files at once",
+    keys: false,
+};
+
+/// Runs of a circular test ([`MAX_CIRCULAR_RUNS`]).
+pub const CIRCULAR_RUNS_LIST: ListBudget = ListBudget {
+    key: "runs",
+    max: MAX_CIRCULAR_RUNS,
+    unit: "runs",
+    advice: "test one circle (a CCW and a CW run) at a time",
+    keys: false,
+};
+
+/// Sections of an alignment estimate ([`MAX_SECTIONS`]).
+pub const SECTIONS_LIST: ListBudget = ListBudget {
+    key: "sections",
+    max: MAX_SECTIONS,
+    unit: "sections",
+    advice: "a section is one ball-bar measurement; the paper uses two",
+    keys: false,
+};
+
+/// The lists of JS arguments bounded by key, wherever the key appears.
+pub const LIST_BUDGETS: [ListBudget; 7] = [
+    PITCH_HARMONICS_LIST,
+    HARMONICS_LIST,
+    SATURATION_LOADS_LIST,
+    TOOL_RADII_LIST,
+    FILES_LIST,
+    CIRCULAR_RUNS_LIST,
+    SECTIONS_LIST,
+];
+
+/// The circles of `identifyAccDec` (its argument is the list).
+pub const ACCDEC_CIRCLES: ListBudget = ListBudget {
+    key: "",
+    max: MAX_ACCDEC_CIRCLES,
+    unit: "circles",
+    advice: "the fit needs a few circles at different F/R",
+    keys: false,
+};
+
+/// The texts of `ncMainFile` (its argument is the list).
+pub const MAIN_FILE_TEXTS: ListBudget = ListBudget {
+    key: "",
+    max: MAX_FILES,
+    unit: "texts",
+    advice: "give fewer files at once",
+    keys: false,
+};
 
 /// Deserializes a list of at most [`MAX_PITCH_HARMONICS`] items, refusing
 /// a longer one by its length before any item is read (when the format

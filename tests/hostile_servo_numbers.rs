@@ -137,7 +137,18 @@ fn torque_saturation_needs_an_acc_dec_time_and_a_sane_step() {
     assert!(e.contains("dt"), "{e}");
     // A fine but legal step whose run would exceed the sample budget.
     let e = err(torque_saturation(&m, &q(100.0, Some(1e-7))));
-    assert!(e.contains("4,000,000-sample budget"), "{e}");
+    assert!(e.contains("1,000,000-sample budget"), "{e}");
+    // The study counts loads × steps per load, not loads: 1000 loads of
+    // 350,000 steps each (dt = 1 µs) are refused before any is simulated.
+    let many = SaturationQuery {
+        j1: vec![1.7; 1000],
+        ..q(0.064, Some(1e-6))
+    };
+    let e = err(torque_saturation(&m, &many));
+    assert!(
+        e.starts_with("torque-saturation study: ") && e.contains("more than the limit of 50000000"),
+        "{e}"
+    );
     // And the normal case still answers with finite numbers.
     let ok = torque_saturation(&m, &q(0.064, None)).unwrap();
     assert!(ok

@@ -3,7 +3,8 @@
 //! `cargo run --release --example paper_tables`) must equal a fresh
 //! computation to a relative 1e-9. A change that moves a paper number
 //! fails here and prints the committed and the new value; regenerate the
-//! file and the README/docs tables if the change is intended.
+//! file and the docs' tables (docs/reproducing.md, docs/paper-tables.md)
+//! if the change is intended.
 //! The whole computation takes about 2 s in a debug build.
 #![cfg(not(target_arch = "wasm32"))]
 
@@ -51,12 +52,14 @@ fn a_moved_number_is_reported_with_old_and_new_values() {
     );
 }
 
-/// The README's headline numbers, as it quotes them (rounded): a change
-/// that moves one fails here even if the JSON were regenerated, so the
-/// README must be updated with it.
+/// The headline numbers of docs/reproducing.md (moved there from the
+/// README), as it quotes them (rounded): a change that moves one fails
+/// here even if the JSON were regenerated, and each must appear in that
+/// page as quoted, so the page is updated with it.
 #[test]
-fn readme_headline_numbers_are_pinned() {
+fn headline_numbers_are_pinned_and_quoted_in_the_docs() {
     let old = compute();
+    let page = include_str!("../docs/reproducing.md");
     let get = |id: &str| {
         old.iter()
             .find(|r| r.id == id)
@@ -80,7 +83,11 @@ fn readme_headline_numbers_are_pinned() {
         assert_eq!(
             shown,
             format!("{quoted:.digits$}"),
-            "{id}: README quotes {quoted}, now {v}"
+            "{id}: docs/reproducing.md quotes {quoted}, now {v}"
+        );
+        assert!(
+            page.contains(&shown),
+            "{id}: {shown} is not in docs/reproducing.md"
         );
     }
 }

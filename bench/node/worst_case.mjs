@@ -6,6 +6,7 @@
 //
 //   node bench/node/worst_case.mjs            # every export
 //   node bench/node/worst_case.mjs coneFrustumTest syntheticBallbarTrace
+//   node bench/node/worst_case.mjs --refusals  # calls over a budget: time to refuse
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 
@@ -13,7 +14,7 @@ const PKG = new URL('../../pkg/', import.meta.url).href;
 
 // name → JS source of the call (with `mt` loaded); setup outside the timing is in `prep`
 const CASES = {
-  analyzeFeedVectorTrace: { prep: `const t = 'time [ms],X [mm],Y [mm],C [deg]\\n' + Array.from({ length: 99_999 }, (_, i) => \`\${i},\${Math.cos(i / 800)},\${Math.sin(i / 800)},\${i / 1000}\`).join('\\n');`, call: `mt.analyzeFeedVectorTrace(t, { rc: 5, rw: 8, omega: 3, accelTime: 0.064, j1: 1.7 }, { time: 'time', timeScale: 1e-3, steadyFrom: 0 })`, note: '100,000-line trace' },
+  analyzeFeedVectorTrace: { prep: `const t = 'time [ms],X [mm],Y [mm],C [deg]\\n' + Array.from({ length: 99_999 }, (_, i) => \`\${i},\${8 * Math.cos(3e-3 * i)},\${8 * Math.sin(3e-3 * i)},\${(3e-3 * i * 180) / Math.PI}\`).join('\\n');`, call: `mt.analyzeFeedVectorTrace(t, { rc: 5, rw: 8, omega: 3, accelTime: 0.064, j1: 1.7 }, { time: 'time', timeScale: 1e-3, steadyFrom: 0 })`, note: '100,000-line trace' },
   angleSweep: { call: `mt.angleSweep({ sections: [{ y: 0, offset: { z: 0, x: 0.01 } }, { y: 100, offset: { z: 0.01, x: 0 } }], ranges: Array.from({ length: 6 }, (_, i) => 60 * (i + 1)), harmonics: Array.from({ length: 4 }, (_, i) => ({ order: i + 2, amplitude: 0.001 })), samples: 500_000 })`, note: '(6 ranges + 4 harmonics) × 2 sections × 500k samples = 10 M' },
   axisInertia: { call: `mt.axisInertia('nmv5000', 'c')`, note: 'trivial' },
   ballbarExample: { call: `mt.ballbarExample('fig12', 100)`, note: 'largest example' },
@@ -22,12 +23,15 @@ const CASES = {
   checkNc: { prep: `const p = Array.from({ length: 99_999 }, (_, i) => \`G1 X\${i % 100} Y\${(i * 7) % 50} F1000\`).join('\\n');`, call: `mt.checkNc(p)`, note: '100,000 lines' },
   circularDeviation: { prep: `const a = Float64Array.from({ length: 1_000_000 }, (_, i) => i * 2 * Math.PI / 1e6); const d = a.map(Math.sin).map((x) => x * 1e-3); const tr = { nominalRadius: 100, feed: 1000, runs: [{ direction: 'ccw', angleRad: a, deviation: d }, { direction: 'cw', angleRad: a, deviation: d }] };`, call: `mt.circularDeviation(tr)`, note: '2 M points' },
   circularTest: { prep: `const a = Float64Array.from({ length: 1_000_000 }, (_, i) => i * 2 * Math.PI / 1e6); const d = a.map(Math.sin).map((x) => x * 1e-3); const tr = { nominalRadius: 100, feed: 1000, runs: [{ direction: 'ccw', angleRad: a, deviation: d }, { direction: 'cw', angleRad: a, deviation: d }] };`, call: `mt.circularTest(tr)`, note: '2 M points' },
+  'circularTest, R₀ 1.76 m': { prep: `const a = Float64Array.from({ length: 1_000_000 }, (_, i) => i * 2 * Math.PI / 1e6); const d = a.map(Math.sin).map((x) => x * 1e-3); const tr = { nominalRadius: 1760, feed: 1000, runs: [{ direction: 'ccw', angleRad: a, deviation: d }, { direction: 'cw', angleRad: a, deviation: d }] };`, call: `mt.circularTest(tr)`, note: '2 M points, cyclic search 11,056 pitches × 18,000 bins (budget 2e8)' },
   compensateNc5: { prep: `const p = Array.from({ length: 99_999 }, (_, i) => \`G1 X\${i % 50} Y\${(i * 7) % 40} Z\${i % 20} A\${i % 30} B\${i % 45} F1000\`).join('\\n');`, call: `mt.compensateNc5(p, { machine: 'pocketnc-v2-10', errors: mt.machinePreset('pocketnc-v2-10').exampleErrors })`, note: '100,000 5-axis lines' },
   coneFrustumTest: { call: `mt.coneFrustumTest({ machine: 'trunnion-ac', halfApexDeg: 15, inclinationDeg: 10, feed: 40, points: 200 })`, note: 'feed 40 mm/min: just under 5 M servo steps' },
+  'coneFrustumTest, 64 pitch harmonics on A and C': { prep: `const m = mt.machinePreset('trunnion-ac'); for (const k of ['a', 'c']) m.axes[k].pitchError = Array.from({ length: 64 }, (_, i) => ({ n: i + 1, w: 1e-6, phi: 0 }));`, call: `mt.coneFrustumTest({ machine: m, halfApexDeg: 15, inclinationDeg: 10, feed: 40, points: 200 })`, note: 'feed 40 mm/min (just under 5 M servo steps), 64 harmonics on each rotary axis' },
   errorSymbols: { call: `mt.errorSymbols('trunnion-ac')`, note: 'trivial' },
   estimateAlignment: { prep: `const n = 1_999_000; const s = [0, 100].map((y) => ({ y, angleDeg: Float64Array.from({ length: n }, (_, i) => -60 + 120 * i / n), deviation: new Float64Array(n).fill(0.001) }));`, call: `mt.estimateAlignment({ sections: s })`, note: '2 sections × 2 M samples (8 M values)' },
   estimateAlignmentBand: { prep: `const n = 1_100_000; const s = [0, 100].map((y) => ({ y, angleDeg: Float64Array.from({ length: n }, (_, i) => -60 + 120 * i / n), deviation: Float64Array.from({ length: n }, (_, i) => 0.001 * Math.sin(i / 1e4) + 1e-4 * Math.sin(i)) }));`, call: `mt.estimateAlignmentBand({ sections: s })`, note: '2.2 M samples at order 10' },
   feedVectorTest: { call: `mt.feedVectorTest('nmv5000', { rc: 5, rw: 8, omega: 3, accelTime: 0.064, j1: 1.7, duration: 999, dt: 0.001 })`, note: '1 M samples' },
+  'feedVectorTest, 64 pitch harmonics on C': { prep: `const m = mt.machinePreset('nmv5000'); m.axes.c.pitchError = Array.from({ length: 64 }, (_, i) => ({ n: i + 1, w: 1e-6, phi: 0 }));`, call: `mt.feedVectorTest(m, { rc: 5, rw: 8, omega: 3, accelTime: 0.064, j1: 1.7, duration: 999, dt: 0.001 })`, note: '1 M samples, 64 harmonics on C' },
   fitCircle: { prep: `const n = 8_000_000; const x = Float64Array.from({ length: n }, (_, i) => 50 * Math.cos(i / n * 6.28)); const y = Float64Array.from({ length: n }, (_, i) => 50 * Math.sin(i / n * 6.28));`, call: `mt.fitCircle(x, y)`, note: '8 M points' },
   forwardKinematics: { call: `mt.forwardKinematics('pocketnc-v2-10', { x: 1, y: 2, z: 3, a: 10, b: 20 })`, note: 'one pose' },
   forwardKinematicsBulk: { prep: `const q = new Float64Array(7_999_998).fill(1);`, call: `mt.forwardKinematicsBulk('pocketnc-v2-10', q)`, note: '1.33 M poses (8 M values)' },
@@ -46,18 +50,37 @@ const CASES = {
   reverseCompensate: { call: `mt.reverseCompensate('G1 X100 F100\\nG3 X100 Y0 I-50 J0\\nG1 X0 Y0', { dt: 0.001 })`, note: '250 s of motion at 1 ms (8 M simulated samples at most)' },
   sShapeTestPiece: { call: `mt.sShapeTestPiece({ machine: 'pocketnc-v2-10', scale: 0.15 })`, note: "the paper's scale" },
   simulateAxis: { prep: `const p = Float64Array.from({ length: 7_999_000 }, (_, i) => Math.sin(i / 1e4));`, call: `mt.simulateAxis(mt.machinePreset('nmv5000').axes.c, { dt: 1e-3, position: p })`, note: '8 M samples' },
+  'simulateAxis, 64 pitch harmonics': { prep: `const p = Float64Array.from({ length: 1_530_000 }, (_, i) => Math.sin(i / 1e4)); const ax = { ...mt.machinePreset('nmv5000').axes.c, pitchError: Array.from({ length: 64 }, (_, i) => ({ n: i + 1, w: 1e-6, phi: 0 })) };`, call: `mt.simulateAxis(ax, { dt: 1e-3, position: p })`, note: '1.53 M samples × (1 + 64 harmonics) = 99.5 M terms (budget 1e8)' },
   simulateToolPath: { call: `mt.simulateToolPath('G1 X330000 F1000', { dt: 0.001 })`, note: '20 M samples' },
   start: { call: `mt.start()`, note: 'trivial' },
   syntheticBallbarTrace: { call: `mt.syntheticBallbarTrace({ samples: 10_000_000, bothDirections: true, harmonics: Array.from({ length: 4 }, (_, i) => ({ order: i + 2, amplitude: 1e-3 })) })`, note: '10 M samples × 2 directions × (1 + 4 harmonics) = 1e8 terms' },
   toolpathExample: { call: `mt.toolpathExample('arcs')`, note: 'trivial' },
-  torqueSaturation: { call: `mt.torqueSaturation('nmv5000', { j1: Array.from({ length: 1000 }, (_, i) => i / 100), torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200 })`, note: '1000 loads (the limit)' },
+  torqueSaturation: { call: `mt.torqueSaturation('nmv5000', { j1: Array.from({ length: 1000 }, (_, i) => i / 100), torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200, dt: 9e-6 })`, note: '1000 loads at dt = 9 µs: 48.8 M servo steps (budget 50 M)' },
   traceColumns: { prep: `const t = 'time [ms],X [mm],Y [mm],C [deg]\\n' + Array.from({ length: 99_999 }, (_, i) => \`\${i},\${Math.cos(i)},\${Math.sin(i)},\${i}\`).join('\\n');`, call: `mt.traceColumns(t)`, note: '100,000 lines' },
   travelRangeSweep: { call: `mt.travelRangeSweep({ ranges: [90, 180, 270, 360], harmonics: Array.from({ length: 6 }, (_, i) => ({ order: i + 2, amplitude: 1e-3 })), samples: 1_000_000 })`, note: '(4 ranges + 6 harmonics) × 1 M samples = 10 M' },
   version: { call: `mt.version()`, note: 'trivial' },
 };
 
+// Refusals: a call over a budget, refused before the work. The lists of
+// 1e6 items are refused by their length before any item is copied into
+// plain data (src/wasm/convert.rs); `--refusals` times them (the list is
+// built before the clock starts).
+const list = (item) => `const list = new Array(1_000_000).fill(${item});`;
+const REFUSALS = {
+  'identifyAccDec 1e6 circles': { prep: list('{ feed: 1000, radius: 1, radiusLoss: 0.001 }'), call: 'mt.identifyAccDec(list)' },
+  'ncMainFile 1e6 texts': { prep: list("'G1 X1'"), call: 'mt.ncMainFile(list)' },
+  'torqueSaturation 1e6 loads': { prep: list('1'), call: "mt.torqueSaturation('nmv5000', { j1: list, torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200 })" },
+  'torqueSaturation 1000 loads at dt 1 µs': { prep: list('1').replace('1_000_000', '1000'), call: "mt.torqueSaturation('nmv5000', { j1: list, torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200, dt: 1e-6 })" },
+  'estimateAlignmentBand 1e6 sections': { prep: list('{ y: 0, angleDeg: [0, 1, 2, 3], deviation: [0, 0, 0, 0] }'), call: 'mt.estimateAlignmentBand({ sections: list })' },
+  'simulateAxis 1e6 pitch harmonics': { prep: list('{ n: 1, w: 1e-5, phi: 0 }'), call: "mt.simulateAxis({ ...mt.machinePreset('nmv5000').axes.c, pitchError: list }, { dt: 1e-3, position: [0, 1] })" },
+  'syntheticBallbarTrace 1e6 harmonics': { prep: list('{ order: 2, amplitude: 1e-3 }'), call: 'mt.syntheticBallbarTrace({ harmonics: list })' },
+  'parseNc 1e6 files': { prep: list("{ name: 'f.nc', text: 'G1' }"), call: "mt.parseNc('G1 X1 F100', { files: list })" },
+  'circularTest 1e6 runs': { prep: list("{ direction: 'ccw', angleRad: [0, 1, 2], deviation: [0, 0, 0] }"), call: 'mt.circularTest({ nominalRadius: 100, feed: null, runs: list })' },
+  'simulateToolPath 1e6 tool radii': { prep: 'const list = {}; for (let i = 0; i < 1e6; i++) list[`D${i}`] = 1;', call: "mt.simulateToolPath('G1 X1 F100', { toolRadii: list })" },
+};
+
 function run(name) {
-  const { prep = '', call } = CASES[name];
+  const { prep = '', call } = CASES[name] ?? REFUSALS[name];
   const src = `import * as mt from '${PKG}mtmotion.js';
 import { readFileSync } from 'node:fs';
 const wasm = mt.initSync({ module: readFileSync(new URL('mtmotion_bg.wasm', '${PKG}')) });
@@ -73,7 +96,14 @@ console.log(JSON.stringify({ ms, mib: wasm.memory.buffer.byteLength / 2 ** 20, b
   return JSON.parse(r.stdout.trim().split('\n').pop());
 }
 
-if (process.argv[1] === fileURLToPath(import.meta.url)) {
+if (process.argv[1] === fileURLToPath(import.meta.url) && process.argv[2] === '--refusals') {
+  console.log('| refused call | time | outcome |\n|---|---:|---|');
+  for (const name of Object.keys(REFUSALS)) {
+    const r = run(name);
+    const t = r.ms === undefined ? '–' : `${r.ms.toFixed(1)} ms`;
+    console.log(`| ${name} | ${t} | ${r.outcome} |`);
+  }
+} else if (process.argv[1] === fileURLToPath(import.meta.url)) {
   const names = process.argv.slice(2).length ? process.argv.slice(2) : Object.keys(CASES);
   console.log('| export | input | time | wasm memory | outcome |\n|---|---|---:|---:|---|');
   for (const name of names) {
@@ -84,4 +114,4 @@ if (process.argv[1] === fileURLToPath(import.meta.url)) {
   }
 }
 
-export { CASES };
+export { CASES, REFUSALS };

@@ -132,6 +132,7 @@ pub fn estimate_alignment(
             "give at least one section (two for the angle errors)",
         ));
     }
+    crate::budget::SECTIONS_LIST.check("sections", sections.len())?;
     let mut out = Vec::with_capacity(sections.len());
     for (k, s) in sections.iter().enumerate() {
         if s.angle_deg.len() != s.deviation.len() {
@@ -300,6 +301,7 @@ pub fn angle_sweep(cfg: &AngleSweepConfig) -> Result<Vec<AngleSweepPoint>, Align
         "points ((ranges + harmonics) × sections × samples per revolution)",
         "use fewer ranges, harmonics, sections or samples per revolution",
     )?;
+    crate::budget::SECTIONS_LIST.check("sections", cfg.sections.len())?;
     if cfg.sections.len() < 2 {
         return Err(bad(
             "sections",

@@ -181,7 +181,11 @@ pub fn example(name: &str, radius: f64) -> Result<Example, AlignmentError> {
         _ => {
             return Err(AlignmentError::BadField {
                 field: "name".into(),
-                message: format!("unknown example '{name}'; known: {}", NAMES.join(", ")),
+                message: format!(
+                    "unknown example '{}'; known: {}",
+                    crate::budget::clip(name, 40),
+                    NAMES.join(", ")
+                ),
             });
         }
     }

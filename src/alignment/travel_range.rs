@@ -191,6 +191,7 @@ impl Locus {
                 "expected a finite angle in degrees",
             ));
         }
+        crate::budget::HARMONICS_LIST.check("harmonics", self.harmonics.len())?;
         for (i, h) in self.harmonics.iter().enumerate() {
             if !(h.amplitude.is_finite() && h.phase.is_finite()) {
                 return Err(bad(

@@ -258,6 +258,24 @@ pub fn f4_critical(p: f64, d2: f64) -> f64 {
     hi
 }
 
+/// Pitches on the search grid of [`cyclic_pitch`] for bar length `r0` mm
+/// (0 when it searches none).
+fn grid_pitches(r0: f64) -> usize {
+    let (pmin, pmax) = (1.0, r0 / 4.0);
+    if pmax <= pmin {
+        return 0;
+    }
+    let tau = std::f64::consts::TAU;
+    ((tau / pmin - tau / pmax) * r0 / K_STEP).ceil().max(1.0) as usize + 1
+}
+
+/// The work of [`cyclic_pitch`] on `points` residuals at bar length `r0`
+/// mm: grid pitches × points merged by angle (at most [`BINS`]), the
+/// estimate [`crate::budget::MAX_CYCLIC_SEARCH_WORK`] holds.
+pub(super) fn search_work(points: usize, r0: f64) -> u64 {
+    (grid_pitches(r0) as u64).saturating_mul(points.min(BINS) as u64)
+}
+
 /// The pitch (mm, 1 … R₀/4) whose cyclic model explains most of the
 /// residuals `(θ, residual)` of all runs, with its significance test
 /// ([`CyclicTest`]; `fitted` = coefficients the run models took from the

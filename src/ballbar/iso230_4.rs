@@ -208,6 +208,15 @@ pub(crate) fn run_points(run: &Run, r0: f64) -> (Vec<f64>, Vec<f64>) {
 /// ```
 pub fn circular_test(trace: &BallbarTrace) -> Result<CircularTest, CircularTestError> {
     let d = circular_deviation(trace)?;
+    // the cyclic-error search of the diagnostics: its pitches grow with R₀
+    let points = trace.runs.iter().map(|r| r.angle.len()).sum();
+    crate::budget::check(
+        "circular test, cyclic-error search",
+        super::cyclic::search_work(points, trace.nominal_radius),
+        crate::budget::MAX_CYCLIC_SEARCH_WORK,
+        "units of work (pitches searched, about 6.3 per mm of radius, × points merged by angle, at most 18000)",
+        "thin the trace (its points are merged into 0.02° bins) or use circularDeviation, which has no diagnostics",
+    )?;
     Ok(CircularTest {
         nominal_radius_mm: d.nominal_radius_mm,
         runs: d.runs,

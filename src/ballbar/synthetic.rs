@@ -157,9 +157,8 @@ pub const MAX_FEED: f64 = 1e6;
 /// Lowest feed a measured trace may state, mm/min (a subnormal feed made
 /// the circular test's servo-mismatch time infinite).
 pub const MIN_FEED: f64 = 1e-3;
-/// Most harmonics of the radial error: orders above a few hundred are
-/// below any ball bar's resolution, and each costs one `sin` per sample.
-pub const MAX_HARMONICS: usize = 256;
+/// Most harmonics of the radial error ([`crate::budget::MAX_HARMONICS`]).
+pub const MAX_HARMONICS: usize = crate::budget::MAX_HARMONICS;
 
 /// Generates a ball-bar trace with the configured errors.
 ///

@@ -66,7 +66,7 @@ pub enum BallbarTraceError {
         line: usize,
     },
     /// Neither angle+deviation nor X/Y columns.
-    #[error("no ball-bar columns found: expected 'angle' and 'deviation' (or 'x' and 'y') in the header, found: {0}")]
+    #[error("no ball-bar columns found: expected 'angle' and 'deviation' (or 'x' and 'y') in the header, found: {}", crate::budget::clip(.0, 200))]
     NoColumns(String),
     /// A point lies at the nominal centre, so it has no angle.
     #[error("line {0}: the point lies at the nominal centre, so its angle is undefined")]
@@ -88,7 +88,7 @@ pub enum BallbarTraceError {
         min: usize,
     },
     /// The time column does not increase.
-    #[error("line {line}, column {column} ('{name}'): the time must increase from one row to the next; sort the rows by time or remove the repeated ones")]
+    #[error("line {line}, column {column} ('{}'): the time must increase from one row to the next; sort the rows by time or remove the repeated ones", crate::budget::clip(name, 40))]
     TimeNotIncreasing {
         /// 1-based line.
         line: usize,
@@ -470,11 +470,21 @@ fn angle_and_deviation(t: &Table, opts: ParseOptions) -> Result<Polar, BallbarTr
                 path_radius: opts.nominal_radius.unwrap_or(100.0),
                 xy: None,
                 centre: None,
-                source: format!("column {} ('{}')", d + 1, t.names[d]),
+                source: format!(
+                    "column {} ('{}')",
+                    d + 1,
+                    crate::budget::clip(&t.names[d], 40)
+                ),
             })
         }
         (_, _, Some(xi), Some(yi)) => polar_from_xy(t, xi, yi, opts),
-        _ => Err(BallbarTraceError::NoColumns(t.names.join(", "))),
+        _ => Err(BallbarTraceError::NoColumns(
+            t.names
+                .iter()
+                .map(|n| crate::budget::clip(n, 40))
+                .collect::<Vec<_>>()
+                .join(", "),
+        )),
     }
 }
 

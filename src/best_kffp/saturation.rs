@@ -38,7 +38,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::BestKffpError;
-use crate::feed_vector::{self, Condition};
+use crate::feed_vector::{self, Condition, FeedVectorError};
 use crate::machine::Machine;
 
 /// The JS `torqueSaturation` query.
@@ -126,8 +126,22 @@ pub fn torque_saturation(
         .torque_max
         .or_else(|| machine.axes.get("c").and_then(|c| c.torque_max))
         .ok_or(BestKffpError::NoTorqueLimit)?;
-    q.j1.iter()
-        .map(|&j1| saturation_point(machine, q, torque_max, j1))
+    let runs =
+        q.j1.iter()
+            .map(|&j1| load_run(machine, q, torque_max, j1))
+            .collect::<Result<Vec<_>, _>>()?;
+    // the whole study: every load's run, counted before any is simulated
+    let steps: u64 = runs.iter().map(|r| r.steps() as u64).sum();
+    crate::budget::check(
+        "torque-saturation study",
+        steps,
+        crate::budget::MAX_SATURATION_STEPS,
+        "servo steps (loads × steps of each load's C-axis run)",
+        "give fewer loads or raise dt",
+    )
+    .map_err(FeedVectorError::from)?;
+    runs.iter()
+        .map(|r| saturation_point(r, q, torque_max))
         .collect()
 }
 
@@ -167,19 +181,44 @@ fn check_query(q: &SaturationQuery) -> Result<(), BestKffpError> {
     Ok(())
 }
 
-/// The saturation point of the C axis with load inertia `j1` (kg·m²) and
-/// torque limit `torque_max` (N·m).
-fn saturation_point(
+/// One load's C-axis run, set up and sized but not simulated.
+struct LoadRun {
+    /// The X, Y, C axes of the test with this load (C without a torque limit).
+    axes: [crate::servo::AxisParams; 3],
+    /// The time step, s.
+    dt: f64,
+    /// Samples of the run (0 for the `inertiaOnly` reading, which runs none).
+    n: usize,
+    /// The acceleration time of the command, s.
+    t_acc: f64,
+}
+
+impl LoadRun {
+    /// Servo steps the run takes (its samples and the read-ahead pad).
+    fn steps(&self) -> usize {
+        if self.n == 0 {
+            0
+        } else {
+            self.n + feed_vector::read_ahead_pad(&self.axes, self.dt)
+        }
+    }
+}
+
+/// Reference ω of the runs, rad/s (the loop is linear: the torque scales).
+const OMEGA_REF: f64 = 1.0;
+
+/// Sets up the run of the C axis with load inertia `j1` (kg·m²) and torque
+/// limit `torque_max` (N·m).
+fn load_run(
     machine: &Machine,
     q: &SaturationQuery,
     torque_max: f64,
     j1: f64,
-) -> Result<SaturationPoint, BestKffpError> {
-    let omega_ref = 1.0;
+) -> Result<LoadRun, BestKffpError> {
     let cond = Condition {
         rc: 1.0,
         rw: 1.0,
-        omega: omega_ref,
+        omega: OMEGA_REF,
         accel_time: q.accel_time,
         j1,
         torque_max: Some(torque_max),
@@ -205,10 +244,47 @@ fn saturation_point(
             expected: "with accelTime 0 and no Ts on the C axis the command is a velocity step with no finite acceleration; give accelTime > 0 s",
         });
     }
+    let dt = cond.step();
     if q.reading == SaturationReading::InertiaOnly {
-        let j = axes[2].inertia();
+        return Ok(LoadRun {
+            axes,
+            dt,
+            n: 0,
+            t_acc,
+        });
+    }
+    if q.reading == SaturationReading::PreControlOff {
+        axes[2].kffp = 0.0;
+    }
+    // through the acc/dec, the smoothing and the settling of the loop
+    let n_f = (feed_vector::steady_from(&axes, &cond) / dt).ceil() + 1.0;
+    if n_f > feed_vector::MAX_SAMPLES as f64 {
+        return Err(BestKffpError::BadQuery {
+            field: "dt",
+            value: dt,
+            expected: "too fine for this acc/dec time: one load's run would exceed the 1,000,000-sample budget of the feed-vector test; raise dt or shorten accelTime",
+        });
+    }
+    Ok(LoadRun {
+        axes,
+        dt,
+        n: n_f as usize,
+        t_acc,
+    })
+}
+
+/// The saturation point of run `r` with torque limit `torque_max` (N·m).
+fn saturation_point(
+    r: &LoadRun,
+    q: &SaturationQuery,
+    torque_max: f64,
+) -> Result<SaturationPoint, BestKffpError> {
+    let c = &r.axes[2];
+    if r.n == 0 {
+        // the inertiaOnly reading: J·α = τ_max alone
+        let j = c.inertia();
         let accel_sat = torque_max / j;
-        let omega_sat = accel_sat * t_acc;
+        let omega_sat = accel_sat * r.t_acc;
         return Ok(SaturationPoint {
             j_total: j,
             accel_sat,
@@ -217,31 +293,16 @@ fn saturation_point(
             torque_per_omega: torque_max / omega_sat,
         });
     }
-    if q.reading == SaturationReading::PreControlOff {
-        axes[2].kffp = 0.0;
-    }
-    let dt = cond.step();
-    // through the acc/dec, the smoothing and the settling of the loop
-    let n_f = (feed_vector::steady_from(&axes, &cond) / dt).ceil() + 1.0;
-    if n_f > feed_vector::MAX_SAMPLES as f64 {
-        return Err(BestKffpError::BadQuery {
-            field: "dt",
-            value: dt,
-            expected: "too fine for this acc/dec time: the run would exceed the 4,000,000-sample budget; raise dt or shorten accelTime",
-        });
-    }
-    let n = n_f as usize;
-    let pad = feed_vector::read_ahead_pad(&axes, dt);
-    let cmd: Vec<f64> = (0..n + pad)
-        .map(|i| feed_vector::command::angle(i as f64 * dt, omega_ref, q.accel_time))
+    let cmd: Vec<f64> = (0..r.steps())
+        .map(|i| feed_vector::command::angle(i as f64 * r.dt, OMEGA_REF, q.accel_time))
         .collect();
-    let r = feed_vector::run_axis("c", &axes[2], dt, &cmd, n)?;
-    let peak = r.torque.iter().fold(0.0_f64, |m, t| m.max(t.abs()));
-    let per_omega = peak / omega_ref;
+    let run = feed_vector::run_axis("c", c, r.dt, &cmd, r.n)?;
+    let peak = run.torque.iter().fold(0.0_f64, |m, t| m.max(t.abs()));
+    let per_omega = peak / OMEGA_REF;
     let omega_sat = torque_max / per_omega;
-    let accel_sat = omega_sat / t_acc;
+    let accel_sat = omega_sat / r.t_acc;
     Ok(SaturationPoint {
-        j_total: axes[2].inertia(),
+        j_total: c.inertia(),
         accel_sat,
         omega_sat,
         rc_min: q.feed_at_cutting_point / 60.0 / omega_sat,

@@ -69,7 +69,10 @@ pub enum FeedVectorError {
     #[error("{0}")]
     Implausible(String),
     /// A trace value is unusable at a line and column.
-    #[error("line {line}, column {column} ('{name}'): {why}")]
+    #[error(
+        "line {line}, column {column} ('{}'): {why}",
+        crate::budget::clip(name, 40)
+    )]
     TraceValue {
         /// 1-based line.
         line: usize,

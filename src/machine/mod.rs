@@ -55,7 +55,11 @@ pub enum MachineError {
         known: String,
     },
     /// The preset has no loop reading of this name.
-    #[error("machine '{machine}' has no loop reading '{reading}'; known readings: {known}")]
+    #[error(
+        "machine '{}' has no loop reading '{}'; known readings: {known}",
+        crate::budget::clip(machine, 40),
+        crate::budget::clip(reading, 40)
+    )]
     UnknownReading {
         /// The preset's name.
         machine: String,
@@ -65,7 +69,7 @@ pub enum MachineError {
         known: String,
     },
     /// The machine has no kinematic chain.
-    #[error("machine '{name}' has no kinematic chain (`kinematics`); use pocketnc-v2-10, table-on-table-bc or trunnion-ac, or describe its links")]
+    #[error("machine '{}' has no kinematic chain (`kinematics`); use pocketnc-v2-10, table-on-table-bc or trunnion-ac, or describe its links", crate::budget::clip(name, 40))]
     NoChain {
         /// The machine's name.
         name: String,

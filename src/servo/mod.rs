@@ -45,8 +45,11 @@ pub enum ServoError {
         /// What is wrong and what was expected.
         why: &'static str,
     },
+    /// The run is over its work budget.
+    #[error(transparent)]
+    Budget(#[from] crate::budget::BudgetError),
     /// A drive error (backlash, pitch error) of a machine is invalid.
-    #[error("drives: `{key}` {why}")]
+    #[error("drives: `{}` {why}", crate::budget::clip(key, 40))]
     BadDriveError {
         /// Path of the offending key, e.g. `backlash.q`.
         key: String,

@@ -168,6 +168,13 @@ pub fn simulate_axis(
 ) -> Result<AxisResponse, ServoError> {
     axis.validate()?;
     check_input(dt, command)?;
+    crate::budget::check(
+        "axis simulation",
+        (command.len() as u64).saturating_mul(1 + axis.pitch_error.len() as u64),
+        crate::budget::MAX_AXIS_SIM_TERMS,
+        "terms (samples × (1 + pitch-error harmonics))",
+        "use fewer samples or fewer pitch-error harmonics",
+    )?;
     let sm = motor_scale(axis)?;
     let mut trans = Transmission::new(axis)?;
     let shaped = precontrol::shape(command, dt, axis.ts, axis.ta, axis.tp);

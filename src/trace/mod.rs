@@ -33,7 +33,11 @@ pub enum TraceError {
         line: usize,
     },
     /// A cell is not a number.
-    #[error("line {line}, column {column} ('{name}'): '{text}' is not a number")]
+    #[error(
+        "line {line}, column {column} ('{}'): '{}' is not a number",
+        clip_at(name, 40),
+        clip(text)
+    )]
     BadNumber {
         /// 1-based line.
         line: usize,
@@ -55,7 +59,11 @@ pub enum TraceError {
         expected: usize,
     },
     /// A requested column is not in the header.
-    #[error("no column named {wanted} in the header (columns: {available})")]
+    #[error(
+        "no column named {} in the header (columns: {})",
+        clip_at(wanted, 200),
+        clip_at(available, 200)
+    )]
     MissingColumn {
         /// The names tried, e.g. "'x' or 'pos_x'".
         wanted: String,
@@ -87,7 +95,7 @@ pub enum TraceError {
         line: usize,
     },
     /// No line below the header is a row of numbers.
-    #[error("line {line}: no row of numbers found: {found}; a trace needs rows of numbers below one header line")]
+    #[error("line {line}: no row of numbers found: {}; a trace needs rows of numbers below one header line", clip_at(found, 400))]
     NoRows {
         /// 1-based line of the first row that should have been numbers.
         line: usize,
@@ -95,7 +103,7 @@ pub enum TraceError {
         found: String,
     },
     /// Decimal commas and decimal points in one file.
-    #[error("line {comma_line}: '{comma}' has a decimal comma but line {point_line} has '{point}' with a decimal point; export the trace with one decimal separator")]
+    #[error("line {comma_line}: '{}' has a decimal comma but line {point_line} has '{}' with a decimal point; export the trace with one decimal separator", clip(comma), clip(point))]
     MixedDecimal {
         /// 1-based line of the first decimal comma.
         comma_line: usize,
@@ -195,7 +203,35 @@ fn detect(line: &str) -> Option<char> {
         .or_else(|| (line.split_whitespace().count() > 1).then_some(' '))
 }
 
-/// The first 40 characters of a cell, for a message.
+/// At most `max` characters of user text for a message (an ellipsis marks
+/// the cut). `crate::budget::clip` does the same; it sits beside this
+/// module in the layer table, so it cannot be imported here.
+pub(crate) fn clip_at(text: &str, max: usize) -> String {
+    match text.char_indices().nth(max.saturating_sub(1)) {
+        Some((i, _)) if text[i..].chars().nth(1).is_some() => format!("{}…", &text[..i]),
+        _ => text.to_string(),
+    }
+}
+
+/// A number the caller gave, for a message: as written when short, else
+/// with 6 significant digits (`1.23457e-300`, never 300 digits).
+/// `crate::numeric::compact` does the same; it sits beside this module in
+/// the layer table.
+pub(crate) fn short_number(x: f64) -> String {
+    let plain = format!("{x}");
+    if plain.len() <= 12 {
+        return plain;
+    }
+    let s = format!("{x:.5e}");
+    match s.split_once('e') {
+        Some((m, e)) if m.contains('.') => {
+            format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
+        }
+        _ => s,
+    }
+}
+
+/// The first 16 characters of a cell, for a message.
 fn clip(text: &str) -> String {
     // 16 characters: enough to recognise a cell, too few to echo a number
     // of 20 digits back.
@@ -404,10 +440,15 @@ impl Table {
             .ok_or_else(|| TraceError::MissingColumn {
                 wanted: aliases
                     .iter()
-                    .map(|a| format!("'{a}'"))
+                    .map(|a| format!("'{}'", clip_at(a, 40)))
                     .collect::<Vec<_>>()
                     .join(" or "),
-                available: self.names.join(", "),
+                available: self
+                    .names
+                    .iter()
+                    .map(|n| clip_at(n, 40))
+                    .collect::<Vec<_>>()
+                    .join(", "),
             })?;
         Ok(self.columns[k].iter().map(|v| v * scale).collect())
     }
@@ -476,6 +517,17 @@ pub fn binary_kind(text: &str) -> Option<&'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn messages_clip_text_and_shorten_numbers() {
+        assert_eq!(clip_at("abc", 3), "abc");
+        assert_eq!(clip_at("abcd", 3), "ab…");
+        assert_eq!(clip_at(&"h".repeat(1_000_000), 40).chars().count(), 40);
+        assert_eq!(short_number(0.001), "0.001");
+        assert_eq!(short_number(1.234567890123e-300), "1.23457e-300");
+        assert_eq!(short_number(5e-324), "4.94066e-324");
+        assert_eq!(short_number(1e300), "1e300");
+    }
 
     #[test]
     fn binary_files_are_refused_with_what_they_look_like() {

@@ -211,7 +211,10 @@ fn column_info(name: String, field: usize, opts: &ReadOptions) -> ColumnInfo {
             Some(r) => (
                 Some(u.factor * r),
                 Some("N·m"),
-                Some(format!("% of the rated torque {r} N·m")),
+                Some(format!(
+                    "% of the rated torque {} N·m",
+                    super::short_number(r)
+                )),
             ),
             None => (
                 None,
@@ -251,7 +254,7 @@ fn check_options(opts: &ReadOptions, line: usize) -> Result<(), TraceError> {
             return Err(TraceError::BadOption {
                 line,
                 field: "samplePeriod",
-                why: format!("{dt} s is not a sample period; give the time between samples in s (> 0, at most 1e4 s; 0.001 for 1 ms)"),
+                why: format!("{} s is not a sample period; give the time between samples in s (> 0, at most 1e4 s; 0.001 for 1 ms)", super::short_number(dt)),
             });
         }
     }
@@ -261,7 +264,8 @@ fn check_options(opts: &ReadOptions, line: usize) -> Result<(), TraceError> {
                 line,
                 field: "ratedTorque",
                 why: format!(
-                    "{r} N·m is not a rated torque; give the motor's rated torque in N·m (> 0)"
+                    "{} N·m is not a rated torque; give the motor's rated torque in N·m (> 0)",
+                    super::short_number(r)
                 ),
             });
         }
@@ -449,7 +453,8 @@ pub fn read_table(text: &str, opts: &ReadOptions) -> Result<TableRead, TraceErro
                 field: "samplePeriod",
                 why: format!(
                     "the file has its own time column '{}' (field {}); leave samplePeriod out, or map the time column",
-                    t.name, t.field
+                    super::clip_at(&t.name, 40),
+                    t.field
                 ),
             });
         }
@@ -459,8 +464,14 @@ pub fn read_table(text: &str, opts: &ReadOptions) -> Result<TableRead, TraceErro
         t.kind = ColumnKind::Generated;
         (t.unit, t.quantity, t.factor, t.core_unit) =
             (Some("s"), Some(Quantity::Time), Some(1.0), Some("s"));
-        t.note = Some(format!("generated: one sample every {dt} s"));
-        notes.push(format!("time generated from samplePeriod = {dt} s"));
+        t.note = Some(format!(
+            "generated: one sample every {} s",
+            super::short_number(dt)
+        ));
+        notes.push(format!(
+            "time generated from samplePeriod = {} s",
+            super::short_number(dt)
+        ));
         infos.push(t);
     }
     let layout = Layout {

@@ -63,10 +63,18 @@ function say(e, what) {
   try { m = e instanceof Error ? String(e.message) : typeof e === 'string' ? e : typeof e; } catch { m = 'an exception'; }
   return new Error(`${what}: reading the argument threw (${clip(m)}); pass plain data (numbers, strings, arrays, objects)`);
 }
-export function plainCopy(value, what, maxDepth, maxItems, maxString, maxKey, maxKeys) {
+// lists: [[key, max, unit, advice, keys]], a list found under `key` (the
+// argument itself for key '') held to `max` items (an object's keys when
+// `keys`), checked before any item is copied
+export function plainCopy(value, what, maxDepth, maxItems, maxString, maxKey, maxKeys, lists) {
   let items = 0;
   const tooMany = () => new Refused(`${clip(what)}: more than ${maxItems} values; pass a smaller input`);
-  const copy = (v, path, depth) => {
+  const bounded = new Map(lists.map(([key, max, unit, advice, keys]) => [key, { max, unit, advice, keys }]));
+  const overList = (key, n, keys, path) => {
+    const b = bounded.get(key);
+    if (b && b.keys === keys && n > b.max) throw new Refused(`${clip(path)}: ${n} ${b.unit}, more than the limit of ${b.max}; ${b.advice}`);
+  };
+  const copy = (v, path, depth, key) => {
     if (++items > maxItems) throw tooMany();
     const t = typeof v;
     if (t === 'string') {
@@ -84,6 +92,7 @@ export function plainCopy(value, what, maxDepth, maxItems, maxString, maxKey, ma
     if (ArrayBuffer.isView(v)) {
       if (v instanceof DataView) throw new Refused(`${clip(path)}: expected an array of numbers, got a DataView`);
       // counted before it is copied
+      overList(key, typedLength(v), false, path);
       items += typedLength(v);
       if (items > maxItems) throw tooMany();
       return new Float64Array(v);
@@ -91,8 +100,9 @@ export function plainCopy(value, what, maxDepth, maxItems, maxString, maxKey, ma
     if (Array.isArray(v)) {
       const n = v.length;
       if (!Number.isSafeInteger(n) || n < 0 || n > maxItems - items) throw new Refused(`${clip(path)}: an array of ${clip(String(n))} items; at most ${maxItems} values are accepted`);
+      overList(key, n, false, path);
       const out = new Array(n);
-      for (let i = 0; i < n; i++) out[i] = copy(v[i], `${path}[${i}]`, depth + 1);
+      for (let i = 0; i < n; i++) out[i] = copy(v[i], `${path}[${i}]`, depth + 1, undefined);
       return out;
     }
     const proto = Object.getPrototypeOf(v);
@@ -100,6 +110,7 @@ export function plainCopy(value, what, maxDepth, maxItems, maxString, maxKey, ma
     const out = {};
     const keys = Reflect.ownKeys(v);
     // no config has more keys (an object of 1e6 unknown keys took 5-19 s to refuse)
+    overList(key, keys.length, true, path);
     if (keys.length > maxKeys) throw new Refused(`${clip(path)}: an object of ${keys.length} keys, more than the limit of ${maxKeys}`);
     for (const k of keys) {
       if (typeof k !== 'string') continue;
@@ -109,11 +120,11 @@ export function plainCopy(value, what, maxDepth, maxItems, maxString, maxKey, ma
       if (!d || !d.enumerable) continue;
       if ('get' in d || 'set' in d) throw new Refused(`${clip(path + '.' + k)}: is a getter or setter; pass plain data`);
       if (d.value === undefined) continue;
-      Object.defineProperty(out, k, { value: copy(d.value, `${path}.${k}`, depth + 1), enumerable: true, writable: true, configurable: true });
+      Object.defineProperty(out, k, { value: copy(d.value, `${path}.${k}`, depth + 1, k), enumerable: true, writable: true, configurable: true });
     }
     return out;
   };
-  try { return copy(value, what, 0); } catch (e) { throw say(e, what); }
+  try { return copy(value, what, 0, ''); } catch (e) { throw say(e, what); }
 }
 export function f64Copy(value, what, maxLen) {
   try {
@@ -149,6 +160,7 @@ extern "C" {
         max_string: f64,
         max_key: f64,
         max_keys: f64,
+        lists: &JsValue,
     ) -> Result<JsValue, JsValue>;
     #[wasm_bindgen(catch, js_name = f64Copy)]
     fn f64_copy(value: &JsValue, what: &str, max_len: f64) -> Result<Float64Array, JsValue>;
@@ -221,9 +233,44 @@ fn message(e: JsValue) -> JsError {
 }
 
 /// A plain-data snapshot of `value` (see the module header); `what` names
-/// the argument in the error.
+/// the argument in the error. A list under a key of
+/// [`budget::LIST_BUDGETS`], at any depth, is refused by its length before
+/// any of its items is copied.
 pub fn plain(value: &JsValue, what: &str) -> Result<JsValue, JsError> {
+    plain_with(value, what, None)
+}
+
+/// [`plain`] of an argument that is itself a bounded list (`identifyAccDec`'s
+/// circles, `ncMainFile`'s texts): its length is checked against `list`
+/// before any item is copied.
+pub fn plain_list(
+    value: &JsValue,
+    what: &str,
+    list: &budget::ListBudget,
+) -> Result<JsValue, JsError> {
+    plain_with(value, what, Some(list))
+}
+
+fn plain_with(
+    value: &JsValue,
+    what: &str,
+    root: Option<&budget::ListBudget>,
+) -> Result<JsValue, JsError> {
     not_reentered()?;
+    let lists = js_sys::Array::new();
+    for b in budget::LIST_BUDGETS.iter().chain(root) {
+        lists.push(
+            &[
+                JsValue::from_str(b.key),
+                JsValue::from_f64(b.max as f64),
+                JsValue::from_str(b.unit),
+                JsValue::from_str(b.advice),
+                JsValue::from_bool(b.keys),
+            ]
+            .into_iter()
+            .collect::<js_sys::Array>(),
+        );
+    }
     plain_copy(
         value,
         what,
@@ -232,6 +279,7 @@ pub fn plain(value: &JsValue, what: &str) -> Result<JsValue, JsError> {
         budget::MAX_TEXT_BYTES as f64,
         budget::MAX_NAME_CHARS as f64,
         budget::MAX_OBJECT_KEYS as f64,
+        &lists,
     )
     .map_err(message)
 }

@@ -7,8 +7,8 @@ use wasm_bindgen::prelude::*;
 
 use super::args::JsArg;
 use super::convert::{
-    callback_arg, from_js, from_plain, name_arg, object, plain, require_object, reserve,
-    string_arg, to_js, Obj, NC_BYTES_PER_TEXT_BYTE, SIM_BYTES_PER_SEGMENT,
+    callback_arg, from_js, from_plain, name_arg, object, plain, plain_list, require_object,
+    reserve, string_arg, to_js, Obj, NC_BYTES_PER_TEXT_BYTE, SIM_BYTES_PER_SEGMENT,
 };
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
 use crate::nc::files::{main_file, parse_files_keeping, NcFile};
@@ -177,17 +177,8 @@ fn take_key(options: JsValue, name: &str) -> Result<(JsValue, JsValue), JsError>
 pub fn nc_main_file(
     #[wasm_bindgen(unchecked_param_type = "string[]")] texts: JsValue,
 ) -> Result<usize, JsError> {
-    let texts = plain(&texts, "texts")?;
-    // counted before the texts are copied into wasm memory (1e6 texts took 19 s)
-    if let Some(a) = texts.dyn_ref::<js_sys::Array>() {
-        crate::budget::check(
-            "texts",
-            a.length().into(),
-            crate::budget::MAX_FILES,
-            "texts",
-            "give fewer files at once",
-        )?;
-    }
+    // counted before the texts are copied (1e6 texts took 19 s)
+    let texts = plain_list(&texts, "texts", &crate::budget::MAIN_FILE_TEXTS)?;
     let texts: Vec<String> = from_plain(texts, "texts")?;
     let refs: Vec<&str> = texts.iter().map(String::as_str).collect();
     crate::budget::check_texts("texts", refs.iter().copied())?;
@@ -373,17 +364,8 @@ pub fn radius_reduction(
 pub fn identify_acc_dec(
     #[wasm_bindgen(unchecked_param_type = "CircleLoss[]")] data: JsValue,
 ) -> Result<JsValue, JsError> {
-    let data = plain(&data, "data")?;
-    // counted before the rows are read (1e6 rows took 12 s to refuse)
-    if let Some(a) = data.dyn_ref::<js_sys::Array>() {
-        crate::budget::check(
-            "data",
-            a.length().into(),
-            crate::budget::MAX_ACCDEC_CIRCLES,
-            "circles",
-            "the fit needs a few circles at different F/R",
-        )?;
-    }
+    // counted before the rows are copied (1e6 rows took 12 s to refuse)
+    let data = plain_list(&data, "data", &crate::budget::ACCDEC_CIRCLES)?;
     let d: Vec<CircleLoss> = from_plain(data, "data")?;
     to_js(&identify(&d)?)
 }
@@ -460,7 +442,8 @@ pub fn toolpath_example(
         "arcs" => Ok(example::arc_example()),
         "lines" => Ok(example::line_example()),
         other => Err(JsError::new(&format!(
-            "toolpathExample: unknown example '{other}'; expected 'arcs' or 'lines'"
+            "toolpathExample: unknown example '{}'; expected 'arcs' or 'lines'",
+            crate::budget::clip(other, 40)
         ))),
     }
 }

@@ -1,4 +1,4 @@
-// The unit rule of the JS API (README "Units in the JS API"): every numeric
+// The unit rule of the JS API (docs/api.md, "Units in the JS API"): every numeric
 // field of the TypeScript shapes in pkg/mtmotion.d.ts states its unit,
 // either by a unit suffix on its name (gUm, centreXMm, spanDeg, angleRad,
 // servoMismatchMs, scaleMismatchPpm, totalReductionPercent, …) or by a doc

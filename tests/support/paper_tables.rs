@@ -1,4 +1,4 @@
-//! Every number of the README's and docs' paper-comparison tables,
+//! Every number of the docs' paper-comparison tables (docs/reproducing.md),
 //! computed from the library (shared by `examples/paper_tables.rs`, which
 //! writes `docs/paper-tables.json` and `docs/paper-tables.md`, and by
 //! `tests/paper_tables.rs`, which checks that the committed file matches a
