@@ -8,8 +8,12 @@
 //! delimiter. Every error names its 1-based line and column.
 
 pub mod cells;
+pub mod hal;
 pub mod reader;
+pub mod sinumerik;
+pub mod twincat;
 pub mod units;
+pub mod xml;
 
 pub use reader::{read_table, ColumnInfo, ColumnKind, Layout, ReadOptions, TableRead};
 pub use units::name_unit;
@@ -114,6 +118,25 @@ pub enum TraceError {
         /// camelCase option name.
         field: &'static str,
         /// What is wrong and what to do.
+        why: String,
+    },
+    /// An XML file is not well formed.
+    #[error("line {line}: XML: {why}")]
+    BadXml {
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        why: String,
+    },
+    /// A file in a known layout (a control's or instrument's export)
+    /// breaks that layout.
+    #[error("line {line}: {layout}: {why}")]
+    BadLayout {
+        /// 1-based line (0: a binary file's byte offset is in `why`).
+        line: usize,
+        /// The layout, e.g. "SINUMERIK trace XML".
+        layout: &'static str,
+        /// What was found and what was expected.
         why: String,
     },
     /// A column index is out of range.

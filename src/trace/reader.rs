@@ -91,7 +91,11 @@ pub struct Meta {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct Layout {
-    /// `tab`, `;`, `,`, `spaces` or `none` (one column).
+    /// Which layout was read: `delimited` (a table with or without a
+    /// header), `halsampler`, `halscope`, `twincatScope`, `sinumerikTrace`
+    /// or `matV5`.
+    pub format: &'static str,
+    /// `tab`, `;`, `,`, `spaces` or `none` (one column, or not a table).
     pub delimiter: &'static str,
     /// Decimal commas were read.
     pub decimal_comma: bool,
@@ -296,8 +300,21 @@ pub fn read_table(text: &str, opts: &ReadOptions) -> Result<TableRead, TraceErro
         return Err(TraceError::Empty);
     };
     if first_text.trim_start().starts_with('<') {
-        return Err(TraceError::Xml { line: first });
+        return super::sinumerik::read(text, first, opts);
     }
+    if super::twincat::is_twincat(&lines) {
+        return super::twincat::read(&lines, opts);
+    }
+    if super::hal::is_halscope(first_text) {
+        return super::hal::read_halscope(&lines, opts);
+    }
+    let read = read_delimited(&lines, opts)?;
+    super::hal::halsampler_index(read, opts)
+}
+
+/// [`read_table`] for a delimited table (the numbered, non-comment
+/// `lines`): see the module's reading.
+fn read_delimited(lines: &[(usize, &str)], opts: &ReadOptions) -> Result<TableRead, TraceError> {
     let texts: Vec<&str> = lines.iter().map(|(_, l)| *l).collect();
     let sniffed = sniff(&texts);
     let delim = sniffed.unwrap_or(',');
@@ -464,6 +481,7 @@ pub fn read_table(text: &str, opts: &ReadOptions) -> Result<TableRead, TraceErro
         infos.push(t);
     }
     let layout = Layout {
+        format: "delimited",
         delimiter: delimiter_name(sniffed),
         decimal_comma: dec == Decimal::Comma,
         header_line: header.map(|h| rows[h].0),
@@ -483,4 +501,49 @@ pub fn read_table(text: &str, opts: &ReadOptions) -> Result<TableRead, TraceErro
         },
         layout,
     })
+}
+
+/// A table of named numeric channels read from a control's or
+/// instrument's own layout (not a delimited table): each name's unit is
+/// read as in a header (`time [s]`), the values are kept as given.
+///
+/// `columns[k][row]` holds channel `names[k]`; `lines[row]` is the source
+/// line of each row (0 for a binary file).
+#[allow(clippy::too_many_arguments)]
+pub fn channel_table(
+    format: &'static str,
+    delimiter: &'static str,
+    names: Vec<String>,
+    columns: Vec<Vec<f64>>,
+    lines: Vec<usize>,
+    metadata: Vec<Meta>,
+    notes: Vec<String>,
+    opts: &ReadOptions,
+) -> TableRead {
+    let infos = names
+        .iter()
+        .enumerate()
+        .map(|(k, n)| column_info(n.clone(), k + 1, opts))
+        .collect();
+    let layout = Layout {
+        format,
+        delimiter,
+        decimal_comma: false,
+        header_line: None,
+        first_data_line: lines.first().copied().unwrap_or(0),
+        rows: lines.len(),
+        columns: infos,
+        metadata,
+        notes,
+        units: &UNITS,
+    };
+    TableRead {
+        table: Table {
+            names,
+            columns,
+            lines,
+            delimiter: ',',
+        },
+        layout,
+    }
 }
