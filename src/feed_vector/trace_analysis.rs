@@ -267,13 +267,40 @@ pub fn analyze_trace(
     map: &ColumnMap,
 ) -> Result<FeedVectorResult, FeedVectorError> {
     crate::budget::check_text("trace", text)?;
+    analyze_with(cond, map, |o| read_table(text, o))
+}
+
+/// Analyses a measured trace given as bytes (the JS
+/// `analyzeFeedVectorTrace` with a `Uint8Array`): a MATLAB v5 `.mat`
+/// capture ([`crate::trace::mat`]), or text as in [`analyze_trace`].
+///
+/// # Units
+/// As [`analyze_trace`].
+pub fn analyze_trace_bytes(
+    bytes: &[u8],
+    cond: &Condition,
+    map: &ColumnMap,
+) -> Result<FeedVectorResult, FeedVectorError> {
+    if !crate::trace::mat::is_mat(bytes) {
+        return analyze_trace(&String::from_utf8_lossy(bytes), cond, map);
+    }
+    crate::budget::check_bytes("trace", bytes.len() as u64)?;
+    analyze_with(cond, map, |o| crate::trace::read_bytes(bytes, o))
+}
+
+/// The analysis of the table `read` gives with the map's read options.
+fn analyze_with(
+    cond: &Condition,
+    map: &ColumnMap,
+    read: impl FnOnce(&ReadOptions) -> Result<TableRead, crate::trace::TraceError>,
+) -> Result<FeedVectorResult, FeedVectorError> {
     cond.validate()?;
     validate_map(map)?;
     let opts = ReadOptions {
         sample_period: map.sample_period,
         rated_torque: map.rated_torque,
     };
-    let read = read_table(text, &opts)?;
+    let read = read(&opts)?;
     let t = time_column(&read, map)?;
     let xs = ["x", "pos_x", "x_pos"];
     let (_, mut x) = column(&read, map, &map.x, &xs, map.linear_scale, &LINEAR)?;

@@ -9,13 +9,14 @@
 
 pub mod cells;
 pub mod hal;
+pub mod mat;
 pub mod reader;
 pub mod sinumerik;
 pub mod twincat;
 pub mod units;
 pub mod xml;
 
-pub use reader::{read_table, ColumnInfo, ColumnKind, Layout, ReadOptions, TableRead};
+pub use reader::{read_bytes, read_table, ColumnInfo, ColumnKind, Layout, ReadOptions, TableRead};
 pub use units::name_unit;
 
 /// Errors of trace import.
@@ -135,6 +136,16 @@ pub enum TraceError {
         /// 1-based line (0: a binary file's byte offset is in `why`).
         line: usize,
         /// The layout, e.g. "SINUMERIK trace XML".
+        layout: &'static str,
+        /// What was found and what was expected.
+        why: String,
+    },
+    /// A binary trace (a `.mat` file) breaks its format.
+    #[error("byte {offset}: {layout}: {why}")]
+    BadBinary {
+        /// Byte offset in the file (0: the file as a whole).
+        offset: usize,
+        /// The format, e.g. "MATLAB .mat".
         layout: &'static str,
         /// What was found and what was expected.
         why: String,
@@ -468,6 +479,8 @@ pub fn binary_kind(text: &str) -> Option<&'static str> {
     let after_junk = head.trim_start_matches(['\u{fffd}', '\u{89}']);
     let kind = if after_junk.starts_with("PNG") && head.len() > after_junk.len() {
         Some("a PNG image")
+    } else if t.starts_with("MATLAB 5.0 MAT-file") {
+        Some("a MATLAB .mat file, which is read from its bytes (a Uint8Array), not as text")
     } else if head.starts_with("%PDF") {
         Some("a PDF document")
     } else if head.starts_with("GIF8") {

@@ -312,6 +312,27 @@ pub fn read_table(text: &str, opts: &ReadOptions) -> Result<TableRead, TraceErro
     super::hal::halsampler_index(read, opts)
 }
 
+/// Reads a trace from its bytes: a MATLAB v5 `.mat` capture
+/// ([`super::mat`]), or text (UTF-8) read by [`read_table`].
+///
+/// # Errors
+/// As [`read_table`]; [`TraceError::BadBinary`] for a `.mat` file.
+///
+/// # Examples
+/// ```
+/// use mtmotion::trace::{read_bytes, ReadOptions};
+/// let r = read_bytes(b"t;x\n0;1,5\n1;2\n", &ReadOptions::default()).unwrap();
+/// assert_eq!(r.table.columns[1], [1.5, 2.0]);
+/// let e = read_bytes(b"MATLAB 5.0 MAT-file", &ReadOptions::default()).unwrap_err();
+/// assert_eq!(e.to_string(), "byte 19: MATLAB .mat: the 128-byte header is cut short at 19 bytes");
+/// ```
+pub fn read_bytes(bytes: &[u8], opts: &ReadOptions) -> Result<TableRead, TraceError> {
+    if super::mat::is_mat(bytes) {
+        return super::mat::read(bytes, opts);
+    }
+    read_table(&String::from_utf8_lossy(bytes), opts)
+}
+
 /// [`read_table`] for a delimited table (the numbered, non-comment
 /// `lines`): see the module's reading.
 fn read_delimited(lines: &[(usize, &str)], opts: &ReadOptions) -> Result<TableRead, TraceError> {
