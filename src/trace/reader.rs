@@ -74,6 +74,10 @@ pub struct ColumnInfo {
     pub core_unit: Option<&'static str>,
     /// What was done with it, in words, when not plain.
     pub note: Option<String>,
+    /// What an import reads it as when its mapping leaves that out
+    /// (`time`, `x`, `y`, `c`, `torque`; `angle`, `deviation`,
+    /// `direction`), filled by that import's `roles`; `None` here.
+    pub role: Option<&'static str>,
 }
 
 /// One metadata line above the header.
@@ -132,6 +136,25 @@ impl TableRead {
             .iter()
             .filter(|c| c.kind != ColumnKind::Text)
             .nth(k)
+    }
+
+    /// Marks the column each role's names find (`(role, names)`, the
+    /// first found) with that role, for the layout preview: what an
+    /// import reads each column as when its mapping leaves it out.
+    pub fn mark_roles(&mut self, roles: &[(&'static str, &[&str])]) {
+        for &(role, names) in roles {
+            if let Some(k) = self.table.find(names) {
+                if let Some(c) = self
+                    .layout
+                    .columns
+                    .iter_mut()
+                    .filter(|c| c.kind != ColumnKind::Text)
+                    .nth(k)
+                {
+                    c.role.get_or_insert(role);
+                }
+            }
+        }
     }
 }
 
@@ -242,6 +265,7 @@ fn column_info(name: String, field: usize, opts: &ReadOptions) -> ColumnInfo {
         factor,
         core_unit,
         note,
+        role: None,
     }
 }
 
