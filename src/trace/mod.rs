@@ -1,5 +1,10 @@
 //! Trace import: delimited text (CSV, TSV, semicolon or whitespace) with a
-//! header row, as exported by SERVO GUIDE and ball-bar software.
+//! header row, as exported by SERVO GUIDE and ball-bar software, and the
+//! layouts of controls and instruments [`read_table`] recognises, one file
+//! each: TwinCAT Scope View exports ([`twincat`]), SINUMERIK Operate trace
+//! XML ([`sinumerik`] on the strict [`xml`] reader), halsampler and
+//! halscope ([`hal`]), and MATLAB v5 `.mat` captures from their bytes
+//! ([`mat`], [`read_bytes`]). [`Layout::format`] says which was read.
 //!
 //! [`Table::parse`] reads the header and every numeric row; [`Table::column`]
 //! finds a column by name (case-insensitive, any of several aliases) and
@@ -84,12 +89,6 @@ pub enum TraceError {
         column: usize,
         /// The character's code point.
         code: u32,
-    },
-    /// The text is XML, not a delimited table.
-    #[error("line {line}: this is XML, not a delimited table; export the trace as CSV or TSV text (XML traces are not read yet)")]
-    Xml {
-        /// 1-based line of the first tag.
-        line: usize,
     },
     /// No line below the header is a row of numbers.
     #[error("line {line}: no row of numbers found: {found}; a trace needs rows of numbers below one header line")]
