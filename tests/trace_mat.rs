@@ -386,6 +386,18 @@ fn every_refusal_names_its_byte_and_cause() {
             126,
             "endian mark",
         ),
+        (
+            "huge struct",
+            with(w.matrix(
+                2,
+                0,
+                &[1, 4_000_000],
+                "s",
+                &[w.small(5, &w.u32(32)), w.el(1, &[0u8; 32])].concat(),
+            )),
+            232,
+            "a data element's tag needs 8 bytes, 0 left",
+        ),
     ] {
         let e = read_bytes(&bytes, &ReadOptions::default())
             .unwrap_err()

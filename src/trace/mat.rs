@@ -353,7 +353,9 @@ fn matrix(el: &Element, e: Endian, depth: usize) -> Result<(String, Value), Trac
                 .map(|c| String::from_utf8_lossy(c).trim_end_matches('\0').to_string())
                 .collect();
             p = q;
-            let mut elems = Vec::with_capacity(count);
+            // every element takes at least 8 bytes of the data: a count
+            // the data cannot hold fails below without reserving it
+            let mut elems = Vec::with_capacity(count.min(d.len() / 8));
             for _ in 0..count {
                 let mut one = Vec::with_capacity(fields.len());
                 for _ in 0..fields.len() {
@@ -366,7 +368,7 @@ fn matrix(el: &Element, e: Endian, depth: usize) -> Result<(String, Value), Trac
             Value::Struct { fields, elems }
         }
         1 => {
-            let mut cells = Vec::with_capacity(count);
+            let mut cells = Vec::with_capacity(count.min(d.len() / 8));
             for _ in 0..count {
                 let (m, q) = element(d, p, el.at, e)?;
                 cells.push(sub(&m, e, depth)?);

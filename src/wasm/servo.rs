@@ -366,7 +366,14 @@ pub fn trace_layout(
             crate::budget::check_text("trace", text)?;
             crate::trace::read_table(text, &opts)?
         }
-        TraceArg::Bytes(bytes) => crate::trace::read_bytes(bytes, &opts)?,
+        TraceArg::Bytes(bytes) if crate::trace::mat::is_mat(bytes) => {
+            crate::trace::read_bytes(bytes, &opts)?
+        }
+        TraceArg::Bytes(bytes) => {
+            let text = String::from_utf8_lossy(bytes);
+            crate::budget::check_text("trace", &text)?;
+            crate::trace::read_table(&text, &opts)?
+        }
     };
     let mut read = read;
     match purpose.as_deref() {
