@@ -96,9 +96,9 @@ fn circle(lead_in_deg: f64, standstill_s: f64) -> String {
 #[test]
 fn lead_in_and_standstill_are_trimmed_and_g_centre_feed_read_as_without_them() {
     let o = ParseOptions::default();
-    let clean = parse_ballbar_trace(&circle(0.0, 0.0), o).unwrap();
+    let clean = parse_ballbar_trace(&circle(0.0, 0.0), o.clone()).unwrap();
     let raw = circle(90.0, 3.0);
-    let messy = parse_ballbar_trace(&raw, o).unwrap();
+    let messy = parse_ballbar_trace(&raw, o.clone()).unwrap();
     let (gc, gm) = (
         circular_deviation(&clean).unwrap(),
         circular_deviation(&messy).unwrap(),

@@ -243,8 +243,8 @@ const REFUSED: [(&str, usize, &str); 10] = [
     ),
     (
         "<?xml version=\"1.0\"?>\n<trace>\n<row t=\"0\"/>\n</trace>\n",
-        1,
-        "this is XML",
+        2,
+        "root is <trace> without traceData/dataFrame, so it is not a SINUMERIK trace",
     ),
     (
         "t;x\n0;1,5\n1;2.5\n2;3\n3;4\n",

@@ -94,7 +94,8 @@ pub fn sections_from_traces(
         .enumerate()
         .map(|(k, ts)| {
             let what = format!("sections[{k}]");
-            let t = parse_ballbar_trace(&ts.text, opts).map_err(|e| bad(&what, e.to_string()))?;
+            let t = parse_ballbar_trace(&ts.text, opts.clone())
+                .map_err(|e| bad(&what, e.to_string()))?;
             if t.centre.is_some_and(|c| !c.given) {
                 return Err(bad(
                     what,

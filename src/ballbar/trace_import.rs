@@ -45,7 +45,7 @@ use serde::{Deserialize, Serialize};
 
 use super::fit_circle;
 use super::trim::{trim, Segment, TimeBase, Trimming};
-use crate::trace::{Table, TraceError};
+use crate::trace::{read_table, ReadOptions, Table, TraceError};
 
 /// Errors of ball-bar trace import.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -68,6 +68,16 @@ pub enum BallbarTraceError {
     /// Neither angle+deviation nor X/Y columns.
     #[error("no ball-bar columns found: expected 'angle' and 'deviation' (or 'x' and 'y') in the header, found: {}", crate::budget::clip(.0, 200))]
     NoColumns(String),
+    /// A column the mapping names is not in the file.
+    #[error("columns.{field}: no column named '{name}' in the file (columns: {available})")]
+    MappedColumn {
+        /// The mapping's field (`x`, `y`, `angle`, `deviation`, `time`, `direction`).
+        field: &'static str,
+        /// The name it gives.
+        name: String,
+        /// The file's numeric columns.
+        available: String,
+    },
     /// A point lies at the nominal centre, so it has no angle.
     #[error("line {0}: the point lies at the nominal centre, so its angle is undefined")]
     AtCentre(usize),
@@ -187,7 +197,7 @@ pub struct BallbarTrace {
 }
 
 /// Options of [`parse_ballbar_trace`].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 pub struct ParseOptions {
     /// Nominal radius, mm.
@@ -200,6 +210,9 @@ pub struct ParseOptions {
     /// Trim each run to its constant-feed part ([`super::trim`]); false
     /// keeps every sample (the stretches are still listed).
     pub trim: bool,
+    /// Which column is which, for a file whose columns are named
+    /// otherwise (`EncoderX_Pos`); default: found by their usual names.
+    pub columns: BallbarColumns,
 }
 
 impl Default for ParseOptions {
@@ -209,7 +222,108 @@ impl Default for ParseOptions {
             feed: None,
             centre: None,
             trim: true,
+            columns: BallbarColumns::default(),
         }
+    }
+}
+
+/// Which column of the file is which (the JS `options.columns`): each
+/// names a column as its header writes it (`EncoderX_Pos`), or as the
+/// column finder matches it (case-insensitive, a unit suffix ignored).
+/// A field left out is found by its usual names (see the module's
+/// readings). Mapping `x` or `y` reads the file as X/Y positions.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "camelCase", default)]
+pub struct BallbarColumns {
+    /// X position column (mm; µm if the name says `um`).
+    pub x: Option<String>,
+    /// Y position column.
+    pub y: Option<String>,
+    /// Angle column (degrees; rad if the name says `rad`).
+    pub angle: Option<String>,
+    /// Radial deviation column (µm; mm if the name says `mm`).
+    pub deviation: Option<String>,
+    /// Time column (s; ms if the name says `ms`).
+    pub time: Option<String>,
+    /// Direction column (+1 CCW, −1 CW).
+    pub direction: Option<String>,
+}
+
+/// The names the angle column is found by when the mapping leaves it out
+/// (case-insensitive; a unit suffix ignored).
+pub const ANGLE_NAMES: [&str; 7] = [
+    "angle",
+    "theta",
+    "angle_deg",
+    "angle_rad",
+    "theta_deg",
+    "theta_rad",
+    "ang",
+];
+/// The names of the radial deviation column.
+pub const DEVIATION_NAMES: [&str; 10] = [
+    "deviation",
+    "dev",
+    "dr",
+    "radial",
+    "error",
+    "deviation_um",
+    "dev_um",
+    "deviation_mm",
+    "dev_mm",
+    "radial_deviation",
+];
+/// The names of the X column.
+pub const X_NAMES: [&str; 4] = ["x", "pos_x", "x_mm", "x_um"];
+/// The names of the Y column.
+pub const Y_NAMES: [&str; 4] = ["y", "pos_y", "y_mm", "y_um"];
+/// The names of the time column.
+pub const TIME_NAMES: [&str; 4] = ["time", "t", "time_s", "time_ms"];
+/// The names of the direction column.
+pub const DIRECTION_NAMES: [&str; 2] = ["direction", "dir"];
+
+/// Marks in `read`'s layout the columns the ball-bar import reads as
+/// angle, deviation, X, Y, time and direction when the mapping leaves
+/// them out (the page's default column menus come from these roles).
+///
+/// # Examples
+/// ```
+/// use mtmotion::ballbar::trace_import::roles;
+/// use mtmotion::trace::{read_table, ReadOptions};
+/// let mut r = read_table("Angle(deg)\tDeviation(um)\tEncoderX\n0\t1\t2\n", &ReadOptions::default()).unwrap();
+/// roles(&mut r);
+/// let got: Vec<_> = r.layout.columns.iter().map(|c| c.role).collect();
+/// assert_eq!(got, [Some("angle"), Some("deviation"), None]);
+/// ```
+pub fn roles(read: &mut crate::trace::TableRead) {
+    read.mark_roles(&[
+        ("angle", &ANGLE_NAMES),
+        ("deviation", &DEVIATION_NAMES),
+        ("x", &X_NAMES),
+        ("y", &Y_NAMES),
+        ("time", &TIME_NAMES),
+        ("direction", &DIRECTION_NAMES),
+    ]);
+}
+
+/// The column the mapping gives for `field`, else the first alias found.
+fn pick(
+    t: &Table,
+    mapped: &Option<String>,
+    field: &'static str,
+    aliases: &[&str],
+) -> Result<Option<usize>, BallbarTraceError> {
+    match mapped {
+        Some(name) => {
+            t.find(&[name.as_str()])
+                .map(Some)
+                .ok_or_else(|| BallbarTraceError::MappedColumn {
+                    field,
+                    name: name.clone(),
+                    available: t.names.join(", "),
+                })
+        }
+        None => Ok(t.find(aliases)),
     }
 }
 
@@ -222,6 +336,13 @@ fn header_says(t: &Table, k: usize, what: &[&str]) -> bool {
 }
 
 /// Reads a ball-bar trace.
+///
+/// The file is read by the core's tolerant reader
+/// ([`crate::trace::read_table`]): any delimiter, decimal commas, quoted
+/// numbers, text columns (ignored), metadata above the header, and the
+/// controls' layouts it recognises (TwinCAT Scope, SINUMERIK trace XML,
+/// halscope). [`ParseOptions::columns`] names the columns of a file that
+/// names them otherwise (`EncoderX_Pos, EncoderY_Pos`).
 ///
 /// # Units
 /// See the module header; the result is in rad, mm and mm/min.
@@ -241,23 +362,50 @@ fn header_says(t: &Table, k: usize, what: &[&str]) -> bool {
 /// assert!((t.runs[0].deviation[0] - 0.002).abs() < 1e-15);
 /// let e = parse_ballbar_trace("angle,deviation\n0,1\n10,x\n", ParseOptions::default());
 /// assert!(e.unwrap_err().to_string().starts_with("line 3"));
+///
+/// // columns named otherwise, `;` with decimal commas and a text column
+/// use mtmotion::ballbar::BallbarColumns;
+/// let mut text = String::from("Sample;EncoderX_Pos;EncoderY_Pos;State\n");
+/// for i in 0..40 {
+///     let a = (i as f64 * 9.0).to_radians();
+///     text += &format!("{i};{};{};run\n", 50.0 * a.cos(), 50.0 * a.sin()).replace('.', ",");
+/// }
+/// let columns = BallbarColumns {
+///     x: Some("EncoderX_Pos".into()),
+///     y: Some("EncoderY_Pos".into()),
+///     ..BallbarColumns::default()
+/// };
+/// let opts = ParseOptions { columns, ..ParseOptions::default() };
+/// let t = parse_ballbar_trace(&text, opts.clone()).unwrap();
+/// assert!((t.nominal_radius - 50.0).abs() < 1e-9);
+/// let e = parse_ballbar_trace("a,b\n1,2\n", opts).unwrap_err();
+/// assert_eq!(e.to_string(), "columns.x: no column named 'EncoderX_Pos' in the file (columns: a, b)");
 /// ```
 pub fn parse_ballbar_trace(
     text: &str,
     opts: ParseOptions,
 ) -> Result<BallbarTrace, BallbarTraceError> {
     crate::budget::check_text("trace", text)?;
-    check_options(opts)?;
+    check_options(&opts)?;
+    let cols = &opts.columns;
     // The table's own hints name the servo columns; a ball-bar trace names its own.
-    let t = Table::parse(text).map_err(|e| match e {
-        TraceError::Empty => BallbarTraceError::Empty,
-        TraceError::NoHeader { line } => BallbarTraceError::NoHeader { line },
-        e => e.into(),
-    })?;
-    let (time, time_base) = time_of(&t)?;
-    let mut polar = angle_and_deviation(&t, opts)?;
+    let t = read_table(text, &ReadOptions::default())
+        .map_err(|e| match e {
+            TraceError::Empty => BallbarTraceError::Empty,
+            TraceError::NoHeader { line } => BallbarTraceError::NoHeader { line },
+            // numbers only: the ball-bar columns must be named
+            TraceError::BadOption {
+                line,
+                field: "samplePeriod",
+                ..
+            } => BallbarTraceError::NoHeader { line },
+            e => e.into(),
+        })?
+        .table;
+    let (time, time_base) = time_of(&t, cols)?;
+    let mut polar = angle_and_deviation(&t, &opts, cols)?;
     let mut angle = unwrap_angles(&polar.angle);
-    let segments = match t.find(&["direction", "dir"]) {
+    let segments = match pick(&t, &cols.direction, "direction", &DIRECTION_NAMES)? {
         Some(k) => runs_from_direction_column(&t, k)?,
         None => runs_from_turning_points(&angle),
     };
@@ -352,7 +500,7 @@ fn unit_warnings(source: &str, runs: &[Run], radius: f64) -> Vec<String> {
 
 /// The options' radius (a bar length from 0.001 to 1e6 mm) and feed, when
 /// given, are finite and positive.
-fn check_options(opts: ParseOptions) -> Result<(), BallbarTraceError> {
+fn check_options(opts: &ParseOptions) -> Result<(), BallbarTraceError> {
     if let Some(r) = opts.nominal_radius {
         if !(super::synthetic::MIN_RADIUS..=super::synthetic::MAX_RADIUS).contains(&r) {
             return Err(BallbarTraceError::BadOption {
@@ -400,8 +548,8 @@ struct Polar {
 
 /// The time of each sample (s) from a time column (`time`/`t`, s, or ms
 /// if the name says ms), strictly increasing; else the sample index.
-fn time_of(t: &Table) -> Result<(Vec<f64>, TimeBase), BallbarTraceError> {
-    let Some(k) = t.find(&["time", "t", "time_s", "time_ms"]) else {
+fn time_of(t: &Table, cols: &BallbarColumns) -> Result<(Vec<f64>, TimeBase), BallbarTraceError> {
+    let Some(k) = pick(t, &cols.time, "time", &TIME_NAMES)? else {
         return Ok((
             (0..t.rows()).map(|i| i as f64).collect(),
             TimeBase::SampleIndex,
@@ -425,34 +573,20 @@ fn time_of(t: &Table) -> Result<(Vec<f64>, TimeBase), BallbarTraceError> {
 
 /// The angle, radial deviation and nominal radius from angle/deviation
 /// columns, or from X/Y columns.
-fn angle_and_deviation(t: &Table, opts: ParseOptions) -> Result<Polar, BallbarTraceError> {
-    let ang = t.find(&[
-        "angle",
-        "theta",
-        "angle_deg",
-        "angle_rad",
-        "theta_deg",
-        "theta_rad",
-        "ang",
-    ]);
-    let dev = t.find(&[
-        "deviation",
-        "dev",
-        "dr",
-        "radial",
-        "error",
-        "deviation_um",
-        "dev_um",
-        "deviation_mm",
-        "dev_mm",
-        "radial_deviation",
-    ]);
+fn angle_and_deviation(
+    t: &Table,
+    opts: &ParseOptions,
+    cols: &BallbarColumns,
+) -> Result<Polar, BallbarTraceError> {
+    let ang = pick(t, &cols.angle, "angle", &ANGLE_NAMES)?;
+    let dev = pick(t, &cols.deviation, "deviation", &DEVIATION_NAMES)?;
     let (xk, yk) = (
-        t.find(&["x", "pos_x", "x_mm", "x_um"]),
-        t.find(&["y", "pos_y", "y_mm", "y_um"]),
+        pick(t, &cols.x, "x", &X_NAMES)?,
+        pick(t, &cols.y, "y", &Y_NAMES)?,
     );
+    let want_xy = cols.x.is_some() || cols.y.is_some();
     match (ang, dev, xk, yk) {
-        (Some(a), Some(d), _, _) => {
+        (Some(a), Some(d), _, _) if !want_xy => {
             let sa = if header_says(t, a, &["rad"]) {
                 1.0
             } else {
@@ -495,7 +629,7 @@ fn polar_from_xy(
     t: &Table,
     xi: usize,
     yi: usize,
-    opts: ParseOptions,
+    opts: &ParseOptions,
 ) -> Result<Polar, BallbarTraceError> {
     let s = |k| {
         if header_says(t, k, &["um"]) {
@@ -678,22 +812,22 @@ mod tests {
     #[test]
     fn malformed_traces_name_the_line() {
         let o = ParseOptions::default();
-        let e = parse_ballbar_trace("foo,bar\n1,2\n", o)
+        let e = parse_ballbar_trace("foo,bar\n1,2\n", o.clone())
             .unwrap_err()
             .to_string();
         assert!(
             e.contains("'angle' and 'deviation'") && e.contains("foo, bar"),
             "{e}"
         );
-        let e = parse_ballbar_trace("angle,dev\n0,1\n1,2\n2\n", o)
+        let e = parse_ballbar_trace("angle,dev\n0,1\n1,2\n2\n", o.clone())
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("line 4:"), "{e}");
-        let e = parse_ballbar_trace("angle,dev\n0,1\n1,2\n", o)
+        let e = parse_ballbar_trace("angle,dev\n0,1\n1,2\n", o.clone())
             .unwrap_err()
             .to_string();
         assert!(e.contains("at least 8 points"), "{e}");
-        let e = parse_ballbar_trace("angle,dev,dir\n0,1,1\n1,2,0\n", o)
+        let e = parse_ballbar_trace("angle,dev,dir\n0,1,1\n1,2,0\n", o.clone())
             .unwrap_err()
             .to_string();
         assert_eq!(e, "line 3: direction must be +1 (CCW) or -1 (CW), got 0");

@@ -236,6 +236,41 @@ fn value_error(read: &TableRead, col: usize, row: usize, why: String) -> FeedVec
     }
 }
 
+/// The names the time column is found by when the mapping leaves it out
+/// (case-insensitive; a unit suffix ignored).
+pub const TIME_NAMES: [&str; 4] = ["time", "t", "time_s", "zeit"];
+/// The names of the X column.
+pub const X_NAMES: [&str; 3] = ["x", "pos_x", "x_pos"];
+/// The names of the Y column.
+pub const Y_NAMES: [&str; 3] = ["y", "pos_y", "y_pos"];
+/// The names of the C column.
+pub const C_NAMES: [&str; 3] = ["c", "pos_c", "c_pos"];
+/// The names of the (optional) torque column.
+pub const TORQUE_NAMES: [&str; 5] = ["torque", "tcmd", "torque_c", "tcmd_c", "tq"];
+
+/// Marks in `read`'s layout the columns this analysis reads as time, X,
+/// Y, C and torque when the mapping leaves them out (the page's default
+/// column menus come from these roles).
+///
+/// # Examples
+/// ```
+/// use mtmotion::feed_vector::trace_analysis::roles;
+/// use mtmotion::trace::{read_table, ReadOptions};
+/// let mut r = read_table("Zeit [ms];POS X(um);Y;C [deg];Note\n0;1;2;3;a\n", &ReadOptions::default()).unwrap();
+/// roles(&mut r);
+/// let got: Vec<_> = r.layout.columns.iter().map(|c| c.role).collect();
+/// assert_eq!(got, [Some("time"), Some("x"), Some("y"), Some("c"), None]);
+/// ```
+pub fn roles(read: &mut TableRead) {
+    read.mark_roles(&[
+        ("time", &TIME_NAMES),
+        ("x", &X_NAMES),
+        ("y", &Y_NAMES),
+        ("c", &C_NAMES),
+        ("torque", &TORQUE_NAMES),
+    ]);
+}
+
 /// Smallest |unit factor| of a mapping (ns → s is 1e-9).
 pub const MIN_SCALE: f64 = 1e-9;
 /// Largest |unit factor| of a mapping (km → mm is 1e6); a larger one
@@ -267,27 +302,50 @@ pub fn analyze_trace(
     map: &ColumnMap,
 ) -> Result<FeedVectorResult, FeedVectorError> {
     crate::budget::check_text("trace", text)?;
+    analyze_with(cond, map, |o| read_table(text, o))
+}
+
+/// Analyses a measured trace given as bytes (the JS
+/// `analyzeFeedVectorTrace` with a `Uint8Array`): a MATLAB v5 `.mat`
+/// capture ([`crate::trace::mat`]), or text as in [`analyze_trace`].
+///
+/// # Units
+/// As [`analyze_trace`].
+pub fn analyze_trace_bytes(
+    bytes: &[u8],
+    cond: &Condition,
+    map: &ColumnMap,
+) -> Result<FeedVectorResult, FeedVectorError> {
+    if !crate::trace::mat::is_mat(bytes) {
+        return analyze_trace(&String::from_utf8_lossy(bytes), cond, map);
+    }
+    crate::budget::check_bytes("trace", bytes.len() as u64)?;
+    analyze_with(cond, map, |o| crate::trace::read_bytes(bytes, o))
+}
+
+/// The analysis of the table `read` gives with the map's read options.
+fn analyze_with(
+    cond: &Condition,
+    map: &ColumnMap,
+    read: impl FnOnce(&ReadOptions) -> Result<TableRead, crate::trace::TraceError>,
+) -> Result<FeedVectorResult, FeedVectorError> {
     cond.validate()?;
     validate_map(map)?;
     let opts = ReadOptions {
         sample_period: map.sample_period,
         rated_torque: map.rated_torque,
     };
-    let read = read_table(text, &opts)?;
+    let read = read(&opts)?;
     let t = time_column(&read, map)?;
-    let xs = ["x", "pos_x", "x_pos"];
-    let (_, mut x) = column(&read, map, &map.x, &xs, map.linear_scale, &LINEAR)?;
-    let ys = ["y", "pos_y", "y_pos"];
-    let (_, y) = column(&read, map, &map.y, &ys, map.linear_scale, &LINEAR)?;
-    let cs = ["c", "pos_c", "c_pos"];
-    let (ci, c) = column(&read, map, &map.c, &cs, map.angle_scale, &ANGLE)?;
-    let torque_aliases = ["torque", "tcmd", "torque_c", "tcmd_c", "tq"];
-    let torque = if map.torque.is_some() || read.table.find(&torque_aliases).is_some() {
+    let (_, mut x) = column(&read, map, &map.x, &X_NAMES, map.linear_scale, &LINEAR)?;
+    let (_, y) = column(&read, map, &map.y, &Y_NAMES, map.linear_scale, &LINEAR)?;
+    let (ci, c) = column(&read, map, &map.c, &C_NAMES, map.angle_scale, &ANGLE)?;
+    let torque = if map.torque.is_some() || read.table.find(&TORQUE_NAMES).is_some() {
         column(
             &read,
             map,
             &map.torque,
-            &torque_aliases,
+            &TORQUE_NAMES,
             map.torque_scale,
             &TORQUE,
         )?
@@ -383,8 +441,7 @@ fn steady_window_holds_samples(tt: &[f64], t_ss: f64, given: bool) -> Result<(),
 
 /// The time column in s, which must increase strictly from row to row.
 fn time_column(read: &TableRead, map: &ColumnMap) -> Result<Vec<f64>, FeedVectorError> {
-    let names = ["time", "t", "time_s", "zeit"];
-    let (tcol, t) = column(read, map, &map.time, &names, map.time_scale, &TIME)?;
+    let (tcol, t) = column(read, map, &map.time, &TIME_NAMES, map.time_scale, &TIME)?;
     for i in 1..t.len() {
         let (now, before) = (t[i], t[i - 1]);
         if now - before >= MIN_STEP {

@@ -1,5 +1,10 @@
 //! Trace import: delimited text (CSV, TSV, semicolon or whitespace) with a
-//! header row, as exported by SERVO GUIDE and ball-bar software.
+//! header row, as exported by SERVO GUIDE and ball-bar software, and the
+//! layouts of controls and instruments [`read_table`] recognises, one file
+//! each: TwinCAT Scope View exports ([`twincat`]), SINUMERIK Operate trace
+//! XML ([`sinumerik`] on the strict [`xml`] reader), halsampler and
+//! halscope ([`hal`]), and MATLAB v5 `.mat` captures from their bytes
+//! ([`mat`], [`read_bytes`]). [`Layout::format`] says which was read.
 //!
 //! [`Table::parse`] reads the header and every numeric row; [`Table::column`]
 //! finds a column by name (case-insensitive, any of several aliases) and
@@ -8,10 +13,15 @@
 //! delimiter. Every error names its 1-based line and column.
 
 pub mod cells;
+pub mod hal;
+pub mod mat;
 pub mod reader;
+pub mod sinumerik;
+pub mod twincat;
 pub mod units;
+pub mod xml;
 
-pub use reader::{read_table, ColumnInfo, ColumnKind, Layout, ReadOptions, TableRead};
+pub use reader::{read_bytes, read_table, ColumnInfo, ColumnKind, Layout, ReadOptions, TableRead};
 pub use units::name_unit;
 
 /// Errors of trace import.
@@ -88,12 +98,6 @@ pub enum TraceError {
         /// The character's code point.
         code: u32,
     },
-    /// The text is XML, not a delimited table.
-    #[error("line {line}: this is XML, not a delimited table; export the trace as CSV or TSV text (XML traces are not read yet)")]
-    Xml {
-        /// 1-based line of the first tag.
-        line: usize,
-    },
     /// No line below the header is a row of numbers.
     #[error("line {line}: no row of numbers found: {}; a trace needs rows of numbers below one header line", clip_at(found, 400))]
     NoRows {
@@ -122,6 +126,35 @@ pub enum TraceError {
         /// camelCase option name.
         field: &'static str,
         /// What is wrong and what to do.
+        why: String,
+    },
+    /// An XML file is not well formed.
+    #[error("line {line}: XML: {why}")]
+    BadXml {
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        why: String,
+    },
+    /// A file in a known layout (a control's or instrument's export)
+    /// breaks that layout.
+    #[error("line {line}: {layout}: {why}")]
+    BadLayout {
+        /// 1-based line (0: a binary file's byte offset is in `why`).
+        line: usize,
+        /// The layout, e.g. "SINUMERIK trace XML".
+        layout: &'static str,
+        /// What was found and what was expected.
+        why: String,
+    },
+    /// A binary trace (a `.mat` file) breaks its format.
+    #[error("byte {offset}: {layout}: {why}")]
+    BadBinary {
+        /// Byte offset in the file (0: the file as a whole).
+        offset: usize,
+        /// The format, e.g. "MATLAB .mat".
+        layout: &'static str,
+        /// What was found and what was expected.
         why: String,
     },
     /// A column index is out of range.
@@ -486,6 +519,8 @@ pub fn binary_kind(text: &str) -> Option<&'static str> {
     let after_junk = head.trim_start_matches(['\u{fffd}', '\u{89}']);
     let kind = if after_junk.starts_with("PNG") && head.len() > after_junk.len() {
         Some("a PNG image")
+    } else if t.starts_with("MATLAB 5.0 MAT-file") {
+        Some("a MATLAB .mat file, which is read from its bytes (a Uint8Array), not as text")
     } else if head.starts_with("%PDF") {
         Some("a PDF document")
     } else if head.starts_with("GIF8") {

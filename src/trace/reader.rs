@@ -74,6 +74,10 @@ pub struct ColumnInfo {
     pub core_unit: Option<&'static str>,
     /// What was done with it, in words, when not plain.
     pub note: Option<String>,
+    /// What an import reads it as when its mapping leaves that out
+    /// (`time`, `x`, `y`, `c`, `torque`; `angle`, `deviation`,
+    /// `direction`), filled by that import's `roles`; `None` here.
+    pub role: Option<&'static str>,
 }
 
 /// One metadata line above the header.
@@ -91,7 +95,11 @@ pub struct Meta {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct Layout {
-    /// `tab`, `;`, `,`, `spaces` or `none` (one column).
+    /// Which layout was read: `delimited` (a table with or without a
+    /// header), `halsampler`, `halscope`, `twincatScope`, `sinumerikTrace`
+    /// or `matV5`.
+    pub format: &'static str,
+    /// `tab`, `;`, `,`, `spaces` or `none` (one column, or not a table).
     pub delimiter: &'static str,
     /// Decimal commas were read.
     pub decimal_comma: bool,
@@ -128,6 +136,25 @@ impl TableRead {
             .iter()
             .filter(|c| c.kind != ColumnKind::Text)
             .nth(k)
+    }
+
+    /// Marks the column each role's names find (`(role, names)`, the
+    /// first found) with that role, for the layout preview: what an
+    /// import reads each column as when its mapping leaves it out.
+    pub fn mark_roles(&mut self, roles: &[(&'static str, &[&str])]) {
+        for &(role, names) in roles {
+            if let Some(k) = self.table.find(names) {
+                if let Some(c) = self
+                    .layout
+                    .columns
+                    .iter_mut()
+                    .filter(|c| c.kind != ColumnKind::Text)
+                    .nth(k)
+                {
+                    c.role.get_or_insert(role);
+                }
+            }
+        }
     }
 }
 
@@ -241,6 +268,7 @@ fn column_info(name: String, field: usize, opts: &ReadOptions) -> ColumnInfo {
         factor,
         core_unit,
         note,
+        role: None,
     }
 }
 
@@ -300,8 +328,42 @@ pub fn read_table(text: &str, opts: &ReadOptions) -> Result<TableRead, TraceErro
         return Err(TraceError::Empty);
     };
     if first_text.trim_start().starts_with('<') {
-        return Err(TraceError::Xml { line: first });
+        return super::sinumerik::read(text, first, opts);
     }
+    if super::twincat::is_twincat(&lines) {
+        return super::twincat::read(&lines, opts);
+    }
+    if super::hal::is_halscope(first_text) {
+        return super::hal::read_halscope(&lines, opts);
+    }
+    let read = read_delimited(&lines, opts)?;
+    super::hal::halsampler_index(read, opts)
+}
+
+/// Reads a trace from its bytes: a MATLAB v5 `.mat` capture
+/// ([`super::mat`]), or text (UTF-8) read by [`read_table`].
+///
+/// # Errors
+/// As [`read_table`]; [`TraceError::BadBinary`] for a `.mat` file.
+///
+/// # Examples
+/// ```
+/// use mtmotion::trace::{read_bytes, ReadOptions};
+/// let r = read_bytes(b"t;x\n0;1,5\n1;2\n", &ReadOptions::default()).unwrap();
+/// assert_eq!(r.table.columns[1], [1.5, 2.0]);
+/// let e = read_bytes(b"MATLAB 5.0 MAT-file", &ReadOptions::default()).unwrap_err();
+/// assert_eq!(e.to_string(), "byte 19: MATLAB .mat: the 128-byte header is cut short at 19 bytes");
+/// ```
+pub fn read_bytes(bytes: &[u8], opts: &ReadOptions) -> Result<TableRead, TraceError> {
+    if super::mat::is_mat(bytes) {
+        return super::mat::read(bytes, opts);
+    }
+    read_table(&String::from_utf8_lossy(bytes), opts)
+}
+
+/// [`read_table`] for a delimited table (the numbered, non-comment
+/// `lines`): see the module's reading.
+fn read_delimited(lines: &[(usize, &str)], opts: &ReadOptions) -> Result<TableRead, TraceError> {
     let texts: Vec<&str> = lines.iter().map(|(_, l)| *l).collect();
     let sniffed = sniff(&texts);
     let delim = sniffed.unwrap_or(',');
@@ -475,6 +537,7 @@ pub fn read_table(text: &str, opts: &ReadOptions) -> Result<TableRead, TraceErro
         infos.push(t);
     }
     let layout = Layout {
+        format: "delimited",
         delimiter: delimiter_name(sniffed),
         decimal_comma: dec == Decimal::Comma,
         header_line: header.map(|h| rows[h].0),
@@ -494,4 +557,49 @@ pub fn read_table(text: &str, opts: &ReadOptions) -> Result<TableRead, TraceErro
         },
         layout,
     })
+}
+
+/// A table of named numeric channels read from a control's or
+/// instrument's own layout (not a delimited table): each name's unit is
+/// read as in a header (`time [s]`), the values are kept as given.
+///
+/// `columns[k][row]` holds channel `names[k]`; `lines[row]` is the source
+/// line of each row (0 for a binary file).
+#[allow(clippy::too_many_arguments)]
+pub fn channel_table(
+    format: &'static str,
+    delimiter: &'static str,
+    names: Vec<String>,
+    columns: Vec<Vec<f64>>,
+    lines: Vec<usize>,
+    metadata: Vec<Meta>,
+    notes: Vec<String>,
+    opts: &ReadOptions,
+) -> TableRead {
+    let infos = names
+        .iter()
+        .enumerate()
+        .map(|(k, n)| column_info(n.clone(), k + 1, opts))
+        .collect();
+    let layout = Layout {
+        format,
+        delimiter,
+        decimal_comma: false,
+        header_line: None,
+        first_data_line: lines.first().copied().unwrap_or(0),
+        rows: lines.len(),
+        columns: infos,
+        metadata,
+        notes,
+        units: &UNITS,
+    };
+    TableRead {
+        table: Table {
+            names,
+            columns,
+            lines,
+            delimiter: ',',
+        },
+        layout,
+    }
 }

@@ -34,7 +34,7 @@ mod by_hand {
     use super::JsArg;
     use crate::alignment::travel_range::{default_radius, default_samples};
     use crate::alignment::{Locus, Offset, SweepConfig};
-    use crate::ballbar::{Harmonic, ParseOptions, PlanePoint};
+    use crate::ballbar::{BallbarColumns, Harmonic, ParseOptions, PlanePoint};
     use crate::best_kffp::saturation::{SaturationQuery, SaturationReading, READINGS};
     use crate::wasm::convert::{known_keys, plain, require_object};
     use crate::wasm::strict::{js_number, kind};
@@ -282,7 +282,41 @@ mod by_hand {
     impl JsArg for ParseOptions {
         fn arg(value: JsValue, what: &str) -> Result<Self, JsError> {
             // `trim`: the ball-bar trimming option (src/ballbar/)
-            let o = snapshot(&value, what, &["nominalRadius", "feed", "centre", "trim"])?;
+            let o = snapshot(
+                &value,
+                what,
+                &["nominalRadius", "feed", "centre", "trim", "columns"],
+            )?;
+            let columns = match get(&o, "columns") {
+                None => BallbarColumns::default(),
+                Some(v) if v.is_null() => BallbarColumns::default(),
+                Some(v) => {
+                    let path = format!("{what}.columns");
+                    require_object(&v, &path)?;
+                    known_keys(
+                        &v,
+                        &["x", "y", "angle", "deviation", "time", "direction"],
+                        &path,
+                    )?;
+                    let name = |key: &str| -> Result<Option<String>, JsError> {
+                        match get(&v, key) {
+                            Some(n) if !n.is_null() => {
+                                crate::wasm::convert::name_arg(&n, &format!("{path}.{key}"))
+                                    .map(Some)
+                            }
+                            _ => Ok(None),
+                        }
+                    };
+                    BallbarColumns {
+                        x: name("x")?,
+                        y: name("y")?,
+                        angle: name("angle")?,
+                        deviation: name("deviation")?,
+                        time: name("time")?,
+                        direction: name("direction")?,
+                    }
+                }
+            };
             let centre = match get(&o, "centre") {
                 None => None,
                 Some(v) => Some({
@@ -303,6 +337,7 @@ mod by_hand {
                         JsError::new(&format!("{what}.trim: expected true or false"))
                     })?,
                 },
+                columns,
             })
         }
     }

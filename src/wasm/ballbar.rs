@@ -83,7 +83,10 @@ export interface ParseTraceOptions {
   /** [mm] */ nominalRadius?: number; /** [mm/min] */ feed?: number;
   /** [mm] X/Y traces: the centre to take deviations about (pivot or programmed centre); default: the trace's own least-squares centre */ centre?: PlanePoint;
   /** Trim each run to its constant-feed part (default true); false keeps every sample and only lists the stretches. */ trim?: boolean;
+  /** Which column is which, for a file that names them otherwise (EncoderX_Pos); a field left out is found by its usual names */ columns?: BallbarColumns;
 }
+/** Ball-bar column mapping: each names a column as the header writes it. Mapping x or y reads the file as X/Y positions. */
+export interface BallbarColumns { x?: string | null; y?: string | null; angle?: string | null; deviation?: string | null; time?: string | null; direction?: string | null }
 export interface CircularTestRun {
   direction: 'ccw' | 'cw'; gUm: number; fMaxUm: number; fMinUm: number;
   centreXMm: number; centreYMm: number; radiusMm: number; spanDeg: number; /** [-] samples in the run */ points: number;

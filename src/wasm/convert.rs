@@ -451,6 +451,44 @@ pub const NC_BYTES_PER_TEXT_BYTE: usize = 16;
 /// reference path, statistics; see `budget::MAX_TOOLPATH_SEGMENTS`).
 pub const SIM_BYTES_PER_SEGMENT: usize = 1100;
 
+
+/// A trace argument: the file's text, or its bytes.
+#[cfg(feature = "full")]
+pub enum TraceArg {
+    /// A string (a text trace).
+    Text(String),
+    /// A `Uint8Array` (a file's bytes: a MATLAB `.mat` capture, or text).
+    Bytes(Vec<u8>),
+}
+
+/// A trace argument: a string, or a `Uint8Array` of the file's bytes (a
+/// `.mat` capture, which is not text); anything else is a thrown `Error`
+/// naming the argument. Either is refused above
+/// [`budget::MAX_TEXT_BYTES`] before it is copied into wasm memory.
+#[cfg(feature = "full")]
+pub fn trace_arg(value: &JsValue, what: &str) -> Result<TraceArg, JsError> {
+    not_reentered()?;
+    if let Some(a) = value.dyn_ref::<js_sys::Uint8Array>() {
+        if a.length() as usize > budget::MAX_TEXT_BYTES {
+            return Err(JsError::new(&format!(
+                "{what}: {} bytes, more than the limit of {} bytes; {}",
+                a.length(),
+                budget::MAX_TEXT_BYTES,
+                budget::TEXT_ADVICE
+            )));
+        }
+        return Ok(TraceArg::Bytes(a.to_vec()));
+    }
+    if value.dyn_ref::<js_sys::JsString>().is_none() {
+        return Err(JsError::new(&format!(
+            "{what}: expected a string or a Uint8Array (the file's bytes), got {}",
+            got(value)
+        )));
+    }
+    string_arg(value, what).map(TraceArg::Text)
+}
+
+/// A name argument (a preset, an axis, a reading, a file name): a string
 /// of at most [`budget::MAX_NAME_CHARS`] characters, refused before it is
 /// copied into wasm memory (a 100 MB machine name held 573 MiB of wasm
 /// memory for good and came back in the message).

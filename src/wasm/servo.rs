@@ -11,6 +11,8 @@ use super::convert::{
     floats_arg, known_keys, name_arg, object, plain, plain_floats, require_object, string_arg,
     to_js, Obj,
 };
+#[cfg(feature = "full")]
+use super::convert::{trace_arg, TraceArg};
 use super::results::JsResult;
 use crate::best_kffp::{self, saturation};
 use crate::feed_vector::{self, trace_analysis, Condition, FeedVectorResult};
@@ -182,21 +184,32 @@ pub fn feed_vector_test(
 #[cfg(feature = "full")]
 #[wasm_bindgen(js_name = analyzeFeedVectorTrace, unchecked_return_type = "FeedVectorResult")]
 pub fn analyze_feed_vector_trace(
-    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "string | Uint8Array")] text: JsValue,
     #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "TraceMapping")] mapping: JsValue,
 ) -> Result<JsValue, JsError> {
-    let text: &str = &string_arg(&text, "text")?;
+    let trace = trace_arg(&text, "text")?;
     let cond: Condition = object(condition, "condition")?;
     let map: trace_analysis::ColumnMap = if mapping.is_undefined() || mapping.is_null() {
         trace_analysis::ColumnMap::default()
     } else {
         object(mapping, "mapping")?
     };
-    result_js(
-        &trace_analysis::analyze_trace(text, &cond, &map)
-            .map_err(|e| JsError::new(&e.user_message()))?,
-    )
+    result_js(&analyze(&trace, &cond, &map)?)
+}
+
+/// The feed-vector analysis of a trace given as text or bytes.
+#[cfg(feature = "full")]
+fn analyze(
+    trace: &TraceArg,
+    cond: &Condition,
+    map: &trace_analysis::ColumnMap,
+) -> Result<FeedVectorResult, JsError> {
+    match trace {
+        TraceArg::Text(t) => trace_analysis::analyze_trace(t, cond, map),
+        TraceArg::Bytes(b) => trace_analysis::analyze_trace_bytes(b, cond, map),
+    }
+    .map_err(|e| JsError::new(&e.user_message()))
 }
 
 /// The Best K_FFP per axis (Eq. 20), checked by simulation.
@@ -309,34 +322,72 @@ export interface TraceUnit { code: string; quantity: TraceQuantity; /** [s, mm, 
 export interface TraceColumnLayout {
   name: string; bare: string; /** [-] 1-based field in the file, 0 for a generated column */ field: number; kind: 'numeric' | 'text' | 'generated';
   unit: string | null; quantity: TraceQuantity | null; /** [s, mm, rad or N·m per unit] null without a stated unit */ factor: number | null; coreUnit: string | null; note: string | null;
+  /** what the import named by traceLayout's purpose reads this column as when its mapping leaves it out; null otherwise */
+  role: 'time' | 'x' | 'y' | 'c' | 'torque' | 'angle' | 'deviation' | 'direction' | null;
 }
+/** Which import a layout preview is for: its roles mark the columns it reads by default. */
+export type TracePurpose = 'feedVector' | 'ballbar';
 /** One line above the header, as a key/value pair. */
-export interface TraceMeta { /** [-] 1-based line */ line: number; key: string; value: string }
+export interface TraceMeta { /** [-] 1-based line (0: a .mat file's variable) */ line: number; key: string; value: string }
 /** How the core read a trace: the page's layout preview and unit menus. */
 export interface TraceLayout {
+  /** which layout was read: a delimited table, or a control's or instrument's own export */
+  format: 'delimited' | 'halsampler' | 'halscope' | 'twincatScope' | 'sinumerikTrace' | 'matV5';
   delimiter: 'tab' | ';' | ',' | 'spaces' | 'none'; decimalComma: boolean; /** [-] 1-based line, null: headerless */ headerLine: number | null;
   /** [-] 1-based line */ firstDataLine: number; /** [-] data rows */ rows: number; columns: TraceColumnLayout[]; metadata: TraceMeta[]; notes: string[]; units: TraceUnit[];
 }
 "#;
 
 #[cfg(feature = "full")]
-/// How the core's tolerant reader reads a trace: delimiter, decimal
+/// How the core's tolerant reader reads a trace (text, or a `.mat`
+/// capture's bytes as a `Uint8Array`): the layout recognised, delimiter, decimal
 /// separator, header line, metadata, each column's kind, unit and factor
 /// to core units, and notes in words; throws with the cause and the first
 /// offending line.
 #[wasm_bindgen(js_name = traceLayout, unchecked_return_type = "TraceLayout")]
 pub fn trace_layout(
-    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "string | Uint8Array")] text: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "TraceReadOptions")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "TracePurpose")] purpose: JsValue,
 ) -> Result<JsValue, JsError> {
-    let text: &str = &string_arg(&text, "text")?;
-    crate::budget::check_text("trace", text)?;
+    let trace = trace_arg(&text, "text")?;
+    let purpose = if purpose.is_undefined() || purpose.is_null() {
+        None
+    } else {
+        Some(name_arg(&purpose, "purpose")?)
+    };
     let opts: crate::trace::ReadOptions = if options.is_undefined() || options.is_null() {
         Default::default()
     } else {
         object(options, "options")?
     };
-    to_js(&crate::trace::read_table(text, &opts)?.layout)
+    let read = match &trace {
+        TraceArg::Text(text) => {
+            crate::budget::check_text("trace", text)?;
+            crate::trace::read_table(text, &opts)?
+        }
+        TraceArg::Bytes(bytes) if crate::trace::mat::is_mat(bytes) => {
+            crate::trace::read_bytes(bytes, &opts)?
+        }
+        TraceArg::Bytes(bytes) => {
+            let text = String::from_utf8_lossy(bytes);
+            crate::budget::check_text("trace", &text)?;
+            crate::trace::read_table(&text, &opts)?
+        }
+    };
+    let mut read = read;
+    match purpose.as_deref() {
+        None => {}
+        Some("feedVector") => trace_analysis::roles(&mut read),
+        Some("ballbar") => crate::ballbar::trace_import::roles(&mut read),
+        Some(other) => {
+            return Err(JsError::new(&format!(
+                "purpose: '{}' is not one of 'feedVector', 'ballbar'",
+                other
+            )))
+        }
+    }
+    to_js(&read.layout)
 }
 
 #[cfg(feature = "full")]
@@ -389,12 +440,12 @@ export interface TraceKffpResult {
 pub fn best_kffp_from_trace(
     #[wasm_bindgen(unchecked_param_type = "MachinePreset | string")] machine: JsValue,
     #[wasm_bindgen(unchecked_param_type = "FeedVectorCondition")] condition: JsValue,
-    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "string | Uint8Array")] text: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "TraceMapping")] mapping: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "TraceKffpOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
     let m = machine_arg(machine)?;
-    let text: &str = &string_arg(&text, "text")?;
+    let trace = trace_arg(&text, "text")?;
     let cond: Condition = object(condition, "condition")?;
     let map: trace_analysis::ColumnMap = if mapping.is_undefined() || mapping.is_null() {
         trace_analysis::ColumnMap::default()
@@ -406,8 +457,7 @@ pub fn best_kffp_from_trace(
     } else {
         object(options, "options")?
     };
-    let trace = trace_analysis::analyze_trace(text, &cond, &map)
-        .map_err(|e| JsError::new(&e.user_message()))?;
+    let trace = analyze(&trace, &cond, &map)?;
     to_js(
         &best_kffp::best_kffp_from_trace(&m, &cond, &trace, &opts).map_err(|e| match e {
             best_kffp::BestKffpError::FeedVector(f) => JsError::new(&f.user_message()),

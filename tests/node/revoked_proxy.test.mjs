@@ -90,7 +90,7 @@ const GOOD = {
   syntheticBallbarTrace: [{ offsetX: 0.003 }],
   toolpathExample: ['lines'],
   torqueSaturation: ['nmv5000', { j1: [1.7], torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200 }],
-  traceLayout: [servoTrace, { ratedTorque: 10 }],
+  traceLayout: [servoTrace, { ratedTorque: 10 }, 'feedVector'],
   traceColumns: [servoTrace],
   travelRangeSweep: [{ offset: { z: 0.01, x: -0.02 }, ranges: [90, 180], samples: 200 }],
   version: [],

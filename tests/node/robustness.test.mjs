@@ -114,7 +114,7 @@ const CASES = {
     good: () => mt.identifyAxis(mt.machinePreset('nmv5000').axes.x, { dt: 1e-3, command: Array.from(ramp), position: Array.from(mt.simulateAxis(mt.machinePreset('nmv5000').axes.x, { dt: 1e-3, position: ramp }).position) }),
     bad: [[axis(), {}], [axis(), { dt: 1e-3, command: [0, 1], position: [0] }], [axis(), { dt: NaN, command: [0, 1], position: [0, 1] }]],
   },
-  traceLayout: { good: () => mt.traceLayout(servoTrace, { ratedTorque: 10 }), bad: [[''], ['\u0089PNG\r\n\u001a\n\0\0\0'], [42], ['<?xml version="1.0"?>\n<a/>\n'], [servoTrace, { samplePeriod: -1 }], [servoTrace, { rated: 1 }], ['x'.repeat(9 << 20)]] },
+  traceLayout: { good: () => mt.traceLayout(servoTrace, { ratedTorque: 10 }), bad: [[''], ['\u0089PNG\r\n\u001a\n\0\0\0'], [42], ['<?xml version="1.0"?>\n<a/>\n'], [servoTrace, { samplePeriod: -1 }], [servoTrace, { rated: 1 }], [servoTrace, {}, 'servo'], [new Uint8Array(9 << 20)], ['x'.repeat(9 << 20)]] },
   traceColumns: { good: () => mt.traceColumns(servoTrace), bad: [[''], ['\u0089PNG\r\n\u001a\n\0\0\0'], [42], ['t,x\n0,1\u0007\n'], ['x'.repeat(9 << 20)]] },
   parseNc: {
     good: () => mt.parseNc(arcs),

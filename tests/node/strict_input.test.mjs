@@ -105,7 +105,7 @@ const GOOD = {
   toolpathExample: () => ['lines'],
   torqueSaturation: () => ['nmv5000', { j1: [1.7], torqueMax: 725, accelTime: 0.064, feedAtCuttingPoint: 200 }],
   traceColumns: () => [servoTrace],
-  traceLayout: () => [servoTrace, { ratedTorque: 10 }],
+  traceLayout: () => [servoTrace, { ratedTorque: 10 }, 'feedVector'],
   travelRangeSweep: () => [{ offset: { z: 0.01, x: -0.02 }, ranges: [90, 180], samples: 200, harmonics: [{ order: 2, amplitude: 0.005, phase: 0.1 }] }],
   version: () => [],
 };

@@ -81,6 +81,10 @@ async function addTexts(tab, q) {
   }
   for (const [key, drop] of linkedDrops) {
     if (!key.startsWith(`${tab}-`) || !drop.file) continue;
+    if (drop.file.binary) {
+      q.set(`${key}.z`, `binary:${drop.file.name.slice(0, 80)}`);
+      continue;
+    }
     const packed = drop.file.text.length <= LINK_PACK_MAX ? await packText(`${drop.file.name}\n${drop.file.text}`) : null;
     q.set(`${key}.z`, packed && packed.length <= LINK_TEXT_LIMIT ? packed : `too-large:${drop.file.name.slice(0, 80)}`);
   }
@@ -95,6 +99,7 @@ async function restoreDrops(tab, q) {
     if (!key.startsWith(`${tab}-`) || !packed) continue;
     let note = null;
     if (packed.startsWith('too-large')) note = `The shared link could not carry the file ${packed.slice(10) || ''} (too large for a link): load it again.`;
+    else if (packed.startsWith('binary:')) note = `The shared link cannot carry the binary file ${packed.slice(7)} (a .mat capture): load it again.`;
     else {
       try {
         const text = await unpackText(packed);

@@ -108,12 +108,16 @@ export function checkFilesWith(check) {
  * dropped files' names.
  * A single-file zone with a `link` key (starting with its panel's name)
  * puts the dropped file in the shared link (linkedDrops).
+ * With `onBytes`, a file that is not UTF-8 text (a .mat capture) goes
+ * to onBytes(bytes, fileName) as a Uint8Array (the core reads it by its
+ * format); a shared link cannot carry it.
  * @param {{ label?: string, accept?: string, id?: string, multiple?: boolean, link?: string,
  *   onText?: (text: string, name: string) => unknown,
+ *   onBytes?: (bytes: Uint8Array, name: string) => unknown,
  *   onFiles?: (files: { text: string, name: string }[]) => unknown,
  *   onRefused: (error: Error, names: string) => unknown }} options
  */
-export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, multiple = false, onFiles, onRefused, id, link }) {
+export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, onBytes, multiple = false, onFiles, onRefused, id, link }) {
   const input = h('input', { type: 'file', accept, hidden: true, multiple, id });
   const el = h('div', { class: 'drop', tabindex: 0, role: 'button' }, label, input);
   if (link && !multiple) linkedDrops.set(link, { el, onText, file: null });
@@ -126,12 +130,24 @@ export function dropZone({ label = 'Drop a file here, or click to choose one', a
       return onRefused(e instanceof Error ? e : new Error(String(e)), list.map((f) => f.name).join(', '));
     }
     if (multiple) return onFiles(await Promise.all(list.map(async (f) => ({ text: await f.text(), name: f.name }))));
-    const file = { text: await list[0].text(), name: list[0].name };
+    /** @type {{ text: string, name: string, binary?: boolean }} */
+    let file = { text: await list[0].text(), name: list[0].name };
+    let bytes = null;
+    if (onBytes) {
+      const raw = new Uint8Array(await list[0].arrayBuffer());
+      try {
+        new TextDecoder('utf-8', { fatal: true }).decode(raw);
+      } catch {
+        bytes = raw;
+        file = { text: '', name: list[0].name, binary: true };
+      }
+    }
     if (link) {
       linkedDrops.get(link).file = file;
       // The page's link follows every change; a dropped file is one.
       el.dispatchEvent(new Event('change', { bubbles: true }));
     }
+    if (bytes && onBytes) return onBytes(bytes, file.name);
     return onText(file.text, file.name);
   };
   el.addEventListener('click', () => input.click());
@@ -154,7 +170,7 @@ export function dropZone({ label = 'Drop a file here, or click to choose one', a
  * Drop zones whose file travels in a shared link, by link key (the key
  * starts with the panel's name, e.g. 'ballbar-trace'): the zone, its
  * handler, and the file last dropped on it.
- * @type {Map<string, { el: HTMLElement, onText: (text: string, name: string) => unknown, file: { text: string, name: string } | null }>}
+ * @type {Map<string, { el: HTMLElement, onText: (text: string, name: string) => unknown, file: { text: string, name: string, binary?: boolean } | null }>}
  */
 export const linkedDrops = new Map();
 

@@ -92,25 +92,63 @@ export async function mount(root, api) {
   const harmField = h('label', { class: 'field' }, h('span', {}, 'Motion-error harmonics ', h('span', { class: 'unit' }, '[order:µm[:°]]')), harm);
   let loaded = null;
   const fileInfo = h('p', { id: 'ballbar-file-info', class: 'unit' }, 'No file loaded (CSV/TSV: angle + deviation, or X/Y).');
+  // Reads the file with the column mapping `columns` (none: the core finds
+  // its columns by their usual names).
+  const load = async (text, name, columns) => {
+    loaded = null;
+    fileInfo.textContent = `${name}: reading…`;
+    try {
+      loaded = await api.call('parseBallbarTrace', [text, { nominalRadius: f.radius.value, ...(columns ? { columns } : {}) }]);
+      const trimmed = loaded.trimming ? loaded.trimming.trimmed.length : 0;
+      fileInfo.textContent = `${name}: ${loaded.runs.length} run(s), ${loaded.runs.map((r) => `${r.direction} ${r.angleRad.length} points`).join(', ')}${trimmed ? `; ${trimmed} stretch(es) trimmed (see the results)` : ''}`;
+      source.value = 'file';
+      showSource();
+      await analyse();
+    } catch (e) {
+      notLoaded(e, name);
+    }
+  };
+  // The core's layout preview and the column mapping: each menu starts at
+  // the column the core reads for that role; the page guesses nothing.
+  const mapBox = h('div', { id: 'ballbar-mapper' });
+  const showMapper = async (text, name) => {
+    mapBox.replaceChildren();
+    let layout;
+    try {
+      layout = await api.call('traceLayout', [text, undefined, 'ballbar']);
+    } catch {
+      return; // parseBallbarTrace's error already says why
+    }
+    const columns = layout.columns.filter((c) => c.kind !== 'text');
+    const pick = (role, label) => selectField({ label, id: `ballbar-map-${role}`, value: columns.find((c) => c.role === role)?.name || '', options: [['', '—'], ...columns.map((c) => [c.name, c.name])] });
+    const m = { angle: pick('angle', 'angle'), deviation: pick('deviation', 'deviation'), x: pick('x', 'X'), y: pick('y', 'Y'), time: pick('time', 'time'), direction: pick('direction', 'direction') };
+    const polar = columns.some((c) => c.role === 'angle') && columns.some((c) => c.role === 'deviation');
+    const mode = selectField({ label: 'read as', id: 'ballbar-map-mode', value: polar ? 'polar' : 'xy', options: [['polar', 'angle + deviation'], ['xy', 'X/Y positions']] });
+    const preview = table(['field', 'column', 'read as', 'unit', 'note'], layout.columns.map((c) => [c.field || '—', c.name, c.role ? `${c.kind}: ${c.role}` : c.kind, c.unit ?? '—', c.note ?? '']));
+    preview.querySelector('table').id = 'ballbar-trace-layout';
+    const read = h('button', { id: 'ballbar-map-read', onclick: () => {
+      const keys = mode.value === 'polar' ? ['angle', 'deviation', 'time', 'direction'] : ['x', 'y', 'time', 'direction'];
+      /** @type {Record<string, string>} */
+      const mapping = {};
+      for (const k of keys) if (m[k].value) mapping[k] = m[k].value;
+      return load(text, name, mapping);
+    } }, 'Read with these columns');
+    mapBox.replaceChildren(
+      h('p', { class: 'note', id: 'ballbar-trace-format' }, `Layout read: ${layout.format}; ${layout.notes.join('; ')}`),
+      preview, h('div', { class: 'row' }, mode.el, ...Object.values(m).map((s) => s.el)), read);
+  };
   const drop = dropZone({
     link: 'ballbar-trace',
-    label: 'Drop a ball-bar trace (CSV/TSV) here, or click to choose one',
-    accept: '.csv,.tsv,.txt',
+    label: 'Drop a ball-bar trace (CSV/TSV, TwinCAT Scope export, SINUMERIK trace XML, halscope) here, or click to choose one',
+    accept: '.csv,.tsv,.txt,.dat,.xml',
     onText: async (text, name) => {
-      loaded = null;
-      fileInfo.textContent = `${name}: reading…`;
-      try {
-        loaded = await api.call('parseBallbarTrace', [text, { nominalRadius: f.radius.value }]);
-        const trimmed = loaded.trimming ? loaded.trimming.trimmed.length : 0;
-        fileInfo.textContent = `${name}: ${loaded.runs.length} run(s), ${loaded.runs.map((r) => `${r.direction} ${r.angleRad.length} points`).join(', ')}${trimmed ? `; ${trimmed} stretch(es) trimmed (see the results)` : ''}`;
-        source.value = 'file';
-        showSource();
-        await analyse();
-      } catch (e) {
-        notLoaded(e, name);
-      }
+      await load(text, name);
+      await showMapper(text, name);
     },
-    onRefused: (e, name) => notLoaded(e, name),
+    onRefused: (e, name) => {
+      mapBox.replaceChildren();
+      notLoaded(e, name);
+    },
   });
   function notLoaded(e, name) {
     loaded = null;
@@ -299,7 +337,7 @@ export async function mount(root, api) {
   const exUi = runState(exOut);
   const exRun = h('button', { id: 'ballbar-example-run', onclick: () => example() }, 'Run example');
 
-  const traceCard = h('div', { class: 'card' }, h('h3', {}, 'Trace'), h('div', { class: 'fields' }, source.el, ...Object.values(f).map((x) => x.el), harmField), drop, fileInfo, run);
+  const traceCard = h('div', { class: 'card' }, h('h3', {}, 'Trace'), h('div', { class: 'fields' }, source.el, ...Object.values(f).map((x) => x.el), harmField), drop, fileInfo, mapBox, run);
   const alCard = h('div', { class: 'card', id: 'align-card' }, h('h3', {}, 'Rotary-axis alignment from your sections (Takayama §2.2)'), h('div', { class: 'fields' }, ...Object.values(al).map((x) => x.el)), alDrop, alInfo, secBox, alRun, alOut);
   const exCard = h('div', { class: 'card' }, h('h3', {}, 'The paper’s simulations (Takayama et al., Figs. 6, 7, 8, 12)'), h('div', { class: 'fields' }, exName.el, exReading.el), exRun, exOut);
   // Results shown are marked outdated as soon as an input they came from is edited.

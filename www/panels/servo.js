@@ -348,28 +348,38 @@ export async function mount(root, api) {
     traceInfo.textContent = `${name}: not loaded (see the error below).`;
     traceUi.fail(e);
   };
+  // A file of numbers only (halsampler) has no time axis: the core asks
+  // for its sample period, and the file is read again when it is given.
+  let dropped = null;
+  const period = numberField({ label: 'sample period', unit: 's; only for a file of numbers without a time column (halsampler)', value: '', id: 'servo-trace-period', min: 0, onChange: () => dropped && onTrace(dropped.text, dropped.name) });
+  const readOptions = () => (period.input.value === '' ? undefined : { samplePeriod: period.value });
+  /** @param {string | Uint8Array} text @param {string} name */
   const onTrace = async (text, name) => {
-    // The core reads the file (delimiter, decimal commas, metadata, text
-    // columns, the unit each header states and its factor): the page shows
-    // that layout and fills its column and unit menus from it.
+    // The core reads the file (its layout: delimited text, a TwinCAT Scope
+    // export, halsampler/halscope, a SINUMERIK trace, a .mat capture; the
+    // delimiter, decimal commas, metadata, text columns, the unit each
+    // header states and its factor, and which column it reads as which):
+    // the page shows that layout and fills its menus from it.
+    dropped = { text, name };
     mapBox.replaceChildren();
     traceUi.clear();
     if (last) last.trace = null;
     let layout;
     try {
-      layout = await api.call('traceLayout', [text]);
+      layout = await api.call('traceLayout', [text, readOptions(), 'feedVector']);
     } catch (e) {
       traceRefused(e, name);
       return;
     }
     const columns = layout.columns.filter((c) => c.kind !== 'text');
-    traceInfo.textContent = `${name}: ${layout.rows} rows, columns ${columns.map((c) => c.name).join(', ')}`;
-    const preview = table(['field', 'column', 'read as', 'unit', 'to core units', 'note'], layout.columns.map((c) => [c.field || '—', c.name, c.kind, c.unit ?? '—', c.factor != null ? `× ${+c.factor.toPrecision(6)} → ${c.coreUnit}` : '—', c.note ?? '']));
+    traceInfo.textContent = `${name} (layout read: ${layout.format}): ${layout.rows} rows, columns ${columns.map((c) => c.name).join(', ')}`;
+    const preview = table(['field', 'column', 'read as', 'unit', 'to core units', 'note'], layout.columns.map((c) => [c.field || '—', c.name, c.role ? `${c.kind}: ${c.role}` : c.kind, c.unit ?? '—', c.factor != null ? `× ${+c.factor.toPrecision(6)} → ${c.coreUnit}` : '—', c.note ?? '']));
     preview.querySelector('table').id = 'servo-trace-layout';
     const said = h('ul', { id: 'servo-trace-notes', class: 'note' }, ...layout.notes.map((n) => h('li', {}, n)), ...layout.metadata.map((m) => h('li', {}, `line ${m.line}: ${m.key}${m.value ? ` = ${m.value}` : ''}`)));
-    const find = (guess) => columns.find((c) => guess.test(c.bare));
-    const pick = (id, label, guess) => selectField({ label, id, value: find(guess)?.name || '', options: [['', '—'], ...columns.map((c) => [c.name, c.name])] });
-    const cols = { time: pick('servo-map-time', 'time', /^t(ime)?$|^time_?s?$|^zeit$/i), x: pick('servo-map-x', 'X', /^(pos[_ ]?)?x(_pos)?$/i), y: pick('servo-map-y', 'Y', /^(pos[_ ]?)?y(_pos)?$/i), c: pick('servo-map-c', 'C', /^(pos[_ ]?)?c(_pos)?$/i), torque: pick('servo-map-torque', 'torque', /torque|tcmd|^tq/i) };
+    // Each menu starts at the column the core reads for that role (the
+    // layout's `role`): the page guesses nothing.
+    const pick = (id, label, role) => selectField({ label, id, value: columns.find((c) => c.role === role)?.name || '', options: [['', '—'], ...columns.map((c) => [c.name, c.name])] });
+    const cols = { time: pick('servo-map-time', 'time', 'time'), x: pick('servo-map-x', 'X', 'x'), y: pick('servo-map-y', 'Y', 'y'), c: pick('servo-map-c', 'C', 'c'), torque: pick('servo-map-torque', 'torque', 'torque') };
     const info = (sel) => columns.find((c) => c.name === sel.value);
     // Each unit menu lists the core's units of its quantity; its value is
     // the core's factor to core units for the column chosen.
@@ -401,6 +411,7 @@ export async function mount(root, api) {
     const go = h('button', { id: 'servo-trace-run', onclick: async () => {
       // The menus hold the core's factors: they scale every column.
       const mapping = { headerUnits: false, timeScale: Number(tUnit.menu.value), linearScale: Number(lUnit.menu.value), angleScale: Number(aUnit.menu.value), relative: rel.checked };
+      if (period.input.value !== '') mapping.samplePeriod = period.value;
       if (rated.input.value !== '') mapping.ratedTorque = rated.value;
       for (const [k, s] of Object.entries(cols)) if (s.value) mapping[k] = s.value;
       if (start.input.value !== '') mapping.motionStart = start.value;
@@ -459,7 +470,7 @@ export async function mount(root, api) {
         h('button', { id: 'servo-csv', onclick: csv }, 'Download CSV'),
         h('button', { id: 'servo-json', onclick: json }, 'Download JSON')),
       status, out, charts),
-    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), dropZone({ link: 'servo-trace', label: 'Drop a trace here, or click to choose one', accept: '.csv,.tsv,.txt', onText: onTrace, onRefused: traceRefused }), traceInfo, mapBox, traceBox, recCard),
+    h('div', { class: 'card' }, h('h3', {}, 'Measured trace (SERVO GUIDE-style CSV/TSV: time, X, Y, C, torque)'), period.el, dropZone({ link: 'servo-trace', label: 'Drop a trace here (CSV/TSV, TwinCAT Scope export, halsampler/halscope, SINUMERIK trace XML, MATLAB .mat), or click to choose one', accept: '.csv,.tsv,.txt,.dat,.xml,.mat', onText: onTrace, onBytes: onTrace, onRefused: traceRefused }), traceInfo, mapBox, traceBox, recCard),
     sweepCard,
   );
 }

@@ -1,0 +1,192 @@
+//! LinuxCNC's HAL capture tools: `halsampler` output and `halscope`'s
+//! saved log.
+//!
+//! Layouts read (LinuxCNC's halsampler(1) manual page and halscope's
+//! `scope_files.c`):
+//! - halsampler writes one line per sample, the values separated by
+//!   spaces, nothing else; with `-t` each line starts with the sample
+//!   number. The file has no time axis: the sample period (the thread
+//!   period times the sampler's decimation) must be given, and a file of
+//!   numbers only is refused without it, saying so;
+//! - halscope's "save log" writes `Sampling period is <n> ns`, a blank
+//!   line, then one line per sample holding `<channel> <value>` for each
+//!   channel in turn.
+//!
+//! Readings chosen: a headerless file whose first column is non-negative
+//! whole numbers that grow by at least 1 from row to row is halsampler's
+//! `-t` output: that column is the sample number and the time is sample
+//! number × period (so a sample the FIFO dropped keeps its time); any
+//! other headerless file's time is row × period. halscope's channel
+//! labels and their order must be the same on every line.
+//!
+//! # Units
+//! Generated time in s; values as sampled.
+
+use super::reader::{channel_table, ColumnKind, Meta, ReadOptions, TableRead};
+use super::TraceError;
+
+/// The layout's name in messages.
+pub const HALSCOPE: &str = "halscope log";
+
+/// Whether `first` (the first non-blank line) is halscope's log header.
+pub fn is_halscope(first: &str) -> bool {
+    first.trim_start().starts_with("Sampling period is")
+}
+
+fn bad(line: usize, why: impl Into<String>) -> TraceError {
+    TraceError::BadLayout {
+        line,
+        layout: HALSCOPE,
+        why: why.into(),
+    }
+}
+
+/// Reads a halscope log (numbered, non-blank `lines`).
+///
+/// # Errors
+/// [`TraceError::BadLayout`] naming the line: a period that is not
+/// `<n> ns`, a line whose labels differ from the first sample's, a value
+/// that is not a number.
+///
+/// # Examples
+/// ```
+/// use mtmotion::trace::{read_table, ReadOptions};
+/// let log = "Sampling period is 1000000 ns \n\nx +1.50000000000000 y -2.00000000000000 \nx +1.60000000000000 y -2.10000000000000 \n";
+/// let r = read_table(log, &ReadOptions::default()).unwrap();
+/// assert_eq!(r.layout.format, "halscope");
+/// assert_eq!(r.table.names, ["x", "y", "time [s]"]);
+/// assert_eq!(r.table.columns[2], [0.0, 0.001]);
+/// ```
+pub fn read_halscope(lines: &[(usize, &str)], opts: &ReadOptions) -> Result<TableRead, TraceError> {
+    let (first, head) = lines[0];
+    let ns: f64 = head
+        .trim()
+        .strip_prefix("Sampling period is")
+        .and_then(|r| r.trim().strip_suffix("ns"))
+        .and_then(|n| n.trim().parse().ok())
+        .filter(|v: &f64| v.is_finite() && *v > 0.0)
+        .ok_or_else(|| {
+            bad(
+                first,
+                format!(
+                    "'{}' is not 'Sampling period is <n> ns' with n > 0",
+                    super::clip(head.trim())
+                ),
+            )
+        })?;
+    let dt = ns * 1e-9;
+    if let Some(given) = opts.sample_period {
+        if (given - dt).abs() > 1e-9 * dt {
+            return Err(TraceError::BadOption {
+                line: first,
+                field: "samplePeriod",
+                why: format!("the log states its sample period ({dt} s); leave samplePeriod out"),
+            });
+        }
+    }
+    let Some(&(data_line, data_text)) = lines.get(1) else {
+        return Err(bad(first, "no sample follows the sampling period"));
+    };
+    let pairs = |l: &str| -> Vec<String> { l.split_whitespace().map(str::to_string).collect() };
+    let first_row = pairs(data_text);
+    if first_row.len() < 2 || first_row.len() % 2 != 0 {
+        return Err(bad(
+            data_line,
+            "expected '<channel> <value>' pairs, as halscope writes each sample",
+        ));
+    }
+    let labels: Vec<String> = first_row.iter().step_by(2).cloned().collect();
+    let mut columns = vec![Vec::with_capacity(lines.len()); labels.len()];
+    let mut rows = Vec::with_capacity(lines.len());
+    for &(n, l) in &lines[1..] {
+        let f = pairs(l);
+        if f.len() != 2 * labels.len() || f.iter().step_by(2).ne(labels.iter()) {
+            return Err(bad(
+                n,
+                format!(
+                    "the channels are not those of line {data_line} ({}), in that order",
+                    labels.join(", ")
+                ),
+            ));
+        }
+        for (k, v) in f.iter().skip(1).step_by(2).enumerate() {
+            let x = v
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| TraceError::BadNumber {
+                    line: n,
+                    column: 2 * k + 2,
+                    name: labels[k].clone(),
+                    text: v.clone(),
+                })?;
+            columns[k].push(x);
+        }
+        rows.push(n);
+    }
+    let mut names = labels;
+    names.push("time [s]".into());
+    columns.push((0..rows.len()).map(|i| i as f64 * dt).collect());
+    let notes = vec![format!(
+        "halscope log: {} channels, one sample every {dt} s (line {first})",
+        names.len() - 1
+    )];
+    let meta = vec![Meta {
+        line: first,
+        key: "Sampling period".into(),
+        value: format!("{ns} ns"),
+    }];
+    let mut read = channel_table(
+        "halscope", "spaces", names, columns, rows, meta, notes, opts,
+    );
+    if let Some(t) = read.layout.columns.last_mut() {
+        t.kind = ColumnKind::Generated;
+        t.field = 0;
+        t.note = Some(format!("generated: one sample every {dt} s"));
+    }
+    Ok(read)
+}
+
+/// A headerless delimited read as halsampler's output: refused without a
+/// sample period; with `-t`'s sample numbers in the first column, the
+/// time is sample number × period. Any other read is returned as it is.
+///
+/// # Errors
+/// [`TraceError::BadOption`] for a headerless file without `samplePeriod`.
+pub fn halsampler_index(mut read: TableRead, opts: &ReadOptions) -> Result<TableRead, TraceError> {
+    if read.layout.header_line.is_some() {
+        return Ok(read);
+    }
+    let line = read.layout.first_data_line;
+    let Some(dt) = opts.sample_period else {
+        return Err(TraceError::BadOption {
+            line,
+            field: "samplePeriod",
+            why: "this file is numbers only (no header line, as halsampler writes it), so it has no time axis: give samplePeriod, the time between samples in s (halsampler: the thread period × the sampler's decimation)".into(),
+        });
+    };
+    read.layout.format = "halsampler";
+    let first = read.table.columns[0].clone();
+    let index = read.table.columns.len() > 2
+        && first.iter().all(|v| v.fract() == 0.0 && *v >= 0.0)
+        && first.windows(2).all(|w| w[1] >= w[0] + 1.0);
+    if index {
+        let time: Vec<f64> = first.iter().map(|i| i * dt).collect();
+        let last = read.table.columns.len() - 1;
+        read.table.columns[last] = time;
+        read.table.names[0] = "sample".into();
+        let c = &mut read.layout.columns[0];
+        c.name = "sample".into();
+        c.bare = "sample".into();
+        c.note = Some("halsampler -t: the sample number".into());
+        if let Some(g) = read.layout.columns.last_mut() {
+            g.note = Some(format!("generated: sample number × {dt} s"));
+        }
+        read.layout.notes.push(format!(
+            "halsampler -t: column 1 holds the sample numbers ({} to {}); time = sample number × {dt} s",
+            first[0],
+            first[first.len() - 1]
+        ));
+    }
+    Ok(read)
+}

@@ -1,0 +1,411 @@
+//! MATLAB v5 `.mat` captures (issue 26, item 2): a simulated
+//! constant-feed-speed-vector trace written by this test as dSPACE
+//! ControlDesk writes a capture (a struct with `X` = time and `Y(i)` with
+//! `Name`, `Data`, `Unit`; compressed with zlib, and uncompressed in
+//! big-endian byte order), as a Simulink structure with time, and as plain
+//! vectors, reads back to the same numbers within 1e-9 relative and gives
+//! the simulation's summary; every refusal names its byte offset and cause
+//! (complex, sparse, v7.3, a cut-short file, damaged zlib, unequal lengths).
+#![cfg(not(target_arch = "wasm32"))]
+
+use miniz_oxide::deflate::compress_to_vec_zlib;
+use mtmotion::feed_vector::trace_analysis::{analyze_trace_bytes, ColumnMap};
+use mtmotion::feed_vector::{feed_vector_test, Condition, FeedVectorResult};
+use mtmotion::machine;
+use mtmotion::trace::{read_bytes, read_table, ReadOptions};
+use std::f64::consts::PI;
+
+fn sim() -> (Condition, FeedVectorResult) {
+    let m = machine::preset("nmv5000").unwrap();
+    let cond = Condition {
+        duration: Some(3.0),
+        ..Condition::paper(PI)
+    };
+    (cond.clone(), feed_vector_test(&m, &cond).unwrap())
+}
+
+/// The simulation's columns: time (s), X, Y (mm), C (deg), torque (N·m).
+fn signals(r: &FeedVectorResult) -> [Vec<f64>; 5] {
+    let s = &r.series;
+    [
+        s.t.clone(),
+        s.x.clone(),
+        s.y.clone(),
+        s.c.iter().map(|c| c.to_degrees()).collect(),
+        s.torque_c.clone(),
+    ]
+}
+
+/// A writer of MAT-file Level 5, from MathWorks' format description.
+struct Mat {
+    big: bool,
+}
+
+impl Mat {
+    fn u32(&self, v: u32) -> [u8; 4] {
+        if self.big {
+            v.to_be_bytes()
+        } else {
+            v.to_le_bytes()
+        }
+    }
+
+    fn header(&self) -> Vec<u8> {
+        let mut h = "MATLAB 5.0 MAT-file, Platform: test, Created on: Fri Nov 27 10:00:00 2026"
+            .to_string()
+            .into_bytes();
+        h.resize(116, b' ');
+        h.extend([0u8; 8]);
+        if self.big {
+            h.extend(0x0100u16.to_be_bytes());
+            h.extend(b"MI");
+        } else {
+            h.extend(0x0100u16.to_le_bytes());
+            h.extend(b"IM");
+        }
+        h
+    }
+
+    /// A data element: tag, data, padding to 8 bytes.
+    fn el(&self, ty: u32, data: &[u8]) -> Vec<u8> {
+        let mut out = Vec::new();
+        out.extend(self.u32(ty));
+        out.extend(self.u32(data.len() as u32));
+        out.extend(data);
+        while out.len() % 8 != 0 {
+            out.push(0);
+        }
+        out
+    }
+
+    /// A small data element (at most 4 bytes in the tag's second word).
+    fn small(&self, ty: u32, data: &[u8]) -> Vec<u8> {
+        let mut out = self.u32(((data.len() as u32) << 16) | ty).to_vec();
+        let mut d = data.to_vec();
+        d.resize(4, 0);
+        out.extend(d);
+        out
+    }
+
+    fn matrix(&self, class: u32, flags: u32, dims: &[usize], name: &str, body: &[u8]) -> Vec<u8> {
+        let mut inner = self.el(6, &[self.u32(class | flags), self.u32(0)].concat());
+        let dims: Vec<u8> = dims.iter().flat_map(|&d| self.u32(d as u32)).collect();
+        inner.extend(self.el(5, &dims));
+        inner.extend(self.el(1, name.as_bytes()));
+        inner.extend(body);
+        self.el(14, &inner)
+    }
+
+    fn doubles(&self, name: &str, v: &[f64]) -> Vec<u8> {
+        let data: Vec<u8> = v
+            .iter()
+            .flat_map(|x| {
+                if self.big {
+                    x.to_be_bytes()
+                } else {
+                    x.to_le_bytes()
+                }
+            })
+            .collect();
+        self.matrix(6, 0, &[1, v.len()], name, &self.el(9, &data))
+    }
+
+    fn chars(&self, name: &str, s: &str) -> Vec<u8> {
+        let data: Vec<u8> = s
+            .encode_utf16()
+            .flat_map(|c| {
+                if self.big {
+                    c.to_be_bytes()
+                } else {
+                    c.to_le_bytes()
+                }
+            })
+            .collect();
+        self.matrix(4, 0, &[1, s.len()], name, &self.el(4, &data))
+    }
+
+    /// A 1×n struct array: `elems[i]` holds one matrix (unnamed) per field.
+    fn structure(&self, name: &str, fields: &[&str], elems: &[Vec<Vec<u8>>]) -> Vec<u8> {
+        let len = 32;
+        let mut names = Vec::new();
+        for f in fields {
+            let mut b = f.as_bytes().to_vec();
+            b.resize(len, 0);
+            names.extend(b);
+        }
+        let mut body = self.small(5, &self.u32(len as u32));
+        body.extend(self.el(1, &names));
+        for e in elems {
+            for m in e {
+                body.extend(m);
+            }
+        }
+        self.matrix(2, 0, &[1, elems.len()], name, &body)
+    }
+
+    fn compressed(&self, element: &[u8]) -> Vec<u8> {
+        let z = compress_to_vec_zlib(element, 6);
+        let mut out = self.u32(15).to_vec();
+        out.extend(self.u32(z.len() as u32));
+        out.extend(z);
+        out
+    }
+}
+
+const NAMES: [&str; 4] = ["X", "Y", "C", "Torque"];
+const UNITS: [&str; 4] = ["mm", "mm", "deg", "Nm"];
+
+fn dspace(r: &FeedVectorResult, big: bool, compress: bool) -> Vec<u8> {
+    let w = Mat { big };
+    let s = signals(r);
+    let x = w.structure(
+        "",
+        &["Name", "Type", "Data", "Unit"],
+        &[vec![
+            w.chars("", "Time"),
+            w.chars("", "Time"),
+            w.doubles("", &s[0]),
+            w.chars("", "s"),
+        ]],
+    );
+    let ys: Vec<Vec<Vec<u8>>> = (0..4)
+        .map(|k| {
+            vec![
+                w.chars("", &format!("Model Root/Axes/{}", NAMES[k])),
+                w.chars("", "Y"),
+                w.doubles("", &s[k + 1]),
+                w.chars("", UNITS[k]),
+            ]
+        })
+        .collect();
+    let y = w.structure("", &["Name", "Type", "Data", "Unit"], &ys);
+    let top = w.structure(
+        "feedvector_001",
+        &["X", "Y", "Description"],
+        &[vec![x, y, w.chars("", "feed-vector test")]],
+    );
+    let mut out = w.header();
+    out.extend(if compress { w.compressed(&top) } else { top });
+    out
+}
+
+fn simulink(r: &FeedVectorResult) -> Vec<u8> {
+    let w = Mat { big: false };
+    let s = signals(r);
+    let sig: Vec<Vec<Vec<u8>>> = (0..4)
+        .map(|k| {
+            let v = &s[k + 1];
+            let data: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
+            vec![
+                w.matrix(6, 0, &[v.len(), 1], "", &w.el(9, &data)),
+                w.chars("", NAMES[k]),
+            ]
+        })
+        .collect();
+    let signals = w.structure("", &["values", "label"], &sig);
+    let top = w.structure(
+        "ScopeData",
+        &["time", "signals", "blockName"],
+        &[vec![
+            w.doubles("", &s[0]),
+            signals,
+            w.chars("", "model/Scope"),
+        ]],
+    );
+    let mut out = w.header();
+    out.extend(w.compressed(&top));
+    out
+}
+
+fn vectors(r: &FeedVectorResult) -> Vec<u8> {
+    let w = Mat { big: false };
+    let s = signals(r);
+    let mut out = w.header();
+    for (k, n) in ["t", "x", "y", "c", "torque"].iter().enumerate() {
+        out.extend(w.doubles(n, &s[k]));
+    }
+    out.extend(w.chars("note", "a text variable"));
+    out
+}
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * b.abs().max(1e-3)
+}
+
+#[test]
+fn captures_read_back_to_the_same_numbers() {
+    let (_, r) = sim();
+    let want = signals(&r);
+    for (what, bytes, names) in [
+        (
+            "dSPACE compressed",
+            dspace(&r, false, true),
+            [
+                "time [s]",
+                "Model Root/Axes/X [mm]",
+                "Model Root/Axes/Y [mm]",
+                "Model Root/Axes/C [deg]",
+                "Model Root/Axes/Torque [Nm]",
+            ],
+        ),
+        (
+            "dSPACE big-endian",
+            dspace(&r, true, false),
+            [
+                "time [s]",
+                "Model Root/Axes/X [mm]",
+                "Model Root/Axes/Y [mm]",
+                "Model Root/Axes/C [deg]",
+                "Model Root/Axes/Torque [Nm]",
+            ],
+        ),
+        (
+            "Simulink",
+            simulink(&r),
+            ["time [s]", "X", "Y", "C", "Torque"],
+        ),
+        ("vectors", vectors(&r), ["t", "x", "y", "c", "torque"]),
+    ] {
+        let got =
+            read_bytes(&bytes, &ReadOptions::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert_eq!(got.layout.format, "matV5", "{what}");
+        assert_eq!(got.table.names, names, "{what}");
+        for (k, col) in got.table.columns.iter().enumerate() {
+            assert_eq!(col.len(), want[k].len(), "{what}");
+            for (i, (a, b)) in col.iter().zip(&want[k]).enumerate() {
+                assert!(close(*a, *b), "{what}: {} row {i}: {a} vs {b}", names[k]);
+            }
+        }
+        assert_eq!(
+            got.table.lines[..3],
+            [1, 2, 3],
+            "{what}: rows numbered by sample"
+        );
+        let notes = got.layout.notes.join(" | ");
+        match what {
+            "vectors" => assert!(
+                notes.contains("variable 'note' is not a real vector: ignored"),
+                "{notes}"
+            ),
+            "Simulink" => assert!(
+                notes.contains("Simulink structure with time 'ScopeData': 4 signals"),
+                "{notes}"
+            ),
+            _ => assert!(
+                notes.contains("dSPACE capture 'feedvector_001': X (time) and 4 signals Y"),
+                "{notes}"
+            ),
+        }
+    }
+}
+
+#[test]
+fn a_capture_gives_the_simulations_summary() {
+    let (cond, r) = sim();
+    let bytes = dspace(&r, false, true);
+    let map = ColumnMap {
+        steady_from: Some(r.summary.steady_from),
+        x: Some("Model Root/Axes/X [mm]".into()),
+        y: Some("Model Root/Axes/Y [mm]".into()),
+        c: Some("Model Root/Axes/C [deg]".into()),
+        torque: Some("Model Root/Axes/Torque [Nm]".into()),
+        ..ColumnMap::default()
+    };
+    let tr = analyze_trace_bytes(&bytes, &cond, &map).unwrap();
+    let d = (tr.summary.mean_angle_diff - r.summary.mean_angle_diff).abs();
+    assert!(d < 1e-9, "{d} rad");
+    assert_eq!(tr.summary.periods, r.summary.periods);
+    // the same file read as text by mistake says what it is
+    let e = read_table(&String::from_utf8_lossy(&bytes), &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("a MATLAB .mat file, which is read from its bytes"),
+        "{e}"
+    );
+}
+
+#[test]
+fn every_refusal_names_its_byte_and_cause() {
+    let w = Mat { big: false };
+    let with = |body: Vec<u8>| [w.header(), body].concat();
+    let data: Vec<u8> = [1.0f64, 2.0].iter().flat_map(|x| x.to_le_bytes()).collect();
+    let complex = w.matrix(
+        6,
+        0x800,
+        &[1, 2],
+        "z",
+        &[w.el(9, &data), w.el(9, &data)].concat(),
+    );
+    let sparse = w.matrix(5, 0, &[2, 2], "s", &[]);
+    let mut v73 = w.header();
+    v73[124] = 0;
+    v73[125] = 2;
+    let good = w.doubles("x", &[1.0, 2.0]);
+    let cut = with(good[..good.len() - 9].to_vec());
+    let mut bad_zlib = w.compressed(&good);
+    let n = bad_zlib.len();
+    bad_zlib[n - 6] ^= 0xff;
+    let unequal = with(
+        [
+            w.doubles("t", &[0.0, 1.0, 2.0]),
+            w.doubles("x", &[1.0, 2.0]),
+        ]
+        .concat(),
+    );
+    let text_only = with(w.chars("note", "hello"));
+    let nan = with(
+        [
+            w.doubles("t", &[0.0, 1.0]),
+            w.doubles("x", &[1.0, f64::NAN]),
+        ]
+        .concat(),
+    );
+    for (what, bytes, offset, cause) in [
+        ("complex", with(complex), 136, "'z' is complex"),
+        (
+            "sparse",
+            with(sparse),
+            136,
+            "'s' is mxSPARSE (a sparse matrix), which is not read",
+        ),
+        ("v7.3", v73, 124, "v7.3 (HDF5)"),
+        ("cut", cut, 128, "the file is cut short"),
+        (
+            "zlib",
+            with(bad_zlib),
+            136,
+            "miCOMPRESSED data do not inflate",
+        ),
+        ("unequal", unequal, 0, "'x' has 2 samples, 't' has 3"),
+        ("text", text_only, 128, "no capture found"),
+        ("nan", nan, 0, "'x' sample 2 is NaN"),
+        (
+            "endian",
+            [&w.header()[..126], b"XX"].concat(),
+            126,
+            "endian mark",
+        ),
+        (
+            "huge struct",
+            with(w.matrix(
+                2,
+                0,
+                &[1, 4_000_000],
+                "s",
+                &[w.small(5, &w.u32(32)), w.el(1, &[0u8; 32])].concat(),
+            )),
+            232,
+            "a data element's tag needs 8 bytes, 0 left",
+        ),
+    ] {
+        let e = read_bytes(&bytes, &ReadOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with(&format!("byte {offset}: MATLAB .mat: ")),
+            "{what}: {e}"
+        );
+        assert!(e.contains(cause), "{what}: {e}");
+    }
+}
