@@ -32,6 +32,7 @@ pub mod macro_vars;
 pub mod modal_call;
 mod moves;
 mod non_modal;
+pub mod nurbs;
 pub mod patch;
 pub mod polar;
 pub mod program;
