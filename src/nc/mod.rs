@@ -40,6 +40,7 @@ pub mod rotation;
 mod run;
 pub mod segment;
 pub mod sequence;
+pub mod spline;
 pub mod summary;
 pub mod units;
 pub mod writer;

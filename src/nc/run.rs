@@ -77,6 +77,8 @@ pub(super) struct Run<'a> {
     stretches: Vec<CutterStretch>,
     /// The stretch in force for each segment (same length as `segments`).
     tags: Vec<Option<usize>>,
+    /// The G5.2 NURBS block open ([`super::spline`]).
+    nurbs: Option<super::spline::OpenNurbs>,
 }
 
 /// What a call runs: an `O` program (M98, G65) or the block numbered N…
@@ -157,6 +159,7 @@ impl<'a> Run<'a> {
             runs: vec![0u32; blocks.len()],
             stretches: Vec::new(),
             tags: Vec::new(),
+            nurbs: None,
         })
     }
 
@@ -328,6 +331,7 @@ impl<'a> Run<'a> {
             segments: &mut self.segments,
             corners: &mut self.corners,
             stretches: &mut self.stretches,
+            nurbs: &mut self.nurbs,
         };
         let result = interpret_block(b, &mut self.st, &mut ctx);
         self.tags
@@ -483,8 +487,12 @@ impl<'a> Run<'a> {
             runs,
             stretches,
             mut tags,
+            nurbs,
             ..
         } = self;
+        if let Some(open) = &nurbs {
+            errors.push(super::spline::unclosed(open));
+        }
         if let (Some(f), true) = (stack.last(), errors.is_empty()) {
             errors.push(NcError::new(
                 blocks.last().map_or(1, |b| b.line),
