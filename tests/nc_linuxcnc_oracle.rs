@@ -139,6 +139,27 @@ const KNOWN: &[Known] = &[
               compared: a feed to the bottom and back",
     },
     Known {
+        file: "printhor_example3.gcode",
+        lines: &[23, 24, 37, 38],
+        kind: Kind::NotCompared,
+        why: "G88's manual retract (src/nc/cycles.rs): mtmotion rapids out to the return \
+              level, rs274 stays at the bottom; the program is in G91 then, so the next \
+              holes after a plane change (G18 after line 20, G19 after line 33), where the \
+              old drilling axis is a plane axis, start from another level. The feed depths \
+              and every G87 back bore (lines 13, 14, 19, 32, 46) are compared",
+    },
+    Known {
+        file: "printhor_example3.gcode",
+        lines: &[28, 42],
+        kind: Kind::NotCompared,
+        why: "G84 in G18 and G19: rs274 passes the hole position and the level to its \
+              feeds in the wrong order (interp_cycles.cc, convert_cycle_g74_g84: \
+              cycle_feed(y, bottom_z, x) and cycle_feed(bottom_z, x, y)), so \
+              g84 z6 x7 r0.2 y-1.1 (G18) taps at X-1.1 Y6 Z7 and g84 y6 z7 r0.2 x-1.1 \
+              (G19) at X7 Y-1.1 Z6; mtmotion taps each hole at its position along its \
+              drilling axis, as G81-G89 in the same planes",
+    },
+    Known {
         file: "ledfloor_1003.nc",
         lines: &[202, 205],
         kind: Kind::NotCompared,
@@ -170,13 +191,6 @@ const KNOWN: &[Known] = &[
         why: "line 11 (`N55 X.75` after a full circle, still in G2) is an arc without a \
               centre: mtmotion refuses it, and rs274 stops there too ('R i j k words all \
               missing for arc')",
-    },
-    Known {
-        file: "printhor_example3.gcode",
-        lines: &[],
-        kind: Kind::Refused("back boring"),
-        why: "G87 back boring is refused: the spindle orientation and shift it needs \
-              are machine data",
     },
 ];
 

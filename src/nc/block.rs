@@ -367,6 +367,8 @@ fn set_motion_or_cycle(b: &Block, st: &mut Modal, gw: &GWords) -> Result<(), NcE
                     depth: None,
                     q: 0.0,
                     dwell: 0.0,
+                    shift: [0.0; 3],
+                    back: None,
                 })
             }
         }

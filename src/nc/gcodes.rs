@@ -219,7 +219,7 @@ fn grouped_or_other<'a>(
         280 | 300 | 520 | 530 | 100 | 920 | 921 | 922 | 923 => {
             only_one(&mut gw.non_modal, b, w, g, "non-modal codes", "")
         }
-        730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 880 | 890 => {
+        730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890 => {
             only_one(&mut gw.cycle, b, w, g, "canned cycles", "")
         }
         400 | 410 | 420 | 411 | 421 => only_one(
@@ -304,7 +304,7 @@ fn setting_message(b: &Block, w: &Word, g: i64) -> String {
 
 /// The error for a code that is not simulated and would change the path:
 /// the G5 cubic spline, threading, the cycles without a model (G74.1, G80.1–G89.9 other
-/// than the modelled ones, G87, G88), G95.1 (G93 inverse time and G95 feed
+/// than the modelled ones), G95.1 (G93 inverse time and G95 feed
 /// per revolution are read),
 /// 3D coordinate conversion (G68.1–G68.4),
 /// Okuma `G15 H`, modal macro calls. `None` for any other code.
@@ -319,7 +319,6 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
             w.text,
             match g {
                 332 => "spindle-synchronised tapping",
-                870 => "back boring (its shift direction is a machine parameter)",
                 _ => "this canned cycle",
             }
         ),
