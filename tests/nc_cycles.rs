@@ -116,7 +116,8 @@ fn g73_high_speed_peck_backs_off_by_d() {
 
 #[test]
 fn tapping_g84_and_g74_feed_out_to_r() {
-    for g in ["G84", "G74"] {
+    // G84.2/G84.3, Fanuc's rigid tapping, move the axes as G84/G74
+    for g in ["G84", "G74", "G84.2", "G84.3"] {
         check(
             &format!("{START}{g} X1 Y0 Z-5 R3 P200 F125"),
             &[
@@ -559,4 +560,21 @@ fn a_g91_r_after_a_g90_bottom_reads_the_bottom_number_from_r() {
     for (f, want) in feeds.iter().zip([-1.1, -1.1, -1.0]) {
         assert!((f - want).abs() < 1e-12, "{feeds:?}");
     }
+}
+
+#[test]
+fn rigid_tapping_feeds_at_pitch_times_speed() {
+    // G95: F is the pitch (1.25 mm), the feed F × S = 1.25 × 800 mm/min,
+    // in and out (Fanuc 15i-MA §13.2: P = F/S)
+    let p = parse("G0 X0 Y0 Z10\nG95 S800 G99 G84.2 X1 Z-5 R3 F1.25").unwrap();
+    let feeds: Vec<f64> = p
+        .segments
+        .iter()
+        .filter(|s| s.motion == Motion::Linear)
+        .map(|s| s.feed)
+        .collect();
+    assert_eq!(feeds, vec![1000.0, 1000.0]);
+    assert_eq!(p.segments.last().unwrap().end.z, 3.0);
+    let e = parse("G0 X0 Y0 Z10\nG95 G84.3 X1 Z-5 R3 F1.25").unwrap_err();
+    assert!(e.message.contains("G84.3 without a feed"), "{e}");
 }

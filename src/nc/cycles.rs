@@ -1,4 +1,4 @@
-//! Canned drilling cycles G73, G74, G76 and G81–G89 expanded into the
+//! Canned drilling cycles G73, G74, G76, G81–G89 and G84.2/G84.3 expanded into the
 //! moves the machine really makes, in the G17, G18 or G19 plane (drilling
 //! along Z, Y or X). Fanuc rules (Fanuc Series 0i-MF/30i-B operator's
 //! manuals, "canned cycles for drilling"); where LinuxCNC differs (its G98
@@ -32,7 +32,13 @@
 //!   [`PECK_CLEARANCE`] above the last depth, feed on. G73 (high-speed
 //!   peck): feed by Q, rapid back by [`PECK_CLEARANCE`], feed on. G84/G74
 //!   (tapping, right-/left-hand): feed to the bottom, dwell P, feed back to
-//!   R. G85: feed in, feed out to R. G89: as G85 with a dwell. G86: feed
+//!   R. G84.2/G84.3, Fanuc's rigid tapping (right-/left-hand; Fanuc Series
+//!   15i-MA operator's manual, §13.2 "Rigid tapping": the spindle is
+//!   position-controlled so that the feed F along the drilling axis and
+//!   the spindle speed S keep the pitch P = F/S), move the axes as G84/G74
+//!   do (and as G84 after M29 already does): in at F, dwell, out to R at
+//!   F, F being pitch × S in mm/min (under G95 F is the pitch and the feed
+//!   F × S). The spindle's own motion is not simulated. G85: feed in, feed out to R. G89: as G85 with a dwell. G86: feed
 //!   in, rapid out. G76 (fine boring): feed in, dwell, rapid out; the tool
 //!   shift Q at the bottom (a machine parameter gives its direction) is not
 //!   modelled and is warned about. G88 (boring, manual retract): feed in,
@@ -160,10 +166,10 @@ pub fn hole(
         }
         _ => path.level(Motion::Linear, bottom, feed),
     }
-    if matches!(c.code, 820 | 760 | 880 | 890 | 840 | 740) {
+    if matches!(c.code, 820 | 760 | 880 | 890 | 840 | 740 | 842 | 843) {
         path.dwell(c.dwell);
     }
-    if matches!(c.code, 840 | 740 | 850 | 890) {
+    if matches!(c.code, 840 | 740 | 842 | 843 | 850 | 890) {
         path.level(Motion::Linear, r, feed);
     }
     path.level(Motion::Rapid, level, 0.0);

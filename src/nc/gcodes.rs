@@ -219,7 +219,7 @@ fn grouped_or_other<'a>(
         280 | 300 | 520 | 530 | 100 | 920 | 921 | 922 | 923 => {
             only_one(&mut gw.non_modal, b, w, g, "non-modal codes", "")
         }
-        730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890 => {
+        730 | 740 | 760 | 810 | 820 | 830 | 840 | 842 | 843 | 850 | 860 | 870 | 880 | 890 => {
             only_one(&mut gw.cycle, b, w, g, "canned cycles", "")
         }
         400 | 410 | 420 | 411 | 421 => only_one(
@@ -318,7 +318,9 @@ fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
             "G{}: {} is not simulated yet; post the program with the cycle expanded into G0/G1 moves",
             w.text,
             match g {
-                332 => "spindle-synchronised tapping",
+                // no manual at hand defines it: LinuxCNC has G33 and G33.1
+                // (both simulated), its rs274 calls G33.2 unknown
+                332 => "spindle-synchronised tapping (a code of neither LinuxCNC, whose G33 and G33.1 are simulated, nor Fanuc, whose rigid tapping G84.2/G84.3 is)",
                 _ => "this canned cycle",
             }
         ),

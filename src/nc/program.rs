@@ -19,7 +19,7 @@
 //! - N sequence numbers, O program numbers, comments (kept by the lexer).
 //!
 //! - canned cycles G73, G74, G76, G81–G89 (G87 in the RS274/NGC form with
-//!   I/J/K) expanded into motion
+//!   I/J/K) and Fanuc's rigid tapping G84.2/G84.3 expanded into motion
 //!   ([`super::cycles`]); Fanuc corner `,R`/`,C` ([`super::corner`]);
 //!   subprograms `M98 P… (L…/K…)` to an `O…` block of the same text ended by
 //!   `M99`, and Haas local subprograms `M97 P… (L…/K…)` to the block
@@ -56,7 +56,7 @@
 //! tool-centre path ([`super::cutter`], [`super::cutter_path`]); without
 //! one the simulated path is the programmed path, and one warning per
 //! stretch says so. G43 length compensation is ignored (warned). What is not simulated and would change the path is a
-//! located error: G84.x, the Fanuc G87 without I/J/K (G33 runs as a line at K × S, G33.1 there
+//! located error: G84.1 and G84.4–G84.9, G33.2, the Fanuc G87 without I/J/K (G33 runs as a line at K × S, G33.1 there
 //! and back, G88 with a rapid for its manual retract), G93/G95 feeds,
 //! G66.1 and nested G66 modal calls, the G5 cubic spline (LinuxCNC's G5.1
 //! and G5.2/G5.3 splines run as chords of their curve, [`super::spline`]),
