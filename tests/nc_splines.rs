@@ -164,7 +164,7 @@ fn every_form_linuxcnc_refuses_or_reads_otherwise_is_a_located_error() {
         (
             "G0 X0 Y0\nG5.1 X1 Y1 Z1 I1 J0 F9",
             (2, 12),
-            "moves X and Y only",
+            "Z1 on a G5.1 spline block: a spline moves X and Y only",
         ),
         ("G0 X0 Y0\nG5.1 X1 Y1 I1 F9", (2, 1), "both I and J"),
         ("G0 X0 Y0\nG5.1 X1 Y1 I0 J0 F9", (2, 12), "I0 J0"),
@@ -244,7 +244,7 @@ fn every_form_linuxcnc_refuses_or_reads_otherwise_is_a_located_error() {
         (
             "G0 X0 Y0 F9\nG5.2 X1 Y1 Z2 P1\nX2 Y0 P1\nG5.3",
             (2, 12),
-            "moves X and Y only",
+            "Z2 on a G5.2 spline block: a spline moves X and Y only",
         ),
         (
             "G0 X0 Y0\nG5 X1 Y1 I1 J0 P1 Q0 F9",
