@@ -413,6 +413,10 @@ mod tests {
         );
         let huge = Nurbs::new(vec![p, [1e7, 1e7, 1.0], [2e7, 0.0, 1.0]], 3).unwrap();
         assert_eq!(huge.chords(), Err(NurbsError::TooLong));
+        // w·x overflows: the curve's points are not numbers, so no chord is
+        // ever accepted; the depth limit still ends the bisection
+        let inf = Nurbs::new(vec![p, [1e300, 1e300, 1e10], [2e300, 0.0, 1.0]], 3).unwrap();
+        assert_eq!(inf.chords(), Err(NurbsError::TooLong));
     }
 
     #[test]
