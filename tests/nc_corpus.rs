@@ -116,21 +116,18 @@ const CORPUS: &[(&str, Outcome)] = &[
     // Three moves before the loop, 800 polar steps, the retract.
     ("linuxcnc_rgh.ngc", Outcome::Ok(834)),
     ("linuxcnc_spiral.ngc", Outcome::Ok(804)),
-    (
-        "linuxcnc_systems.ngc",
-        Outcome::Err(15, 1, "G5.1: spline interpolation", 100),
-    ),
+    // 548 G5.1 quadratic splines, each cut into chords within 1 µm
+    // (src/nc/spline.rs); was refused at line 15 with 100 errors before.
+    ("linuxcnc_systems.ngc", Outcome::Ok(1860)),
     // G33 threading passes (a line at K × S); was refused at line 36
     // with 6 errors before G33 was simulated.
     ("linuxcnc_threading.ngc", Outcome::Ok(487)),
     ("linuxcnc_tort.ngc", Outcome::Ok(268)),
-    (
-        "printhor_example3.gcode",
-        // 6 errors (was 10): its four G88 blocks (lines 15, 20, 33, 47) are
-        // simulated now (feed, dwell, rapid out, warned); the G87 ones
-        // stay refused.
-        Outcome::Err(13, 7, "back boring", 6),
-    ),
+    // Its four G88 blocks (lines 15, 20, 33, 47) are simulated (feed,
+    // dwell, rapid out, warned), and its six G87 back bores in the
+    // RS274/NGC form with I/J/K (src/nc/cycles.rs); refused at line 13
+    // with 6 errors before G87 was simulated.
+    ("printhor_example3.gcode", Outcome::Ok(334)),
     ("ugs_Gates_combined_R12.nc", Outcome::Ok(15947)),
     ("ugs_arc_rword_test.gcode", Outcome::Ok(200)),
     ("ugs_no_spaces.gcode", Outcome::Ok(203)),

@@ -116,7 +116,8 @@ fn g73_high_speed_peck_backs_off_by_d() {
 
 #[test]
 fn tapping_g84_and_g74_feed_out_to_r() {
-    for g in ["G84", "G74"] {
+    // G84.2/G84.3, Fanuc's rigid tapping, move the axes as G84/G74
+    for g in ["G84", "G74", "G84.2", "G84.3"] {
         check(
             &format!("{START}{g} X1 Y0 Z-5 R3 P200 F125"),
             &[
@@ -474,4 +475,106 @@ fn a_remnant_under_1e_12_mm_is_not_pecked() {
     );
     let p = parse("G0 X0 Y0 Z5\nG73 X0 Y0 Z-1.000000000001 R0 Q1 F100").unwrap();
     assert_eq!(p.segments[2].end.z, -1.0);
+}
+
+#[test]
+fn g87_back_bores_through_the_hole_in_the_rs274_ngc_form() {
+    // From Z5: hole at X10 Y20, shift I2 J-1, R1, bottom Z-10, top of the
+    // back bore K-6 (NISTIR 6556 G87; LinuxCNC's rs274): shifted down,
+    // fed up to K and back, shifted out, up to the initial level.
+    check(
+        "G0 X0 Y0 Z5\nG98 G87 X10 Y20 Z-10 R1 I2 J-1 K-6 F100",
+        &[
+            ('R', [0.0, 0.0, 5.0]),
+            ('R', [10.0, 20.0, 5.0]),
+            ('R', [10.0, 20.0, 1.0]),
+            ('R', [12.0, 19.0, 1.0]),
+            ('R', [12.0, 19.0, -10.0]),
+            ('R', [10.0, 20.0, -10.0]),
+            ('F', [10.0, 20.0, -6.0]),
+            ('F', [10.0, 20.0, -10.0]),
+            ('R', [12.0, 19.0, -10.0]),
+            ('R', [12.0, 19.0, 5.0]),
+            ('R', [10.0, 20.0, 5.0]),
+        ],
+    );
+    // G99 returns to R; I/J/K are kept for the next hole; K is no repeat
+    // count (L is); under G91 K is from the bottom
+    let got =
+        moves("G0 X0 Y0 Z5\nG99 G87 X10 Y0 Z-10 R1 I2 J0 K-6 F100\nX20 L2\nG91 X5 Z-11 R-4 K4");
+    let feeds: Vec<[f64; 3]> = got.iter().filter(|m| m.0 == 'F').map(|m| m.1).collect();
+    assert_eq!(
+        feeds,
+        vec![
+            [10.0, 0.0, -6.0],
+            [10.0, 0.0, -10.0],
+            [20.0, 0.0, -6.0],
+            [20.0, 0.0, -10.0],
+            [20.0, 0.0, -6.0],
+            [20.0, 0.0, -10.0],
+            // G91: R = 5 − 4 = 1, bottom R − 11 = −10, top −10 + 4 = −6
+            [25.0, 0.0, -6.0],
+            [25.0, 0.0, -10.0],
+        ]
+    );
+    assert_eq!(got.last().unwrap(), &('R', [25.0, 0.0, 1.0]));
+    // G18: the shift is K (Z) and I (X), the top of the bore J (along Y)
+    let got = moves("G18 G0 X0 Y5 Z0\nG87 Z3 X4 Y-10 R1 K1 I-1 J-6 F100");
+    assert!(got.contains(&('R', [3.0, 1.0, 4.0])), "{got:?}");
+    assert!(got.contains(&('F', [4.0, -6.0, 3.0])), "{got:?}");
+}
+
+#[test]
+fn a_fanuc_g87_without_i_j_k_stays_refused_by_name() {
+    for (src, col, phrase) in [
+        (
+            "G87 X1 Z-1 R1 Q2 F100",
+            1,
+            "without I, J and K: the Fanuc form",
+        ),
+        (
+            "G87 X1 Z-1 R1 I1 J0 F100",
+            1,
+            "the RS274/NGC form G87 XYZ R I(shift) J(shift) K(top",
+        ),
+        ("G18 G87 Z1 Y-1 R1 K1 I0 F100", 5, "without K, I and J"),
+    ] {
+        let e = parse(src).unwrap_err();
+        assert_eq!((e.line, e.column), (1, col), "{src}: {e}");
+        assert!(e.message.contains(phrase), "{src}: {e}");
+    }
+}
+
+#[test]
+fn a_g91_r_after_a_g90_bottom_reads_the_bottom_number_from_r() {
+    // the NIST test program (printhor_example3, lines 3-5): Z-1.1 under
+    // G90, then G91 blocks with R but no Z: LinuxCNC re-reads the sticky
+    // Z number as the distance from R
+    let got = moves("G20 G0 X0 Y0 Z0\nG81 X3 Y4 R0.2 Z-1.1 F10\nG91 X1 R0\nY-2 R0.1");
+    let feeds: Vec<f64> = got
+        .iter()
+        .filter(|m| m.0 == 'F')
+        .map(|m| m.1[2] / 25.4)
+        .collect();
+    assert_eq!(feeds.len(), 3);
+    for (f, want) in feeds.iter().zip([-1.1, -1.1, -1.0]) {
+        assert!((f - want).abs() < 1e-12, "{feeds:?}");
+    }
+}
+
+#[test]
+fn rigid_tapping_feeds_at_pitch_times_speed() {
+    // G95: F is the pitch (1.25 mm), the feed F × S = 1.25 × 800 mm/min,
+    // in and out (Fanuc 15i-MA §13.2: P = F/S)
+    let p = parse("G0 X0 Y0 Z10\nG95 S800 G99 G84.2 X1 Z-5 R3 F1.25").unwrap();
+    let feeds: Vec<f64> = p
+        .segments
+        .iter()
+        .filter(|s| s.motion == Motion::Linear)
+        .map(|s| s.feed)
+        .collect();
+    assert_eq!(feeds, vec![1000.0, 1000.0]);
+    assert_eq!(p.segments.last().unwrap().end.z, 3.0);
+    let e = parse("G0 X0 Y0 Z10\nG95 G84.3 X1 Z-5 R3 F1.25").unwrap_err();
+    assert!(e.message.contains("G84.3 without a feed"), "{e}");
 }

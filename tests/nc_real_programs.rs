@@ -154,15 +154,20 @@ fn g90_1_absolute_arc_centres() {
 
 #[test]
 fn threading_and_tapping_are_refused_at_their_word() {
-    // G33 and G33.1 are simulated (tests/nc_field_programs.rs); G84.2
-    // (LinuxCNC/Fanuc rigid-tapping variants) is not.
-    for (src, col) in [
-        ("G0 X1\nG98 G84.2 Z-5 R1 F100", 5),
-        ("G0 X1\nG98 G84.3 Z-5 R1 F100", 5),
+    // G33 and G33.1 are simulated (tests/nc_field_programs.rs), and
+    // Fanuc's rigid tapping G84.2/G84.3 (tests/nc_cycles.rs); G33.2 is
+    // no code of LinuxCNC or Fanuc, and G84.1 no cycle known here.
+    for (src, col, phrase) in [
+        ("G0 X1\nS500 G33.2 Z-5 K1", 6, "neither LinuxCNC"),
+        (
+            "G0 X1\nG98 G84.1 Z-5 R1 F100",
+            5,
+            "this canned cycle is not simulated",
+        ),
     ] {
         let e = parse(src).unwrap_err();
         assert_eq!((e.line, e.column), (2, col), "{e}");
-        assert!(e.message.contains("not simulated"), "{e}");
+        assert!(e.message.contains(phrase), "{e}");
     }
 }
 

@@ -66,6 +66,9 @@ pub(super) fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result
         }
         return Ok(());
     }
+    if let Some(e) = super::spline::interrupted(b, &gw, cx) {
+        return Err(e);
+    }
     if let Some(dw) = gw.dwell {
         return dwell(b, st, cx, dw, &gw);
     }
@@ -93,6 +96,12 @@ pub(super) fn interpret_block(b: &Block, st: &mut Modal, cx: &mut Ctx) -> Result
             ));
         }
         return non_modal_move(b, st, cx, w, g, &axis_words(b, cx), scale);
+    }
+    if let Some(w) = gw.nurbs_end {
+        return super::spline::nurbs_end(b, st, cx, w);
+    }
+    if let Some(s) = st.spline {
+        return super::spline::spline_block(b, st, cx, s, scale);
     }
     move_block(b, st, cx, scale)
 }
@@ -201,6 +210,7 @@ fn read_other_words(
             'P' | 'U' if gw.dwell.is_some() => continue,
             'L' | 'P' if g10 => continue,
             'P' | 'L' if call => continue,
+            'P' | 'L' if st.spline == Some(super::spline::Spline::Nurbs) => continue,
             'P' if gw.setting.is_some() => continue,
             'E' if gw.setting == Some(1870) => continue,
             'E' if fadal::is_fixture_offset(b, gw.motion.map(|(_, m)| m).or(st.motion)) => format!(
@@ -357,6 +367,8 @@ fn set_motion_or_cycle(b: &Block, st: &mut Modal, gw: &GWords) -> Result<(), NcE
                     depth: None,
                     q: 0.0,
                     dwell: 0.0,
+                    shift: [0.0; 3],
+                    back: None,
                 })
             }
         }

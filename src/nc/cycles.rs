@@ -1,4 +1,4 @@
-//! Canned drilling cycles G73, G74, G76, G81–G86, G88 and G89 expanded into the
+//! Canned drilling cycles G73, G74, G76, G81–G89 and G84.2/G84.3 expanded into the
 //! moves the machine really makes, in the G17, G18 or G19 plane (drilling
 //! along Z, Y or X). Fanuc rules (Fanuc Series 0i-MF/30i-B operator's
 //! manuals, "canned cycles for drilling"); where LinuxCNC differs (its G98
@@ -18,7 +18,10 @@
 //!   kept as its distance from R: a later block that gives a new R but no
 //!   bottom word moves the bottom with R (`G91 G81 Z-0.6 R-0.5` then
 //!   `X1 R-0.3` drills the second hole to R − 0.6, not to the first
-//!   hole's bottom). This is the reading of the LinuxCNC G-code manual
+//!   hole's bottom), also when that bottom word was written under G90
+//!   (the sticky number is read as a G91 distance from R then: the NIST
+//!   test program's `g81 x3 y4 r0.2 z-1.1`, `g91 … r0`, `y-2 r0.1` drills
+//!   its last hole to R − 1.1). This is the reading of the LinuxCNC G-code manual
 //!   (canned cycles: in incremental distance mode R is an increment from
 //!   the initial level and Z an increment from R; the interpreter keeps
 //!   the last R and Z numbers as sticky words and recomputes both levels
@@ -29,7 +32,13 @@
 //!   [`PECK_CLEARANCE`] above the last depth, feed on. G73 (high-speed
 //!   peck): feed by Q, rapid back by [`PECK_CLEARANCE`], feed on. G84/G74
 //!   (tapping, right-/left-hand): feed to the bottom, dwell P, feed back to
-//!   R. G85: feed in, feed out to R. G89: as G85 with a dwell. G86: feed
+//!   R. G84.2/G84.3, Fanuc's rigid tapping (right-/left-hand; Fanuc Series
+//!   15i-MA operator's manual, §13.2 "Rigid tapping": the spindle is
+//!   position-controlled so that the feed F along the drilling axis and
+//!   the spindle speed S keep the pitch P = F/S), move the axes as G84/G74
+//!   do (and as G84 after M29 already does): in at F, dwell, out to R at
+//!   F, F being pitch × S in mm/min (under G95 F is the pitch and the feed
+//!   F × S). The spindle's own motion is not simulated. G85: feed in, feed out to R. G89: as G85 with a dwell. G86: feed
 //!   in, rapid out. G76 (fine boring): feed in, dwell, rapid out; the tool
 //!   shift Q at the bottom (a machine parameter gives its direction) is not
 //!   modelled and is warned about. G88 (boring, manual retract): feed in,
@@ -38,8 +47,20 @@
 //!   (LinuxCNC's rs274 leaves the retract out and goes on from the
 //!   bottom; a Fanuc control returns to the level at rapid after the
 //!   manual retract).
-//! - G87 (back boring: the shift direction is a machine parameter) is
-//!   refused with a located error.
+//! - G87 back boring in the RS274/NGC form `G87 X Y Z R I J K` (NIST
+//!   RS274/NGC Interpreter v3, NISTIR 6556, canned cycle G87, as
+//!   LinuxCNC's `rs274` runs it, `convert_cycle_g87`; the LinuxCNC manual
+//!   calls G87 unimplemented): the tool, oriented, is shifted by I/J/K in
+//!   the plane (the offsets along X/Y/Z of the two plane axes), lowered at
+//!   rapid through the hole to the bottom level (the drilling-axis word),
+//!   moved back onto the hole's axis, fed to the top of the back bore (the
+//!   drilling-axis letter of I/J/K: absolute under G90, from the bottom
+//!   under G91) and fed back to the bottom, shifted again, raised at rapid
+//!   to the return level and moved back onto the hole's axis. The three
+//!   words are required on the cycle's first G87 block and kept after it
+//!   (as LinuxCNC keeps them); its repeat count is L only (K is a level or
+//!   an offset). The Fanuc form (a shift Q whose direction is a machine
+//!   parameter, no I/J/K) is refused with a located error.
 //! - P is read like a G4 P ([`super::program::DwellP`]); Q and the
 //!   clearance are in the program's length unit (converted to mm).
 //!
@@ -73,19 +94,31 @@ pub struct Cycle {
     pub r: Option<f64>,
     /// Bottom, absolute, mm (`None` until given).
     pub bottom: Option<f64>,
-    /// The bottom's distance from R, mm, when the bottom was last given
-    /// under G91 (`None` when it was given under G90): a later block that
-    /// gives a new R under G91 without a bottom word moves the bottom with R.
+    /// The last bottom word's number, mm (under G91 the bottom's distance
+    /// from R; under G90 the level before the G92 shift), `None` until
+    /// given: a later block that gives a new R under G91 without a bottom
+    /// word puts the bottom this far from R, as LinuxCNC re-reads its
+    /// sticky Z number.
     pub depth: Option<f64>,
     /// Peck depth Q, mm.
     pub q: f64,
     /// Dwell at the bottom, s.
     pub dwell: f64,
+    /// G87: the tool shift along X, Y, Z (I, J, K; the drilling axis's
+    /// entry unused), mm.
+    #[serde(default)]
+    pub shift: [f64; 3],
+    /// G87: the top of the back bore as written (the drilling axis's
+    /// letter among I/J/K), mm: absolute before the G92 shift under G90,
+    /// from the bottom under G91; `None` until given.
+    #[serde(default)]
+    pub back: Option<f64>,
 }
 
 /// Segments of one hole at plane position (`pu`, `pv`) from `pos`.
 ///
-/// `r`, `bottom`: levels (mm); `g99`: return to R; `feed`: mm/min.
+/// `r`, `bottom`: levels (mm); `back`: G87's top of the back bore (mm,
+/// absolute); `g99`: return to R; `feed`: mm/min.
 #[allow(clippy::too_many_arguments)]
 pub fn hole(
     c: &Cycle,
@@ -95,6 +128,7 @@ pub fn hole(
     pv: f64,
     r: f64,
     bottom: f64,
+    back: f64,
     g99: bool,
     feed: f64,
     block: usize,
@@ -113,19 +147,45 @@ pub fn hole(
     over.set(v, pv);
     path.go(Motion::Rapid, over, 0.0);
     path.level(Motion::Rapid, r, 0.0);
+    let level = if g99 { r } else { c.initial };
     match c.code {
         730 | 830 => path.peck(c, r, bottom, feed),
+        870 => {
+            // G87: shifted down through the hole, back bore upwards, shifted out
+            let mut shifted = over;
+            shifted.set(u, pu + c.shift[u]);
+            shifted.set(v, pv + c.shift[v]);
+            path.go(Motion::Rapid, shifted.with(n, r), 0.0);
+            path.level(Motion::Rapid, bottom, 0.0);
+            path.go(Motion::Rapid, over.with(n, bottom), 0.0);
+            path.level(Motion::Linear, back, feed);
+            path.level(Motion::Linear, bottom, feed);
+            path.go(Motion::Rapid, shifted.with(n, bottom), 0.0);
+            path.level(Motion::Rapid, level, 0.0);
+            path.go(Motion::Rapid, over.with(n, level), 0.0);
+        }
         _ => path.level(Motion::Linear, bottom, feed),
     }
-    if matches!(c.code, 820 | 760 | 880 | 890 | 840 | 740) {
+    if matches!(c.code, 820 | 760 | 880 | 890 | 840 | 740 | 842 | 843) {
         path.dwell(c.dwell);
     }
-    let level = if g99 { r } else { c.initial };
-    if matches!(c.code, 840 | 740 | 850 | 890) {
+    if matches!(c.code, 840 | 740 | 842 | 843 | 850 | 890) {
         path.level(Motion::Linear, r, feed);
     }
     path.level(Motion::Rapid, level, 0.0);
     path.out
+}
+
+/// `pose` with axis `i` set to `v`.
+trait With {
+    fn with(self, i: usize, v: f64) -> Self;
+}
+
+impl With for Pose {
+    fn with(mut self, i: usize, v: f64) -> Self {
+        self.set(i, v);
+        self
+    }
 }
 
 /// The segments of one hole as they are built, and the tool pose after
@@ -210,6 +270,8 @@ struct Holes {
     r: f64,
     /// Bottom, mm.
     bottom: f64,
+    /// G87's top of the back bore, mm (the bottom for other cycles).
+    back: f64,
     /// Feed, mm/min.
     feed: f64,
     /// K/L repeat count.
@@ -249,6 +311,9 @@ pub(super) fn canned_cycle(
     check_cycle_axes(b, st, cx)?;
     read_levels(b, st, &mut c, wr, wn, scale, cx.warnings)?;
     read_q_and_p(b, &mut c, cx, scale)?;
+    if c.code == 870 {
+        read_back_bore(b, st, &mut c, anchor, scale)?;
+    }
     st.cycle = Some(c);
     let holes = hole_data(b, st, &c, anchor)?;
     if c.code == 880 {
@@ -283,6 +348,7 @@ pub(super) fn canned_cycle(
             pv,
             holes.r,
             holes.bottom,
+            holes.back,
             st.cycle_return_r,
             holes.feed,
             cx.bi,
@@ -373,12 +439,49 @@ fn read_levels(
                 c.initial
             }
         };
-        c.depth = st.incremental.then_some(z.value * scale);
+        c.depth = Some(z.value * scale);
         c.bottom = Some(if st.incremental {
             r + z.value * scale
         } else {
             z.value * scale + st.offset[n]
         });
+    }
+    Ok(())
+}
+
+/// G87's words (see the module header): the shift along the plane axes
+/// and the top of the back bore, the letters I/J/K of X/Y/Z; all three
+/// are required until the cycle has them.
+///
+/// # Errors
+/// A G87 without them: the Fanuc form, whose shift direction is a
+/// machine parameter.
+fn read_back_bore(
+    b: &Block,
+    st: &Modal,
+    c: &mut Cycle,
+    anchor: &Word,
+    scale: f64,
+) -> Result<(), NcError> {
+    const LETTERS: [char; 3] = ['I', 'J', 'K'];
+    let (u, v, n) = st.plane.axes();
+    if c.back.is_none() && [u, v, n].iter().any(|&a| b.word(LETTERS[a]).is_none()) {
+        return Err(err(
+            b,
+            anchor,
+            format!(
+                "G87 back boring without {}, {} and {}: the Fanuc form (a shift Q whose direction is a machine parameter) is not simulated; the RS274/NGC form G87 {}{}{} R {}(shift) {}(shift) {}(top of the back bore) is",
+                LETTERS[u], LETTERS[v], LETTERS[n], AXES[u], AXES[v], AXES[n], LETTERS[u], LETTERS[v], LETTERS[n]
+            ),
+        ));
+    }
+    for a in [u, v] {
+        if let Some(w) = b.word(LETTERS[a]) {
+            c.shift[a] = w.value * scale;
+        }
+    }
+    if let Some(w) = b.word(LETTERS[n]) {
+        c.back = Some(w.value * scale);
     }
     Ok(())
 }
@@ -440,7 +543,8 @@ fn hole_data(b: &Block, st: &Modal, c: &Cycle, anchor: &Word) -> Result<Holes, N
             ))
         }
     };
-    let repeats = repeat_count(b)?;
+    // G87: K is a level or a shift, the repeat count L only
+    let repeats = repeat_count(b, c.code != 870)?;
     // A peck cycle has Q > 0 (checked above).
     let pecks = if peck {
         ((bottom - r).abs() / c.q).ceil()
@@ -461,17 +565,24 @@ fn hole_data(b: &Block, st: &Modal, c: &Cycle, anchor: &Word) -> Result<Holes, N
             ),
         ));
     }
+    let (_, _, n) = st.plane.axes();
+    let back = match (c.code, c.back) {
+        (870, Some(k)) if st.incremental => bottom + k,
+        (870, Some(k)) => k + st.offset[n],
+        _ => bottom,
+    };
     Ok(Holes {
         r,
         bottom,
+        back,
         feed,
         repeats,
     })
 }
 
-/// The K (or L) repeat count of a cycle block, 1 without one.
-fn repeat_count(b: &Block) -> Result<usize, NcError> {
-    match b.word('K').or(b.word('L')) {
+/// The K (when `k`) or L repeat count of a cycle block, 1 without one.
+fn repeat_count(b: &Block, k: bool) -> Result<usize, NcError> {
+    match b.word('K').filter(|_| k).or(b.word('L')) {
         Some(k) if k.value >= 0.0 && k.value.fract() == 0.0 && k.value <= 9999.0 => {
             Ok(k.value as usize)
         }

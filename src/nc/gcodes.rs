@@ -13,6 +13,7 @@
 
 use super::program::{err, FeedMode, Modal, Warning};
 use super::segment::{MotionCode, Plane};
+use super::spline::Spline;
 use super::{Block, NcError, Word};
 
 /// The G words of one block that the rest of its interpretation needs.
@@ -36,6 +37,8 @@ pub(super) struct GWords<'a> {
     /// A Haas machining-setting code (G187 smoothness, G103 look-ahead),
     /// ×10: its `P` (and G187's `E`) words are its own, not ignored words.
     pub setting: Option<i64>,
+    /// G5.3, the end of a NURBS block ([`super::spline`]).
+    pub nurbs_end: Option<&'a Word>,
 }
 
 impl GWords<'_> {
@@ -68,7 +71,7 @@ pub(super) fn read_g_words<'a>(
     warnings: &mut Vec<Warning>,
 ) -> Result<GWords<'a>, NcError> {
     let mut gw = GWords::default();
-    let (mut sync, mut tap) = (false, false);
+    let (mut sync, mut tap, mut spline) = (false, false, None);
     for w in b.words.iter().filter(|w| w.letter == 'G') {
         let g = code10(w);
         // G33: spindle-synchronised motion, a line at K × S; G33.1: rigid
@@ -76,7 +79,10 @@ pub(super) fn read_g_words<'a>(
         let g33 = matches!(g, 330 | 331);
         sync |= g33;
         tap |= g == 331;
-        if let Some(m) = motion_code(g).or(g33.then_some(MotionCode::Linear)) {
+        // G5.1, G5.2: spline feeds (LinuxCNC, super::spline).
+        let curve = Spline::of(g);
+        spline = spline.or(curve);
+        if let Some(m) = motion_code(g).or((g33 || curve.is_some()).then_some(MotionCode::Linear)) {
             only_one(
                 &mut gw.motion,
                 b,
@@ -87,6 +93,8 @@ pub(super) fn read_g_words<'a>(
             )?;
         } else if g == 40 {
             gw.dwell = Some(w);
+        } else if g == 53 {
+            gw.nurbs_end = Some(w);
         } else if let Some(inch) = units_g70_g71(b, g) {
             st.inch = inch;
             warnings.push(Warning::at(
@@ -105,6 +113,7 @@ pub(super) fn read_g_words<'a>(
     if gw.motion.is_some() || gw.cycle.is_some() {
         st.spindle_sync = sync;
         st.rigid_tap = tap;
+        st.spline = spline;
     }
     Ok(gw)
 }
@@ -210,7 +219,7 @@ fn grouped_or_other<'a>(
         280 | 300 | 520 | 530 | 100 | 920 | 921 | 922 | 923 => {
             only_one(&mut gw.non_modal, b, w, g, "non-modal codes", "")
         }
-        730 | 740 | 760 | 810 | 820 | 830 | 840 | 850 | 860 | 880 | 890 => {
+        730 | 740 | 760 | 810 | 820 | 830 | 840 | 842 | 843 | 850 | 860 | 870 | 880 | 890 => {
             only_one(&mut gw.cycle, b, w, g, "canned cycles", "")
         }
         400 | 410 | 420 | 411 | 421 => only_one(
@@ -294,23 +303,24 @@ fn setting_message(b: &Block, w: &Word, g: i64) -> String {
 }
 
 /// The error for a code that is not simulated and would change the path:
-/// splines, threading, the cycles without a model (G74.1, G80.1–G89.9 other
-/// than the modelled ones, G87, G88), G95.1 (G93 inverse time and G95 feed
+/// the G5 cubic spline, threading, the cycles without a model (G74.1, G80.1–G89.9 other
+/// than the modelled ones), G95.1 (G93 inverse time and G95 feed
 /// per revolution are read),
 /// 3D coordinate conversion (G68.1–G68.4),
 /// Okuma `G15 H`, modal macro calls. `None` for any other code.
 fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
     let msg = match g {
-        50..=52 => format!(
-            "G{}: spline interpolation is not simulated; post the program with lines and arcs (G1/G2/G3)",
+        50 => format!(
+            "G{}: the cubic spline is not simulated (G5.1 and G5.2 are); post the program with lines and arcs (G1/G2/G3)",
             w.text
         ),
         332 | 741 | 801..=879 | 881..=899 => format!(
             "G{}: {} is not simulated yet; post the program with the cycle expanded into G0/G1 moves",
             w.text,
             match g {
-                332 => "spindle-synchronised tapping",
-                870 => "back boring (its shift direction is a machine parameter)",
+                // no manual at hand defines it: LinuxCNC has G33 and G33.1
+                // (both simulated), its rs274 calls G33.2 unknown
+                332 => "spindle-synchronised tapping (a code of neither LinuxCNC, whose G33 and G33.1 are simulated, nor Fanuc, whose rigid tapping G84.2/G84.3 is)",
                 _ => "this canned cycle",
             }
         ),

@@ -243,7 +243,7 @@ fn corner_or_centre_warning(
 /// The feed of a move in `mode`, mm/min: 0 for a rapid, the modal feed
 /// (under G95 F × S, under G93 `length` × F with an F on the block; it
 /// must be positive) for a cutting move.
-fn move_feed(
+pub(super) fn move_feed(
     b: &Block,
     st: &Modal,
     mode: MotionCode,

@@ -18,7 +18,8 @@
 //!   (LinuxCNC, Haas `P1.5`) and one without is milliseconds (FANUC `P1500`).
 //! - N sequence numbers, O program numbers, comments (kept by the lexer).
 //!
-//! - canned cycles G73, G74, G76, G81–G86, G89 expanded into motion
+//! - canned cycles G73, G74, G76, G81–G89 (G87 in the RS274/NGC form with
+//!   I/J/K) and Fanuc's rigid tapping G84.2/G84.3 expanded into motion
 //!   ([`super::cycles`]); Fanuc corner `,R`/`,C` ([`super::corner`]);
 //!   subprograms `M98 P… (L…/K…)` to an `O…` block of the same text ended by
 //!   `M99`, and Haas local subprograms `M97 P… (L…/K…)` to the block
@@ -55,9 +56,11 @@
 //! tool-centre path ([`super::cutter`], [`super::cutter_path`]); without
 //! one the simulated path is the programmed path, and one warning per
 //! stretch says so. G43 length compensation is ignored (warned). What is not simulated and would change the path is a
-//! located error: G84.x, G87 (G33 runs as a line at K × S, G33.1 there
+//! located error: G84.1 and G84.4–G84.9, G33.2, the Fanuc G87 without I/J/K (G33 runs as a line at K × S, G33.1 there
 //! and back, G88 with a rapid for its manual retract), G93/G95 feeds,
-//! G66.1 and nested G66 modal calls, splines, the G68 cases
+//! G66.1 and nested G66 modal calls, the G5 cubic spline (LinuxCNC's G5.1
+//! and G5.2/G5.3 splines run as chords of their curve, [`super::spline`]),
+//! the G68 cases
 //! above and G68.1–G68.4 (3D coordinate conversion); an `E` word (not on a
 //! G187 block) stops the program as "this looks like a 3D-printer
 //! program". (G65 macro calls, macro `#` variables and `[ ]` expressions
@@ -316,6 +319,10 @@ pub struct Modal {
     /// point and back to the start at the same K × S.
     #[serde(default)]
     pub rigid_tap: bool,
+    /// A LinuxCNC spline mode in force (G5.1, or G5.2 until G5.3), with
+    /// `motion` G1 ([`super::spline`]).
+    #[serde(default)]
+    pub spline: Option<super::spline::Spline>,
 }
 
 /// An interpreted program.
@@ -533,6 +540,8 @@ pub(super) struct Ctx<'a> {
     pub corners: &'a mut Vec<Corner>,
     /// Cutter-compensation stretches so far.
     pub stretches: &'a mut Vec<CutterStretch>,
+    /// The G5.2 NURBS block open, if any ([`super::spline`]).
+    pub nurbs: &'a mut Option<super::spline::OpenNurbs>,
 }
 
 /// An error at word `w` of block `b`.

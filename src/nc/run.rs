@@ -83,6 +83,8 @@ pub(super) struct Run<'a> {
     stretches: Vec<CutterStretch>,
     /// The stretch in force for each segment (same length as `segments`).
     tags: Vec<Option<usize>>,
+    /// The G5.2 NURBS block open ([`super::spline`]).
+    nurbs: Option<super::spline::OpenNurbs>,
 }
 
 /// What a call runs: an `O` program (M98, G65) or the block numbered N…
@@ -170,6 +172,7 @@ impl<'a> Run<'a> {
             runs: vec![0u32; blocks.len()],
             stretches: Vec::new(),
             tags: Vec::new(),
+            nurbs: None,
         })
     }
 
@@ -354,6 +357,7 @@ impl<'a> Run<'a> {
             segments: &mut self.segments,
             corners: &mut self.corners,
             stretches: &mut self.stretches,
+            nurbs: &mut self.nurbs,
         };
         let result = interpret_block(b, &mut self.st, &mut ctx);
         self.tags
@@ -512,8 +516,12 @@ impl<'a> Run<'a> {
             keep,
             moved_units,
             st,
+            nurbs,
             ..
         } = self;
+        if let Some(open) = &nurbs {
+            errors.push(super::spline::unclosed(open));
+        }
         if let (Some(f), true) = (stack.last(), errors.is_empty()) {
             errors.push(NcError::new(
                 blocks.last().map_or(1, |b| b.line),
