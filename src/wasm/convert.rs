@@ -451,7 +451,6 @@ pub const NC_BYTES_PER_TEXT_BYTE: usize = 16;
 /// reference path, statistics; see `budget::MAX_TOOLPATH_SEGMENTS`).
 pub const SIM_BYTES_PER_SEGMENT: usize = 1100;
 
-
 /// A trace argument: the file's text, or its bytes.
 #[cfg(feature = "full")]
 pub enum TraceArg {
