@@ -10,34 +10,13 @@
 #![cfg(not(target_arch = "wasm32"))]
 
 use mtmotion::feed_vector::trace_analysis::{analyze_trace, ColumnMap};
-use mtmotion::feed_vector::{feed_vector_test, Condition, FeedVectorResult};
-use mtmotion::machine;
+use mtmotion::feed_vector::FeedVectorResult;
 use mtmotion::trace::{read_table, ColumnKind, ReadOptions, TableRead};
 use std::f64::consts::PI;
 
-/// The simulated test at ω = π rad/s (one period 2 s) over 3 s.
-fn sim() -> (Condition, FeedVectorResult) {
-    let m = machine::preset("nmv5000").unwrap();
-    let cond = Condition {
-        duration: Some(3.0),
-        ..Condition::paper(PI)
-    };
-    let r = feed_vector_test(&m, &cond).unwrap();
-    (cond, r)
-}
-
-/// The trace's rows: time (s), X, Y (mm), C (deg), torque (N·m).
-fn rows(r: &FeedVectorResult) -> Vec<[f64; 5]> {
-    let s = &r.series;
-    (0..s.t.len())
-        .map(|i| [s.t[i], s.x[i], s.y[i], s.c[i].to_degrees(), s.torque_c[i]])
-        .collect()
-}
-
-/// `a` equals `b` within 1e-9 relative (1e-12 absolute near zero).
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-9 * b.abs().max(1e-3)
-}
+#[path = "support/feed_vector_trace.rs"]
+mod feed_vector_trace;
+use feed_vector_trace::{close, rows, sim};
 
 const NAMES: [&str; 5] = ["time", "X", "Y", "C", "Torque"];
 

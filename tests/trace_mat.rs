@@ -10,19 +10,11 @@
 
 use miniz_oxide::deflate::compress_to_vec_zlib;
 use mtmotion::feed_vector::trace_analysis::{analyze_trace_bytes, ColumnMap};
-use mtmotion::feed_vector::{feed_vector_test, Condition, FeedVectorResult};
-use mtmotion::machine;
+use mtmotion::feed_vector::FeedVectorResult;
 use mtmotion::trace::{read_bytes, read_table, ReadOptions};
-use std::f64::consts::PI;
-
-fn sim() -> (Condition, FeedVectorResult) {
-    let m = machine::preset("nmv5000").unwrap();
-    let cond = Condition {
-        duration: Some(3.0),
-        ..Condition::paper(PI)
-    };
-    (cond.clone(), feed_vector_test(&m, &cond).unwrap())
-}
+#[path = "support/feed_vector_trace.rs"]
+mod feed_vector_trace;
+use feed_vector_trace::{close, sim};
 
 /// The simulation's columns: time (s), X, Y (mm), C (deg), torque (N·m).
 fn signals(r: &FeedVectorResult) -> [Vec<f64>; 5] {
@@ -226,10 +218,6 @@ fn vectors(r: &FeedVectorResult) -> Vec<u8> {
     }
     out.extend(w.chars("note", "a text variable"));
     out
-}
-
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-9 * b.abs().max(1e-3)
 }
 
 #[test]

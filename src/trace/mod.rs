@@ -503,9 +503,9 @@ impl Table {
 /// not valid UTF-8 becomes U+FFFD): `None` for text.
 ///
 /// Signatures: PNG `\x89PNG`, JPEG `FF D8 FF`, GIF `GIF8`, PDF `%PDF`,
-/// ZIP (xlsx, docx) `PK\x03\x04`, gzip `1F 8B`; otherwise a NUL character
+/// ZIP (xlsx, docx) `PK\x03\x04`, gzip `1F 8B`; otherwise a NUL character,
 /// or more than 10 % replacement/control characters in the first 512
-/// characters means binary.
+/// characters of a text of 32 characters or more, means binary.
 ///
 /// # Examples
 /// ```
@@ -546,7 +546,11 @@ pub fn binary_kind(text: &str) -> Option<&'static str> {
             c == '\u{fffd}' || (c.is_control() && !matches!(c, '\n' | '\r' | '\t' | '\u{c}'))
         })
         .count();
-    (sample.contains(&'\0') || bad * 10 > sample.len()).then_some("a binary file")
+    // the share is judged over 32 characters or more: a short text with
+    // one control character ("G0 X\u{7}1") is text with a fault at its
+    // column, not a binary file
+    (sample.contains(&'\0') || (sample.len() >= 32 && bad * 10 > sample.len()))
+        .then_some("a binary file")
 }
 
 #[cfg(test)]
