@@ -196,4 +196,27 @@ fn dwell_p_seconds_writes_linuxcnc_dwells() {
     assert!(s.nc.contains(" G4 P0.1\n"), "{}", s.nc);
     assert!(!s.nc.contains("P100"));
     assert_eq!(s.after.max_error_um, c.after.max_error_um);
+    // P in milliseconds is a guess here (nothing in the program says how
+    // its control reads P): the result says so, with what to set; with
+    // dwellP 'seconds' there is nothing to say.
+    let note = c
+        .dwell_note
+        .as_deref()
+        .expect("a note on the guessed dwell form");
+    assert!(
+        note.starts_with(&format!(
+            "{} dwell(s) written as G04 P<milliseconds>",
+            c.dwells.len()
+        )) && note.contains("set dwellP to 'seconds'"),
+        "{note}"
+    );
+    assert_eq!(s.dwell_note, None);
+    // a program whose own dwell is in seconds (X) gives the form, not a guess
+    let own = src.replacen('\n', "\nG04 X0.2\n", 1);
+    let o = reverse_compensate(&own, &ReverseConfig::default()).unwrap();
+    assert!(
+        !o.dwells.is_empty() && o.dwell_note.is_none(),
+        "{:?}",
+        o.dwell_note
+    );
 }

@@ -53,6 +53,12 @@ pub struct DwellForm {
     pub g: Option<String>,
     /// The time word.
     pub time: DwellTime,
+    /// True when nothing in the program or the options says how its
+    /// control reads a dwell's P (no LinuxCNC-only word, no dwell of its
+    /// own with X, U or a P with a point, `dwellP` 'auto'): the writer then
+    /// takes the Fanuc/Haas reading, P in milliseconds, which a LinuxCNC or
+    /// Grbl control reads as seconds (1000 × longer). The caller says so.
+    pub guessed: bool,
 }
 
 /// The first word or comment of `blocks` that only LinuxCNC writes: its
@@ -123,6 +129,9 @@ fn block_sign(b: &Block) -> Option<String> {
 /// assert_eq!(t("G0 X0\nG1 X1 F100"), DwellTime::MillisecondsP);
 /// assert_eq!(t("G0 X0\nG04 X0.5\nG1 X1 F100"), DwellTime::Seconds('X'));
 /// assert_eq!(t("G0 X0\nG64 P0.01\nG1 X1 F100"), DwellTime::SecondsP);
+/// // nothing says how P is read: milliseconds, and said to be a guess
+/// assert!(dwell_form(&parse("G0 X0\nG1 X1 F100").unwrap()).guessed);
+/// assert!(!dwell_form(&parse("G0 X0\nG04 X0.5\nG1 X1 F100").unwrap()).guessed);
 /// ```
 pub fn dwell_form(program: &Program) -> DwellForm {
     let first = program.blocks.iter().find_map(|b| {
@@ -136,16 +145,20 @@ pub fn dwell_form(program: &Program) -> DwellForm {
     let g = first.as_ref().map(|(text, ..)| text.clone());
     let linuxcnc =
         program.options.dwell_p == DwellP::Seconds || linuxcnc_sign(&program.blocks).is_some();
+    let mut guessed = false;
     let time = if linuxcnc {
         DwellTime::SecondsP
     } else {
         match first {
             Some((_, l @ ('X' | 'U'), _)) => DwellTime::Seconds(l),
             Some((_, 'P', true)) if program.options.dwell_p == DwellP::Auto => DwellTime::SecondsP,
-            _ => DwellTime::MillisecondsP,
+            _ => {
+                guessed = program.options.dwell_p == DwellP::Auto;
+                DwellTime::MillisecondsP
+            }
         }
     };
-    DwellForm { g, time }
+    DwellForm { g, time, guessed }
 }
 
 /// Letter runs (at the start of a multi-letter word) that only Siemens

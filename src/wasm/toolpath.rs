@@ -97,6 +97,7 @@ export interface ReverseCompensation {
   beforeSim: ToolPathSimulation; afterSim: ToolPathSimulation;
   /** set when the written program is the original text byte for byte: why, in words (the download is then not offered) */ unchanged: string | null;
   /** set when the work budget cut the correction short: what was kept and what to change */ budgetNote: string | null;
+  /** set when dwells were written as P in milliseconds without the program saying how its control reads P: what to set for a control that reads seconds */ dwellNote: string | null;
 }
 "#;
 
@@ -424,6 +425,12 @@ pub fn reverse_compensate_js(
         .val(
             "budgetNote",
             c.budget_note
+                .as_deref()
+                .map_or(JsValue::NULL, JsValue::from_str),
+        )
+        .val(
+            "dwellNote",
+            c.dwell_note
                 .as_deref()
                 .map_or(JsValue::NULL, JsValue::from_str),
         )

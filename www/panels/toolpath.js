@@ -324,6 +324,8 @@ export async function mount(root, api) {
         ]),
         h('p', {}, `Error ${pct >= 0 ? 'reduced' : 'increased'} by ${fmt(Math.abs(pct), 3)} %; rounds: ${c.historyUm.length ? `${c.historyUm.map((e) => fmt(e, 3)).join(' → ')} µm` : 'none (nothing to move)'}; dwells: ${c.dwells.length ? c.dwells.map((d) => `${d.seconds} s after line ${d.afterLine}`).join(', ') : 'none'}.`),
         ...(c.budgetNote ? [h('p', { class: 'note', id: 'toolpath-budget-note' }, `Cut short: ${c.budgetNote}.`)] : []),
+        // The core says when the dwells' form is a guess (P in ms, no sign of the control in the program).
+        ...(c.dwellNote ? [h('p', { class: 'warn-note', id: 'toolpath-dwell-note', role: 'note' }, `Check the dwells: ${c.dwellNote}.`)] : []),
         // The core says when the written program is the original byte for byte: no download of a file that compensates nothing.
         ...(c.unchanged ? [h('p', { class: 'note', id: 'toolpath-unchanged' }, `No compensated program: ${c.unchanged}.`)] : []),
         h('button', { id: 'toolpath-download', class: 'primary', disabled: Boolean(c.unchanged), title: c.unchanged ?? '', onclick: () => downloadText(`${base}-compensated.nc`, c.nc, 'text/plain') }, c.unchanged ? 'Download compensated .nc (nothing changed)' : 'Download compensated .nc'),

@@ -272,6 +272,10 @@ pub struct Compensation {
     /// Set when the work budget cut the rounds or checks short: what was
     /// kept and what to change for a full run.
     pub budget_note: Option<String>,
+    /// Set when dwells were inserted in a form the program does not
+    /// confirm (P in milliseconds, [`crate::nc::dialect::DwellForm::guessed`]):
+    /// what was written and what to set if the control reads P as seconds.
+    pub dwell_note: Option<String>,
 }
 
 /// The joints after which a dwell may help: where a run of ≥ 3 short
@@ -482,6 +486,17 @@ pub fn reverse_compensate_with(
     );
     c.budget_note = work.note();
     c.unchanged = (c.nc == text).then(|| unchanged_reason(&c.regions, &range));
+    if !c.dwells.is_empty()
+        && c.unchanged.is_none()
+        && crate::nc::dialect::dwell_form(&program).guessed
+    {
+        c.dwell_note = Some(format!(
+            "{} dwell(s) written as G04 P<milliseconds> (Fanuc, Haas): nothing in the program says \
+             how its control reads P; a LinuxCNC or Grbl control reads P in seconds, so each \
+             dwell would last 1000 times longer: set dwellP to 'seconds' for such a control",
+            c.dwells.len()
+        ));
+    }
     Ok(c)
 }
 
@@ -936,6 +951,7 @@ fn finish(
         sim_before: sim_before.clone(),
         sim_after: c.sim,
         unchanged: None,
+        dwell_note: None,
         budget_note: None,
     }
 }
