@@ -110,13 +110,11 @@ impl Tally {
     /// (a Fanuc post may write zero `X0` and every other integer `X10.`,
     /// and `X10` without a point is 10 µm there), else of the zeros.
     fn int_point(&self) -> Option<bool> {
-        if self.ipoint != self.inopoint {
-            Some(self.ipoint > self.inopoint)
-        } else if self.ipoint == 0 && self.point != self.nopoint {
-            Some(self.point > self.nopoint)
+        vote(self.ipoint, self.inopoint).or(if self.ipoint == 0 {
+            vote(self.point, self.nopoint)
         } else {
             None
-        }
+        })
     }
 
     /// The fewest decimals these words keep (see the module header).
@@ -145,6 +143,16 @@ impl Tally {
         let (d0, _) = *self.fracs.first()?;
         (self.fracs.iter().all(|(d, _)| *d == d0) && self.fracs.iter().any(|(_, z)| *z))
             .then_some(d0)
+    }
+}
+
+/// A vote: `Some(true)` when `yes` outnumbers `no`, `Some(false)` the
+/// other way, `None` on a tie.
+fn vote(yes: usize, no: usize) -> Option<bool> {
+    match yes.cmp(&no) {
+        std::cmp::Ordering::Greater => Some(true),
+        std::cmp::Ordering::Less => Some(false),
+        std::cmp::Ordering::Equal => None,
     }
 }
 
@@ -210,11 +218,11 @@ impl NumStyle {
             // Integers other than zero and no fraction: `X2 Y3`, `X2. Y3.`.
             s.min_decimals = 0;
         }
-        if t.lead != t.nolead {
-            s.lead_zero = t.lead > t.nolead;
+        if let Some(lead) = vote(t.lead, t.nolead) {
+            s.lead_zero = lead;
         }
-        if t.ipoint != t.inopoint {
-            s.int_point = t.ipoint > t.inopoint;
+        if let Some(point) = vote(t.ipoint, t.inopoint) {
+            s.int_point = point;
         }
         s
     }
@@ -324,6 +332,48 @@ mod tests {
         let s = p.in_block(&b[2], false);
         assert_eq!(s.format(4.0), "4");
         assert_eq!(p.in_block(&lex("G4 P1").unwrap()[0], false), p);
+    }
+
+    #[test]
+    fn zeros_vote_for_the_point_when_no_other_integer_does() {
+        // Only zeros are integers: `0.` outvotes `0`, and the other way.
+        let s = style("G0 X0. Y0. Z0.\nG1 X1.5 Y2.25 Z0", false);
+        assert!(s.int_point);
+        assert_eq!(s.format(3.0), "3.");
+        let s = style("G0 X0 Y0 Z0.\nG1 X1.5 Y2.25", false);
+        assert!(!s.int_point);
+        assert_eq!(s.format(3.0), "3");
+        // A tie of the other integers (`10.` and `20`) is no vote, and the
+        // zeros do not break it: the point stays (the default).
+        let s = style("G1 X10. Y20 Z0\nX0 Y1.5", false);
+        assert!(s.int_point);
+        // A block's own vote on the leading zero and the point wins; its tie does not.
+        let b = lex("G1 X.5 Y.25 Z10.\nX0.5 Y0.25 Z10\nX0.5 Y.25").unwrap();
+        let p = NumStyle::of(&b, false);
+        // ties in the program: a leading zero (the default) and the point (the default)
+        assert_eq!((p.lead_zero, p.int_point), (true, true));
+        let s = p.in_block(&b[1], false);
+        assert!(s.lead_zero && !s.int_point);
+        let s = p.in_block(&b[2], false);
+        assert_eq!((s.lead_zero, s.int_point), (p.lead_zero, p.int_point));
+    }
+
+    #[test]
+    fn a_block_of_integers_trims_but_a_block_with_a_fraction_does_not() {
+        // The program keeps 3 decimals (`1.500`, `2.250`).
+        let b = lex("G1 X1.500 Y2.250\nX2.000\nN4 X2 Y3\nN5 X1.5 Y2\nG4 P1").unwrap();
+        let p = NumStyle::of(&b, false);
+        assert_eq!(p.min_decimals, 3);
+        // `X2 Y3`: integers and no fraction: no trailing zeros, no point.
+        let s = p.in_block(&b[2], false);
+        assert_eq!((s.min_decimals, s.format(4.0)), (0, "4".into()));
+        // `X1.5 Y2`: a fraction without a trailing zero is no fixed count,
+        // and the block is no integer-only block: the program's 3 stay.
+        let s = p.in_block(&b[3], false);
+        assert_eq!(s.min_decimals, 3);
+        assert_eq!(s.format(4.0), "4.000");
+        // No coordinate word at all: the program's style.
+        assert_eq!(p.in_block(&b[4], false), p);
     }
 
     #[test]
