@@ -445,16 +445,21 @@ pub fn check(
 /// assert!(check_text("trace", &"\r".repeat(300_000)).is_err());
 /// ```
 pub fn check_text(what: &'static str, text: &str) -> Result<(), BudgetError> {
+    check_trace_texts(what, [text])
+}
+
+/// As [`check_text`] for several traces read in one call (an alignment
+/// band's sections): their bytes, then their lines, summed over them all.
+pub fn check_trace_texts<'a>(
+    what: &'static str,
+    texts: impl IntoIterator<Item = &'a str> + Clone,
+) -> Result<(), BudgetError> {
+    let bytes: u64 = texts.clone().into_iter().map(|t| t.len() as u64).sum();
+    check(what, bytes, MAX_TRACE_BYTES, "bytes", TEXT_ADVICE)?;
+    let n: u64 = texts.into_iter().map(|t| lines(t) as u64).sum();
     check(
         what,
-        text.len() as u64,
-        MAX_TRACE_BYTES,
-        "bytes",
-        TEXT_ADVICE,
-    )?;
-    check(
-        what,
-        lines(text) as u64,
+        n,
         MAX_LINES,
         "lines",
         "split the file into parts and run each",

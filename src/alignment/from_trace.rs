@@ -65,25 +65,7 @@ pub fn sections_from_traces(
     centre: Option<PlanePoint>,
 ) -> Result<Vec<Section>, AlignmentError> {
     // bytes and lines over every trace together, not each on its own
-    let total: u64 = traces.iter().map(|t| t.text.len() as u64).sum();
-    crate::budget::check(
-        "alignment traces",
-        total,
-        crate::budget::MAX_TRACE_BYTES,
-        "bytes",
-        crate::budget::TEXT_ADVICE,
-    )?;
-    let lines: u64 = traces
-        .iter()
-        .map(|t| crate::budget::lines(&t.text) as u64)
-        .sum();
-    crate::budget::check(
-        "alignment traces",
-        lines,
-        crate::budget::MAX_LINES,
-        "lines",
-        "split the traces into fewer or shorter ones",
-    )?;
+    crate::budget::check_trace_texts("alignment traces", traces.iter().map(|t| t.text.as_str()))?;
     let opts = ParseOptions {
         nominal_radius: Some(radius),
         centre,
