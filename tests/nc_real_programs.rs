@@ -583,18 +583,23 @@ fn reverse_compensation_writes_g52_programs_in_their_local_frame() {
     // It did compensate (a result it found worse would be the source unchanged).
     let c = compensated(&src);
     let q = parse(&c.nc).unwrap();
-    // The compensation may add dwells (G4) at corners: compare the moves.
+    // The compensation may add dwells (G4) and corner spikes (two G1
+    // lines out and back) at corners: compare the moves, spikes left out.
     let (pm, qm) = (moves(&p), moves(&q));
-    assert_eq!(qm.len(), pm.len(), "{}", c.nc);
-    for (a, b) in pm.iter().zip(&qm) {
-        let d = mtmotion::nc::program::dist(a.end.p(), b.end.p());
+    assert_eq!(qm.len(), pm.len() + 2 * c.spikes.len(), "{}", c.nc);
+    let mut k = 0;
+    for a in &pm {
+        let skipped = k;
+        while k < qm.len() && mtmotion::nc::program::dist(a.end.p(), qm[k].end.p()) >= 0.05 {
+            k += 1;
+        }
         assert!(
-            d < 0.05,
-            "moved {d} mm: {:?} -> {:?}\n{}",
+            k < qm.len() && k - skipped <= 2,
+            "{:?} not reached after at most one spike\n{}",
             a.end.p(),
-            b.end.p(),
             c.nc
         );
+        k += 1;
     }
     assert!(
         c.nc.contains("G52 X100 Y50") && c.nc.contains("G52 X200 Y50"),

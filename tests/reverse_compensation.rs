@@ -47,11 +47,18 @@ fn arc_example_error_falls_by_60_percent_within_5_percent_time() {
     for (x, y) in a.iter().zip(&b) {
         assert!((x[0] - y[0]).abs() < 2e-4 && (x[1] - y[1]).abs() < 2e-4);
     }
-    // Radii grew where the arcs lost radius.
+    // Radii grew where the arcs lost radius, except next to a corner
+    // spike (the short arcs of B and D), which pulls the path out itself.
+    let near_spike = |l: usize| {
+        c.spikes
+            .iter()
+            .any(|s| s.after_line + 1 >= l && s.after_line <= l + 1)
+    };
+    assert!(!c.spikes.is_empty());
     assert!(c
         .segments
         .iter()
-        .filter(|s| s.kind == "arc")
+        .filter(|s| s.kind == "arc" && !near_spike(s.line))
         .all(|s| s.radius_after > s.radius_before - 1e-3));
 }
 

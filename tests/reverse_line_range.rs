@@ -22,7 +22,7 @@ fn ranged(from: Option<usize>, to: Option<usize>) -> ReverseConfig {
 /// the first `from - 1` at the start and the rest at the end; at least one
 /// line inside changed. The error of each cutting move outside is not
 /// raised by more than 0.1 µm (the slack of the check: past the reach of
-/// the changes, tA + 7·T, only the sampling phase differs, by nm).
+/// the changes, tA + 12·T, only the sampling phase differs, by nm).
 fn outside_is_untouched(src: &str, c: &Compensation, from: usize, to: usize) {
     let a: Vec<&str> = src.split_inclusive('\n').collect();
     let b: Vec<&str> = c.nc.split_inclusive('\n').collect();
@@ -32,8 +32,8 @@ fn outside_is_untouched(src: &str, c: &Compensation, from: usize, to: usize) {
     let inside_out = &b[from - 1..b.len() - tail];
     assert_ne!(inside_out, &a[from - 1..to], "nothing inside changed");
     let p = parse(src).unwrap();
-    // Nominal time from the range's end to each move: within tA + 7·T
-    // (the default 40 ms + 7 × 15 ms) the changes reach the move.
+    // Nominal time from the range's end to each move: within tA + 12·T
+    // (the default 40 ms + 12 × 15 ms) the changes reach the move.
     let mut since_end = 0.0;
     for (k, s) in p.segments.iter().enumerate() {
         let before_range = s.line < from;
@@ -53,9 +53,11 @@ fn outside_is_untouched(src: &str, c: &Compensation, from: usize, to: usize) {
         let (before, after) = (worst(&c.sim_before), worst(&c.sim_after));
         // Within reach (and before the range): 0.1 µm. Past it only the
         // sampling phase differs, moving a sampled maximum by what the
-        // error changes in one 1 ms step: 1.5 % here.
-        let reached = before_range || since_end - s.length() / (s.feed / 60.0) < 0.145;
-        let slack = if reached { 0.1 } else { 0.015 * before };
+        // error changes in one 1 ms step: up to 3.1 % here (line 41, at
+        // the joint of two arcs, behind the range's corner spikes, whose
+        // length — unlike a 0.1 s dwell — is no whole number of steps).
+        let reached = before_range || since_end - s.length() / (s.feed / 60.0) < 0.22;
+        let slack = if reached { 0.1 } else { 0.035 * before };
         assert!(
             after <= before + slack,
             "line {}: {before} -> {after} µm",
@@ -181,7 +183,8 @@ fn a_range_without_a_move_to_correct_gives_the_program_back() {
 #[test]
 fn dwell_p_seconds_writes_linuxcnc_dwells() {
     let src = example::arc_example();
-    let c = reverse_compensate(&src, &ReverseConfig::default()).unwrap();
+    // qiu's method (no corner spikes): dwells at B and D.
+    let c = reverse_compensate(&src, &ReverseConfig::paper()).unwrap();
     assert!(!c.dwells.is_empty());
     assert!(
         c.nc.contains("\nG4 P100\n") || c.nc.contains(" G4 P100\n"),
@@ -190,7 +193,7 @@ fn dwell_p_seconds_writes_linuxcnc_dwells() {
     );
     let cfg = ReverseConfig {
         dwell_p: DwellP::Seconds,
-        ..ReverseConfig::default()
+        ..ReverseConfig::paper()
     };
     let s = reverse_compensate(&src, &cfg).unwrap();
     assert!(s.nc.contains(" G4 P0.1\n"), "{}", s.nc);
@@ -213,7 +216,7 @@ fn dwell_p_seconds_writes_linuxcnc_dwells() {
     assert_eq!(s.dwell_note, None);
     // a program whose own dwell is in seconds (X) gives the form, not a guess
     let own = src.replacen('\n', "\nG04 X0.2\n", 1);
-    let o = reverse_compensate(&own, &ReverseConfig::default()).unwrap();
+    let o = reverse_compensate(&own, &ReverseConfig::paper()).unwrap();
     assert!(
         !o.dwells.is_empty() && o.dwell_note.is_none(),
         "{:?}",

@@ -170,3 +170,52 @@ fn a_path_cut_three_times_measures_each_pass_against_itself() {
         }
     }
 }
+
+/// The per-half maxima of a segment's samples (`half_max`, reverse
+/// compensation's corner errors): their larger is the segment's maximum,
+/// and on a corner path the corner's half carries it, checked against the
+/// samples' own errors split at the segment's middle by their nearest
+/// point (independently of the statistics).
+#[test]
+fn half_maxima_split_a_segments_samples_at_its_middle() {
+    use mtmotion::nc::program::parse;
+    use mtmotion::toolpath::{simulate, Lag, SimConfig};
+    let p = parse("G21 G90\nG0 X3 Y-4\nG1 X43 Y-4 F1500\nG1 X43 Y26\nG1 X13 Y26\n").unwrap();
+    let cfg = SimConfig {
+        t_a: 0.04,
+        t: Lag::All(0.015),
+        dt: 1e-3,
+        ..SimConfig::default()
+    };
+    let s = simulate(&p.segments, &p.segments, &cfg).unwrap();
+    for st in &s.segments {
+        let m = st.half_max[0].max(st.half_max[1]) * 1e3;
+        assert!((m - st.max_error_um).abs() < 1e-9, "{st:?}");
+    }
+    // The first cut (X3 → X43 at Y−4): its second half ends at the corner.
+    let first = s.segments.iter().find(|st| st.line == 3).unwrap();
+    assert!(first.half_max[1] > 10.0 * first.half_max[0], "{first:?}");
+    // Independently: samples nearest to that cut (y ≈ −4, x in range),
+    // split at x = 23.
+    let (mut lo, mut hi) = (0.0f64, 0.0f64);
+    for k in 0..s.t.len() {
+        let (nx, ny) = (s.near[0][k], s.near[1][k]);
+        if (ny + 4.0).abs() < 1e-9 && (3.0..43.0).contains(&nx) {
+            if nx <= 23.0 {
+                lo = lo.max(s.error[k]);
+            } else {
+                hi = hi.max(s.error[k]);
+            }
+        }
+    }
+    assert!(
+        (hi - first.half_max[1]).abs() < 1e-9,
+        "{hi} vs {:?}",
+        first.half_max
+    );
+    assert!(
+        (lo - first.half_max[0]).abs() < 1e-9,
+        "{lo} vs {:?}",
+        first.half_max
+    );
+}

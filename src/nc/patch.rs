@@ -432,7 +432,10 @@ impl Writer<'_> {
         let mut pos = segments
             .first()
             .map_or(self.p.options.start.p(), |s| s.start.p());
-        let mut restore = false;
+        // The motion code in force when it may differ from the one the
+        // next block relies on (after a new G1 line, or a block whose code
+        // the edit changed).
+        let mut restore: Option<u32> = None;
         let mut last_line: Option<usize> = None;
         for (k, seg) in segments.iter().enumerate() {
             match seg.block {
@@ -443,7 +446,7 @@ impl Writer<'_> {
                     if matches!(seg.motion, Motion::Dwell { .. }) {
                         continue;
                     }
-                    let (p, changed_mode) = self.block(b, seg, pos, std::mem::take(&mut restore));
+                    let (p, changed_mode) = self.block(b, seg, pos, restore.take());
                     pos = p;
                     restore = changed_mode;
                 }
@@ -468,7 +471,7 @@ impl Writer<'_> {
                             self.after[at].push(text);
                         }
                     }
-                    restore = true;
+                    restore = Some(1);
                 }
             }
         }
@@ -553,23 +556,33 @@ impl Writer<'_> {
         (t, mm)
     }
 
-    /// Patches source block `b` to carry `seg` from `pos`; returns the
-    /// position read back and whether the modal motion now differs from
-    /// the original's (the next block must then state its own).
-    fn block(&mut self, b: usize, seg: &Segment, pos: [f64; 3], restore: bool) -> ([f64; 3], bool) {
+    /// Patches source block `b` to carry `seg` from `pos`, with motion
+    /// code `restore` in force before it when that may differ from the
+    /// original's; returns the position read back and the block's new
+    /// motion code when it differs from the original's (the next block
+    /// must then state its own).
+    fn block(
+        &mut self,
+        b: usize,
+        seg: &Segment,
+        pos: [f64; 3],
+        restore: Option<u32>,
+    ) -> ([f64; 3], Option<u32>) {
         let Some(oi) = self.seg_of.get(b).copied().flatten() else {
-            return (seg.end.p(), false);
+            return (seg.end.p(), None);
         };
         let o = &self.p.segments[oi];
         if o.fixed {
-            return (seg.end.p(), false);
+            return (seg.end.p(), None);
         }
         let (Some(block), Some(l)) = (self.p.blocks.get(b), self.line_of(b)) else {
-            return (seg.end.p(), false);
+            return (seg.end.p(), None);
         };
+        // A block that relies on the code now in force needs nothing.
+        let restore = restore.is_some_and(|c| Some(c) != motion_code(&o.motion));
         let same_start = pos == o.start.p();
         if same_start && seg.end == o.end && seg.motion == o.motion && !restore {
-            return (o.end.p(), false);
+            return (o.end.p(), None);
         }
         let m = self.modal(b);
         let st = self.d.style(&m).in_block(block, m.inch);
@@ -605,7 +618,7 @@ impl Writer<'_> {
         if !splices.is_empty() {
             self.content[l] = Some(apply(&line, splices));
         }
-        (end, changed)
+        (end, changed.then(|| motion_code(&seg.motion)).flatten())
     }
 
     /// The splices of the X/Y/Z words of an edited block, worked out in

@@ -57,6 +57,12 @@ pub struct SegmentStats {
     /// `half_deviation`).
     #[serde(skip)]
     pub half_vector: [Option<[f64; 3]>; 2],
+    /// Largest contour error of the samples nearest to the first and the
+    /// second half of the segment's length, mm (0 with no sample): the
+    /// error at each end's corner, used by reverse compensation's corner
+    /// pre-distortion. Not serialised (as `half_deviation`).
+    #[serde(skip)]
+    pub half_max: [f64; 2],
     /// Number of samples nearest to this segment.
     pub samples: usize,
 }
@@ -72,6 +78,8 @@ struct Acc {
     half: [f64; 4],
     /// Sum of `near − simulated` per half and axis, and the count per half.
     vec: [[f64; 4]; 2],
+    /// Largest error per half.
+    half_max: [f64; 2],
 }
 
 /// Result of a simulation.
@@ -481,6 +489,9 @@ impl Acc {
         if nr.dist > self.max_error {
             self.max_error = nr.dist;
         }
+        if nr.dist > self.half_max[h] {
+            self.half_max[h] = nr.dist;
+        }
         if nr.normal.is_finite() {
             self.sum_dev += nr.normal;
             self.n_dev += 1;
@@ -512,6 +523,7 @@ impl Acc {
                 let v = &self.vec[h];
                 (v[3] > 0.0).then(|| [v[0] / v[3], v[1] / v[3], v[2] / v[3]])
             }),
+            half_max: self.half_max,
             samples: self.samples,
         }
     }

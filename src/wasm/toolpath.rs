@@ -80,8 +80,8 @@ export interface ToolPathSimulation {
 export interface RadiusReductionInput { /** [mm/min] */ feed: number; /** [mm] */ radius: number; /** [s] */ tA: number; /** [s] */ T: number }
 export interface CircleLoss { /** [mm/min] */ feed: number; /** [mm] */ radius: number; /** [mm] */ radiusLoss: number }
 export interface AccDec { /** [s] */ tA: number; /** [s] */ T: number; /** [mm] RMS of the Δr residuals */ residual: number }
-/** dwell (unset: automatic 0.1 s, 0: none); timeBudget: largest motion-time growth as a fraction (default 0.05); dwellP: how G4 P is read, and so how an inserted dwell is written ('auto': P100 whole ms for Fanuc/Haas, G4 P0.1 seconds when the program shows LinuxCNC words; 'seconds': LinuxCNC/Grbl; 'milliseconds': Fanuc); fromLine, toLine: the program's own text lines to compensate, 1-based and inclusive (unset: first, last); every line outside stays byte for byte and its error is not made worse. */
-export interface ReverseConfig extends Omit<ToolPathConfig, 'files' | 'toolRadii'> { /** [s] */ dwell?: number; /** [-] */ iterations?: number; /** [-] fraction */ timeBudget?: number; dwellP?: 'auto' | 'milliseconds' | 'seconds'; /** [-] 1-based line */ fromLine?: number; /** [-] 1-based line */ toLine?: number }
+/** dwell (unset: automatic 0.1 s, 0: none); timeBudget: largest motion-time growth as a fraction (default 0.05); dwellP: how G4 P is read, and so how an inserted dwell is written ('auto': P100 whole ms for Fanuc/Haas, G4 P0.1 seconds when the program shows LinuxCNC words; 'seconds': LinuxCNC/Grbl; 'milliseconds': Fanuc); fromLine, toLine: the program's own text lines to compensate, 1-based and inclusive (unset: first, last); every line outside stays byte for byte and its error is not made worse; step: the share of the measured deviation each round corrects; cornerSpikes: two new G1 lines out and back at each sharp corner (see docs/toolpath.md). */
+export interface ReverseConfig extends Omit<ToolPathConfig, 'files' | 'toolRadii'> { /** [s] */ dwell?: number; /** [-] */ iterations?: number; /** [-] fraction */ timeBudget?: number; dwellP?: 'auto' | 'milliseconds' | 'seconds'; /** [-] 1-based line */ fromLine?: number; /** [-] 1-based line */ toLine?: number; /** [-] share of the deviation a correction round corrects, (0, 1] (qiu: 1; default 0.5) */ step?: number; /** corner spikes at sharp corners (default true; false: qiu's radii, vertices and dwells only) */ cornerSpikes?: boolean }
 /** One region (cutting moves between rapids and fixed segments); reason says why it was left unchanged. */
 export interface RegionNote {
   /** [-] */ firstLine: number; /** [-] */ lastLine: number; /** [-] */ arcs: number; /** [-] */ lines: number;
@@ -93,7 +93,9 @@ export interface SegmentChange {
 }
 export interface ReverseCompensation {
   nc: string; before: CompSummary; after: CompSummary; segments: SegmentChange[];
-  dwells: { /** [-] */ afterLine: number; seconds: number }[]; regions: RegionNote[]; historyUm: number[];
+  dwells: { /** [-] */ afterLine: number; seconds: number }[];
+  /** corner spikes: two new G1 lines after the block on afterLine, out from the corner by depthUm and back */ spikes: { /** [-] */ afterLine: number; depthUm: number }[];
+  regions: RegionNote[]; historyUm: number[];
   beforeSim: ToolPathSimulation; afterSim: ToolPathSimulation;
   /** set when the written program is the original text byte for byte: why, in words (the download is then not offered) */ unchanged: string | null;
   /** set when the work budget cut the correction short: what was kept and what to change */ budgetNote: string | null;
@@ -412,6 +414,7 @@ pub fn reverse_compensate_js(
         .ser("after", &c.after)?
         .ser("segments", &c.segments)?
         .ser("dwells", &c.dwells)?
+        .ser("spikes", &c.spikes)?
         .ser("regions", &c.regions)?
         .ser("historyUm", &c.history_um)?
         .val("beforeSim", sim_obj(&c.sim_before, &[])?)

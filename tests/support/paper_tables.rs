@@ -451,11 +451,11 @@ fn qiu(r: &mut Rows) {
         &ReverseConfig {
             dwell: Some(0.1),
             iterations: 1,
-            ..ReverseConfig::default()
+            ..ReverseConfig::paper()
         },
     )
     .unwrap();
-    let def = reverse_compensate(&src, &ReverseConfig::default()).unwrap();
+    let def = reverse_compensate(&src, &ReverseConfig::paper()).unwrap();
     r.push(
         "qiu.arc.before.maxError".into(),
         QIU,
@@ -518,7 +518,7 @@ fn qiu(r: &mut Rows) {
             dwell_exact_stop: true,
             ..Default::default()
         },
-        ..ReverseConfig::default()
+        ..ReverseConfig::paper()
     };
     let stop = reverse_compensate(&src, &stop_cfg).unwrap();
     r.push(
@@ -549,7 +549,7 @@ fn qiu(r: &mut Rows) {
         1,
     );
     let line =
-        reverse_compensate(&toolpath_example::line_example(), &ReverseConfig::default()).unwrap();
+        reverse_compensate(&toolpath_example::line_example(), &ReverseConfig::paper()).unwrap();
     r.push(
         "qiu.line.before.maxError".into(),
         QIU,

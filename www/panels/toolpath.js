@@ -322,7 +322,7 @@ export async function mount(root, api) {
           ['original', h('span', { id: 'toolpath-before-error' }, fmt(c.before.maxErrorUm, 4)), fmt(c.before.motionTime, 5)],
           ['compensated', h('span', { id: 'toolpath-after-error' }, fmt(c.after.maxErrorUm, 4)), h('span', { id: 'toolpath-after-time' }, fmt(c.after.motionTime, 5))],
         ]),
-        h('p', {}, `Error ${pct >= 0 ? 'reduced' : 'increased'} by ${fmt(Math.abs(pct), 3)} %; rounds: ${c.historyUm.length ? `${c.historyUm.map((e) => fmt(e, 3)).join(' → ')} µm` : 'none (nothing to move)'}; dwells: ${c.dwells.length ? c.dwells.map((d) => `${d.seconds} s after line ${d.afterLine}`).join(', ') : 'none'}.`),
+        h('p', {}, `Error ${pct >= 0 ? 'reduced' : 'increased'} by ${fmt(Math.abs(pct), 3)} %; rounds: ${c.historyUm.length ? `${c.historyUm.map((e) => fmt(e, 3)).join(' → ')} µm` : 'none (nothing to move)'}; dwells: ${c.dwells.length ? c.dwells.map((d) => `${d.seconds} s after line ${d.afterLine}`).join(', ') : 'none'}; corner spikes: ${c.spikes.length ? `${c.spikes.length} (${fmt(c.spikes.reduce((m, x) => Math.min(m, x.depthUm), Infinity), 3)}–${fmt(c.spikes.reduce((m, x) => Math.max(m, x.depthUm), 0), 3)} µm out and back, after lines ${c.spikes.slice(0, 5).map((x) => x.afterLine).join(', ')}${c.spikes.length > 5 ? ', …' : ''})` : 'none'}.`),
         ...(c.budgetNote ? [h('p', { class: 'note', id: 'toolpath-budget-note' }, `Cut short: ${c.budgetNote}.`)] : []),
         // The core says when the dwells' form is a guess (P in ms, no sign of the control in the program).
         ...(c.dwellNote ? [h('p', { class: 'warn-note', id: 'toolpath-dwell-note', role: 'note' }, `Check the dwells: ${c.dwellNote}.`)] : []),

@@ -29,6 +29,9 @@ pub struct Edit {
     pub vertex_shift: Vec<[f64; 3]>,
     /// Dwell inserted after each segment, s (0 = none).
     pub dwell_after: Vec<f64>,
+    /// Corner spike after each segment: the vector from the joint to the
+    /// spike's tip, mm (zero = none).
+    pub spike: Vec<[f64; 3]>,
 }
 
 fn radial(a: &Arc, r: f64, j: [f64; 3]) -> [f64; 3] {
@@ -114,6 +117,14 @@ pub fn rebuild(orig: &[Segment], edit: &Edit) -> Vec<Segment> {
         }
         pen = ends[i];
         out.push(seg);
+        let sp = edit.spike.get(i).copied().unwrap_or([0.0; 3]);
+        if sp != [0.0; 3] {
+            let tip = [pen[0] + sp[0], pen[1] + sp[1], pen[2] + sp[2]];
+            for to in [tip, pen] {
+                let c = connector(&out, s, out_end(&out, pen), to);
+                out.push(c);
+            }
+        }
         let dw = edit.dwell_after.get(i).copied().unwrap_or(0.0);
         if dw > 0.0 {
             let mut d = out.last().cloned().unwrap_or_else(|| s.clone());
@@ -227,6 +238,11 @@ fn refit_arc(mut a: Arc, r: f64, start: [f64; 3], end: [f64; 3]) -> Motion {
         a.sweep = sw;
         Motion::Arc(a)
     }
+}
+
+/// Where the rebuilt program so far ends, as a point (`pen` when empty).
+fn out_end(out: &[Segment], pen: [f64; 3]) -> [f64; 3] {
+    out.last().map_or(pen, |x| x.end.p())
 }
 
 fn prev_pose(out: &[Segment], s: &Segment, pen: [f64; 3]) -> crate::nc::program::Pose {

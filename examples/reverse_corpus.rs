@@ -1,0 +1,107 @@
+//! Reverse compensation over the shared NC corpus, one line per program:
+//! the measurement behind issue 27's must-shows (after/before maximum
+//! error, motion-time growth, unchanged programs with their reason,
+//! refusals, time per program).
+//!
+//! Run: `cargo run --release --example reverse_corpus [dt_ms] [file…]`
+//! (tA 40 ms, T 15 ms, dt 2 ms unless given). The corpus is read from
+//! `../shared/nc_corpus` or `MTMOTION_NC_CORPUS` (see
+//! `tests/support/corpus.rs`).
+
+#[cfg(not(target_arch = "wasm32"))]
+#[path = "../tests/support/corpus.rs"]
+mod corpus;
+
+#[cfg(not(target_arch = "wasm32"))]
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
+    let mut args = std::env::args().skip(1);
+    let dt_ms: f64 = args.next().map(|s| s.parse()).transpose()?.unwrap_or(2.0);
+    let only: Vec<String> = args.collect();
+    let dir = corpus::dir()?;
+    let mut cfg = ReverseConfig::default();
+    cfg.sim.t_a = 0.04;
+    cfg.sim.t = mtmotion::toolpath::Lag::All(0.015);
+    cfg.sim.dt = dt_ms * 1e-3;
+    if std::env::var_os("PAPER").is_some() {
+        cfg.step = 1.0;
+        cfg.corner_spikes = false;
+    }
+    let mut ratios = Vec::new();
+    let (mut unchanged, mut refused) = (0, 0);
+    for name in corpus::names(&dir) {
+        if !only.is_empty() && !only.iter().any(|o| name.contains(o.as_str())) {
+            continue;
+        }
+        let text = std::fs::read_to_string(dir.join(&name)).unwrap_or_else(|_| {
+            String::from_utf8_lossy(&std::fs::read(dir.join(&name)).unwrap()).into_owned()
+        });
+        if mtmotion::nc::program::parse(&text).is_err() {
+            println!("{name:48} does not parse (out of scope)");
+            continue;
+        }
+        let start = std::time::Instant::now();
+        match reverse_compensate(&text, &cfg) {
+            Ok(c) => {
+                let r = c.after.max_error_um / c.before.max_error_um;
+                ratios.push(r);
+                let changed = c.regions.iter().filter(|n| n.changed).count();
+                println!(
+                    "{name:48} {:9.1} -> {:9.1} µm ×{r:.3}  time {:+.2} %  regions {changed}/{}  {:.2} s{}{}",
+                    c.before.max_error_um,
+                    c.after.max_error_um,
+                    100.0 * (c.after.motion_time / c.before.motion_time - 1.0),
+                    c.regions.len(),
+                    start.elapsed().as_secs_f64(),
+                    c.unchanged.as_deref().map(|u| format!("\n    unchanged: {u}")).unwrap_or_default(),
+                    c.budget_note.as_deref().map(|u| format!("\n    budget: {u}")).unwrap_or_default(),
+                );
+                unchanged += usize::from(c.unchanged.is_some());
+                if std::env::var_os("WORST").is_some() {
+                    println!(
+                        "    history {:?}\n    dwells {}",
+                        c.history_um.iter().map(|x| x.round()).collect::<Vec<_>>(),
+                        c.dwells.len()
+                    );
+                    let mut w: Vec<_> = c
+                        .sim_after
+                        .segments
+                        .iter()
+                        .filter(|s| s.kind != "rapid")
+                        .collect();
+                    w.sort_by(|a, b| b.max_error_um.total_cmp(&a.max_error_um));
+                    for s in w.iter().take(8) {
+                        let b = c
+                            .sim_before
+                            .segments
+                            .iter()
+                            .find(|x| x.segment == s.segment)
+                            .map_or(0.0, |x| x.max_error_um);
+                        println!(
+                            "    line {} {} len {:.3} r {:.3}: {:.1} µm (before {:.1})",
+                            s.line, s.kind, s.length, s.radius, s.max_error_um, b
+                        );
+                    }
+                }
+            }
+            Err(e) => {
+                refused += 1;
+                println!("{name:48} refused: {e}");
+            }
+        }
+    }
+    ratios.sort_by(f64::total_cmp);
+    let m = ratios.len();
+    if m > 0 {
+        let median = if m % 2 == 1 {
+            ratios[m / 2]
+        } else {
+            0.5 * (ratios[m / 2 - 1] + ratios[m / 2])
+        };
+        println!("{m} compensated, median after/before ×{median:.3}, {unchanged} unchanged, {refused} refused");
+    }
+    Ok(())
+}
+
+#[cfg(target_arch = "wasm32")]
+fn main() {}
