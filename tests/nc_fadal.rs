@@ -57,10 +57,11 @@ N4 X0.75 Y0.125
 N5 X0.75 Y0.125
 N6 G90 M17
 N7 L0200 (SUB 2: ONE STEP OF A POCKET)
-N8 G91 G1 Z-0.05 F12.
+N8 G91 G17 G1 Z-0.05 F12. M8
 N9 G3 X0.5 Y0.5 I0. J0.5
 N10 G1 X-0.5 Y-0.5
-N11 G90 M17
+N11 G90 M9 M17
+(END OF THE SUBROUTINES)
 N12 M30
 N13 G70
 N14 T1 M6
@@ -96,18 +97,18 @@ G80
 T2 M6
 G0 X0.5 Y2.25 Z0.1
 G1 Z0. F20.
-G91 G1 Z-0.05 F12.
+G91 G17 G1 Z-0.05 F12. M8
 G3 X0.5 Y0.5 I0. J0.5
 G1 X-0.5 Y-0.5
-G90
-G91 G1 Z-0.05 F12.
+G90 M9
+G91 G17 G1 Z-0.05 F12. M8
 G3 X0.5 Y0.5 I0. J0.5
 G1 X-0.5 Y-0.5
-G90
-G91 G1 Z-0.05 F12.
+G90 M9
+G91 G17 G1 Z-0.05 F12. M8
 G3 X0.5 Y0.5 I0. J0.5
 G1 X-0.5 Y-0.5
-G90
+G90 M9
 G0 Z1.
 M30
 %";
@@ -150,9 +151,10 @@ fn an_inch_job_in_subroutines_moves_as_the_job_written_out() {
     // The called moves are fixed (their words run more than once), the
     // main program's are not.
     for s in &p.segments {
-        // (line k + 1 holds N k; N16 is the G81 block, a cycle's moves)
+        // (line k + 1 holds N k up to N11, k + 2 after it; N16 is the
+        // G81 block, a cycle's moves)
         let called = (4..=12).contains(&s.line);
-        assert_eq!(s.fixed, called || s.line == 17, "line {} {s:?}", s.line);
+        assert_eq!(s.fixed, called || s.line == 18, "line {} {s:?}", s.line);
     }
     let w: Vec<String> = p.warnings.iter().map(|w| w.to_string()).collect();
     let marker: Vec<&String> = w
@@ -160,9 +162,18 @@ fn an_inch_job_in_subroutines_moves_as_the_job_written_out() {
         .filter(|m| m.contains("ends the definitions"))
         .collect();
     assert_eq!(marker.len(), 1, "{w:?}");
-    assert!(marker[0].starts_with("line 13"), "{marker:?}");
+    assert!(marker[0].starts_with("line 14, column 5:"), "{marker:?}");
     assert!(
         w.iter().all(|m| !m.contains("M17") && !m.contains("L10")),
+        "{w:?}"
+    );
+    // The M17 block's other words run before the return (M9 is warned
+    // about, as any M word the motion model ignores, once per run).
+    assert_eq!(
+        w.iter()
+            .filter(|m| m.starts_with("line 12") && m.contains("M9"))
+            .count(),
+        3,
         "{w:?}"
     );
 }
@@ -318,6 +329,26 @@ fn chain(depth: u32) -> String {
         s += &format!("L{n}00\nG91 G0 X1.\nL{}01\nM17\n", n + 1);
     }
     s + &format!("L{depth}00\nG91 G0 Y1.\nM17\nG90 G0 X10. Y20.\nL101\nM30")
+}
+
+#[test]
+fn an_m30_after_the_definitions_ends_a_program_with_nothing_after_it() {
+    // Definitions only: the M30 is the program end, not the marker.
+    let p = run("L100\nG0 X1.\nM17\n(NO MAIN PROGRAM)\nM30\n%");
+    assert!(p.segments.is_empty());
+    assert!(p
+        .warnings
+        .iter()
+        .all(|w| !w.message.contains("ends the definitions")));
+    // An M30 that is not right after the definitions ends the program.
+    let p = run("L100\nG0 X1.\nM17\nG0 X2.\nM30\nG0 X3.");
+    assert_eq!(p.segments.len(), 1);
+    // Nor does one on a block that also moves.
+    let p = run("L100\nG0 X1.\nM17\nG0 Z1. M30\nG0 X3.");
+    assert_eq!(p.segments.len(), 1);
+    assert_eq!(p.segments[0].end.z, 1.0);
+    // Two L words on a block are no call.
+    refused("L101 L201\nM30", (1, 1), "on a block with other words");
 }
 
 #[test]
