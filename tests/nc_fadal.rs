@@ -390,7 +390,10 @@ fn the_old_refusal_fixture_now_drills() {
 
 #[test]
 fn a_fadal_job_is_written_flat_and_reads_back_to_its_moves() {
-    for src in [INCH_JOB, MM_JOB] {
+    // (the third: a call before any move of the main program; its body
+    // is written as moves only, as an M98 body is, without its comment)
+    let first_call = "L100\nG91 G1 X1. F100. (BODY)\nG90 M17\nL102\nG0 X0\nM30";
+    for src in [INCH_JOB, MM_JOB, first_call] {
         let p = run(src);
         let text = mtmotion::nc::writer::write(&p, &p.segments);
         let q = run(&text);
@@ -403,7 +406,7 @@ fn a_fadal_job_is_written_flat_and_reads_back_to_its_moves() {
         }
         // No subroutine end or definitions' end marker in the flat text,
         // and its only program end is its last block.
-        assert!(!text.contains("M17"), "{text}");
+        assert!(!text.contains("M17") && !text.contains("BODY"), "{text}");
         let ends: Vec<usize> = text
             .lines()
             .enumerate()
