@@ -152,6 +152,117 @@ fn under_g93_the_whole_curve_takes_one_over_f_minutes() {
     assert!((minutes - 0.5).abs() < 1e-12, "{minutes}");
 }
 
+/// The cubic Bézier of `c`: P0 start, P1 P2 control points, P3 end.
+fn bezier3(c: [[f64; 2]; 4]) -> impl Fn(f64) -> [f64; 2] {
+    move |t| {
+        let u = 1.0 - t;
+        let w = [u * u * u, 3.0 * u * u * t, 3.0 * u * t * t, t * t * t];
+        let mut q = [0.0; 2];
+        for (k, p) in c.iter().enumerate() {
+            q[0] += w[k] * p[0];
+            q[1] += w[k] * p[1];
+        }
+        q
+    }
+}
+
+/// Distance of `v` from `curve(t)`, t ∈ [0, 1]: the nearest of 4001
+/// samples, refined by a ternary search in the samples around it.
+fn distance_to_curve(v: [f64; 2], curve: &impl Fn(f64) -> [f64; 2]) -> f64 {
+    let d = |t: f64| {
+        let q = curve(t.clamp(0.0, 1.0));
+        (q[0] - v[0]).hypot(q[1] - v[1])
+    };
+    let n = 4000.0;
+    let k = (0..=4000).min_by(|&a, &b| d(a as f64 / n).total_cmp(&d(b as f64 / n)));
+    let t = k.unwrap_or(0) as f64 / n;
+    let (mut lo, mut hi) = (t - 1.0 / n, t + 1.0 / n);
+    for _ in 0..200 {
+        let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+        if d(m1) < d(m2) {
+            hi = m2;
+        } else {
+            lo = m1;
+        }
+    }
+    d((lo + hi) / 2.0)
+}
+
+/// The chords of `line` stand for the cubic Bézier `c`: they start at P0
+/// and end at P3, every vertex lies on the curve (within 1e-9 mm), and
+/// the curve stays within the chordal tolerance of them.
+fn assert_cubic(p: &Program, line: usize, c: [[f64; 2]; 4]) {
+    let poly = polyline(p, line);
+    let curve = bezier3(c);
+    let close = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9;
+    assert!(close(poly[0], c[0]), "line {line}: {:?}", poly[0]);
+    assert!(close(*poly.last().unwrap(), c[3]), "line {line}");
+    for v in &poly {
+        let e = distance_to_curve(*v, &curve);
+        assert!(
+            e < 1e-9,
+            "line {line}: vertex {v:?} is {e} mm off the curve"
+        );
+    }
+    let d = deviation(&poly, curve);
+    assert!(d <= CHORD_TOLERANCE && d > 0.0, "line {line}: {d}");
+    for s in p.segments.iter().filter(|s| s.line == line) {
+        assert_eq!((s.motion, s.fixed), (Motion::Linear, true));
+    }
+}
+
+#[test]
+fn g5_is_the_cubic_bezier_of_its_control_points() {
+    // The manual's curvy N moved to X3 Y2, then its continuation without
+    // I J (P1 = start − the previous P Q), then a series in G91 (I J P Q
+    // are offsets either way), with a dwell inside the series.
+    let p = parse(
+        "G21 G17 G90\nG0 X3 Y2\nG5 I0 J3 P0 Q-3 X4 Y3 F120\nG5 P0.5 Q-3 X5 Y4.5\nG4 P0.2\nG5 P1 Q-2 X7.25 Y3.5\nG91 G5 I2 J-1 P-1.5 Q2 X10 Y-2\nG5 P2 Q2 X-6 Y-7\nM2",
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_cubic(&p, 3, [[3.0, 2.0], [3.0, 5.0], [4.0, 0.0], [4.0, 3.0]]);
+    assert_cubic(&p, 4, [[4.0, 3.0], [4.0, 6.0], [5.5, 1.5], [5.0, 4.5]]);
+    assert_cubic(&p, 6, [[5.0, 4.5], [4.5, 7.5], [8.25, 1.5], [7.25, 3.5]]);
+    assert_cubic(
+        &p,
+        7,
+        [[7.25, 3.5], [9.25, 2.5], [15.75, 3.5], [17.25, 1.5]],
+    );
+    assert_cubic(
+        &p,
+        8,
+        [[17.25, 1.5], [18.75, -0.5], [13.25, -3.5], [11.25, -5.5]],
+    );
+    // the continued curve starts in the end direction of the one before
+    let dir = |a: [f64; 2], b: [f64; 2]| (b[1] - a[1]).atan2(b[0] - a[0]);
+    let (l3, l4) = (polyline(&p, 3), polyline(&p, 4));
+    let n = l3.len();
+    assert!((dir(l3[n - 2], l3[n - 1]) - dir(l4[0], l4[1])).abs() < 0.02);
+    assert!(p
+        .segments
+        .iter()
+        .filter(|s| s.line != 2 && s.line != 5)
+        .all(|s| s.feed == 120.0));
+    // inch: every number × 25.4
+    let q = parse("G20 G17 G90\nG0 X0.5 Y0.25\nG5 I0.4 J0.6 P-0.3 Q0.5 X1.75 Y0.5 F20\nG5 P0.2 Q-0.4 X2.5 Y1.25\nM2").unwrap();
+    let m = |x: f64, y: f64| [x * 25.4, y * 25.4];
+    assert_cubic(
+        &q,
+        3,
+        [m(0.5, 0.25), m(0.9, 0.85), m(1.45, 1.0), m(1.75, 0.5)],
+    );
+    assert_cubic(
+        &q,
+        4,
+        [m(1.75, 0.5), m(2.05, 0.0), m(2.7, 0.85), m(2.5, 1.25)],
+    );
+    assert!(q
+        .segments
+        .iter()
+        .filter(|s| s.line == 3)
+        .all(|s| (s.feed - 508.0).abs() < 1e-9));
+}
+
 /// The first error of `text`: (line, column, message).
 fn refused(text: &str) -> (usize, usize, String) {
     let e = parse(text).unwrap_err();
@@ -247,9 +358,35 @@ fn every_form_linuxcnc_refuses_or_reads_otherwise_is_a_located_error() {
             "Z2 on a G5.2 spline block: a spline moves X and Y only",
         ),
         (
-            "G0 X0 Y0\nG5 X1 Y1 I1 J0 P1 Q0 F9",
+            "G0 X0 Y0\nG5 X1 Y1 P1 Q0 F9",
             (2, 1),
-            "cubic spline is not simulated",
+            "G5 without I and J starts no series",
+        ),
+        (
+            "G0 X0 Y0\nG5 X1 Y1 I1 J0 P1 Q0 F9\nG1 X2\nG5 X3 Y1 P1 Q0",
+            (4, 1),
+            "G5 without I and J starts no series",
+        ),
+        (
+            "G0 X0 Y0\nG5 X1 Y1 I1 J0 P1 Q0 F9\nG5 X3 Y1 J2 P1 Q0",
+            (3, 10),
+            "G5 with J2 alone",
+        ),
+        ("G0 X0 Y0\nG5 X1 Y1 I1 J0 P1 F9", (2, 1), "both P and Q"),
+        (
+            "G0 X0 Y0\nG5 X1 Y1 I1 J0 P1 Q0 F9\nX3 Y2 P1 Q0",
+            (3, 1),
+            "write G5, G1 or G0",
+        ),
+        (
+            "G18 G0 X0 Y0\nG5 X1 Y1 I1 J0 P1 Q0 F9",
+            (2, 1),
+            "G5 spline in the G18 plane",
+        ),
+        (
+            "G0 X0 Y0\nG5 X1 Y1 Z3 I1 J0 P1 Q0 F9",
+            (2, 10),
+            "Z3 on a G5 spline block",
         ),
         (
             "G0 X0 Y0\nG1 G5.1 X1 Y1 I1 J0 F9",

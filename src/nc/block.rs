@@ -211,6 +211,7 @@ fn read_other_words(
             'L' | 'P' if g10 => continue,
             'P' | 'L' if call => continue,
             'P' | 'L' if st.spline == Some(super::spline::Spline::Nurbs) => continue,
+            'P' | 'Q' if st.spline == Some(super::spline::Spline::Cubic) => continue,
             'P' if gw.setting.is_some() => continue,
             'E' if gw.setting == Some(1870) => continue,
             'E' if fadal::is_fixture_offset(b, gw.motion.map(|(_, m)| m).or(st.motion)) => format!(

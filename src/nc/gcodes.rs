@@ -79,7 +79,7 @@ pub(super) fn read_g_words<'a>(
         let g33 = matches!(g, 330 | 331);
         sync |= g33;
         tap |= g == 331;
-        // G5.1, G5.2: spline feeds (LinuxCNC, super::spline).
+        // G5, G5.1, G5.2: spline feeds (LinuxCNC, super::spline).
         let curve = Spline::of(g);
         spline = spline.or(curve);
         if let Some(m) = motion_code(g).or((g33 || curve.is_some()).then_some(MotionCode::Linear)) {
@@ -110,7 +110,11 @@ pub(super) fn read_g_words<'a>(
             grouped_or_other(b, w, g, &mut gw, warnings)?;
         }
     }
-    if gw.motion.is_some() || gw.cycle.is_some() {
+    let moving = gw.motion.is_some() || gw.cycle.is_some();
+    if (moving || gw.non_modal.is_some()) && spline != Some(Spline::Cubic) {
+        st.cubic_end_offset = None;
+    }
+    if moving {
         st.spindle_sync = sync;
         st.rigid_tap = tap;
         st.spline = spline;
@@ -303,17 +307,13 @@ fn setting_message(b: &Block, w: &Word, g: i64) -> String {
 }
 
 /// The error for a code that is not simulated and would change the path:
-/// the G5 cubic spline, threading, the cycles without a model (G74.1, G80.1–G89.9 other
+/// threading, the cycles without a model (G74.1, G80.1–G89.9 other
 /// than the modelled ones), G95.1 (G93 inverse time and G95 feed
 /// per revolution are read),
 /// 3D coordinate conversion (G68.1–G68.4),
 /// Okuma `G15 H`, modal macro calls. `None` for any other code.
 fn refused(b: &Block, w: &Word, g: i64) -> Option<NcError> {
     let msg = match g {
-        50 => format!(
-            "G{}: the cubic spline is not simulated (G5.1 and G5.2 are); post the program with lines and arcs (G1/G2/G3)",
-            w.text
-        ),
         332 | 741 | 801..=879 | 881..=899 => format!(
             "G{}: {} is not simulated yet; post the program with the cycle expanded into G0/G1 moves",
             w.text,

@@ -1,5 +1,6 @@
 //! A planar NURBS curve as LinuxCNC defines it, and its subdivision into
-//! chords for the simulation: the curve of the G5.1 quadratic B-spline
+//! chords for the simulation: the curve of the G5 cubic (order 4 on four
+//! points of weight 1: the cubic Bézier), of the G5.1 quadratic B-spline
 //! and of the G5.2/G5.3 NURBS block ([`super::spline`] reads the blocks).
 //!
 //! Source: the LinuxCNC G-code manual (2.9, §11.5.8 "G5.1 Quadratic

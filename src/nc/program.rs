@@ -58,8 +58,8 @@
 //! stretch says so. G43 length compensation is ignored (warned). What is not simulated and would change the path is a
 //! located error: G84.1 and G84.4–G84.9, G33.2, the Fanuc G87 without I/J/K (G33 runs as a line at K × S, G33.1 there
 //! and back, G88 with a rapid for its manual retract), G93/G95 feeds,
-//! G66.1 and nested G66 modal calls, the G5 cubic spline (LinuxCNC's G5.1
-//! and G5.2/G5.3 splines run as chords of their curve, [`super::spline`]),
+//! G66.1 and nested G66 modal calls (LinuxCNC's G5, G5.1 and G5.2/G5.3
+//! splines run as chords of their curve, [`super::spline`]),
 //! the G68 cases
 //! above and G68.1–G68.4 (3D coordinate conversion); an `E` word (not on a
 //! G187 block) stops the program as "this looks like a 3D-printer
@@ -323,6 +323,12 @@ pub struct Modal {
     /// `motion` G1 ([`super::spline`]).
     #[serde(default)]
     pub spline: Option<super::spline::Spline>,
+    /// The last G5 cubic's P Q, mm (its second control point's offset from
+    /// its end), while the next G5 may continue its series without I J;
+    /// a block with another motion, cycle or non-modal move code ends the
+    /// series ([`super::spline`]).
+    #[serde(default)]
+    pub cubic_end_offset: Option<[f64; 2]>,
 }
 
 /// An interpreted program.

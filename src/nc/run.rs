@@ -37,6 +37,7 @@
 use std::collections::HashMap;
 
 use super::block::interpret_block;
+use super::fadal::Subroutines;
 use super::gcodes::code10;
 use super::macro_exec::{has_macros, Macros, Step};
 use super::program::{
@@ -85,6 +86,8 @@ pub(super) struct Run<'a> {
     tags: Vec<Option<usize>>,
     /// The G5.2 NURBS block open ([`super::spline`]).
     nurbs: Option<super::spline::OpenNurbs>,
+    /// The Fadal subroutines the program defines.
+    fadal: Subroutines,
 }
 
 /// What a call runs: an `O` program (M98, G65) or the block numbered N…
@@ -95,6 +98,8 @@ enum Target {
     Program(u32),
     /// The local subprogram starting at block `N` number.
     Sequence(u32),
+    /// The Fadal subroutine `nn` ([`super::fadal`]).
+    Fadal(u32),
 }
 
 impl std::fmt::Display for Target {
@@ -102,6 +107,7 @@ impl std::fmt::Display for Target {
         match self {
             Target::Program(n) => write!(f, "subprogram O{n}"),
             Target::Sequence(n) => write!(f, "local subprogram N{n} (M97)"),
+            Target::Fadal(n) => write!(f, "Fadal subroutine {n}"),
         }
     }
 }
@@ -134,8 +140,19 @@ impl<'a> Run<'a> {
     /// A run at the first block of `blocks`, from `opt.start`.
     ///
     /// # Errors
-    /// The macro code's structure errors ([`Macros::new`]).
+    /// The macro code's structure errors ([`Macros::new`]) and the Fadal
+    /// subroutine definitions' ([`Subroutines::new`]).
     pub fn new(blocks: &[Block], opt: &'a ParseOptions, keep: Keep) -> Result<Self, NcErrors> {
+        let fadal = Subroutines::new(blocks).map_err(|es| {
+            let mut errors = NcErrors {
+                errors: Vec::new(),
+                truncated: false,
+            };
+            for e in es {
+                errors.push(e);
+            }
+            errors
+        })?;
         Ok(Self {
             opt,
             st: Modal {
@@ -173,6 +190,7 @@ impl<'a> Run<'a> {
             stretches: Vec::new(),
             tags: Vec::new(),
             nurbs: None,
+            fadal,
         })
     }
 
@@ -207,6 +225,10 @@ impl<'a> Run<'a> {
             return true;
         }
         self.runs[bi] = self.runs[bi].saturating_add(1);
+        if self.fadal_call_or_definition(blocks, bi) {
+            self.record(bi);
+            return true;
+        }
         let evaluated;
         let mut computed = false;
         let b = match self.macro_step(blocks, bi) {
@@ -221,6 +243,13 @@ impl<'a> Run<'a> {
                 return true;
             }
             Some(Flow::Stop) => return false,
+        };
+        let without_m17;
+        let b = if self.fadal_end(bi) {
+            without_m17 = super::fadal::without_m17(b);
+            &without_m17
+        } else {
+            b
         };
         let made = self.segments.len();
         if !self.run_block(b, bi, computed) {
@@ -399,9 +428,111 @@ impl<'a> Run<'a> {
         true
     }
 
+    /// A Fadal definition reached by the run (skipped past its `M17`, and
+    /// past the end-of-definitions `M30` that may follow) or a Fadal call
+    /// (a frame pushed; a bad call is an error and the run goes on after
+    /// it). False for any other block.
+    fn fadal_call_or_definition(&mut self, blocks: &[Block], bi: usize) -> bool {
+        if let Some(d) = self.fadal.starting_at(bi) {
+            self.pc = d.skip_to;
+            if let Some(m) = d.marker.map(|k| &blocks[k]) {
+                self.warnings.push(Warning::at(
+                    m.line,
+                    m.words.iter().find(|w| w.letter == 'M').map_or(1, |w| w.column),
+                    "M2/M30 right after the Fadal subroutine definitions ends the definitions; the main program runs from the block after it",
+                ));
+            }
+            return true;
+        }
+        let b = &blocks[bi];
+        let Some((w, n, times)) = super::fadal::call(b) else {
+            return false;
+        };
+        match self.fadal_target(b, w, n) {
+            Ok(start) => {
+                self.stack.push(Frame {
+                    ret: self.pc,
+                    start,
+                    left: times,
+                    target: Target::Fadal(n),
+                    locals: false,
+                });
+                self.pc = start;
+            }
+            Err(e) => self.errors.push(e),
+        }
+        true
+    }
+
+    /// The first body block of Fadal subroutine `n`, called by `w` on
+    /// block `b`: refused when it is not defined, calls itself or nests
+    /// too deep.
+    fn fadal_target(&self, b: &Block, w: &Word, n: u32) -> Result<usize, NcError> {
+        let Some(d) = self.fadal.get(n) else {
+            return Err(err(
+                b,
+                w,
+                format!(
+                    "L{} calls Fadal subroutine {n}, which this program does not define; define it before the main program (L{n:02}00, its blocks, M17)",
+                    w.text
+                ),
+            ));
+        };
+        if self.stack.iter().any(|f| f.target == Target::Fadal(n)) {
+            return Err(err(
+                b,
+                w,
+                format!(
+                    "L{} calls Fadal subroutine {n} from inside itself: the calls would never end on the control",
+                    w.text
+                ),
+            ));
+        }
+        if self.stack.len() >= super::fadal::NESTING {
+            return Err(err(
+                b,
+                w,
+                format!(
+                    "L{}: Fadal subroutine calls nested deeper than {} levels",
+                    w.text,
+                    super::fadal::NESTING
+                ),
+            ));
+        }
+        Ok(d.start + 1)
+    }
+
+    /// Block `bi` is the `M17` of the Fadal subroutine running now.
+    fn fadal_end(&self, bi: usize) -> bool {
+        match self.stack.last() {
+            Some(Frame {
+                target: Target::Fadal(n),
+                ..
+            }) => self.fadal.get(*n).is_some_and(|d| d.end == bi),
+            _ => false,
+        }
+    }
+
+    /// The Fadal subroutine's next run, or the return after its last.
+    fn fadal_return(&mut self) {
+        if let Some(f) = self.stack.last_mut() {
+            if f.left > 1 {
+                f.left -= 1;
+                self.pc = f.start;
+            } else {
+                self.pc = f.ret;
+                self.stack.pop();
+            }
+        }
+    }
+
     /// M98 (an `O` program) and M97 (an N block) call a subprogram, M99
-    /// returns from one (or repeats it); `bi` is the block's index.
+    /// returns from one (or repeats it), M17 ends a Fadal subroutine's run;
+    /// `bi` is the block's index.
     fn call_or_return(&mut self, b: &Block, bi: usize) {
+        if self.fadal_end(bi) {
+            return self.fadal_return();
+        }
         let m = |v: i64| b.words.iter().find(|w| w.letter == 'M' && code10(w) == v);
         if let Some(w) = m(980).or_else(|| m(970)) {
             match call(b, bi, w, &self.subs, &self.seqs, self.stack.len()) {
@@ -789,7 +920,8 @@ fn call(
                 ),
             )
         }),
-        Target::Sequence(n) => seqs
+        // (M97/M98 never make a Fadal target: only `fadal_target` does)
+        Target::Sequence(n) | Target::Fadal(n) => seqs
             .first_in_region(i64::from(n), bi)
             .ok_or_else(|| missing_sequence(b, p, n, "M97", "this program")),
     }?;

@@ -1,12 +1,26 @@
 //! LinuxCNC's spline moves, read into the chords of their curve
-//! ([`super::nurbs`]): G5.1, the quadratic B-spline, and the G5.2 … G5.3
-//! NURBS block.
+//! ([`super::nurbs`]): G5, the cubic spline, G5.1, the quadratic
+//! B-spline, and the G5.2 … G5.3 NURBS block.
 //!
-//! Source: the LinuxCNC G-code manual (2.9, §11.5.8, §11.5.9), and where
+//! Source: the LinuxCNC G-code manual (2.9, §11.5.7–§11.5.9), and where
 //! it is silent or differs, LinuxCNC's interpreter `rs274` (2.9.0~pre1,
 //! `interp_convert.cc`: `convert_spline`, `convert_nurbs`), checked
 //! against it by `tests/nc_linuxcnc_oracle.rs`.
 //!
+//! - `G5 X Y I J P Q`: the cubic Bézier from the current point P0 to
+//!   X Y (P3) with control points P1 = P0 + (I, J) and P2 = P3 + (P, Q)
+//!   (all four offsets always incremental, in the program's units; X Y
+//!   read as any end point: G90/G91, G92, inch); a NURBS of order 4 on
+//!   four points of weight 1 is exactly that curve. P and Q are required.
+//!   I and J both or neither: without them the start direction continues
+//!   the previous G5's end direction (P1 = P0 − its P Q), which the
+//!   manual allows only inside a series of G5 blocks, so here only when no
+//!   block with another motion, cycle or non-modal move code came in
+//!   between (a dwell does not break the series). rs274 also accepts a G5
+//!   without I J after other moves (it takes the stale P Q); that is
+//!   refused here, as the manual says. As for G5.1, a block of axis words
+//!   after a G5 (the manual: G5 modal; rs274: the mode before it, checked)
+//!   is refused. Only X and Y, only in G17;
 //! - `G5.1 X Y I J`: a quadratic B-spline from the current point to X Y
 //!   whose middle control point is the start plus I J (always
 //!   incremental, also under G90.1). The manual puts G5.1 in the motion
@@ -33,8 +47,7 @@
 //!   ignoring them would move elsewhere: Z, A, B, C words (the curve is in
 //!   XY), cutter compensation, a G68 rotation, polar words, corner words,
 //!   a moving code inside an open NURBS block (it would lose its points),
-//!   and a NURBS block the program never closes. G5 (the cubic spline)
-//!   stays refused (`gcodes.rs`).
+//!   and a NURBS block the program never closes.
 //!
 //! Each curve becomes straight feed segments at the modal feed (under G93
 //! the whole curve takes 1/F minutes), within
@@ -59,6 +72,8 @@ pub const MAX_ORDER: usize = 10;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
 pub enum Spline {
+    /// G5, the cubic Bézier.
+    Cubic,
     /// G5.1, the quadratic B-spline.
     Quadratic,
     /// G5.2, the NURBS block (open until G5.3).
@@ -69,6 +84,7 @@ impl Spline {
     /// The spline mode of a G code (×10): G5.1, G5.2.
     pub(super) fn of(g: i64) -> Option<Self> {
         match g {
+            50 => Some(Spline::Cubic),
             51 => Some(Spline::Quadratic),
             52 => Some(Spline::Nurbs),
             _ => None,
@@ -135,6 +151,7 @@ pub(super) fn spline_block(
     let g = b.words_of('G').find(|w| Spline::of(code10(w)).is_some());
     refuse_words(b, st, &axes, g, spline)?;
     match spline {
+        Spline::Cubic => cubic(b, st, cx, &axes, g, scale),
         Spline::Quadratic => quadratic(b, st, cx, &axes, g, scale),
         Spline::Nurbs => nurbs_point(b, st, cx, &axes, g, scale),
     }
@@ -149,10 +166,10 @@ fn refuse_words(
     g: Option<&Word>,
     spline: Spline,
 ) -> Result<(), NcError> {
-    let code = if spline == Spline::Quadratic {
-        "G5.1"
-    } else {
-        "G5.2"
+    let code = match spline {
+        Spline::Cubic => "G5",
+        Spline::Quadratic => "G5.1",
+        Spline::Nurbs => "G5.2",
     };
     let at = g.or(b.words.first());
     let here = |msg: String| match at {
@@ -187,12 +204,80 @@ fn refuse_words(
             "{code} spline under a G68 coordinate rotation is not simulated; cancel it with G69 or post the spline in the rotated frame's X/Y"
         )));
     }
-    if spline == Spline::Quadratic && st.plane != super::segment::Plane::XY {
+    if spline != Spline::Nurbs && st.plane != super::segment::Plane::XY {
         return Err(here(format!(
-            "G5.1 spline in the G{} plane; LinuxCNC's splines are in the XY plane: expected G17",
+            "{code} spline in the G{} plane; LinuxCNC's splines are in the XY plane: expected G17",
             st.plane.code()
         )));
     }
+    Ok(())
+}
+
+/// G5: the cubic Bézier of the block, from the start P0 to the end P3,
+/// with P1 = P0 + (I, J) and P2 = P3 + (P, Q), or without I J (a G5 right
+/// after a G5) P1 = P0 − the previous G5's (P, Q).
+fn cubic(
+    b: &Block,
+    st: &mut Modal,
+    cx: &mut Ctx,
+    axes: &[&Word],
+    g: Option<&Word>,
+    scale: f64,
+) -> Result<(), NcError> {
+    let (i, j) = (b.word('I'), b.word('J'));
+    let (p, q) = (b.word('P'), b.word('Q'));
+    let Some(first) = g.or(axes.first().copied()).or(i).or(j).or(p).or(q) else {
+        return Ok(());
+    };
+    if g.is_none() {
+        return Err(err(
+            b,
+            first,
+            "axis words after a G5 block without a motion code: the LinuxCNC manual makes G5 modal, its interpreter runs this block in the mode before the G5 (G0 or G1); write G5, G1 or G0 on the block",
+        ));
+    }
+    let (Some(p), Some(q)) = (p, q) else {
+        return Err(err(
+            b,
+            first,
+            "G5 needs both P and Q, the second control point's X and Y offsets from the end point (LinuxCNC refuses a G5 without them)",
+        ));
+    };
+    let lead = match (i, j) {
+        (Some(i), Some(j)) => [i.value * scale, j.value * scale],
+        (None, None) => match st.cubic_end_offset {
+            Some([pp, qq]) => [-pp, -qq],
+            None => {
+                return Err(err(
+                    b,
+                    first,
+                    "G5 without I and J starts no series: only a G5 right after another G5 may leave them out (it then starts in that one's end direction); expected I and J, the first control point's offsets from the start",
+                ))
+            }
+        },
+        (Some(w), None) | (None, Some(w)) => {
+            return Err(err(
+                b,
+                w,
+                format!(
+                    "G5 with {}{} alone: give both I and J (the first control point's offsets from the start) or neither (after a G5, to continue its end direction)",
+                    w.letter, w.text
+                ),
+            ))
+        }
+    };
+    warn_unused(b, cx, &['K', 'R', 'L'], "G5");
+    let end = target(st, axes, scale);
+    let (x0, y0) = (st.pos.x, st.pos.y);
+    let trail = [p.value * scale, q.value * scale];
+    let points = vec![
+        [x0, y0, 1.0],
+        [x0 + lead[0], y0 + lead[1], 1.0],
+        [end.x + trail[0], end.y + trail[1], 1.0],
+        [end.x, end.y, 1.0],
+    ];
+    cut(b, st, cx, points, 4, first)?;
+    st.cubic_end_offset = Some(trail);
     Ok(())
 }
 

@@ -693,7 +693,8 @@ fn write_passive(program: &Program, bi: usize, out: &mut Out) {
 }
 
 /// The program written flat: the segments in order, each a block; the
-/// blocks of the main program without motion in place, up to its end
+/// blocks of the main program (not a Fadal definition's) without motion in
+/// place, up to its end
 /// (its first M2/M30 in the text, else where the run ended), so a
 /// subprogram body after it is not read as main program — also when the
 /// run ended inside a subprogram (an M30 in a body called before the main
@@ -702,10 +703,15 @@ fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
     let ends = |b: &Block| {
         b.file == 0 && !b.block_delete && b.words.iter().any(super::gcodes::is_program_end)
     };
+    // Fadal subroutine definitions (before the main program) are not main
+    // program blocks either, nor is the M30 that ends them.
+    let fadal = super::fadal::Subroutines::new(&program.blocks).unwrap_or_default();
+    let main = |j: usize| !fadal.in_definitions(j);
     let end = program
         .blocks
         .iter()
-        .position(ends)
+        .enumerate()
+        .position(|(j, b)| main(j) && ends(b))
         .or_else(|| program.modal.iter().position(|m| m.ended))
         .unwrap_or(program.blocks.len().saturating_sub(1));
     // The last segment of each block: a block that makes several (a canned
@@ -721,8 +727,8 @@ fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
     let mut next = 0usize;
     for (k, seg) in segments.iter().enumerate() {
         match seg.block {
-            Some(bi) if bi >= next && bi <= end => {
-                for j in next..bi {
+            Some(bi) if bi >= next && bi <= end && main(bi) => {
+                for j in (next..bi).filter(|&j| main(j)) {
                     write_passive(program, j, out);
                 }
                 next = bi + 1;
@@ -750,7 +756,7 @@ fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
             emit(&Block::default(), stop, out);
         }
     }
-    for j in next..=end.min(program.blocks.len()) {
+    for j in (next..=end.min(program.blocks.len())).filter(|&j| main(j)) {
         write_passive(program, j, out);
     }
 }
