@@ -125,6 +125,23 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   controls.zoomToCursor = true;
   controls.listenToKeyEvents(canvas);
   controls.keyPanSpeed = 20;
+  // three.js r187's OrbitControls gives its zoom-to-cursor step a pinch's
+  // centre in page coordinates (pageX/pageY) and measures it against the
+  // canvas's client rectangle (the wheel gives clientX/clientY): on a
+  // scrolled page (a phone, the view below the fold) a pinch zoomed
+  // towards a point as far below the fingers as the page was scrolled, and
+  // the path flew out of view. While fingers are down, the point is moved
+  // to client coordinates. (Test: path3d-touch.mjs.)
+  const touching = new Set();
+  canvas.addEventListener('pointerdown', (e) => e.pointerType === 'touch' && touching.add(e.pointerId), true);
+  /** @param {PointerEvent} e */
+  const lift = (e) => touching.delete(e.pointerId);
+  window.addEventListener('pointerup', lift, true);
+  window.addEventListener('pointercancel', lift, true);
+  const zoomAt = /** @type {any} */ (controls)._updateZoomParameters;
+  if (typeof zoomAt === 'function') {
+    /** @type {any} */ (controls)._updateZoomParameters = (x, y) => (touching.size ? zoomAt.call(controls, x - window.scrollX, y - window.scrollY) : zoomAt.call(controls, x, y));
+  }
 
   const progMat = new LineBasicMaterial({ vertexColors: true });
   const simMat = new LineBasicMaterial({ vertexColors: true });
