@@ -66,13 +66,14 @@ function ramp(f, out, o) {
 
 /**
  * A 3D path view in `parent`. `onPick(line)`: the user clicked the path
- * or a mark (its source line).
- * @param {{ onPick?: (line: number) => void, onMagnification?: (k: number) => void, height?: number }} [options]
+ * or a mark (its source line). `prefix` starts the ids of the view and its
+ * controls (`${prefix}-path3d`, `${prefix}-show-rapids`, …).
+ * @param {{ onPick?: (line: number) => void, onMagnification?: (k: number) => void, height?: number, prefix?: string }} [options]
  */
-export function pathView({ onPick, onMagnification, height = 460 } = {}) {
+export function pathView({ onPick, onMagnification, height = 460, prefix = 'toolpath' } = {}) {
   const el = document.createElement('div');
   el.className = 'path3d';
-  el.id = 'toolpath-path3d';
+  el.id = `${prefix}-path3d`;
   el.dataset.display = '';
   const bar = document.createElement('div');
   bar.className = 'path3d-bar';
@@ -83,10 +84,10 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     bar.append(l);
     return box;
   };
-  const showProgram = toggle('programmed path', 'toolpath-show-program', true);
-  const showRapids = toggle('rapids', 'toolpath-show-rapids', true);
-  const showSim = toggle('simulated path', 'toolpath-show-sim', true);
-  const reset = Object.assign(document.createElement('button'), { type: 'button', textContent: 'Reset view', id: 'toolpath-view-reset' });
+  const showProgram = toggle('programmed path', `${prefix}-show-program`, true);
+  const showRapids = toggle('rapids', `${prefix}-show-rapids`, true);
+  const showSim = toggle('simulated path', `${prefix}-show-sim`, true);
+  const reset = Object.assign(document.createElement('button'), { type: 'button', textContent: 'Reset view', id: `${prefix}-view-reset` });
   bar.append(reset);
   const legend = document.createElement('div');
   legend.className = 'path3d-legend';
@@ -720,8 +721,11 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
    * Shows a program and its simulation.
    * @param {{ program?: ProgramPieces | null, sim?: SimulatedPath | null, scaleUm: number, marks?: Mark[] }} data
    *   scaleUm: the colour scale's maximum (the core's maximum over cutting moves)
+   * @param {{ keepView?: boolean }} [options] keepView: another simulation
+   *   of the same program (before/after a compensation): the camera and the
+   *   magnification stay as they are
    */
-  function show(data) {
+  function show(data, { keepView = false } = {}) {
     prog = data.program ?? null;
     sim = data.sim ?? null;
     scaleUm = data.scaleUm > 0 ? data.scaleUm : 1;
@@ -760,8 +764,10 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     for (let a = 0; a < 3; a++) centre[a] = (lo[a] + hi[a]) / 2;
     radius = Math.max(1e-3, Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2);
     half = [0, 1, 2].map((a) => Math.max((hi[a] - lo[a]) / 2, radius * 1e-3));
-    autoK = autoMagnification();
-    k = autoK;
+    if (!keepView) {
+      autoK = autoMagnification();
+      k = autoK;
+    }
     setPoints(markObj, marks.flatMap((m) => m.at.map((v, a) => v - centre[a])));
     labels.replaceChildren(...marks.map((m, i) => {
       const b = document.createElement('button');
@@ -779,10 +785,11 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       return b;
     }));
     highlightLine(0);
-    level = NaN; // new data: rebuilt at the view's pixel size (resetView → resize)
-    resetView();
+    level = NaN; // new data: rebuilt at the view's pixel size
+    if (keepView) rebuildIfNeeded();
+    else resetView();
     legendText();
-    onMagnification?.(k);
+    if (!keepView) onMagnification?.(k);
     return building;
   }
 

@@ -29,14 +29,21 @@ export function worstSegments(s, n = 10) {
  * @returns {import('../lib/path3d.js').Mark[]}
  */
 export function marksOf(s, worst, pieces) {
-  const best = new Map(worst.map((g) => [g.segment, -1]));
+  // Per segment of `worst`, its largest kept sample (-1: none; a typed
+  // array, not a Map: a million samples are looked up).
+  const size = worst.reduce((m, g) => Math.max(m, g.segment + 1), 0);
+  const best = new Int32Array(size).fill(-2);
+  for (const g of worst) best[g.segment] = -1;
   const e = s.errorUm;
+  const seg = s.sampleSegment;
   for (let i = 0; i < e.length; i++) {
-    const b = best.get(s.sampleSegment[i]);
-    if (b !== undefined && (b < 0 || e[i] > e[b])) best.set(s.sampleSegment[i], i);
+    const g = seg[i];
+    if (g >= size) continue;
+    const b = best[g];
+    if (b === -1 || (b >= 0 && e[i] > e[b])) best[g] = i;
   }
   return worst.map((g, r) => {
-    const i = best.get(g.segment);
+    const i = best[g.segment];
     let at;
     if (i >= 0) at = [s.nearX[i], s.nearY[i], s.nearZ[i]];
     else if (pieces && g.segment < pieces.first.length - 1) {
