@@ -53,6 +53,7 @@ function panelSection(panel) {
     let v;
     if (o.type === 'file' || o.type === 'range') v = null;
     else if (o.type === 'checkbox') v = o.checked ? 'yes' : 'no';
+    else if (o.type === 'radio') v = o.checked ? '◉' : '○';
     else if (o.tagName === 'SELECT') v = o.selectedOptions[0]?.textContent ?? o.value;
     else v = o.value;
     if (v === null) c.remove();
