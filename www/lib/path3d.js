@@ -705,8 +705,9 @@ export function pathView({ onPick, onMagnification, height = 460, prefix = 'tool
     bar2.style.background = CSS_RAMP;
     const rapidKey = document.createElement('span');
     rapidKey.className = 'path3d-ramp path3d-rapid-key';
+    rapidKey.title = 'the simulated path on rapids: one colour, off the error scale, its deviation drawn at most at the scale\'s maximum; hidden with the rapids';
     rapidKey.style.background = `rgb(${SIM_RAPID_RGB.map((v) => Math.round(v * 255)).join(',')})`;
-    legend.append('contour error 0 ', bar2, ` ${fmtN(scaleUm, 2)} µm (scale: the largest error on cutting moves) · on rapids `, rapidKey, ` simulated path off the scale (deviation drawn at most at the scale's maximum), hidden with the rapids · simulated path: error ×${k}${k === autoK ? ' (automatic)' : ''}`);
+    legend.append('contour error 0 ', bar2, ` ${fmtN(scaleUm, 2)} µm (scale: the largest error on cutting moves) · on rapids `, rapidKey, ` off the scale · simulated path: error ×${k}${k === autoK ? ' (automatic)' : ''}`);
   }
 
   /** The automatic magnification: the largest cutting-move error drawn as 2 % of the path's size, on a 1-2-5 step. */
