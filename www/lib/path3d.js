@@ -842,7 +842,7 @@ export function pathView({ onPick, onMagnification, height = 460, prefix = 'tool
     },
     state: () => ({ highlighted, picked, k, autoK, frames, drawnProgram: drawnProg.seg.length, drawnSimulated: drawnSim.idx.length, drawnSimulatedRapids: drawnSimRapids, drawnSimulatedPieces: drawnSimPieces, level, moving, moveReady, movingPoints: moveReady ? movingCounts[0] + movingCounts[1] : null }),
   };
-  // Test hook: the view's handle on its element.
+  // The view's handle on its element (the report draws it to an image; tests).
   /** @type {any} */ (el).pathView = api;
   return api;
 }
