@@ -95,8 +95,8 @@ pub const MAX_OBJECT_KEYS: usize = 10_000;
 pub const MAX_TOOLPATH_SAMPLES: usize = 20_000_000;
 
 /// Most samples in the series one tool-path simulation returns: 17 series
-/// of f64 (136 B per sample), so about 136 MB in wasm memory and as much
-/// again as JS arrays. A longer run keeps, of each group of consecutive
+/// of f64 and the sample's segment index (140 B per sample), so about
+/// 140 MB in wasm memory and as much again as JS arrays. A longer run keeps, of each group of consecutive
 /// samples, the one with the largest contour error.
 pub const MAX_TOOLPATH_SERIES: usize = 1_000_000;
 

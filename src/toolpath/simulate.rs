@@ -99,6 +99,11 @@ pub struct Simulation {
     pub vel_sim: [Vec<f64>; 3],
     /// Contour error, mm.
     pub error: Vec<f64>,
+    /// The reference segment each kept sample was measured against: the
+    /// index into `reference` of the segment holding its nearest point
+    /// (`near`), the same segment whose [`SegmentStats`] count the sample.
+    /// One per kept sample, like every series (thinned with them).
+    pub segment: Vec<u32>,
     /// Maximum contour error on cutting moves, mm.
     pub max_error: f64,
     /// When it occurs, s.
@@ -259,6 +264,7 @@ fn simulate_keeping(
         vel_cmd: rec.f.vel_cmd,
         vel_sim: rec.f.vel_sim,
         error: rec.error,
+        segment: rec.segment,
         max_error: run.max_error,
         // The end of the last sample farther than 1 µm from the end point.
         motion_time: run.last_far as f64 * cfg.dt,
@@ -373,8 +379,11 @@ struct Series {
     error: Vec<f64>,
     /// Nearest reference-path point X/Y/Z per kept sample, mm.
     near: [Vec<f64>; 3],
-    /// The candidate of the current group of `stride` samples.
-    held: Option<(Sample, Nearest)>,
+    /// Reference segment of the nearest point per kept sample.
+    segment: Vec<u32>,
+    /// The candidate of the current group of `stride` samples, with its
+    /// reference segment.
+    held: Option<(Sample, Nearest, u32)>,
 }
 
 impl Run {
@@ -406,13 +415,16 @@ impl Run {
         let Some(nr) = self.tracker.nearest_within(path, q, lag) else {
             return;
         };
-        if let Some(series) = &mut self.series {
-            series.offer(k, s, &nr);
-        }
         let e = nr.element;
+        // The tracker's elements are the path's: never out of range.
         let (Some(a), Some(el)) = (self.acc.get_mut(e), path.elements.get(e)) else {
             return;
         };
+        if let Some(series) = &mut self.series {
+            // At most `MAX_TOOLPATH_SEGMENTS` segments (`check_segments`),
+            // far below `u32::MAX`.
+            series.offer(k, s, &nr, u32::try_from(el.segment).unwrap_or(u32::MAX));
+        }
         a.add(el, &nr, q);
         if !el.rapid && nr.dist > self.max_error {
             self.max_error = nr.dist;
@@ -433,21 +445,23 @@ impl Series {
                 Vec::with_capacity(m),
                 Vec::with_capacity(m),
             ],
+            segment: Vec::with_capacity(m),
             held: None,
         }
     }
 
-    /// Sample `k`, `s`, whose nearest reference point is `nr`: kept at
-    /// once when every sample is kept, else held while it is the largest
-    /// error of its group and kept at the group's last sample.
+    /// Sample `k`, `s`, whose nearest reference point is `nr` on reference
+    /// segment `seg`: kept at once when every sample is kept, else held
+    /// while it is the largest error of its group and kept at the group's
+    /// last sample.
     #[inline]
-    fn offer(&mut self, k: usize, s: &Sample, nr: &Nearest) {
+    fn offer(&mut self, k: usize, s: &Sample, nr: &Nearest, seg: u32) {
         if self.stride == 1 {
-            self.keep(s, nr);
+            self.keep(s, nr, seg);
             return;
         }
-        if self.held.as_ref().is_none_or(|(_, h)| nr.dist > h.dist) {
-            self.held = Some((*s, *nr));
+        if self.held.as_ref().is_none_or(|(_, h, _)| nr.dist > h.dist) {
+            self.held = Some((*s, *nr, seg));
         }
         if (k + 1) % self.stride == 0 {
             self.flush();
@@ -456,14 +470,15 @@ impl Series {
 
     /// Keeps the held sample of an unfinished last group.
     fn flush(&mut self) {
-        if let Some((s, nr)) = self.held.take() {
-            self.keep(&s, &nr);
+        if let Some((s, nr, seg)) = self.held.take() {
+            self.keep(&s, &nr, seg);
         }
     }
 
-    fn keep(&mut self, s: &Sample, nr: &Nearest) {
+    fn keep(&mut self, s: &Sample, nr: &Nearest, seg: u32) {
         self.f.push(s);
         self.error.push(nr.dist);
+        self.segment.push(seg);
         for ax in 0..3 {
             self.near[ax].push(nr.point[ax]);
         }

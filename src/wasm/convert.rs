@@ -368,6 +368,11 @@ impl Obj {
         self.set(key, &Float64Array::from(values).into())
     }
 
+    /// Sets a `Uint32Array` copied from `values` (indices).
+    pub fn indices(self, key: &str, values: &[u32]) -> Self {
+        self.set(key, &js_sys::Uint32Array::from(values).into())
+    }
+
     /// Sets any JS value.
     pub fn val(self, key: &str, value: JsValue) -> Self {
         self.set(key, &value)

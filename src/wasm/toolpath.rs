@@ -63,7 +63,7 @@ export interface SegmentStats {
   /** [-] */ segment: number; /** [-] */ line: number; kind: 'line' | 'arc' | 'rapid'; /** [mm] */ length: number; /** [mm] */ radius: number;
   maxErrorUm: number; /** [mm] */ meanDeviation: number | null; /** [-] */ samples: number;
 }
-/** Time series (Float64Array, mm, mm/s, µm) and summary of one simulation. The series hold every sample when seriesStride is 1; a run of more than 1,000,000 samples keeps, of each seriesStride consecutive samples, the one with the largest contour error (t gives its time). The statistics always use every sample. */
+/** Time series (Float64Array, mm, mm/s, µm; sampleSegment a Uint32Array) and summary of one simulation. The series hold every sample when seriesStride is 1; a run of more than 1,000,000 samples keeps, of each seriesStride consecutive samples, the one with the largest contour error (t gives its time). The statistics always use every sample. */
 export interface ToolPathSimulation {
   /** [-] samples simulated */ samples: number; /** [-] */ seriesStride: number;
   /** [s] */ t: Float64Array;
@@ -73,6 +73,7 @@ export interface ToolPathSimulation {
   /** [mm/s] */ velCmdX: Float64Array; /** [mm/s] */ velCmdY: Float64Array; /** [mm/s] */ velCmdZ: Float64Array;
   /** [mm/s] */ velSimX: Float64Array; /** [mm/s] */ velSimY: Float64Array; /** [mm/s] */ velSimZ: Float64Array;
   errorUm: Float64Array;
+  /** [-] per kept sample, the index of the reference segment its nearest point (nearX…) lies on: an index into parseNc's segments of the same program and options (SegmentStats.segment); for reverseCompensate's beforeSim and afterSim, into the original program's */ sampleSegment: Uint32Array;
   maxErrorUm: number; /** [s] */ maxErrorTime: number; /** [-] */ maxErrorLine: number;
   /** [s] */ motionTime: number; /** [s] */ nominalTime: number;
   segments: SegmentStats[]; warnings: NcWarning[];
@@ -274,6 +275,7 @@ fn sim_obj(s: &Simulation, warnings: &[Warning]) -> Result<JsValue, JsError> {
         .arr("velSimY", &s.vel_sim[1])
         .arr("velSimZ", &s.vel_sim[2])
         .arr("errorUm", &err_um)
+        .indices("sampleSegment", &s.segment)
         .num("maxErrorUm", s.max_error * 1e3)
         .num("maxErrorTime", s.max_error_time)
         .num("maxErrorLine", s.max_error_line as f64)

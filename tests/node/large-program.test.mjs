@@ -26,7 +26,7 @@ test('a 5.2 M-sample program simulates with thinned series, progress and the tim
   const stride = Math.ceil(s.samples / SERIES);
   assert.equal(s.seriesStride, stride);
   const kept = Math.ceil(s.samples / stride);
-  for (const key of ['t', 'cmdX', 'simY', 'nearZ', 'velCmdX', 'velSimZ', 'errorUm']) assert.equal(s[key].length, kept, key);
+  for (const key of ['t', 'cmdX', 'simY', 'nearZ', 'velCmdX', 'velSimZ', 'errorUm', 'sampleSegment']) assert.equal(s[key].length, kept, key);
   for (let i = 1; i < kept; i++) assert.ok(s.t[i] > s.t[i - 1], `t at ${i}`);
   // The sample of the maximum (cutting moves) is the largest of its group
   // unless a rapid beats it there, so the series' peak is never below it.

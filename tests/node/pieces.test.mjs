@@ -67,3 +67,25 @@ test('simulateToolPathPacked + unpackSimulation give the core\'s segment statist
   assert.equal(s.maxErrorUm, direct.maxErrorUm);
   assert.deepEqual(Array.from(s.errorUm), Array.from(direct.errorUm));
 });
+
+test('sampleSegment: one parseNc segment index per kept sample, the segment its statistics count it on', () => {
+  const cfg = { tA: 0.04, T: 0.015, dt: 0.001 };
+  const s = unpackSimulation(derived.simulateToolPathPacked(mt, program, cfg));
+  const parsed = mt.parseNc(program);
+  assert.ok(s.sampleSegment instanceof Uint32Array);
+  assert.equal(s.seriesStride, 1);
+  assert.equal(s.sampleSegment.length, s.t.length);
+  const count = new Map();
+  for (const g of s.sampleSegment) {
+    assert.ok(g < parsed.segments.length, `index ${g}`);
+    count.set(g, (count.get(g) ?? 0) + 1);
+  }
+  for (const st of s.segments) {
+    assert.equal(parsed.segments[st.segment].line, st.line);
+    assert.equal(count.get(st.segment) ?? 0, st.samples, `line ${st.line}`);
+  }
+  // The largest error on cutting moves is on a sample mapped to its line.
+  const cutMax = s.errorUm.reduce((m, e, i) => (parsed.segments[s.sampleSegment[i]].motion.type !== 'rapid' && e > s.errorUm[m] ? i : m), 0);
+  assert.equal(s.errorUm[cutMax], s.maxErrorUm);
+  assert.equal(parsed.segments[s.sampleSegment[cutMax]].line, s.maxErrorLine);
+});

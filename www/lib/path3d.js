@@ -1,19 +1,21 @@
 // The 3D tool-path view (WebGL through three.js): the programmed path and
-// the simulated path, coloured by contour error, with orbit, pan and zoom
+// the simulated path, coloured by contour error on cutting moves (samples
+// on rapids dimmed, hidden with the rapids), with orbit, pan and zoom
 // (OrbitControls: mouse, touch, keys), the worst spots marked, picking and
 // hover. Drawing only: every number (errors, their maximum, the worst
-// segments) comes from the core's result; this file places, thins and
-// colours what it draws.
+// segments, the segment each sample belongs to: sampleSegment) comes from
+// the core's result; this file places, thins and colours what it draws.
 //
 // Thinning: the camera is orthographic, so one screen pixel is the same
 // length everywhere in the scene (at a given zoom). A vertex closer than
 // one pixel (in 3D, which bounds its on-screen distance under any
 // rotation) to the last drawn vertex of its polyline is merged into it;
 // a merged vertex keeps the largest error of the vertices it stands for,
-// so no peak disappears. The drawn level is rebuilt when the zoom changes
+// so no peak disappears; a sample on a rapid never merges with one on a
+// cutting move. The drawn level is rebuilt when the zoom changes
 // the pixel size by a factor of two.
 import {
-  WebGLRenderer, Scene, OrthographicCamera, BufferGeometry, BufferAttribute, LineSegments, Line, LineBasicMaterial,
+  WebGLRenderer, Scene, OrthographicCamera, BufferGeometry, BufferAttribute, LineSegments, LineBasicMaterial,
   Points, PointsMaterial, Vector3, OrbitControls, ColorManagement, LinearSRGBColorSpace,
 } from '../vendor/three.js';
 
@@ -29,6 +31,8 @@ const RAMP = [[0, [0.12, 0.31, 0.82]], [0.35, [0.06, 0.63, 0.56]], [0.7, [0.94, 
 const CSS_RAMP = `linear-gradient(to right, ${RAMP.map(([f, c]) => `rgb(${c.map((v) => Math.round(v * 255)).join(',')}) ${f * 100}%`).join(', ')})`;
 const PROGRAM_RGB = [0.35, 0.38, 0.42];
 const RAPID_RGB = [0.8, 0.82, 0.85];
+/** The simulated path on rapids: dimmed, off the error scale. */
+const SIM_RAPID_RGB = [0.66, 0.72, 0.86];
 const HIGHLIGHT = 0xd6336c;
 /** Screen distance (px) within which the cursor picks. */
 const PICK_PX = 8;
@@ -52,6 +56,8 @@ function ramp(f, out, o) {
  * @property {Float64Array} simX @property {Float64Array} simY @property {Float64Array} simZ
  * @property {Float64Array} [velSimX] @property {Float64Array} [velSimY] @property {Float64Array} [velSimZ]
  * @property {Float64Array} errorUm
+ * @property {Uint32Array} sampleSegment per sample, its segment (index into the program's segments)
+ * @property {import('../pkg/mtmotion.js').SegmentStats[]} [segments]
  */
 /**
  * @typedef {object} Mark one worst spot: rank, its line, error µm and where it is drawn (mm)
@@ -60,13 +66,14 @@ function ramp(f, out, o) {
 
 /**
  * A 3D path view in `parent`. `onPick(line)`: the user clicked the path
- * or a mark (its source line).
- * @param {{ onPick?: (line: number) => void, onMagnification?: (k: number) => void, height?: number }} [options]
+ * or a mark (its source line). `prefix` starts the ids of the view and its
+ * controls (`${prefix}-path3d`, `${prefix}-show-rapids`, …).
+ * @param {{ onPick?: (line: number) => void, onMagnification?: (k: number) => void, height?: number, prefix?: string }} [options]
  */
-export function pathView({ onPick, onMagnification, height = 460 } = {}) {
+export function pathView({ onPick, onMagnification, height = 460, prefix = 'toolpath' } = {}) {
   const el = document.createElement('div');
   el.className = 'path3d';
-  el.id = 'toolpath-path3d';
+  el.id = `${prefix}-path3d`;
   el.dataset.display = '';
   const bar = document.createElement('div');
   bar.className = 'path3d-bar';
@@ -77,10 +84,10 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     bar.append(l);
     return box;
   };
-  const showProgram = toggle('programmed path', 'toolpath-show-program', true);
-  const showRapids = toggle('rapids', 'toolpath-show-rapids', true);
-  const showSim = toggle('simulated path', 'toolpath-show-sim', true);
-  const reset = Object.assign(document.createElement('button'), { type: 'button', textContent: 'Reset view', id: 'toolpath-view-reset' });
+  const showProgram = toggle('programmed path', `${prefix}-show-program`, true);
+  const showRapids = toggle('rapids', `${prefix}-show-rapids`, true);
+  const showSim = toggle('simulated path', `${prefix}-show-sim`, true);
+  const reset = Object.assign(document.createElement('button'), { type: 'button', textContent: 'Reset view', id: `${prefix}-view-reset` });
   bar.append(reset);
   const legend = document.createElement('div');
   legend.className = 'path3d-legend';
@@ -119,6 +126,23 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   controls.zoomToCursor = true;
   controls.listenToKeyEvents(canvas);
   controls.keyPanSpeed = 20;
+  // three.js r187's OrbitControls gives its zoom-to-cursor step a pinch's
+  // centre in page coordinates (pageX/pageY) and measures it against the
+  // canvas's client rectangle (the wheel gives clientX/clientY): on a
+  // scrolled page (a phone, the view below the fold) a pinch zoomed
+  // towards a point as far below the fingers as the page was scrolled, and
+  // the path flew out of view. While fingers are down, the point is moved
+  // to client coordinates. (Test: path3d-touch.mjs.)
+  const touching = new Set();
+  canvas.addEventListener('pointerdown', (e) => e.pointerType === 'touch' && touching.add(e.pointerId), true);
+  /** @param {PointerEvent} e */
+  const lift = (e) => touching.delete(e.pointerId);
+  window.addEventListener('pointerup', lift, true);
+  window.addEventListener('pointercancel', lift, true);
+  const zoomAt = /** @type {any} */ (controls)._updateZoomParameters;
+  if (typeof zoomAt === 'function') {
+    /** @type {any} */ (controls)._updateZoomParameters = (x, y) => (touching.size ? zoomAt.call(controls, x - window.scrollX, y - window.scrollY) : zoomAt.call(controls, x, y));
+  }
 
   const progMat = new LineBasicMaterial({ vertexColors: true });
   const simMat = new LineBasicMaterial({ vertexColors: true });
@@ -126,7 +150,9 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   const hiDots = new PointsMaterial({ color: HIGHLIGHT, size: 9, sizeAttenuation: false });
   const markMat = new PointsMaterial({ color: 0xc8102e, size: 8, sizeAttenuation: false });
   const progObj = new LineSegments(new BufferGeometry(), progMat);
-  const simObj = new Line(new BufferGeometry(), simMat);
+  // Pairs of drawn samples (an index buffer): the path breaks where the
+  // samples of hidden rapids are left out.
+  const simObj = new LineSegments(new BufferGeometry(), simMat);
   // The point clouds drawn while the camera moves (see MOVING_POINTS).
   const cloudMat = new PointsMaterial({ vertexColors: true, size: 2, sizeAttenuation: false });
   const progMove = new Points(new BufferGeometry(), cloudMat);
@@ -156,6 +182,16 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   let sim = null;
   /** @type {Mark[]} */
   let marks = [];
+  // Per segment of the program (the index sampleSegment gives): its line,
+  // rapid or not, programmed feed (mm/min; NaN unknown).
+  /** @type {Int32Array} */
+  let segLine = new Int32Array(0);
+  /** @type {Uint8Array} */
+  let segRapid = new Uint8Array(0);
+  /** @type {Float64Array} */
+  let segFeed = new Float64Array(0);
+  /** Whether sample i of the simulation is on a rapid (the core's mapping). */
+  const rapidAt = (i) => segRapid[sim.sampleSegment[i]] === 1;
   let scaleUm = 1;
   let k = 1;
   let autoK = 1;
@@ -165,6 +201,8 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
   // The drawn (thinned) vertices, for picking: positions relative to the centre.
   let drawnProg = { pos: new Float32Array(0), seg: new Int32Array(0) };
   let drawnSim = { pos: new Float32Array(0), idx: new Int32Array(0) };
+  let drawnSimRapids = 0;
+  let drawnSimPieces = 0;
   let highlighted = 0;
   let picked = 0;
   let frames = 0;
@@ -281,21 +319,29 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       const pos = new Float32Array(n * 3);
       const col = new Float32Array(n * 3);
       const idx = new Int32Array(n);
+      const pairs = new Uint32Array(2 * n);
       const p = [0, 0, 0];
       let m = 0;
+      let q = 0;
       let worst = -1;
-      const hideAbove = !showRapids.checked;
+      // A break before the next drawn vertex (start, or hidden samples).
+      let gap = true;
+      let lastRapid = false;
+      let rapids = 0;
+      const hide = !showRapids.checked;
       for (let i = 0; i < n; i++) {
         if (!(i & 4095) && performance.now() - t0 > SLICE_MS) {
           await tick();
           if (stale()) return;
           t0 = performance.now();
         }
-        // Above the cutting-move maximum a sample is on a rapid (the scale is
-        // the core's maximum over cutting moves): hidden with the rapids.
-        if (hideAbove && sim.errorUm[i] > scaleUm) continue;
+        const r = rapidAt(i);
+        if (r && hide) {
+          gap = true;
+          continue;
+        }
         simPoint(i, p, 0);
-        if (m > 0 && i < n - 1) {
+        if (!gap && r === lastRapid && i < n - 1) {
           const o = (m - 1) * 3;
           const d2 = (p[0] - pos[o]) ** 2 + (p[1] - pos[o + 1]) ** 2 + (p[2] - pos[o + 2]) ** 2;
           if (d2 < px2) {
@@ -303,20 +349,33 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
             continue;
           }
         }
-        if (worst >= 0 && m > 0 && sim.errorUm[worst] > sim.errorUm[idx[m - 1]]) {
-          // The merged run's peak colours the last drawn vertex.
+        if (worst >= 0 && sim.errorUm[worst] > sim.errorUm[idx[m - 1]]) {
+          // The merged run's peak stands for the last drawn vertex (and
+          // colours it, on a cutting move).
           idx[m - 1] = worst;
-          ramp(sim.errorUm[worst] / scaleUm, col, (m - 1) * 3);
+          if (!lastRapid) ramp(sim.errorUm[worst] / scaleUm, col, (m - 1) * 3);
         }
         worst = -1;
         pos[m * 3] = p[0]; pos[m * 3 + 1] = p[1]; pos[m * 3 + 2] = p[2];
-        ramp(sim.errorUm[i] / scaleUm, col, m * 3);
+        if (r) {
+          col.set(SIM_RAPID_RGB, m * 3);
+          rapids++;
+        } else ramp(sim.errorUm[i] / scaleUm, col, m * 3);
+        if (!gap) {
+          pairs[q++] = m - 1;
+          pairs[q++] = m;
+        }
         idx[m++] = i;
+        gap = false;
+        lastRapid = r;
       }
       drawnSim = { pos: pos.subarray(0, m * 3), idx: idx.subarray(0, m) };
+      drawnSimRapids = rapids;
+      drawnSimPieces = q / 2;
       const g = new BufferGeometry();
       g.setAttribute('position', new BufferAttribute(pos.subarray(0, m * 3), 3));
       g.setAttribute('color', new BufferAttribute(col.subarray(0, m * 3), 3));
+      g.setIndex(new BufferAttribute(pairs.subarray(0, q), 1));
       simTo.geometry.dispose();
       simTo.geometry = g;
     }
@@ -374,7 +433,10 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     const pg = await cloud(drawnProg.pos, 6, () => 0, grey, my);
     if (!pg) return;
     const ds = drawnSim;
-    const sg = await cloud(ds.pos, 3, (i) => sim.errorUm[ds.idx[i]], (i, out, o) => ramp(sim.errorUm[ds.idx[i]] / scaleUm, out, o), my);
+    // A rapid's sample gives way to a cutting move's in its cube.
+    const weight = (i) => (rapidAt(ds.idx[i]) ? -1 : sim.errorUm[ds.idx[i]]);
+    const colour = (i, out, o) => (rapidAt(ds.idx[i]) ? out.set(SIM_RAPID_RGB, o) : ramp(sim.errorUm[ds.idx[i]] / scaleUm, out, o));
+    const sg = await cloud(ds.pos, 3, weight, colour, my);
     if (!sg) return;
     progMove.geometry.dispose();
     progMove.geometry = pg;
@@ -513,13 +575,18 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     return { m, w, hgt };
   }
 
-  /** What is under the cursor: the nearest drawn programmed piece and simulated vertex within PICK_PX. */
+  /**
+   * What is under the cursor: the nearest, within PICK_PX, of the drawn
+   * programmed pieces and simulated samples. A sample gives its segment
+   * (the core's sampleSegment); a piece gives its segment and, for the
+   * read-out, the nearest drawn sample of that same segment (none: -1).
+   */
   function pickAt(cx, cy) {
     const { m, w, hgt } = screenMatrix();
     const sx = (x, y, z) => ((m[0] * x + m[4] * y + m[8] * z + m[12]) + 1) / 2 * w;
     const sy = (x, y, z) => (1 - (m[1] * x + m[5] * y + m[9] * z + m[13])) / 2 * hgt;
     let bestSeg = -1;
-    let bestD = PICK_PX * PICK_PX;
+    let segD = PICK_PX * PICK_PX;
     if (prog && showProgram.checked) {
       const p = drawnProg.pos;
       for (let i = 0, n = drawnProg.seg.length; i < n; i++) {
@@ -530,35 +597,45 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
         const l2 = vx * vx + vy * vy;
         const u = l2 > 0 ? Math.max(0, Math.min(1, ((cx - ax) * vx + (cy - ay) * vy) / l2)) : 0;
         const d = (ax + u * vx - cx) ** 2 + (ay + u * vy - cy) ** 2;
-        if (d < bestD) {
-          bestD = d;
+        if (d < segD) {
+          segD = d;
           bestSeg = drawnProg.seg[i];
         }
       }
     }
-    let bestSample = -1;
-    bestD = PICK_PX * PICK_PX;
-    if (sim && showSim.checked) {
+    /** The nearest drawn sample (of segment `only`, when given) within `limit²` px². */
+    const nearestSample = (limit, only = -1) => {
+      let best = -1;
+      let bestD = limit;
+      if (!sim || !showSim.checked) return [best, bestD];
       const p = drawnSim.pos;
       for (let i = 0, n = drawnSim.idx.length; i < n; i++) {
+        if (only >= 0 && sim.sampleSegment[drawnSim.idx[i]] !== only) continue;
         const o = i * 3;
         const d = (sx(p[o], p[o + 1], p[o + 2]) - cx) ** 2 + (sy(p[o], p[o + 1], p[o + 2]) - cy) ** 2;
         if (d < bestD) {
           bestD = d;
-          bestSample = drawnSim.idx[i];
+          best = drawnSim.idx[i];
         }
       }
-    }
-    return { segment: bestSeg, sample: bestSample };
+      return [best, bestD];
+    };
+    const [sample, sampleD] = nearestSample(PICK_PX * PICK_PX);
+    if (sample >= 0 && (bestSeg < 0 || sampleD < segD)) return { segment: sim.sampleSegment[sample], sample };
+    if (bestSeg < 0) return { segment: -1, sample: -1 };
+    return { segment: bestSeg, sample: nearestSample(Infinity, bestSeg)[0] };
   }
 
   const fmtN = (x, d) => (Number.isFinite(x) ? x.toFixed(d) : '—');
+  /** The read-out of a pick: the segment's line and programmed feed, and the sample's time, error and simulated speed. */
   function describe({ segment, sample }) {
     const parts = [];
-    if (segment >= 0 && prog) parts.push(`line ${prog.line[segment]} (${prog.rapid[segment] ? 'rapid' : `F ${fmtN(prog.feed[segment], 0)} mm/min`})`);
+    if (segment >= 0 && segment < segLine.length) {
+      parts.push(`line ${segLine[segment]} (${segRapid[segment] ? 'rapid' : `F ${fmtN(segFeed[segment], 0)} mm/min`})`);
+    }
     if (sample >= 0 && sim) {
       const s = sim;
-      parts.push(`t ${fmtN(s.t[sample], 3)} s`, `error ${fmtN(s.errorUm[sample], 2)} µm`);
+      parts.push(`t ${fmtN(s.t[sample], 3)} s`, `error ${fmtN(s.errorUm[sample], 2)} µm${segRapid[segment] ? ' (rapid)' : ''}`);
       if (s.velSimX) parts.push(`speed ${fmtN(Math.hypot(s.velSimX[sample], s.velSimY[sample], s.velSimZ[sample]) * 60, 0)} mm/min (simulated)`);
     }
     return parts.join(' · ');
@@ -573,8 +650,8 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     down = null;
     const r = canvas.getBoundingClientRect();
     const hit = pickAt(e.clientX - r.left, e.clientY - r.top);
-    if (hit.segment >= 0 && prog) {
-      const line = prog.line[hit.segment];
+    if (hit.segment >= 0 && hit.segment < segLine.length) {
+      const line = segLine[hit.segment];
       picked = line;
       el.dataset.pickedLine = String(line);
       highlightLine(line);
@@ -626,7 +703,11 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     const bar2 = document.createElement('span');
     bar2.className = 'path3d-ramp';
     bar2.style.background = CSS_RAMP;
-    legend.append('contour error 0 ', bar2, ` ${fmtN(scaleUm, 2)} µm (scale: the largest error on cutting moves; above it, on rapids, drawn at the top colour and size) · simulated path: error ×${k}${k === autoK ? ' (automatic)' : ''}`);
+    const rapidKey = document.createElement('span');
+    rapidKey.className = 'path3d-ramp path3d-rapid-key';
+    rapidKey.title = 'the simulated path on rapids: one colour, off the error scale, its deviation drawn at most at the scale\'s maximum; hidden with the rapids';
+    rapidKey.style.background = `rgb(${SIM_RAPID_RGB.map((v) => Math.round(v * 255)).join(',')})`;
+    legend.append('contour error 0 ', bar2, ` ${fmtN(scaleUm, 2)} µm (scale: the largest error on cutting moves) · on rapids `, rapidKey, ` off the scale · simulated path: error ×${k}${k === autoK ? ' (automatic)' : ''}`);
   }
 
   /** The automatic magnification: the largest cutting-move error drawn as 2 % of the path's size, on a 1-2-5 step. */
@@ -641,12 +722,32 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
    * Shows a program and its simulation.
    * @param {{ program?: ProgramPieces | null, sim?: SimulatedPath | null, scaleUm: number, marks?: Mark[] }} data
    *   scaleUm: the colour scale's maximum (the core's maximum over cutting moves)
+   * @param {{ keepView?: boolean }} [options] keepView: another simulation
+   *   of the same program (before/after a compensation): the camera and the
+   *   magnification stay as they are
    */
-  function show(data) {
+  function show(data, { keepView = false } = {}) {
     prog = data.program ?? null;
     sim = data.sim ?? null;
     scaleUm = data.scaleUm > 0 ? data.scaleUm : 1;
     marks = data.marks ?? [];
+    // The segments' lines, rapids and feeds: the programmed pieces' (the
+    // core's parseNc segments), else the simulation's own statistics.
+    if (prog) {
+      segLine = prog.line;
+      segRapid = prog.rapid;
+      segFeed = prog.feed;
+    } else {
+      const stats = sim?.segments ?? [];
+      const n = stats.reduce((a, g) => Math.max(a, g.segment + 1), 0);
+      segLine = new Int32Array(n);
+      segRapid = new Uint8Array(n);
+      segFeed = new Float64Array(n).fill(NaN);
+      for (const g of stats) {
+        segLine[g.segment] = g.line;
+        segRapid[g.segment] = g.kind === 'rapid' ? 1 : 0;
+      }
+    }
     // Bounds of the programmed path (else of the simulated one).
     const lo = [Infinity, Infinity, Infinity];
     const hi = [-Infinity, -Infinity, -Infinity];
@@ -664,8 +765,10 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
     for (let a = 0; a < 3; a++) centre[a] = (lo[a] + hi[a]) / 2;
     radius = Math.max(1e-3, Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2);
     half = [0, 1, 2].map((a) => Math.max((hi[a] - lo[a]) / 2, radius * 1e-3));
-    autoK = autoMagnification();
-    k = autoK;
+    if (!keepView) {
+      autoK = autoMagnification();
+      k = autoK;
+    }
     setPoints(markObj, marks.flatMap((m) => m.at.map((v, a) => v - centre[a])));
     labels.replaceChildren(...marks.map((m, i) => {
       const b = document.createElement('button');
@@ -683,10 +786,11 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       return b;
     }));
     highlightLine(0);
-    level = NaN; // new data: rebuilt at the view's pixel size (resetView → resize)
-    resetView();
+    level = NaN; // new data: rebuilt at the view's pixel size
+    if (keepView) rebuildIfNeeded();
+    else resetView();
     legendText();
-    onMagnification?.(k);
+    if (!keepView) onMagnification?.(k);
     return building;
   }
 
@@ -729,9 +833,16 @@ export function pathView({ onPick, onMagnification, height = 460 } = {}) {
       for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - c[0]) <= 24 && Math.abs(px[i + 1] - c[1]) <= 24 && Math.abs(px[i + 2] - c[2]) <= 24) n++;
       return n;
     },
-    state: () => ({ highlighted, picked, k, autoK, frames, drawnProgram: drawnProg.seg.length, drawnSimulated: drawnSim.idx.length, level, moving, moveReady, movingPoints: moveReady ? movingCounts[0] + movingCounts[1] : null }),
+    /** Screen position (CSS px in the page) of simulated sample `i` as drawn, or null when it is not a drawn vertex. */
+    screenOfSample(i) {
+      const j = drawnSim.idx.indexOf(i);
+      if (j < 0) return null;
+      const p = drawnSim.pos;
+      return api.screenOf(p[j * 3] + centre[0], p[j * 3 + 1] + centre[1], p[j * 3 + 2] + centre[2]);
+    },
+    state: () => ({ highlighted, picked, k, autoK, frames, drawnProgram: drawnProg.seg.length, drawnSimulated: drawnSim.idx.length, drawnSimulatedRapids: drawnSimRapids, drawnSimulatedPieces: drawnSimPieces, level, moving, moveReady, movingPoints: moveReady ? movingCounts[0] + movingCounts[1] : null }),
   };
-  // Test hook: the view's handle on its element.
+  // The view's handle on its element (the report draws it to an image; tests).
   /** @type {any} */ (el).pathView = api;
   return api;
 }

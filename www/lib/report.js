@@ -1,7 +1,7 @@
 // "Download report": one self-contained HTML file of one tab or all tabs —
 // date, software version, every card of the panel with its inputs (as
 // values), its result tables (ISO 230-4, ISO 10791-6 blocks among them) and
-// its plots as PNG images (canvas.toDataURL) — with a print stylesheet for
+// its plots and 3D views as PNG images (canvas.toDataURL) — with a print stylesheet for
 // A4. Nothing is recomputed: the report is what the page shows.
 import { h } from './ui.js';
 
@@ -53,11 +53,28 @@ function panelSection(panel) {
     let v;
     if (o.type === 'file' || o.type === 'range') v = null;
     else if (o.type === 'checkbox') v = o.checked ? 'yes' : 'no';
+    else if (o.type === 'radio') v = o.checked ? '◉' : '○';
     else if (o.tagName === 'SELECT') v = o.selectedOptions[0]?.textContent ?? o.value;
     else v = o.value;
     if (v === null) c.remove();
     else if (o.tagName === 'TEXTAREA') c.replaceWith(h('pre', {}, v));
     else c.replaceWith(h('span', { class: 'value' }, v === '' ? '—' : v));
+  });
+  // 3D views (WebGL, lib/path3d.js) → an image of what each shows (after
+  // the controls, which are matched to the page's by position), drawn
+  // in this task (WebGL keeps no drawing buffer between frames), with its
+  // legend as the caption.
+  const views = [...body.querySelectorAll('.path3d')];
+  [...clone.querySelectorAll('.path3d')].forEach((c, i) => {
+    const orig = /** @type {any} */ (views[i]);
+    const cv = orig.querySelector('canvas');
+    const fig = h('figure', {});
+    if (orig.pathView && cv?.width && cv.height) {
+      orig.pathView.render();
+      fig.append(h('img', { src: cv.toDataURL('image/png'), alt: 'tool path in 3D' }));
+    }
+    fig.append(h('figcaption', {}, orig.querySelector('.path3d-legend')?.textContent ?? ''));
+    c.replaceWith(fig);
   });
   // Only the cards that were run: a card with result areas, all empty, is left out.
   [...body.querySelectorAll('.card')].forEach((c, i) => {

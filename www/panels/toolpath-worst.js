@@ -19,33 +19,38 @@ export function worstSegments(s, n = 10) {
 
 /**
  * Where each of `worst` is drawn: the point on the programmed path (the
- * core's nearest point) of the kept sample whose error is the segment's
- * maximum, the very number the core compared (an equal error found on one
- * sample only); else, the middle of the segment's drawn pieces.
+ * core's nearest point) of the segment's own kept sample (the core's
+ * sampleSegment) with the largest error; `spot` when that error is the
+ * segment's maximum (a thinned series may not have kept it). A segment
+ * with no kept sample is marked at the middle of its drawn pieces.
  * @param {import('../pkg/mtmotion.js').ToolPathSimulation} s
  * @param {import('../pkg/mtmotion.js').SegmentStats[]} worst
  * @param {import('../lib/path3d.js').ProgramPieces | null} pieces
  * @returns {import('../lib/path3d.js').Mark[]}
  */
 export function marksOf(s, worst, pieces) {
-  const want = new Map(worst.map((g) => [g.maxErrorUm, -1]));
+  // Per segment of `worst`, its largest kept sample (-1: none; a typed
+  // array, not a Map: a million samples are looked up).
+  const size = worst.reduce((m, g) => Math.max(m, g.segment + 1), 0);
+  const best = new Int32Array(size).fill(-2);
+  for (const g of worst) best[g.segment] = -1;
   const e = s.errorUm;
-  const least = Math.min(...want.keys());
+  const seg = s.sampleSegment;
   for (let i = 0; i < e.length; i++) {
-    if (e[i] < least) continue;
-    const v = want.get(e[i]);
-    if (v === undefined) continue;
-    want.set(e[i], v === -1 ? i : -2); // -2: found twice, not a single spot
+    const g = seg[i];
+    if (g >= size) continue;
+    const b = best[g];
+    if (b === -1 || (b >= 0 && e[i] > e[b])) best[g] = i;
   }
   return worst.map((g, r) => {
-    const i = want.get(g.maxErrorUm);
+    const i = best[g.segment];
     let at;
     if (i >= 0) at = [s.nearX[i], s.nearY[i], s.nearZ[i]];
     else if (pieces && g.segment < pieces.first.length - 1) {
       const mid = (pieces.first[g.segment] + pieces.first[g.segment + 1] - 1) >> 1;
       at = [0, 1, 2].map((a) => (pieces.pos[mid * 6 + a] + pieces.pos[mid * 6 + 3 + a]) / 2);
     } else at = [s.nearX[0], s.nearY[0], s.nearZ[0]];
-    return { rank: r + 1, line: g.line, errorUm: g.maxErrorUm, at, spot: i >= 0 };
+    return { rank: r + 1, line: g.line, errorUm: g.maxErrorUm, at, spot: i >= 0 && e[i] === g.maxErrorUm };
   });
 }
 

@@ -4,7 +4,7 @@
 // (simulateToolPath, reverseCompensate, toolpathExample); this file only
 // gathers inputs, calls the API and draws.
 import { h, numberField, selectField, table, downloadText, dropZone, fmt, toCsv, runState, progressBar, showError, cancelGuard } from '../lib/ui.js';
-import { xyChart, lineChart } from '../lib/plot.js';
+import { lineChart } from '../lib/plot.js';
 import { programFiles } from './toolpath-files.js';
 import { ncEditor } from '../lib/editor.js';
 import { pathView } from '../lib/path3d.js';
@@ -154,6 +154,21 @@ export async function mount(root, api) {
     },
   });
   const velBox = h('div', { class: 'plot', id: 'toolpath-velocity' });
+  // The compensation's before/after in a 3D view of its own (a second
+  // WebGL context for the panel's life): one simulation at a time, flipped
+  // by the switch with the camera kept, on one colour scale; both measured
+  // against the original program's path.
+  const compView = pathView({
+    prefix: 'toolpath-comp',
+    height: 420,
+    onPick: (line) => editor.selectLine(line, { focus: false }),
+    onMagnification: (k) => {
+      mag.value = String(Math.min(k, Number(mag.max)));
+      magLabel.textContent = `×${k} (auto)`;
+    },
+  });
+  const whichRadio = (value, label) => h('label', {}, h('input', { type: 'radio', name: 'toolpath-comp-which', id: `toolpath-comp-${value}`, value, checked: value === 'after', onchange: () => showComp(true) }), ` ${label}`);
+  const compWhich = h('div', { class: 'path3d-bar', role: 'radiogroup', 'aria-label': 'simulation shown' }, 'Show: ', whichRadio('before', 'before (original program)'), whichRadio('after', 'after (compensated program, against the original path)'));
   const compOut = h('div', { id: 'toolpath-comp-out' });
   // One run state per result area; a new program empties both (its results
   // would belong to the previous program).
@@ -162,7 +177,6 @@ export async function mount(root, api) {
   const programChanged = () => {
     last = null;
     lastComp = null;
-    compCharts.length = 0;
     simUi.clear();
     compUi.clear();
   };
@@ -176,10 +190,9 @@ export async function mount(root, api) {
     feedOverride: ovr.value / 100,
   });
 
-  // Drawing only: a plot gets at most this many points; every
-  // stride-th sample is drawn plus, in each stride, the sample with the
-  // largest error, so the peak stays visible. The numbers (tables,
-  // maximum, CSV) always use every sample.
+  // Drawing only: the velocity chart gets at most this many points (every
+  // stride-th sample). The numbers (tables, maximum, CSV) always use every
+  // sample; the paths are drawn by the 3D views (lib/path3d.js).
   const MAX_DRAWN = 20000;
   /** Every stride-th value, so a plot gets at most MAX_DRAWN points (drawing only). */
   function thinned(a) {
@@ -189,43 +202,28 @@ export async function mount(root, api) {
     for (let i = 0, j = 0; i < a.length; i += stride, j++) kept[j] = a[i];
     return kept;
   }
-  /** Path traces: commanded path and the simulated path with its error magnified by k. */
-  function pathTraces(s, k, label) {
-    const n = s.t.length;
-    const stride = Math.max(1, Math.ceil(n / MAX_DRAWN));
-    const idx = [];
-    for (let i = 0; i < n; i += stride) {
-      let worst = i;
-      for (let j = i + 1; j < Math.min(n, i + stride); j++) if (s.errorUm[j] > s.errorUm[worst]) worst = j;
-      idx.push(i);
-      if (worst !== i) idx.push(worst);
-    }
-    const m = idx.length;
-    const x = new Float64Array(m), y = new Float64Array(m), cx = new Float64Array(m), cy = new Float64Array(m), e = new Float64Array(m);
-    idx.forEach((i, j) => {
-      x[j] = s.nearX[i] + k * (s.simX[i] - s.nearX[i]);
-      y[j] = s.nearY[i] + k * (s.simY[i] - s.nearY[i]);
-      cx[j] = s.cmdX[i];
-      cy[j] = s.cmdY[i];
-      e[j] = s.errorUm[i];
-    });
-    return [
-      { x: cx, y: cy, label: 'commanded', color: '#495057', width: 1 },
-      { x, y, values: e, label: `${label} (error ×${k}${stride > 1 ? `, every ${stride}th sample drawn` : ''})`, width: 2 },
-    ];
-  }
-
   let last = null;
+  /** The last compensation and the original program's pieces (null: none shown). */
   let lastComp = null;
-  const compCharts = [];
+  let compPieces = null;
   function redraw() {
     const k = Number(mag.value);
     magLabel.textContent = `×${k}`;
     if (last) view3d.setMagnification(k);
-    if (lastComp && compCharts.length === 2) {
-      compCharts[0].update({ traces: pathTraces(lastComp.beforeSim, k, 'before') });
-      compCharts[1].update({ traces: pathTraces(lastComp.afterSim, k, 'after') });
-    }
+    if (lastComp) compView.setMagnification(k);
+  }
+
+  /** Shows the compensation's before or after simulation (the switch) in
+   * its 3D view, on the scale 0 … the larger cutting maximum of the two;
+   * `flip`: the other one of the same compensation (camera kept). */
+  function showComp(flip = false) {
+    if (!lastComp) return Promise.resolve();
+    const c = lastComp;
+    const after = /** @type {HTMLInputElement} */ (compWhich.querySelector('#toolpath-comp-after')).checked;
+    const s = after ? c.afterSim : c.beforeSim;
+    const scaleUm = Math.max(c.beforeSim.maxErrorUm, c.afterSim.maxErrorUm);
+    compView.el.dataset.showing = after ? 'after' : 'before';
+    return compView.show({ program: compPieces, sim: s, scaleUm, marks: marksOf(s, worstSegments(s).cutting, compPieces) }, { keepView: flip });
   }
   mag.addEventListener('input', redraw);
 
@@ -307,15 +305,20 @@ export async function mount(root, api) {
     cancel.hidden = false;
     compProgress.set(0, 'starting');
     try {
+      // The original program's segments (parseNc, as reverseCompensate
+      // reads it) draw the programmed path; both simulations' samples map
+      // to them (sampleSegment).
+      const parsed = api.call('programPieces', [nc.value]).catch(() => null);
       const c = await api.call('reverseCompensate', [nc.value, { ...cfg(), timeBudget: budget.value / 100, ...lineRange() }], {
         signal: abort.signal,
         onProgress: (f, stage) => compProgress.set(f, stage),
       });
       if (!compUi.current(token)) return;
+      const pieces = await parsed;
+      if (!compUi.current(token)) return;
       lastComp = c;
+      compPieces = pieces;
       const pct = (1 - c.after.maxErrorUm / c.before.maxErrorUm) * 100;
-      const left = h('div', { class: 'plot' });
-      const right = h('div', { class: 'plot' });
       const base = fileName.replace(/\.[^.]*$/, '');
       compOut.replaceChildren(
         table(['', 'max error µm (vs original path)', 'motion time s'], [
@@ -335,19 +338,14 @@ export async function mount(root, api) {
             `${r.firstLine}–${r.lastLine}`, `${r.arcs} / ${r.lines}`, fmt(r.beforeUm, 4), fmt(r.afterUm, 4), r.changed ? 'yes' : 'no', r.reason || '—',
           ])),
           c.regions.length > 500 ? h('p', {}, `(first 500 of ${c.regions.length} regions shown)`) : ''),
-        h('div', { class: 'grid2', style: 'display:grid;grid-template-columns:1fr 1fr;gap:8px' }, left, right),
+        h('div', { class: 'plot', id: 'toolpath-comp-path' }, h('div', { class: 'chart-title' }, 'Before and after in 3D (colour: contour error µm against the original path, one scale for both)'), compWhich, compView.el),
         h('details', {}, h('summary', {}, 'Compensated program'), h('pre', { id: 'toolpath-comp-nc', style: 'max-height:300px;overflow:auto' }, c.nc)),
       );
-      compCharts.length = 0;
-      const k = Number(mag.value);
-      // One colour scale for before and after (0 … the larger maximum).
-      const valueRange = [0, Math.max(c.before.maxErrorUm, c.after.maxErrorUm) || 1];
-      compCharts.push(xyChart(left, { title: 'Before', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.beforeSim, k, 'before'), colorLabel: 'µm', height: 360, valueRange }));
-      compCharts.push(xyChart(right, { title: 'After (against the original path)', xLabel: 'X mm', yLabel: 'Y mm', traces: pathTraces(c.afterSim, k, 'after'), colorLabel: 'µm', height: 360, valueRange }));
+      await showComp();
+      if (!compUi.current(token)) return;
       compUi.ok();
     } catch (e) {
       lastComp = null;
-      compCharts.length = 0;
       if (compUi.current(token)) compRun.failed(abort, e, compUi, 'Reverse compensation');
     } finally {
       compRun.finish(abort);

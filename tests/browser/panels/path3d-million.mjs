@@ -39,8 +39,8 @@ export default async function (page, check) {
     }
     const first = new Int32Array(n + 1).map((_, i) => i);
     const program = { pos, seg, first, line: new Int32Array(n).map((_, i) => i + 1), rapid: new Uint8Array(n), feed: new Float64Array(n).fill(3000) };
-    // Simulation: one sample per vertex, off the path by up to 20 µm.
-    const sim = { t: new Float64Array(n), nearX: new Float64Array(n), nearY: new Float64Array(n), nearZ: new Float64Array(n), simX: new Float64Array(n), simY: new Float64Array(n), simZ: new Float64Array(n), errorUm: new Float64Array(n) };
+    // Simulation: one sample per vertex (on its piece's segment), off the path by up to 20 µm.
+    const sim = { t: new Float64Array(n), nearX: new Float64Array(n), nearY: new Float64Array(n), nearZ: new Float64Array(n), simX: new Float64Array(n), simY: new Float64Array(n), simZ: new Float64Array(n), errorUm: new Float64Array(n), sampleSegment: new Uint32Array(n).map((_, i) => i) };
     for (let i = 0; i < n; i++) {
       const [x, y, z] = pts.subarray(i * 3, i * 3 + 3);
       const e = 0.02 * Math.abs(Math.sin(i / 5000));
