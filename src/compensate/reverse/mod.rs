@@ -417,7 +417,7 @@ pub fn reverse_compensate_with(
     let program = parse_with(text, &opts)?;
     let range = line_range(&program, cfg.from_line, cfg.to_line)?;
     let orig = &program.segments;
-    let mut work = Work::for_program(sample_estimate(orig, &cfg.sim)? as u64)?;
+    let mut work = Work::for_program(sample_estimate(orig, &cfg.sim)? as u64);
     let mut tick = |f: f64, s: &str| {
         if progress(f, s) {
             Ok(())
@@ -427,6 +427,7 @@ pub fn reverse_compensate_with(
     };
     tick(0.0, "simulating the original program")?;
     let sim_before = simulate(orig, orig, &cfg.sim)?;
+    work.set_original(orig, &sim_before);
     let rg = regions_in(&program, &|l| range.contains(l));
     let before_err = region_errors(&rg, &sim_before.segments);
     tick(0.15, "correction rounds")?;
