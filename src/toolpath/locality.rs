@@ -18,8 +18,9 @@
 //! post-roll of at least [`memory`] after them (the tool lags the command,
 //! so a core segment's samples fall inside); windows whose pre- and
 //! post-rolls would overlap are merged. A window is sampled on the whole
-//! program's grid (`k·dt` from the program start, [`Stepper::with_phase`]
-//! (super::filter::Stepper::with_phase)), measured against the whole
+//! program's grid (`k·dt` from the program start,
+//! [`Stepper::with_phase`](super::filter::Stepper::with_phase)), measured
+//! against the whole
 //! reference path from `tA + max T` before its core (the tool lags the
 //! command, so no sample before comes nearest to a core segment) to
 //! [`memory`] after it, and its statistics are taken for its core

@@ -13,16 +13,22 @@
 //!   in 3D: where the tool cuts inside a corner the vector points out of
 //!   it and the vertex moves out).
 //!
-//! Every region (see [`super::region`]) keeps the edit of the round in
-//! which its own maximum error was lowest; a region whose error stops
-//! falling for two rounds stops being corrected. A round simulates only
-//! the windows (rapid to rapid) that hold a region still being corrected,
-//! each alone — the cost of a round falls as regions settle; the written
-//! program is then checked against the whole original path
-//! ([`super::reverse_compensate`]). Regions are separated by
-//! rapids (which end in an exact stop) and by fixed segments, so the edit
-//! of one region barely changes another's error, and the best rounds of
-//! different regions combine.
+//! Every chunk of a region (see [`super::region::chunks`]: a long region
+//! is cut into parts of at least [`CHUNK_MEMORIES`] memories of motion)
+//! keeps the edit of the round in which its own maximum error was lowest;
+//! a chunk whose error stops falling for two rounds stops being corrected.
+//! A round simulates only windows around the original segments whose
+//! rebuilt command changed since the previous round
+//! ([`crate::toolpath::locality`]: the NC filter forgets a change after
+//! `tA`, the servo lag after `12·T`), so its cost grows with the places
+//! still being corrected, not with the program's length; the statistics
+//! elsewhere stand from earlier rounds (the first round's are the
+//! original's simulation). The written program is then checked against
+//! the whole original path ([`super::reverse_compensate`]). Regions are
+//! separated by rapids (which end in an exact stop) and by fixed segments,
+//! chunks by at least several memories of motion, so the edit of one
+//! barely changes another's error, and the best rounds of different
+//! chunks combine (the check judges the combination).
 //!
 //! Units: mm, s.
 
