@@ -267,3 +267,22 @@ fn compensated_after_error_equals_a_whole_resimulation() {
         assert!(d < 0.1, "{d} µm");
     }
 }
+
+/// A zero-length move takes no time: its piece starts and ends where the
+/// next move starts, so a change next to it reaches past it (the core
+/// holds every segment within the memory, 0.22 s, of the change).
+#[test]
+fn a_zero_length_move_is_timed_as_the_next_one() {
+    let p = parse("G1 X10 F600\nG1 X10\nG1 X20\nG1 Y10").unwrap();
+    let orig = &p.segments;
+    assert_eq!(orig.len(), 4);
+    let (cmd, at) = rebuild_indexed(orig, &identity(orig, vec![0.0; 4]));
+    let changed = [false, false, true, false];
+    let w = plan(&cmd, &at, &changed, &cfg()).unwrap();
+    assert_eq!(w.len(), 1, "{w:?}");
+    // Each move lasts 1 s: the changed one (1–2 s) reaches 0.78–2.22 s,
+    // the first and the last move; the window runs from the start.
+    assert_eq!(w[0].core, 0..4, "{w:?}");
+    assert_eq!(w[0].command.start, 0, "{w:?}");
+    assert!(w[0].phase.is_finite() && w[0].samples > 2000, "{w:?}");
+}

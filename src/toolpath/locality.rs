@@ -130,8 +130,8 @@ pub fn plan(
     let mut cores: Vec<(Range<usize>, usize)> = Vec::new();
     for i in (0..n).filter(|&i| changed[i]) {
         let (lo, hi) = (ps[i] - m, pe[i] + m);
-        let core =
-            pe.partition_point(|&e| e < lo).min(i)..ps.partition_point(|&s| s <= hi).max(i + 1);
+        // Segment i itself is inside: pe[i] > lo and ps[i] < hi.
+        let core = pe.partition_point(|&e| e < lo)..ps.partition_point(|&s| s <= hi);
         let (ca, cb) = extent(&core);
         match cores.last_mut() {
             Some((c, end)) if ca < *end => {
@@ -147,31 +147,28 @@ pub fn plan(
             let (ca, cb) = extent(&core);
             let t0 = start[ca];
             let j0 = (t0 / dt).ceil();
-            let samples = if cb == command.len() {
-                total.saturating_sub(j0 as usize)
-            } else {
-                ((start[cb] / dt).ceil() - j0).max(0.0) as usize
-            };
             let phase = (j0 * dt - t0).max(0.0);
             // Sample index at global time t (the first at or after it).
-            let k_at = |t: f64| (((t - t0 - phase) / dt).ceil().max(0.0) as usize).min(samples);
+            let k_at = |t: f64| ((t - t0 - phase) / dt).ceil().max(0.0) as usize;
             // Exact from the start at the program's start (it starts
             // from rest), else `m` after the window's start.
             let exact = if ca == 0 { t0 } else { t0 + m };
             let first = (ps[core.start] - cfg.t_a - tmax).max(exact);
+            // To the end at the program's end (the tool settles after
+            // the last command), else `m` after the core; nothing after
+            // the last measured sample is needed.
             let last = if cb == command.len() {
-                samples
+                total.saturating_sub(j0 as usize)
             } else {
                 k_at(pe[core.end - 1] + m)
             };
-            let a = k_at(first.min(ps[core.start]));
+            let a = k_at(first.min(ps[core.start])).min(last);
             Window {
                 command: ca..cb,
                 core,
                 phase,
-                measured: a..last.max(a),
-                // Nothing after the last measured sample is needed.
-                samples: last.max(a),
+                measured: a..last,
+                samples: last,
             }
         })
         .collect())
