@@ -285,4 +285,9 @@ fn a_zero_length_move_is_timed_as_the_next_one() {
     assert_eq!(w[0].core, 0..4, "{w:?}");
     assert_eq!(w[0].command.start, 0, "{w:?}");
     assert!(w[0].phase.is_finite() && w[0].samples > 2000, "{w:?}");
+    // A change of the first move (0–1 s) reaches to 1.28 s: through the
+    // zero-length move (at 1 s) into the third, not the fourth (2–3 s).
+    let w = plan(&cmd, &at, &[true, false, false, false], &cfg()).unwrap();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].core, 0..3, "{w:?}");
 }
