@@ -4,7 +4,8 @@
 //! refusals, time per program).
 //!
 //! Run: `cargo run --release --example reverse_corpus [dt_ms] [file…]`
-//! (tA 40 ms, T 15 ms, dt 2 ms unless given). The corpus is read from
+//! (tA 40 ms, T 15 ms, dt 2 ms unless given; with `RC_STAGES` set, the
+//! time at which each stage starts is printed). The corpus is read from
 //! `../shared/nc_corpus` or `MTMOTION_NC_CORPUS` (see
 //! `tests/support/corpus.rs`).
 
@@ -14,7 +15,7 @@ mod corpus;
 
 #[cfg(not(target_arch = "wasm32"))]
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
+    use mtmotion::compensate::reverse::ReverseConfig;
     let mut args = std::env::args().skip(1);
     let dt_ms: f64 = args.next().map(|s| s.parse()).transpose()?.unwrap_or(2.0);
     let only: Vec<String> = args.collect();
@@ -23,6 +24,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     cfg.sim.t_a = 0.04;
     cfg.sim.t = mtmotion::toolpath::Lag::All(0.015);
     cfg.sim.dt = dt_ms * 1e-3;
+    // PAPER set: qiu's method (step 1, no corner spikes) for comparison.
     if std::env::var_os("PAPER").is_some() {
         cfg.step = 1.0;
         cfg.corner_spikes = false;
@@ -41,7 +43,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             continue;
         }
         let start = std::time::Instant::now();
-        match reverse_compensate(&text, &cfg) {
+        let t0 = std::time::Instant::now();
+        let mut last = String::new();
+        let res =
+            mtmotion::compensate::reverse::reverse_compensate_with(&text, &cfg, &mut |f, st| {
+                if std::env::var("RC_STAGES").is_ok() && st != last {
+                    eprintln!("  {:7.2} s  {f:.2} {st}", t0.elapsed().as_secs_f64());
+                    last = st.to_string();
+                }
+                true
+            });
+        match res {
             Ok(c) => {
                 let r = c.after.max_error_um / c.before.max_error_um;
                 ratios.push(r);
@@ -57,32 +69,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     c.budget_note.as_deref().map(|u| format!("\n    budget: {u}")).unwrap_or_default(),
                 );
                 unchanged += usize::from(c.unchanged.is_some());
-                if std::env::var_os("WORST").is_some() {
-                    println!(
-                        "    history {:?}\n    dwells {}",
-                        c.history_um.iter().map(|x| x.round()).collect::<Vec<_>>(),
-                        c.dwells.len()
-                    );
-                    let mut w: Vec<_> = c
-                        .sim_after
-                        .segments
-                        .iter()
-                        .filter(|s| s.kind != "rapid")
-                        .collect();
-                    w.sort_by(|a, b| b.max_error_um.total_cmp(&a.max_error_um));
-                    for s in w.iter().take(8) {
-                        let b = c
-                            .sim_before
-                            .segments
-                            .iter()
-                            .find(|x| x.segment == s.segment)
-                            .map_or(0.0, |x| x.max_error_um);
-                        println!(
-                            "    line {} {} len {:.3} r {:.3}: {:.1} µm (before {:.1})",
-                            s.line, s.kind, s.length, s.radius, s.max_error_um, b
-                        );
-                    }
-                }
             }
             Err(e) => {
                 refused += 1;

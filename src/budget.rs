@@ -169,15 +169,23 @@ pub const MAX_CIRCULAR_RUNS: usize = 64;
 /// deviation arrays are 4 M numbers, half the argument budget).
 pub const MAX_CIRCULAR_POINTS: usize = 2_000_000;
 
-/// Most simulated samples of one reverse compensation, over all its
-/// simulations (the original, every correction round, the dwell trials
-/// and the checks of the written program): about 4.6 s in the wasm build
-/// at roughly 0.6 µs per simulated sample (a generated 35,000-line
-/// raster, 10 simulations of 755,391 samples; it was about 1 µs). A program of `n` samples needs
-/// at least `4·n` (the original, one round, two checks) and is refused
-/// above that; below it the rounds stop early, keeping their best so far,
-/// when the next would leave too little for the checks.
-pub const MAX_REVERSE_SIMULATED_SAMPLES: usize = 8_000_000;
+/// Most simulated samples of one reverse compensation's correction
+/// rounds and dwell trials, over all their windows: a round simulates only
+/// windows around the places it changes (`toolpath::locality`), so this is
+/// a budget on corrected places, not on the program's length; the rounds
+/// stop early, keeping their best so far, when the next would exceed it.
+/// The whole-program simulations (the original and the checks of the
+/// written program) are budgeted apart ([`MAX_REVERSE_CHECK_SAMPLES`],
+/// [`MAX_TOOLPATH_SAMPLES`] each). About 0.6 µs per simulated sample in
+/// the wasm build.
+pub const MAX_REVERSE_SIMULATED_SAMPLES: usize = 16_000_000;
+
+/// Most samples of the checks of one reverse compensation's written
+/// program (each a whole-program simulation against the original path),
+/// or two simulations of the program when that is more: a small program
+/// is checked up to five times (each check may revert regions), a large
+/// one at least twice.
+pub const MAX_REVERSE_CHECK_SAMPLES: usize = 8_000_000;
 
 /// Most servo steps of one cone-frustum test, over all its simulated axes
 /// (each axis is simulated at 1 ms or finer for the whole revolution): a

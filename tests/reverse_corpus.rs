@@ -38,10 +38,8 @@ const LARGE: &[(&str, f64)] = &[
 /// every region's error is at sharp corners whose dwells would exceed the
 /// +5 % time budget, so nothing is changed (121 and 323 µm kept). The
 /// CAMotics pocket `camotics_botomata_bottom.nc` (5567 s) is not here: at
-/// dt 1 ms its compensation needs 22.7 M simulated samples, over the 8 M
-/// work budget, and is refused (see `REFUSED`); at dt 3 ms it runs (5.5 s
-/// native) and is left unchanged too, 214.6 µm, 0 of 186 regions ("no
-/// correction round lowered its error").
+/// dt 1 ms it was refused by the work budget before the rounds became
+/// local; it is pinned in `UNREFUSED`, unchanged too.
 const CAM: &[(&str, f64)] = &[
     ("ledfloor_1003.nc", 1.0),
     ("ledfloor_1112_tab_test_29bit_715_tab_thickness.nc", 1.0),
@@ -109,23 +107,28 @@ const UNCHANGED: &[(&str, &str)] = &[
     ),
 ];
 
-/// Programs that parse but whose compensation is refused before any
-/// simulation, with the phrase of the error (tA 40 ms, T 15 ms, dt 1 ms).
-const REFUSED: &[(&str, &str)] = &[
-    (
-        "camotics_botomata_bottom.nc",
-        "more than the limit of 8000000",
-    ),
-    ("cncjs_tball-pocket.gcode", "more than the limit of 8000000"),
-    // CAMotics raster finishing, 35,282 segments: 46.4 M samples.
-    ("camotics_cameo.nc", "more than the limit of 8000000"),
-    // Parses since G33.1 is simulated: 11.5 M samples.
-    ("linuxcnc_mmount.ngc", "more than the limit of 8000000"),
+/// The programs the work budget refused before the rounds simulated
+/// windows around the corrected places only (`toolpath::locality`):
+/// the windows have their own budget and the whole-program simulations
+/// theirs, so none is refused. Measured as pinned here (release build;
+/// tA 40 ms, T 15 ms, dt 1 ms, default settings): the botomata pocket
+/// (5.7 M samples a simulation) unchanged at 213.8 µm ("it raised the
+/// error of the neighbouring region"), the cameo raster (35,282 segments,
+/// 11.6 M samples) unchanged at 101.1 µm (its combined chunks' written
+/// error rose, 101.1 -> 109.1 µm, so the region went back), the CNCjs
+/// pocket 438.3 -> 412.0 µm, mmount unchanged (its moves are
+/// macro-computed); all four stopped by the window budget. Natively 59,
+/// 22, 5 and 7 s.
+const UNREFUSED: &[(&str, f64)] = &[
+    ("camotics_botomata_bottom.nc", 1.0),
+    ("camotics_cameo.nc", 1.0),
+    ("cncjs_tball-pocket.gcode", 0.940),
+    ("linuxcnc_mmount.ngc", 1.0),
 ];
 
 /// Every file of the corpus has a pinned reverse-compensation outcome: a
-/// ratio above, left unchanged with its note, refused by the work budget,
-/// or — for every other file — refused with exactly the error that
+/// ratio above, or left unchanged with its note, or — for every other
+/// file — refused with exactly the error that
 /// parsing it gives (so a corpus file added without a pin fails here
 /// unless it is refused by the parser too).
 #[test]
@@ -136,8 +139,9 @@ fn every_corpus_program_has_a_pinned_reverse_outcome() {
         .chain(CAM)
         .chain(ADDED)
         .chain(FIELD)
+        .chain(UNREFUSED)
         .map(|(n, _)| *n)
-        .chain(UNCHANGED.iter().chain(REFUSED).map(|(n, _)| *n))
+        .chain(UNCHANGED.iter().map(|(n, _)| *n))
         .collect();
     let Some(dir) = corpus::available("every_corpus_program_has_a_pinned_reverse_outcome") else {
         return;
@@ -161,12 +165,6 @@ fn every_corpus_program_has_a_pinned_reverse_outcome() {
             c.regions
         );
         assert_eq!(n.before_um, c.before.max_error_um, "{name}");
-    }
-    for (name, phrase) in REFUSED {
-        let e = reverse_compensate(&read(name), &cfg)
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains(phrase), "{name}: {e}");
     }
     for name in names.iter().filter(|n| !pinned.contains(&n.as_str())) {
         let text = read(name);
@@ -261,4 +259,5 @@ fn every_simulating_corpus_program_is_never_worse_median_pinned() {
     assert!(m <= 0.265, "median {m:.3} rose above the measured 0.258");
     check(ADDED);
     check(FIELD);
+    check(UNREFUSED);
 }

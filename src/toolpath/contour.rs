@@ -408,6 +408,19 @@ impl Default for Tracker {
 }
 
 impl Tracker {
+    /// A tracker whose last nearest point is the start of element
+    /// `element` of `path` (a window of a longer run starts there, not at
+    /// the path's start; [`super::locality`]).
+    pub fn at(path: &Path, element: usize) -> Self {
+        let s = path.elements.get(element).map_or(0.0, |e| e.s0);
+        Self {
+            cur: element.min(path.elements.len().saturating_sub(1)),
+            s,
+            s_cut: s,
+            ..Self::default()
+        }
+    }
+
     /// Nearer, or as near (within 1 nm, e.g. a path that repeats itself)
     /// and closer along the path to the last nearest point on a cutting
     /// move.

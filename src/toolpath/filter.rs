@@ -138,10 +138,18 @@ impl<'a> Stepper<'a> {
     /// The filter of `tl` by the moving average `t_a` and the lags `t`
     /// (per axis), sampled at `dt`; all in s.
     pub fn new(tl: &'a Timeline, t_a: f64, t: [f64; 3], dt: f64) -> Self {
+        Self::with_phase(tl, t_a, t, dt, 0.0)
+    }
+
+    /// As [`Stepper::new`], sampling at `k·dt + phase` (`0 ≤ phase < dt`,
+    /// s): a window of a longer command on the longer command's sample
+    /// grid ([`super::locality`]). The tool stands at the start until
+    /// `t = 0`, so the ring's start values stay exact.
+    pub fn with_phase(tl: &'a Timeline, t_a: f64, t: [f64; 3], dt: f64, phase: f64) -> Self {
         let o = tl.origin;
         Self {
-            now: Sampler::new(tl, dt, 0.0),
-            back: Sampler::new(tl, dt, t_a),
+            now: Sampler::new(tl, dt, -phase),
+            back: Sampler::new(tl, dt, t_a - phase),
             lags: [
                 Lag1::new(t[0], dt),
                 Lag1::new(t[1], dt),

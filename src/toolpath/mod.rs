@@ -9,7 +9,8 @@
 //! whole command directly (tested; [`sampler`] is that filter's fast
 //! evaluation of the command); the contour error is the exact distance
 //! from the simulated point to the commanded lines and arcs ([`contour`]).
-//! [`mod@simulate`] ties them together; [`identify`] is Eq. 3 and the
+//! [`mod@simulate`] ties them together; [`locality`] re-simulates only
+//! around changed segments (the reach of Eqs. 1–2); [`identify`] is Eq. 3 and the
 //! identification of `tA` and `T`; [`example`] holds the built-in test paths
 //! that resemble the paper's Fig. 2.
 //!
@@ -29,6 +30,7 @@ pub mod contour;
 pub mod example;
 pub mod filter;
 pub mod identify;
+pub mod locality;
 pub mod sampler;
 pub mod simulate;
 pub mod superpose;

@@ -229,7 +229,7 @@ fn simulate_keeping(
     let n = sample_count(&tl, cfg, tmax, command)?;
     let end = reference.last().map_or(tl.origin, |s| s.end.p());
     let stride = max_series.map_or(0, |m| n.div_ceil(m));
-    let mut run = Run::new(&path, n, stride);
+    let mut run = Run::new(&path, 0..path.elements.len(), n, stride);
     let mut stepper = Stepper::new(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt);
     for k in 0..n {
         if k % PROGRESS_EVERY == 0 && k > 0 && !progress(k as f64 / n as f64) {
@@ -303,7 +303,7 @@ fn check_segments(segments: &[Segment]) -> Result<(), ToolpathError> {
 /// The timed command: a G0 ends in an exact stop of `tA + 10·max T`, and
 /// with `dwellExactStop` a G4 first waits `tA + 5·max T` (see the module
 /// header). `tmax` is the largest axis lag, s.
-fn timeline(command: &[Segment], cfg: &SimConfig, tmax: f64) -> Timeline {
+pub(super) fn timeline(command: &[Segment], cfg: &SimConfig, tmax: f64) -> Timeline {
     let dwell_stop = if cfg.dwell_exact_stop {
         cfg.t_a + 5.0 * tmax
     } else {
@@ -321,7 +321,7 @@ fn timeline(command: &[Segment], cfg: &SimConfig, tmax: f64) -> Timeline {
 /// Number of samples at `dt` until `tA + 12·max T` after the last command
 /// ends, or [`ToolpathError::TooLong`] past [`MAX_SAMPLES`], naming the
 /// source line of the longest move of `command` (usually a very low feed).
-fn sample_count(
+pub(super) fn sample_count(
     tl: &Timeline,
     cfg: &SimConfig,
     tmax: f64,
@@ -356,8 +356,10 @@ fn sample_count(
 /// statistics per element, the motion time, and the series kept.
 struct Run {
     tracker: Tracker,
-    /// Running statistics per element of the reference path.
+    /// Running statistics per element of the reference path, from element
+    /// `base` on (a window keeps only its own).
     acc: Vec<Acc>,
+    base: usize,
     /// Largest contour error on cutting moves, mm, its sample and element.
     max_error: f64,
     max_k: usize,
@@ -387,12 +389,13 @@ struct Series {
 }
 
 impl Run {
-    /// A run of `n` samples on `path`, keeping series at `stride` (none
-    /// when 0).
-    fn new(path: &Path, n: usize, stride: usize) -> Self {
+    /// A run of `n` samples on `path` with statistics for the elements
+    /// `elements`, keeping series at `stride` (none when 0).
+    fn new(path: &Path, elements: std::ops::Range<usize>, n: usize, stride: usize) -> Self {
         Self {
-            tracker: Tracker::default(),
-            acc: vec![Acc::default(); path.elements.len()],
+            tracker: Tracker::at(path, elements.start),
+            acc: vec![Acc::default(); elements.len()],
+            base: elements.start,
             max_error: 0.0,
             max_k: 0,
             max_el: 0,
@@ -416,8 +419,8 @@ impl Run {
             return;
         };
         let e = nr.element;
-        // The tracker's elements are the path's: never out of range.
-        let (Some(a), Some(el)) = (self.acc.get_mut(e), path.elements.get(e)) else {
+        let slot = e.checked_sub(self.base).and_then(|i| self.acc.get_mut(i));
+        let (Some(a), Some(el)) = (slot, path.elements.get(e)) else {
             return;
         };
         if let Some(series) = &mut self.series {
@@ -542,6 +545,42 @@ impl Acc {
             samples: self.samples,
         }
     }
+}
+
+/// The statistics of the reference segments `keep` from a run of
+/// `command`, a window of a longer command, sampled `n` times at
+/// `k·dt + phase`, the samples `measured` measured against the whole
+/// reference `path` (of `reference`), the nearest-point search starting
+/// at the first element of `keep`: the per-segment part of [`simulate()`] for
+/// [`super::locality`], every element of `keep` listed (samples 0 when
+/// none came near it).
+pub(super) fn measure_window(
+    command: &[Segment],
+    (path, reference): (&Path, &[Segment]),
+    cfg: &SimConfig,
+    (phase, n): (f64, usize),
+    (measured, keep): (std::ops::Range<usize>, std::ops::Range<usize>),
+) -> Vec<SegmentStats> {
+    let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
+    let tl = timeline(command, cfg, tmax);
+    let els = &path.elements;
+    let lo = els.partition_point(|e| e.segment < keep.start);
+    let hi = els.partition_point(|e| e.segment < keep.end);
+    let mut run = Run::new(path, lo..hi, n, 0);
+    if !tl.items.is_empty() {
+        let mut stepper = Stepper::with_phase(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt, phase);
+        for k in 0..n.min(measured.end) {
+            let s = stepper.next_sample();
+            if k >= measured.start {
+                run.sample(path, k, &s, tl.origin);
+            }
+        }
+    }
+    els[lo..hi]
+        .iter()
+        .zip(&run.acc)
+        .map(|(el, a)| a.stats(el, &reference[el.segment]))
+        .collect()
 }
 
 /// Simulates a parsed program against itself.

@@ -41,7 +41,7 @@
 
 use super::geometry::Edit;
 use super::region::Regions;
-use super::rounds::{simulate_windows, Work};
+use super::rounds::{LocalStats, Work};
 use crate::nc::program::{Motion, Segment};
 use crate::toolpath::{SegmentStats, SimConfig, ToolpathError};
 
@@ -192,7 +192,6 @@ pub struct Spikes {
 #[allow(clippy::too_many_arguments)]
 pub fn search(
     orig: &[Segment],
-    rg: &Regions,
     cfg: &SimConfig,
     found: &[Corner],
     before: &[SegmentStats],
@@ -223,43 +222,33 @@ pub fn search(
     }
     // Per corner: the best scale so far (0: none) and its error.
     let mut best: Vec<(f64, f64)> = chosen.iter().map(|(_, e)| (0.0, *e)).collect();
-    let mut live = vec![false; rg.windows.len()];
-    for (c, _) in &chosen {
-        if let Some(r) = rg.of[c.seg] {
-            live[rg.window[r]] = true;
-        }
-    }
-    let mut in_live = vec![false; orig.len()];
-    for (w, _) in rg.windows.iter().zip(&live).filter(|(_, &l)| l) {
-        in_live[w.clone()].iter_mut().for_each(|x| *x = true);
-    }
     let mut edit = start.clone();
     let set = |edit: &mut Edit, c: &Corner, s: f64| {
         edit.spike[c.seg] = c.out.map(|x| x * s * c.depth);
     };
+    let mut local = LocalStats::new(orig, work);
     let mut history = Vec::new();
-    let mut cost = work.program;
     // The search spends at most a third of the work left, so that the
     // correction rounds, dwells and checks after it still run.
     let floor = work.left() - work.left() / 3;
     for round in 0..FIRST.len() + 2 * STEPS.len() {
-        if chosen.is_empty() || work.left().saturating_sub(cost) < floor || !work.round(cost) {
+        if chosen.is_empty() || work.left() < floor {
             break;
         }
         let scales: Vec<f64> = best.iter().map(|&(b, _)| trial_scale(round, b)).collect();
         for (&(c, _), &s) in chosen.iter().zip(&scales) {
             set(&mut edit, c, s);
         }
-        let (stats, simulated) = simulate_windows(orig, rg, cfg, &edit, &live)?;
-        cost = simulated;
-        let by = by_segment(&stats, orig.len());
-        // The whole path's maximum: the simulated windows', the others'
-        // from the original.
-        let worst = (0..orig.len())
-            .filter_map(|i| by[i].or(if in_live[i] { None } else { by0[i] }))
-            .map(|s| s.max_error_um)
-            .fold(0.0, f64::max);
-        history.push(worst);
+        if !local.update(orig, cfg, &edit, work)? {
+            break;
+        }
+        let by: Vec<Option<&SegmentStats>> = local.by_seg.iter().map(Option::as_ref).collect();
+        history.push(
+            by.iter()
+                .flatten()
+                .map(|s| s.max_error_um)
+                .fold(0.0, f64::max),
+        );
         for ((&(c, _), &s), b) in chosen.iter().zip(&scales).zip(best.iter_mut()) {
             let e = corner_error(c, &by);
             if e < b.1 {

@@ -89,7 +89,14 @@ fn is_move(s: &Segment) -> bool {
 /// The compensated segment list: edited originals (keeping their `block`),
 /// connecting lines and dwells (with `block: None`).
 pub fn rebuild(orig: &[Segment], edit: &Edit) -> Vec<Segment> {
+    rebuild_indexed(orig, edit).0
+}
+
+/// As [`rebuild`], with the index in the output of each original
+/// segment's own (after a connector before it, before a dwell after it).
+pub fn rebuild_indexed(orig: &[Segment], edit: &Edit) -> (Vec<Segment>, Vec<usize>) {
     let (starts, ends) = joints(orig, edit);
+    let mut at = Vec::with_capacity(orig.len());
     let mut out = Vec::with_capacity(orig.len() + 8);
     let mut pen = orig.first().map_or([0.0; 3], |s| s.start.p());
     for (i, s) in orig.iter().enumerate() {
@@ -99,6 +106,7 @@ pub fn rebuild(orig: &[Segment], edit: &Edit) -> Vec<Segment> {
             seg.start.y = pen[1];
             seg.start.z = pen[2];
             seg.end = seg.start;
+            at.push(out.len());
             out.push(seg);
             continue;
         }
@@ -116,6 +124,7 @@ pub fn rebuild(orig: &[Segment], edit: &Edit) -> Vec<Segment> {
             seg.motion = refit_arc(a, edit_radius(edit, i), starts[i], ends[i]);
         }
         pen = ends[i];
+        at.push(out.len());
         out.push(seg);
         let sp = edit.spike.get(i).copied().unwrap_or([0.0; 3]);
         if sp != [0.0; 3] {
@@ -136,7 +145,7 @@ pub fn rebuild(orig: &[Segment], edit: &Edit) -> Vec<Segment> {
             out.push(d);
         }
     }
-    out
+    (out, at)
 }
 
 /// The new radius of segment `i` (0 when the edit has none), mm.

@@ -73,7 +73,7 @@ pub const DEFAULT_TIME_BUDGET: f64 = 0.05;
 /// changes (rounding of the written numbers), mm.
 const NEIGHBOUR_SLACK: f64 = 1e-4;
 /// Rounds of writing, checking and reverting regions at most.
-const MAX_CHECKS: usize = 5;
+const MAX_CHECKS: usize = 10;
 
 /// Settings of the reverse compensation. Read through a flat mirror
 /// (`ReverseConfigIn`): serde reads a flattened field as a map and drops
@@ -466,7 +466,7 @@ pub fn reverse_compensate_with(
     let program = parse_with(text, &opts)?;
     let range = line_range(&program, cfg.from_line, cfg.to_line)?;
     let orig = &program.segments;
-    let mut work = Work::for_program(sample_estimate(orig, &cfg.sim)? as u64)?;
+    let mut work = Work::for_program(sample_estimate(orig, &cfg.sim)? as u64);
     let mut tick = |f: f64, s: &str| {
         if progress(f, s) {
             Ok(())
@@ -476,6 +476,7 @@ pub fn reverse_compensate_with(
     };
     tick(0.0, "simulating the original program")?;
     let sim_before = simulate(orig, orig, &cfg.sim)?;
+    work.set_original(orig, &sim_before);
     let rg = regions_in(&program, &|l| range.contains(l));
     let before_err = region_errors(&rg, &sim_before.segments);
     tick(0.1, "corner spikes")?;
@@ -487,7 +488,6 @@ pub fn reverse_compensate_with(
     };
     let spikes = corner::search(
         orig,
-        &rg,
         &cfg.sim,
         &found,
         &sim_before.segments,

@@ -1,5 +1,6 @@
 //! Regions of a program for the reverse compensation: the runs of cutting
-//! moves between rapids and fixed segments, judged one by one.
+//! moves between rapids and fixed segments, judged one by one; and their
+//! chunks, the parts of a long region whose best rounds are kept apart.
 //!
 //! A rapid ends in an exact stop (see [`crate::toolpath::simulate()`]), so
 //! what happens before it does not reach the samples after it; a fixed
@@ -36,15 +37,6 @@ pub struct Regions {
     pub arc_free: Vec<bool>,
     /// Line–line joints `(i, k)` whose vertex may move.
     pub line_joints: Vec<(usize, usize)>,
-    /// Simulation windows: segment ranges from the rapid before a group of
-    /// regions (or the program start) to the rapid after it (or the end),
-    /// both included. The tool is at rest after a rapid's exact stop, so a
-    /// window simulated alone gives its regions' samples as the whole
-    /// program does (up to the e⁻¹⁰ residual of the stop and the nearest
-    /// point being sought in the window only).
-    pub windows: Vec<std::ops::Range<usize>>,
-    /// Window of each region.
-    pub window: Vec<usize>,
 }
 
 /// Splits `program` into regions (see the module header).
@@ -106,7 +98,6 @@ pub fn regions_in(program: &Program, inside: &dyn Fn(usize) -> bool) -> Regions 
             }
         }
     }
-    windows(segs, &mut rg);
     rg.movable = rg
         .members
         .iter()
@@ -153,20 +144,42 @@ pub fn kinds(rg: &Regions, r: usize, segs: &[Segment]) -> (usize, usize) {
     (arcs, rg.members[r].len() - arcs)
 }
 
-/// Fills [`Regions::windows`] and [`Regions::window`].
-fn windows(segs: &[Segment], rg: &mut Regions) {
-    let rapid = |i: usize| matches!(segs[i].motion, Motion::Rapid);
-    rg.window = vec![0; rg.members.len()];
+/// Parts of the regions that keep their own best round
+/// ([`super::rounds`]): a long region (a raster without rapids is one)
+/// is cut at its joints into runs of at least `span` seconds of nominal
+/// motion, so that a part the rounds improved keeps its round while
+/// another part keeps another.
+#[derive(Debug, Clone, Default)]
+pub struct Chunks {
+    /// Segment indices of each chunk: consecutive members of one region.
+    pub members: Vec<Vec<usize>>,
+    /// Region of each chunk.
+    pub region: Vec<usize>,
+    /// Chunk of each segment (`None` where the region is).
+    pub of: Vec<Option<usize>>,
+}
+
+/// Cuts every region of `rg` into [`Chunks`] of at least `span` s of
+/// nominal motion (the last of a region may be shorter) at feeds ×
+/// `feed_override`.
+pub fn chunks(rg: &Regions, segs: &[Segment], span: f64, feed_override: f64) -> Chunks {
+    let mut c = Chunks {
+        of: vec![None; segs.len()],
+        ..Chunks::default()
+    };
     for (r, m) in rg.members.iter().enumerate() {
-        let (first, last) = (m[0], m[m.len() - 1]);
-        let a = (0..first).rev().find(|&i| rapid(i)).unwrap_or(0);
-        let b = (last + 1..segs.len())
-            .find(|&i| rapid(i))
-            .map_or(segs.len(), |i| i + 1);
-        match rg.windows.last_mut() {
-            Some(w) if a + 1 < w.end => w.end = w.end.max(b),
-            _ => rg.windows.push(a..b),
+        let mut time = f64::INFINITY;
+        for &i in m {
+            if time >= span {
+                c.members.push(Vec::new());
+                c.region.push(r);
+                time = 0.0;
+            }
+            let k = c.members.len() - 1;
+            c.members[k].push(i);
+            c.of[i] = Some(k);
+            time += segs[i].length() / (segs[i].feed * feed_override / 60.0);
         }
-        rg.window[r] = rg.windows.len() - 1;
     }
+    c
 }

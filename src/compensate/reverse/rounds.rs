@@ -13,115 +13,151 @@
 //!   in 3D: where the tool cuts inside a corner the vector points out of
 //!   it and the vertex moves out).
 //!
-//! Every region (see [`super::region`]) keeps the edit of the round in
-//! which its own maximum error was lowest; a region whose error stops
-//! falling for two rounds stops being corrected. A round simulates only
-//! the windows (rapid to rapid) that hold a region still being corrected,
-//! each alone — the cost of a round falls as regions settle; the written
-//! program is then checked against the whole original path
-//! ([`super::reverse_compensate`]). Regions are separated by
-//! rapids (which end in an exact stop) and by fixed segments, so the edit
-//! of one region barely changes another's error, and the best rounds of
-//! different regions combine.
+//! Every chunk of a region (see [`super::region::chunks`]: a long region
+//! is cut into parts of at least [`CHUNK_MEMORIES`] memories of motion)
+//! keeps the edit of the round in which its own maximum error was lowest;
+//! a chunk whose error stops falling for two rounds stops being corrected.
+//! A round simulates only windows around the original segments whose
+//! rebuilt command changed since the previous round
+//! ([`crate::toolpath::locality`]: the NC filter forgets a change after
+//! `tA`, the servo lag after `12·T`), so its cost grows with the places
+//! still being corrected, not with the program's length; the statistics
+//! elsewhere stand from earlier rounds (the first round's are the
+//! original's simulation). The written program is then checked against
+//! the whole original path ([`super::reverse_compensate`]). Regions are
+//! separated by rapids (which end in an exact stop) and by fixed segments,
+//! chunks by at least several memories of motion, so the edit of one
+//! barely changes another's error, and the best rounds of different
+//! chunks combine (the check judges the combination).
 //!
 //! Units: mm, s.
 
-use super::geometry::{rebuild, Edit};
-use super::region::{region_errors, Regions};
-use crate::budget::{BudgetError, MAX_REVERSE_SIMULATED_SAMPLES};
+use std::rc::Rc;
+
+use super::geometry::{rebuild_indexed, Edit};
+use super::region::{chunks, Regions};
+use crate::budget::{MAX_REVERSE_CHECK_SAMPLES, MAX_REVERSE_SIMULATED_SAMPLES};
 use crate::nc::program::{Motion, Segment};
-use crate::toolpath::{simulate_stats, SegmentStats, SimConfig, ToolpathError};
+use crate::toolpath::contour::Path;
+use crate::toolpath::locality::{memory, plan, simulate_window};
+use crate::toolpath::{SegmentStats, SimConfig, Simulation, ToolpathError};
+
+/// A chunk spans at least this many [`memory`] spans of nominal motion
+/// (8 × 0.22 s at tA 40 ms, T 15 ms): long against the reach of a change
+/// across its border, short enough that a raster's parts keep their own
+/// best rounds.
+pub const CHUNK_MEMORIES: f64 = 8.0;
 
 /// The outcome of the rounds: per region its best error and the edit that
 /// gave it.
 #[derive(Debug, Clone)]
 pub struct Rounds {
-    /// The combined edit (each region's best round).
+    /// The combined edit (each chunk's best round).
     pub edit: Edit,
-    /// Best maximum error per region, mm.
+    /// Best maximum error per region (the largest of its chunks'), mm.
     pub error: Vec<f64>,
     /// Maximum error of the whole path per round, µm.
     pub history_um: Vec<f64>,
 }
 
-/// What one compensation may still simulate, in samples
-/// ([`crate::budget::MAX_REVERSE_SIMULATED_SAMPLES`]). Correction rounds
-/// spend only above a reserve kept for the checks of the written program;
-/// the checks may spend the reserve too.
+/// The original program's simulation, from which every set of rounds
+/// starts: its reference path and per-segment statistics.
+#[derive(Debug)]
+struct Base {
+    path: Path,
+    stats: Vec<Option<SegmentStats>>,
+}
+
+/// What one compensation may still simulate. The correction rounds
+/// simulate windows around the places they change
+/// ([`crate::toolpath::locality`]), up to
+/// [`MAX_REVERSE_SIMULATED_SAMPLES`] samples in all; the whole-program
+/// simulations (the original, the checks of the written program) are
+/// budgeted apart: each is at most one simulation's budget
+/// ([`crate::budget::MAX_TOOLPATH_SAMPLES`]), and the checks may spend
+/// [`MAX_REVERSE_CHECK_SAMPLES`], or two simulations of the program when
+/// that is more.
 #[derive(Debug, Clone)]
 pub struct Work {
     left: u64,
-    reserve: u64,
+    checks: u64,
     /// Samples of one simulation of the whole program.
     pub program: u64,
     /// A round or check was skipped for want of budget.
     pub stopped: bool,
+    base: Option<Rc<Base>>,
 }
 
 impl Work {
-    /// The budget of one compensation of a program of `program` samples
-    /// ([`MAX_REVERSE_SIMULATED_SAMPLES`]).
-    ///
-    /// # Errors
-    /// When the original, one round and two checks would not fit.
-    pub fn for_program(program: u64) -> Result<Self, BudgetError> {
-        crate::budget::check(
-            "reverse compensation",
-            program.saturating_mul(4),
-            MAX_REVERSE_SIMULATED_SAMPLES,
-            "simulated samples (the original, one round and two checks)",
-            "raise dt, shorten the program, or compensate it in parts",
-        )?;
-        Ok(Self::new(MAX_REVERSE_SIMULATED_SAMPLES as u64, program))
+    /// The budget of one compensation of a program of `program` samples.
+    pub fn for_program(program: u64) -> Self {
+        Self::new(MAX_REVERSE_SIMULATED_SAMPLES as u64, program)
     }
 
     /// What the result says when the budget cut the work short.
     pub fn note(&self) -> Option<String> {
         self.stopped.then(|| {
             format!(
-                "the work budget ({MAX_REVERSE_SIMULATED_SAMPLES} simulated samples, {} per simulation of this program) stopped the correction early; the best rounds so far are kept and checked. Raise dt or compensate the program in parts for a full run",
+                "the work budget ({MAX_REVERSE_SIMULATED_SAMPLES} simulated samples of correction windows around the corrected places, checks of the written program {} samples at most, {} per simulation of this program) stopped the correction early; the best rounds so far are kept and checked. Raise dt or compensate the program in parts for a full run",
+                MAX_REVERSE_CHECK_SAMPLES.max(2 * self.program as usize),
                 self.program
             )
         })
     }
 
-    /// `limit` samples in all for a program of `program` samples, of
-    /// which the original's simulation is spent at once; two more
-    /// simulations of it are kept for the checks.
+    /// `limit` window samples for the rounds of a program of `program`
+    /// samples, and the checks' own budget (see [`Work`]).
     pub fn new(limit: u64, program: u64) -> Self {
         Self {
-            left: limit.saturating_sub(program),
-            reserve: 2 * program,
+            left: limit,
+            checks: (MAX_REVERSE_CHECK_SAMPLES as u64).max(program.saturating_mul(2)),
             program,
             stopped: false,
+            base: None,
         }
     }
 
-    /// Samples still to spend (the checks' reserve included).
+    /// Samples the rounds may still spend.
     pub fn left(&self) -> u64 {
         self.left
     }
 
-    /// Spends `samples` on a correction round when the checks' reserve
-    /// stays; otherwise marks the work as stopped and returns `false`.
-    pub fn round(&mut self, samples: u64) -> bool {
-        self.spend(samples, self.reserve)
-    }
-
-    /// Spends `samples` on a check (the reserve included); `false` when
-    /// not even that is left.
-    pub fn check(&mut self, samples: u64) -> bool {
-        self.spend(samples, 0)
-    }
-
-    fn spend(&mut self, samples: u64, keep: u64) -> bool {
-        if self.left >= samples.saturating_add(keep) {
-            self.left -= samples;
-            true
-        } else {
-            self.stopped = true;
-            false
+    /// Starts every set of rounds from `sim`, the simulation of `orig`
+    /// against itself: a round then simulates only around what differs
+    /// from it. Without it the first round simulates the whole program.
+    pub fn set_original(&mut self, orig: &[Segment], sim: &Simulation) {
+        let mut stats = vec![None; orig.len()];
+        for st in &sim.segments {
+            if let Some(slot) = stats.get_mut(st.segment) {
+                *slot = Some(st.clone());
+            }
         }
+        self.base = Some(Rc::new(Base {
+            path: Path::new(orig),
+            stats,
+        }));
+    }
+
+    /// Spends `samples` on a correction round when the rounds' budget
+    /// holds them; otherwise marks the work as stopped and returns `false`.
+    pub fn round(&mut self, samples: u64) -> bool {
+        take(&mut self.left, samples, &mut self.stopped)
+    }
+
+    /// Spends `samples` on a check of the written program; `false` when
+    /// the checks' budget is spent.
+    pub fn check(&mut self, samples: u64) -> bool {
+        take(&mut self.checks, samples, &mut self.stopped)
+    }
+}
+
+fn take(left: &mut u64, samples: u64, stopped: &mut bool) -> bool {
+    if *left >= samples {
+        *left -= samples;
+        true
+    } else {
+        *stopped = true;
+        false
     }
 }
 
@@ -143,7 +179,11 @@ pub fn identity(orig: &[Segment], dwell_after: Vec<f64>) -> Edit {
 
 /// Copies region `r`'s entries of `from` into `to`.
 pub fn copy_region(regions: &Regions, r: usize, from: &Edit, to: &mut Edit) {
-    for &i in &regions.members[r] {
+    copy(&regions.members[r], from, to);
+}
+
+fn copy(members: &[usize], from: &Edit, to: &mut Edit) {
+    for &i in members {
         to.radius[i] = from.radius[i];
         to.vertex_shift[i] = from.vertex_shift[i];
         to.dwell_after[i] = from.dwell_after[i];
@@ -151,10 +191,22 @@ pub fn copy_region(regions: &Regions, r: usize, from: &Edit, to: &mut Edit) {
     }
 }
 
+/// The command segments of original segment `i`'s piece (its own, a
+/// dwell after it, a connector before the next; see
+/// [`crate::toolpath::locality::plan`]).
+fn piece<'a>(cmd: &'a [Segment], at: &[usize], i: usize) -> &'a [Segment] {
+    let a = if i == 0 { 0 } else { at[i] };
+    let b = at.get(i + 1).copied().unwrap_or(cmd.len());
+    &cmd[a..b]
+}
+
 /// Runs up to `iterations + 1` rounds from `start` (see the module header),
-/// as many as `work` allows: a round costs what the previous one
-/// simulated (the whole program for the first); with none affordable the
-/// errors stay infinite and `start` is returned.
+/// as many as `work` allows. A round simulates the windows around the
+/// original segments whose rebuilt command differs from the previous
+/// round's (the first: from the original program's, when `work` holds it,
+/// [`Work::set_original`]; else the whole program); the statistics of the
+/// other segments stand. With no round affordable the errors stay
+/// infinite and `start` is returned.
 ///
 /// # Errors
 /// As [`simulate()`](crate::toolpath::simulate()).
@@ -166,127 +218,170 @@ pub fn run(
     start: Edit,
     work: &mut Work,
 ) -> Result<Rounds, ToolpathError> {
-    let nr = regions.members.len();
+    let ch = chunks(
+        regions,
+        orig,
+        CHUNK_MEMORIES * memory(cfg),
+        cfg.feed_override,
+    );
+    let nc = ch.members.len();
+    let mut movable = vec![false; nc];
+    for (c, m) in ch.members.iter().enumerate() {
+        movable[c] = m.iter().any(|&i| regions.arc_free[i]);
+    }
+    for &(i, _) in &regions.line_joints {
+        if let Some(c) = ch.of[i] {
+            movable[c] = true;
+        }
+    }
+    let mut local = LocalStats::new(orig, work);
     let mut edit = start;
     let mut best = edit.clone();
-    let mut best_err = vec![f64::INFINITY; nr];
-    let mut stall = vec![0usize; nr];
+    let mut best_err = vec![f64::INFINITY; nc];
+    let mut stall = vec![0usize; nc];
     let mut history = Vec::new();
-    let mut errs = vec![0.0; nr];
-    let mut live_window = vec![true; regions.windows.len()];
-    let mut cost = work.program;
     for round in 0..=iterations {
-        if !work.round(cost) {
+        if !local.update(orig, cfg, &edit, work)? {
             break;
         }
-        let (stats, simulated) = simulate_windows(orig, regions, cfg, &edit, &live_window)?;
-        cost = simulated;
-        let fresh = region_errors(regions, &stats);
-        for r in 0..nr {
-            if live_window[regions.window[r]] {
-                errs[r] = fresh[r];
-            }
-        }
+        let seg_err = |i: usize| {
+            local.by_seg[i]
+                .as_ref()
+                .map_or(0.0, |s| s.max_error_um * 1e-3)
+        };
+        let errs: Vec<f64> = ch
+            .members
+            .iter()
+            .map(|m| m.iter().map(|&i| seg_err(i)).fold(0.0, f64::max))
+            .collect();
         // No region, no round to report (the page would show "0 µm").
-        if nr > 0 {
+        if nc > 0 {
             history.push(errs.iter().copied().fold(0.0, f64::max) * 1e3);
         }
         let mut active = false;
-        for r in 0..nr {
-            if errs[r] < best_err[r] {
-                best_err[r] = errs[r];
-                copy_region(regions, r, &edit, &mut best);
-                stall[r] = 0;
+        for c in 0..nc {
+            if errs[c] < best_err[c] {
+                best_err[c] = errs[c];
+                copy(&ch.members[c], &edit, &mut best);
+                stall[c] = 0;
             } else {
-                stall[r] += 1;
+                stall[c] += 1;
             }
-            active |= stall[r] < 2 && regions.movable[r];
+            active |= stall[c] < 2 && movable[c];
         }
         if round == iterations || !active {
             break;
         }
-        live_window.iter_mut().for_each(|w| *w = false);
-        for r in 0..nr {
-            if stall[r] < 2 && regions.movable[r] {
-                live_window[regions.window[r]] = true;
-            }
-        }
-        let by_seg = super::corner::by_segment(&stats, orig.len());
-        correct(orig, regions, &by_seg, (&stall, step), &mut edit);
+        let live = |i: usize| {
+            ch.of[i].is_some_and(|c| stall[c] < 2) && regions.editable[i] && !orig[i].fixed
+        };
+        correct(orig, regions, &local.by_seg, (&live, step), &mut edit);
+    }
+    let mut error = vec![f64::NEG_INFINITY; regions.members.len()];
+    for (c, &r) in ch.region.iter().enumerate() {
+        error[r] = error[r].max(best_err[c]);
     }
     Ok(Rounds {
         edit: best,
-        error: best_err,
+        error,
         history_um: history,
     })
 }
 
-/// Simulates the windows marked `live` of the edited program, each alone
-/// against its own original segments (see [`Regions::windows`]); the
-/// statistics carry whole-program segment indices, and the number of
-/// samples simulated.
-///
-/// # Errors
-/// As [`simulate()`](crate::toolpath::simulate()).
-pub fn simulate_windows(
-    orig: &[Segment],
-    regions: &Regions,
-    cfg: &SimConfig,
-    edit: &Edit,
-    live: &[bool],
-) -> Result<(Vec<SegmentStats>, u64), ToolpathError> {
-    let mut out = Vec::new();
-    let mut samples = 0u64;
-    for (w, range) in regions.windows.iter().enumerate() {
-        if !live[w] {
-            continue;
+/// Per-segment statistics of an edited program against the original
+/// path, kept up to date by simulating only windows around what each new
+/// edit changed ([`crate::toolpath::locality`]); they start from the
+/// original's simulation when `work` holds it ([`Work::set_original`]),
+/// else the first update simulates the whole program.
+pub struct LocalStats {
+    base: Option<Rc<Base>>,
+    own: Option<Path>,
+    /// Statistics per original segment (`None`: no sample nearest to it).
+    pub by_seg: Vec<Option<SegmentStats>>,
+    prev: Option<(Vec<Segment>, Vec<usize>)>,
+}
+
+impl LocalStats {
+    /// The statistics of `orig` as `work` holds them.
+    pub fn new(orig: &[Segment], work: &Work) -> Self {
+        let n = orig.len();
+        match &work.base {
+            Some(b) => Self {
+                base: Some(b.clone()),
+                own: None,
+                by_seg: b.stats.clone(),
+                prev: Some(rebuild_indexed(orig, &identity(orig, vec![0.0; n]))),
+            },
+            None => Self {
+                base: None,
+                own: Some(Path::new(orig)),
+                by_seg: vec![None; n],
+                prev: None,
+            },
         }
-        let part = Edit {
-            radius: edit.radius[range.clone()].to_vec(),
-            vertex_shift: edit.vertex_shift[range.clone()].to_vec(),
-            dwell_after: edit.dwell_after[range.clone()].to_vec(),
-            spike: edit.spike[range.clone()].to_vec(),
-        };
-        let reference = &orig[range.clone()];
-        let segs = rebuild(reference, &part);
-        let sim = match simulate_stats(&segs, reference, cfg) {
-            Ok(s) => s,
-            Err(ToolpathError::Empty) => continue,
-            Err(e) => return Err(e),
-        };
-        samples += sim.samples as u64;
-        out.extend(sim.segments.into_iter().map(|mut st| {
-            st.segment += range.start;
-            st
-        }));
     }
-    Ok((out, samples))
+
+    /// Simulates the windows around the original segments whose rebuilt
+    /// command under `edit` differs from the last update's, when `work`
+    /// affords them (`false`, nothing done, when not).
+    ///
+    /// # Errors
+    /// As [`simulate()`](crate::toolpath::simulate()).
+    pub fn update(
+        &mut self,
+        orig: &[Segment],
+        cfg: &SimConfig,
+        edit: &Edit,
+        work: &mut Work,
+    ) -> Result<bool, ToolpathError> {
+        let n = orig.len();
+        let (cmd, at) = rebuild_indexed(orig, edit);
+        let changed: Vec<bool> = match &self.prev {
+            Some((pc, pat)) => (0..n)
+                .map(|i| piece(&cmd, &at, i) != piece(pc, pat, i))
+                .collect(),
+            None => vec![true; n],
+        };
+        let windows = plan(&cmd, &at, &changed, cfg)?;
+        if !work.round(windows.iter().map(|w| w.samples as u64).sum()) {
+            return Ok(false);
+        }
+        let path = match (&self.base, &self.own) {
+            (Some(b), _) => &b.path,
+            (None, Some(p)) => p,
+            (None, None) => return Ok(false),
+        };
+        for w in &windows {
+            for st in simulate_window(&cmd, (path, orig), w, cfg) {
+                let i = st.segment;
+                self.by_seg[i] = Some(st);
+            }
+        }
+        self.prev = Some((cmd, at));
+        Ok(true)
+    }
 }
 
 /// The default share of the measured deviation one round corrects
-/// ([`super::ReverseConfig::step`]). The full
-/// deviation (qiu's reading) overshoots where neighbouring corrections add
-/// up (CAM chains of short lines, small arcs between lines: ledfloor's
-/// rounds went 120 → 142 → 219 µm). Measured over the corpus (`cargo run
-/// --release --example reverse_corpus`, tA 40 ms, T 15 ms, dt 2 ms), the
-/// median after/before fell from 0.82 at 1 to 0.68 at 0.5; 0.3, 0.7, and
-/// a step halved each round a region's error rose (from 1 or from 0.5)
-/// did no better.
+/// ([`super::ReverseConfig::step`]). The full deviation (qiu's reading)
+/// overshoots where neighbouring corrections add up (CAM chains of short
+/// lines, small arcs between lines: ledfloor's rounds went 120 → 142 →
+/// 219 µm). Measured over the corpus (`cargo run --release --example
+/// reverse_corpus`, tA 40 ms, T 15 ms, dt 2 ms), the median after/before
+/// fell from 0.82 at 1 to 0.68 at 0.5; 0.3, 0.7, and a step halved each
+/// round a region's error rose (from 1 or from 0.5) did no better.
 pub const DEFAULT_STEP: f64 = 0.5;
 
 /// One correction of `edit` from the per-segment statistics.
 fn correct(
     orig: &[Segment],
     regions: &Regions,
-    by_seg: &[Option<&SegmentStats>],
-    (stall, step): (&[usize], f64),
+    by_seg: &[Option<SegmentStats>],
+    (live, step): (&dyn Fn(usize) -> bool, f64),
     edit: &mut Edit,
 ) {
-    let live = |i: usize| {
-        regions.of[i].is_some_and(|r| stall[r] < 2) && regions.editable[i] && !orig[i].fixed
-    };
     for (i, s) in orig.iter().enumerate() {
-        if let (Motion::Arc(_), Some(st)) = (s.motion, by_seg[i]) {
+        if let (Motion::Arc(_), Some(st)) = (s.motion, &by_seg[i]) {
             if live(i) && regions.arc_free[i] {
                 edit.radius[i] += step * st.mean_deviation.unwrap_or(0.0);
             }
@@ -298,8 +393,8 @@ fn correct(
             continue;
         }
         let v: Vec<[f64; 3]> = [
-            by_seg[i].and_then(|s| s.half_vector[1]),
-            by_seg[k].and_then(|s| s.half_vector[0]),
+            by_seg[i].as_ref().and_then(|s| s.half_vector[1]),
+            by_seg[k].as_ref().and_then(|s| s.half_vector[0]),
         ]
         .into_iter()
         .flatten()
@@ -309,10 +404,10 @@ fn correct(
         }
         // As for an offset polyline, a vertex moves 1/cos(φ/2) times the
         // offset of its lines (φ the turn between them).
-        let turn_gain = 1.0 / half_turn_cos(&orig[i], &orig[k]).max(0.2);
+        let gain = 1.0 / half_turn_cos(&orig[i], &orig[k]).max(0.2);
         for ax in 0..3 {
             let mean = v.iter().map(|x| x[ax]).sum::<f64>() / v.len() as f64;
-            edit.vertex_shift[i][ax] += step * turn_gain * mean;
+            edit.vertex_shift[i][ax] += step * gain * mean;
         }
     }
 }
@@ -339,38 +434,62 @@ mod tests {
     use super::*;
     use crate::compensate::reverse::region::regions;
     use crate::nc::program::parse;
-    use crate::toolpath::{example::arc_example, sample_estimate};
+    use crate::toolpath::{example::arc_example, simulate};
 
     #[test]
-    fn work_keeps_the_checks_reserve_and_checks_may_spend_it() {
-        let mut w = Work::new(10, 2); // 8 left after the original, 4 kept
-        assert!(w.round(2) && w.round(2)); // 4 left
-        assert!(!w.round(1) && w.stopped); // would eat into the reserve
-        assert!(w.check(2) && w.check(2)); // the checks spend it
-        assert!(!w.check(1));
+    fn work_budgets_rounds_and_checks_apart() {
+        let mut w = Work::new(10, 2);
+        assert!(w.round(6) && w.round(4)); // the rounds' 10, to the sample
+        assert!(!w.round(1) && w.stopped);
+        // The checks keep their own budget.
+        let big = MAX_REVERSE_CHECK_SAMPLES as u64;
+        let mut w = Work::new(0, 3);
+        assert!(w.check(big) && !w.stopped);
+        assert!(!w.check(1) && w.stopped);
+        // A program larger than half of it is still checked twice.
+        let mut w = Work::new(0, big);
+        assert!(w.check(big) && w.check(big) && !w.check(1));
+        assert!(Work::for_program(1).note().is_none());
+        assert!(w.note().unwrap().contains(&format!("{big} per simulation")));
     }
 
     #[test]
     fn rounds_stop_at_the_budget_and_keep_their_best() {
         let p = parse(&arc_example()).unwrap();
         let cfg = SimConfig::default();
-        let n = sample_estimate(&p.segments, &cfg).unwrap() as u64;
         let rg = regions(&p);
         let start = || identity(&p.segments, vec![0.0; p.segments.len()]);
-        // Room for the original, two rounds and the checks' reserve.
-        let mut tight = Work::new(5 * n, n);
+        let sim = simulate(&p.segments, &p.segments, &cfg).unwrap();
+        let mut ample = Work::new(u64::MAX, sim.samples as u64);
+        ample.set_original(&p.segments, &sim);
+        let full = run(&p.segments, &rg, (&cfg, 1.0), 6, start(), &mut ample).unwrap();
+        assert!(!ample.stopped && full.history_um.len() > 3);
+        // Round 0 is the original's simulation, at no cost.
+        assert_eq!(full.history_um[0], sim.max_error * 1e3);
+        let spent = u64::MAX - ample.left;
+        assert!(spent > 0);
+        // The same first rounds with a budget that stops after the second.
+        let mut probe = Work::new(u64::MAX, sim.samples as u64);
+        probe.set_original(&p.segments, &sim);
+        let one = run(&p.segments, &rg, (&cfg, 1.0), 1, start(), &mut probe).unwrap();
+        let first = u64::MAX - probe.left;
+        let mut tight = Work::new(first, sim.samples as u64);
+        tight.set_original(&p.segments, &sim);
         let cut = run(&p.segments, &rg, (&cfg, 1.0), 6, start(), &mut tight).unwrap();
         assert!(tight.stopped);
-        assert_eq!(cut.history_um.len(), 2, "{:?}", cut.history_um);
-        // The same two rounds as an unbudgeted run's first two.
-        let mut ample = Work::new(u64::MAX, n);
-        let full = run(&p.segments, &rg, (&cfg, 1.0), 6, start(), &mut ample).unwrap();
-        assert!(!ample.stopped && full.history_um.len() > 2);
         assert_eq!(cut.history_um[..], full.history_um[..2]);
-        // No round affordable: the start edit, errors unknown.
-        let mut none = Work::new(3 * n, n);
+        assert_eq!(one.history_um[..], full.history_um[..2]);
+        // Without the original, round 0 simulates the whole program.
+        let mut none = Work::new(sim.samples as u64 - 1, sim.samples as u64);
         let zero = run(&p.segments, &rg, (&cfg, 1.0), 6, start(), &mut none).unwrap();
         assert!(none.stopped && zero.history_um.is_empty());
         assert!(zero.error.iter().all(|e| e.is_infinite()));
+        let mut whole = Work::new(sim.samples as u64, sim.samples as u64);
+        let w = run(&p.segments, &rg, (&cfg, 1.0), 0, start(), &mut whole).unwrap();
+        assert!(!whole.stopped && whole.left == 0);
+        // The same error within 0.01 µm: the rebuilt unchanged program
+        // puts arc end points exactly on their radius (2.3 nm here).
+        let d = (w.history_um[0] - full.history_um[0]).abs();
+        assert!(d < 1e-2, "{:?} {:?}", w.history_um, full.history_um);
     }
 }

@@ -1,0 +1,293 @@
+//! Reverse compensation simulates only around the places it corrects
+//! (`toolpath::locality`, issue 27 item 1), and that is exact: on two
+//! team-written programs with many corners — a raster without rapids
+//! (one region, cut into chunks) and a pocket with rapids between its
+//! contours, both asymmetric (pass lengths, step-overs, feeds and an arc
+//! vary) — the windows' per-segment statistics of an edited program equal
+//! a whole-program simulation of the same edited program within 0.1 µm
+//! (maximum error and mean deviation per segment), a window's cost does
+//! not grow with the program's length, and the compensated program's
+//! reported after-error equals a whole-program re-simulation of the
+//! written program against the original path within 0.1 µm.
+
+use mtmotion::compensate::reverse::geometry::rebuild_indexed;
+use mtmotion::compensate::reverse::rounds::identity;
+use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
+use mtmotion::nc::program::{parse, Motion, Segment};
+use mtmotion::toolpath::contour::Path;
+use mtmotion::toolpath::locality::{plan, simulate_window};
+use mtmotion::toolpath::{simulate, simulate_stats, Lag, SimConfig};
+
+/// A zigzag raster of `passes` passes in one cut (no rapid after the
+/// plunge): pass lengths, step-overs and feeds vary, every fifth turn is
+/// a diagonal step and one turn is an arc.
+fn raster(passes: usize) -> String {
+    let mut s = String::from("G21 G90 G17\nG0 X0 Y0 Z1\nG1 Z0 F400\n");
+    let mut y = 0.0;
+    for j in 0..passes {
+        let x = if j % 2 == 0 {
+            20.0 + 3.0 * (j % 5) as f64 + 0.7 * j as f64
+        } else {
+            1.5 * (j % 3) as f64
+        };
+        let f = 1200 + 300 * (j % 3);
+        s += &format!("G1 X{x:.3} Y{y:.3} F{f}\n");
+        let step = 0.8 + 0.15 * (j % 4) as f64;
+        if j == 3 {
+            // A half-circle turn to the next pass.
+            s += &format!("G3 X{x:.3} Y{:.3} R{:.3}\n", y + step, 0.5 * step);
+        } else if j % 5 == 4 {
+            s += &format!("G1 X{:.3} Y{:.3}\n", x + 0.6, y + step);
+        } else {
+            s += &format!("G1 Y{:.3}\n", y + step);
+        }
+        y += step;
+    }
+    s + "G0 Z5\n"
+}
+
+/// Four closed contours (a rectangle, a pentagon, an L and a rectangle
+/// with a rounded corner), each entered by a rapid and a plunge.
+fn pocket() -> String {
+    let mut s = String::from("G21 G90 G17\n");
+    let shapes: [&[(f64, f64)]; 3] = [
+        &[
+            (0.0, 0.0),
+            (30.0, 0.0),
+            (30.0, 12.0),
+            (0.0, 12.0),
+            (0.0, 0.0),
+        ],
+        &[
+            (40.0, 0.0),
+            (52.0, 2.0),
+            (55.0, 11.0),
+            (46.0, 17.0),
+            (38.0, 9.0),
+            (40.0, 0.0),
+        ],
+        &[
+            (0.0, 20.0),
+            (25.0, 20.0),
+            (25.0, 24.0),
+            (6.0, 24.0),
+            (6.0, 38.0),
+            (0.0, 38.0),
+            (0.0, 20.0),
+        ],
+    ];
+    for (k, pts) in shapes.iter().enumerate() {
+        let (x0, y0) = pts[0];
+        s += &format!("G0 Z2\nG0 X{x0} Y{y0}\nG1 Z-1 F300\n");
+        for &(x, y) in &pts[1..] {
+            s += &format!("G1 X{x} Y{y} F{}\n", 1500 + 500 * k);
+        }
+    }
+    s += "G0 Z2\nG0 X30 Y30\nG1 Z-1 F300\nG1 X50 F1800\nG1 Y40\nG3 X46 Y44 R4\nG1 X30\nG1 Y30\nG0 Z5\n";
+    s
+}
+
+fn cfg() -> SimConfig {
+    SimConfig {
+        t_a: 0.04,
+        t: Lag::PerAxis([0.015, 0.012, 0.02]),
+        dt: 1e-3,
+        ..SimConfig::default()
+    }
+}
+
+/// An edit of `orig`: vertex shifts at every `every`-th line–line joint
+/// (varying), arcs grown by 5 µm, a dwell after segment 9.
+fn edited(orig: &[Segment], every: usize) -> (Vec<Segment>, Vec<usize>, Vec<bool>) {
+    let mut e = identity(orig, vec![0.0; orig.len()]);
+    let lines = |i: usize| matches!(orig[i].motion, Motion::Linear);
+    for i in 0..orig.len().saturating_sub(1) {
+        if lines(i)
+            && lines(i + 1)
+            && orig[i].is_cutting()
+            && orig[i + 1].is_cutting()
+            && i % every == 1
+        {
+            let a = i as f64;
+            e.vertex_shift[i] = [0.01 * (a * 0.7).sin(), 0.012 * (a * 1.3).cos(), 0.0];
+        }
+        if let Motion::Arc(a) = orig[i].motion {
+            e.radius[i] = a.radius + 0.005;
+        }
+    }
+    e.dwell_after[9] = 0.05;
+    let (base, base_at) = rebuild_indexed(orig, &identity(orig, vec![0.0; orig.len()]));
+    let (cmd, at) = rebuild_indexed(orig, &e);
+    let piece = |c: &[Segment], at: &[usize], i: usize| {
+        let a = if i == 0 { 0 } else { at[i] };
+        c[a..at.get(i + 1).copied().unwrap_or(c.len())].to_vec()
+    };
+    let changed = (0..orig.len())
+        .map(|i| piece(&cmd, &at, i) != piece(&base, &base_at, i))
+        .collect();
+    (cmd, at, changed)
+}
+
+/// Windows of the edited program against the whole-program simulation:
+/// per core segment within 0.1 µm; returns (window samples, whole samples,
+/// segments compared, largest difference µm).
+fn compare(text: &str, every: usize) -> (usize, usize, usize, f64) {
+    let p = parse(text).unwrap();
+    let orig = &p.segments;
+    let (cmd, at, changed) = edited(orig, every);
+    let cfg = cfg();
+    let whole = simulate_stats(&cmd, orig, &cfg).unwrap();
+    let windows = plan(&cmd, &at, &changed, &cfg).unwrap();
+    assert!(!windows.is_empty());
+    let path = Path::new(orig);
+    let mut compared = 0;
+    let mut worst: f64 = 0.0;
+    let mut covered = vec![false; orig.len()];
+    for w in &windows {
+        for st in simulate_window(&cmd, (&path, orig), w, &cfg) {
+            covered[st.segment] = true;
+            // A rapid's statistics enter neither the maximum error nor a
+            // correction; where a retract runs back along its plunge, the
+            // samples of the two coincide and go to either.
+            if !orig[st.segment].is_cutting() {
+                continue;
+            }
+            let ws = whole
+                .segments
+                .iter()
+                .find(|x| x.segment == st.segment)
+                .unwrap();
+            let d = (st.max_error_um - ws.max_error_um).abs();
+            worst = worst.max(d);
+            assert!(
+                d < 0.1,
+                "segment {} (line {}): window {} µm, whole {} µm",
+                st.segment,
+                st.line,
+                st.max_error_um,
+                ws.max_error_um
+            );
+            assert_eq!(st.samples, ws.samples, "segment {}", st.segment);
+            if let (Some(a), Some(b)) = (st.mean_deviation, ws.mean_deviation) {
+                assert!((a - b).abs() < 1e-4, "segment {}: {a} vs {b}", st.segment);
+            }
+            compared += 1;
+        }
+    }
+    // Every changed segment with a length is in a window's core.
+    for (i, s) in orig.iter().enumerate() {
+        if changed[i] && s.length() > 0.0 {
+            assert!(covered[i], "changed segment {i} not re-simulated");
+        }
+    }
+    let samples = windows.iter().map(|w| w.samples).sum();
+    assert!(
+        windows.len() > 1 && samples < whole.samples,
+        "{samples} of {}",
+        whole.samples
+    );
+    (samples, whole.samples, compared, worst)
+}
+
+#[test]
+fn windows_equal_the_whole_program_on_a_raster_without_rapids() {
+    let (win, whole, n, worst) = compare(&raster(40), 17);
+    eprintln!("raster: {n} segments compared, worst {worst:.2e} µm, {win} of {whole} samples");
+    assert!(n > 15, "{n}");
+}
+
+#[test]
+fn windows_equal_the_whole_program_on_a_pocket_with_rapids() {
+    let (win, whole, n, worst) = compare(&pocket(), 7);
+    eprintln!("pocket: {n} segments compared, worst {worst:.2e} µm, {win} of {whole} samples");
+    assert!(n > 8, "{n}");
+}
+
+/// One changed vertex costs the same window in a raster of 10 passes as
+/// in one of 60: the cost grows with the corrected places, not the length.
+#[test]
+fn a_windows_cost_does_not_grow_with_the_program() {
+    let cost = |passes: usize| {
+        let p = parse(&raster(passes)).unwrap();
+        let orig = &p.segments;
+        let mut e = identity(orig, vec![0.0; orig.len()]);
+        e.vertex_shift[8] = [0.02, 0.0, 0.0];
+        let (cmd, at) = rebuild_indexed(orig, &e);
+        let mut changed = vec![false; orig.len()];
+        changed[8] = true;
+        changed[9] = true;
+        let w = plan(&cmd, &at, &changed, &cfg()).unwrap();
+        let whole = simulate_stats(&cmd, orig, &cfg()).unwrap().samples;
+        (w.iter().map(|w| w.samples).sum::<usize>(), whole)
+    };
+    let (short, short_whole) = cost(10);
+    let (long, long_whole) = cost(60);
+    assert_eq!(short, long);
+    assert!(
+        long_whole > 5 * short_whole && long < short_whole,
+        "{long} {short_whole}"
+    );
+    // Nothing changed: nothing to simulate.
+    let p = parse(&raster(10)).unwrap();
+    let (cmd, at) = rebuild_indexed(
+        &p.segments,
+        &identity(&p.segments, vec![0.0; p.segments.len()]),
+    );
+    let none = vec![false; p.segments.len()];
+    assert!(plan(&cmd, &at, &none, &cfg()).unwrap().is_empty());
+    // A mapping that does not fit the command is refused, not indexed.
+    assert!(plan(&cmd, &at[..at.len() - 1], &none, &cfg()).is_err());
+    let mut bad = at.clone();
+    bad[1] = bad[0];
+    assert!(plan(&cmd, &bad, &none, &cfg()).is_err());
+}
+
+/// The compensated program's reported after-error is that of the written
+/// program simulated whole against the original path.
+#[test]
+fn compensated_after_error_equals_a_whole_resimulation() {
+    for text in [raster(30), pocket()] {
+        let rc = ReverseConfig {
+            sim: cfg(),
+            ..ReverseConfig::default()
+        };
+        let c = reverse_compensate(&text, &rc).unwrap();
+        assert!(c.unchanged.is_none(), "{:?}", c.unchanged);
+        assert!(c.after.max_error_um < c.before.max_error_um);
+        let orig = parse(&text).unwrap().segments;
+        let written = parse(&c.nc).unwrap().segments;
+        let again = simulate(&written, &orig, &rc.sim).unwrap();
+        let d = (again.max_error * 1e3 - c.after.max_error_um).abs();
+        eprintln!(
+            "{} -> {} µm, re-simulated {} µm",
+            c.before.max_error_um,
+            c.after.max_error_um,
+            again.max_error * 1e3
+        );
+        assert!(d < 0.1, "{d} µm");
+    }
+}
+
+/// A zero-length move takes no time: its piece starts and ends where the
+/// next move starts, so a change next to it reaches past it (the core
+/// holds every segment within the memory, 0.22 s, of the change).
+#[test]
+fn a_zero_length_move_is_timed_as_the_next_one() {
+    let p = parse("G1 X10 F600\nG1 X10\nG1 X20\nG1 Y10").unwrap();
+    let orig = &p.segments;
+    assert_eq!(orig.len(), 4);
+    let (cmd, at) = rebuild_indexed(orig, &identity(orig, vec![0.0; 4]));
+    let changed = [false, false, true, false];
+    let w = plan(&cmd, &at, &changed, &cfg()).unwrap();
+    assert_eq!(w.len(), 1, "{w:?}");
+    // Each move lasts 1 s: the changed one (1–2 s) reaches 0.78–2.22 s,
+    // the first and the last move; the window runs from the start.
+    assert_eq!(w[0].core, 0..4, "{w:?}");
+    assert_eq!(w[0].command.start, 0, "{w:?}");
+    assert!(w[0].phase.is_finite() && w[0].samples > 2000, "{w:?}");
+    // A change of the first move (0–1 s) reaches to 1.28 s: through the
+    // zero-length move (at 1 s) into the third, not the fourth (2–3 s).
+    let w = plan(&cmd, &at, &[true, false, false, false], &cfg()).unwrap();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].core, 0..3, "{w:?}");
+}
