@@ -31,7 +31,7 @@ pub use iso230_4::{
 };
 pub use synthetic::{synthetic_trace, SyntheticConfig, SyntheticError};
 pub use trace_import::{
-    parse_ballbar_trace, BallbarColumns, BallbarTrace, BallbarTraceError, Direction, ParseOptions,
-    PlanePoint, Run, TraceCentre,
+    parse_ballbar_trace, parse_ballbar_trace_bytes, BallbarColumns, BallbarTrace,
+    BallbarTraceError, Direction, ParseOptions, PlanePoint, Run, TraceCentre,
 };
 pub use trim::{TimeBase, TrimReason, Trimmed, Trimming};
