@@ -36,7 +36,8 @@ use crate::trace::b5r::{B5rFeature, B5rReport};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
 pub struct Beside {
-    /// Where the file reports it: the analysis's name, or `run CW`.
+    /// Where the file reports it: the analysis's name, or `run CW` (`run`
+    /// for a run without a direction).
     pub source: String,
     /// The feature's `NAME`, e.g. `AF_SQUARENESS`.
     pub feature: String,
@@ -146,7 +147,7 @@ pub fn beside(report: &B5rReport, ours: &CircularTest) -> Vec<Beside> {
             "CCW" => Some(Direction::Ccw),
             _ => None,
         };
-        let source = format!("run {}", r.direction.trim());
+        let source = format!("run {}", r.direction.trim()).trim_end().to_string();
         for f in &r.features {
             // a run of unknown direction pairs with none of ours
             let row = match dir {
@@ -165,4 +166,41 @@ pub fn beside(report: &B5rReport, ours: &CircularTest) -> Vec<Beside> {
         }
     }
     rows
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ballbar::{circular_test, synthetic_trace, SyntheticConfig};
+    use crate::trace::b5r::read;
+
+    #[test]
+    fn a_run_of_unknown_direction_pairs_with_none_and_ppm_stays_ppm() {
+        let ours = circular_test(&synthetic_trace(&SyntheticConfig::default()).unwrap()).unwrap();
+        let r = read(
+            r#"<TEST_DOCUMENT><RUN_RESULTS>
+<BALLBAR_RUN><RUN_DIRECTION>UP</RUN_DIRECTION><FEATURE NAME="AF_CIRCULARITY" DT="UT_LENGTH_MM">0.01</FEATURE></BALLBAR_RUN>
+<BALLBAR_RUN><FEATURE NAME="AF_CIRCULARITY" DT="UT_LENGTH_UM">12</FEATURE></BALLBAR_RUN>
+</RUN_RESULTS><ANALYSIS NAME="X">
+<FEATURE NAME="af_scale_mismatch" DT="UT_SCALE_ERROR">-3</FEATURE>
+<FEATURE NAME="AF_BACKLASH_B" DT="UT_LENGTH_UM">2</FEATURE>
+</ANALYSIS></TEST_DOCUMENT>"#,
+        )
+        .unwrap();
+        let b = beside(&r, &ours);
+        let d = ours.diagnostics.unwrap();
+        // a run of no known direction: the file's value in our unit, ours none
+        assert_eq!((b[0].source.as_str(), b[0].ours), ("run UP", None));
+        assert_eq!(
+            (b[0].theirs_in_ours, b[0].ours_unit.as_str()),
+            (Some(10.0), "µm")
+        );
+        assert_eq!((b[1].source.as_str(), b[1].ours), ("run", None));
+        // names in any case; ppm to ppm; a name ending in the axis letter
+        assert_eq!(
+            (b[2].ours, b[2].theirs_in_ours),
+            (Some(d.scale_mismatch_ppm), Some(-3.0))
+        );
+        assert_eq!((b[3].ours, b[3].line), (Some(d.backlash_y_um), 6));
+    }
 }
