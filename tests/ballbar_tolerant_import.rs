@@ -4,13 +4,21 @@
 //! and a preamble, in a file with `EncoderX_Pos, EncoderY_Pos` columns
 //! read through the column mapping, in a TwinCAT Scope export and in a
 //! SINUMERIK trace, reads back to the same deviations (within 1e-12 mm on
-//! a 100 mm bar) at the same lines; a mapping that names a missing column
-//! is refused, naming the mapping's field and the file's columns.
+//! a 100 mm bar) at the same lines; the same run recorded as a MATLAB
+//! `.mat` capture (dSPACE ControlDesk's struct, and plain vectors) reads
+//! back to the same deviations at the same samples, and a damaged capture
+//! is refused naming its byte; a mapping that names a missing column is
+//! refused, naming the mapping's field and the file's columns.
 #![cfg(not(target_arch = "wasm32"))]
 
 use mtmotion::ballbar::synthetic::{synthetic_trace, SyntheticConfig};
 use mtmotion::ballbar::Harmonic;
-use mtmotion::ballbar::{parse_ballbar_trace, BallbarColumns, ParseOptions, PlanePoint};
+use mtmotion::ballbar::{
+    parse_ballbar_trace, parse_ballbar_trace_bytes, BallbarColumns, ParseOptions, PlanePoint,
+};
+#[path = "support/mat_writer.rs"]
+mod mat_writer;
+use mat_writer::Mat;
 
 /// X/Y positions (mm) of a synthetic CCW + CW run about (0, 0), and their
 /// deviations from the 100 mm bar (mm).
@@ -173,4 +181,89 @@ fn without_the_mapping_the_encoder_file_is_refused_naming_its_columns() {
         .unwrap_err()
         .to_string();
     assert!(e.starts_with("no ball-bar columns found"), "{e}");
+}
+
+/// The run as a `.mat` capture: `dspace` a ControlDesk struct (`X` the
+/// time, `Y(i)` with `Name`, `Data`, `Unit`), else plain vectors `t`, `x`,
+/// `y`, one sample every 2 ms.
+fn mat(xy: &[[f64; 2]], dspace: bool) -> Vec<u8> {
+    let w = Mat { big: dspace };
+    let t: Vec<f64> = (0..xy.len()).map(|i| i as f64 * 0.002).collect();
+    let x: Vec<f64> = xy.iter().map(|p| p[0]).collect();
+    let y: Vec<f64> = xy.iter().map(|p| p[1]).collect();
+    let mut out = w.header();
+    if !dspace {
+        out.extend(w.doubles("t", &t));
+        out.extend(w.doubles("x", &x));
+        out.extend(w.doubles("y", &y));
+        return out;
+    }
+    let fields = ["Name", "Data", "Unit"];
+    let time = w.structure(
+        "",
+        &fields,
+        &[vec![
+            w.chars("", "Time"),
+            w.doubles("", &t),
+            w.chars("", "s"),
+        ]],
+    );
+    let ys: Vec<Vec<Vec<u8>>> = [("EncoderX", &x), ("EncoderY", &y)]
+        .iter()
+        .map(|(n, v)| vec![w.chars("", n), w.doubles("", v), w.chars("", "mm")])
+        .collect();
+    let signals = w.structure("", &fields, &ys);
+    let top = w.structure("ballbar_001", &["X", "Y"], &[vec![time, signals]]);
+    out.extend(w.compressed(&top));
+    out
+}
+
+#[test]
+fn a_mat_capture_reads_back_to_the_same_deviations() {
+    let (xy, dev) = run();
+    for dspace in [true, false] {
+        let columns = if dspace {
+            BallbarColumns {
+                x: Some("EncoderX [mm]".into()),
+                y: Some("EncoderY [mm]".into()),
+                ..BallbarColumns::default()
+            }
+        } else {
+            BallbarColumns::default()
+        };
+        let opts = ParseOptions {
+            nominal_radius: Some(100.0),
+            centre: Some(PlanePoint { x: 0.0, y: 0.0 }),
+            trim: false,
+            columns,
+            ..ParseOptions::default()
+        };
+        let bytes = mat(&xy, dspace);
+        let t = parse_ballbar_trace_bytes(&bytes, opts.clone())
+            .unwrap_or_else(|e| panic!("dspace {dspace}: {e}"));
+        assert_eq!(t.runs.len(), 2, "dspace {dspace}");
+        let mut seen = 0;
+        for r in &t.runs {
+            for (d, sample) in r.deviation.iter().zip(&r.lines) {
+                let want = dev[sample - 1];
+                assert!((d - want).abs() < 1e-12, "sample {sample}: {d} vs {want}");
+                seen += 1;
+            }
+        }
+        assert!(seen >= xy.len(), "{seen} samples");
+        // the time column is read: the feed is measured, not unknown
+        assert!(t.feed.is_some(), "dspace {dspace}: {:?}", t.warnings);
+        // a damaged capture is refused naming its byte, never read as text
+        let e = parse_ballbar_trace_bytes(&bytes[..200], opts)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("byte "), "{e}");
+    }
+    // bytes that are text are read as text
+    let (text, _) = written("semicolon", &xy);
+    let from_bytes = parse_ballbar_trace_bytes(text.as_bytes(), ParseOptions::default()).unwrap();
+    assert_eq!(
+        from_bytes,
+        parse_ballbar_trace(&text, ParseOptions::default()).unwrap()
+    );
 }

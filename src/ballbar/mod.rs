@@ -11,7 +11,9 @@
 //! | [`diagnostics`] | backlash, reversal spikes, servo and scale mismatch, squareness, cyclic error |
 //! | [`cyclic`] | the cyclic-error pitch search and amplitudes of the diagnostics |
 //! | [`synthetic`] | synthetic traces with known machine errors (the diagnostics' forward model) |
+//! | [`b5r_beside`] | a Renishaw `.b5r` report's features beside ours |
 
+pub mod b5r_beside;
 pub mod circle_fit;
 pub mod cyclic;
 pub mod diagnostics;
@@ -31,7 +33,7 @@ pub use iso230_4::{
 };
 pub use synthetic::{synthetic_trace, SyntheticConfig, SyntheticError};
 pub use trace_import::{
-    parse_ballbar_trace, BallbarColumns, BallbarTrace, BallbarTraceError, Direction, ParseOptions,
-    PlanePoint, Run, TraceCentre,
+    parse_ballbar_trace, parse_ballbar_trace_bytes, BallbarColumns, BallbarTrace,
+    BallbarTraceError, Direction, ParseOptions, PlanePoint, Run, TraceCentre,
 };
 pub use trim::{TimeBase, TrimReason, Trimmed, Trimming};

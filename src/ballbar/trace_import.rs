@@ -386,10 +386,49 @@ pub fn parse_ballbar_trace(
     opts: ParseOptions,
 ) -> Result<BallbarTrace, BallbarTraceError> {
     crate::budget::check_text("trace", text)?;
+    parse_with(opts, |o| read_table(text, o))
+}
+
+/// [`parse_ballbar_trace`] of a file's bytes: a MATLAB v5 `.mat` capture
+/// ([`crate::trace::mat`]: its signals are the columns, named as the
+/// capture names them, so [`ParseOptions::columns`] usually maps them), or
+/// text (UTF-8) read as [`parse_ballbar_trace`] reads it.
+///
+/// # Units
+/// As [`parse_ballbar_trace`].
+///
+/// # Errors
+/// As [`parse_ballbar_trace`]; for a `.mat` capture, its byte and cause
+/// where it breaks the format, and the trace budget for its size.
+///
+/// # Examples
+/// ```
+/// use mtmotion::ballbar::{parse_ballbar_trace_bytes, ParseOptions};
+/// let e = parse_ballbar_trace_bytes(b"MATLAB 5.0 MAT-file", ParseOptions::default()).unwrap_err();
+/// assert_eq!(e.to_string(), "byte 19: MATLAB .mat: the 128-byte header is cut short at 19 bytes");
+/// let t = parse_ballbar_trace_bytes(b"angle,deviation\n0,1\n", ParseOptions::default());
+/// assert!(t.unwrap_err().to_string().contains("no run of at least 8 points"));
+/// ```
+pub fn parse_ballbar_trace_bytes(
+    bytes: &[u8],
+    opts: ParseOptions,
+) -> Result<BallbarTrace, BallbarTraceError> {
+    if !crate::trace::mat::is_mat(bytes) {
+        return parse_ballbar_trace(&String::from_utf8_lossy(bytes), opts);
+    }
+    crate::budget::check_bytes("trace", bytes.len() as u64)?;
+    parse_with(opts, |o| crate::trace::read_bytes(bytes, o))
+}
+
+/// The ball-bar trace of the table `read` gives.
+fn parse_with(
+    opts: ParseOptions,
+    read: impl FnOnce(&ReadOptions) -> Result<crate::trace::TableRead, TraceError>,
+) -> Result<BallbarTrace, BallbarTraceError> {
     check_options(&opts)?;
     let cols = &opts.columns;
     // The table's own hints name the servo columns; a ball-bar trace names its own.
-    let t = read_table(text, &ReadOptions::default())
+    let t = read(&ReadOptions::default())
         .map_err(|e| match e {
             TraceError::Empty => BallbarTraceError::Empty,
             TraceError::NoHeader { line } => BallbarTraceError::NoHeader { line },

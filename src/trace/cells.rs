@@ -229,6 +229,11 @@ mod tests {
         let c = split_cells(r#""1.5",2"#, ',');
         assert!(c[0].quoted && !c[1].quoted);
         assert_eq!(split_cells(r#"1 "" 2"#, ' ').len(), 3);
+        // an empty line is one empty field (its own delimiter is not a
+        // trailing one); blanks split at spaces are no field at all
+        assert_eq!(texts("", ','), [""]);
+        assert_eq!(texts("", '\t'), [""]);
+        assert!(split_cells(" \t  ", ' ').is_empty());
     }
 
     #[test]

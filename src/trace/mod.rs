@@ -5,6 +5,8 @@
 //! XML ([`sinumerik`] on the strict [`xml`] reader), halsampler and
 //! halscope ([`hal`]), and MATLAB v5 `.mat` captures from their bytes
 //! ([`mat`], [`read_bytes`]). [`Layout::format`] says which was read.
+//! Renishaw ball-bar results files (`.b5r`) are reports, not traces:
+//! [`b5r::read`] reads their settings and reported features.
 //!
 //! [`Table::parse`] reads the header and every numeric row; [`Table::column`]
 //! finds a column by name (case-insensitive, any of several aliases) and
@@ -12,6 +14,7 @@
 //! are skipped, as are metadata lines *before* the header that contain no
 //! delimiter. Every error names its 1-based line and column.
 
+pub mod b5r;
 pub mod cells;
 pub mod hal;
 pub mod mat;

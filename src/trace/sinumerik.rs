@@ -254,6 +254,16 @@ mod tests {
             Some("description: pos")
         );
         assert_eq!(r.layout.columns[0].factor, Some(1.0));
+        // every record whole: nothing dropped, and no note says so
+        let whole =
+            "<dataSignal name=\"A\"/>\n<rec time=\"0\" f1=\"1\"/>\n<rec time=\"1\" f1=\"2\"/>\n";
+        let r = read(&frame(whole), 1, &ReadOptions::default()).unwrap();
+        assert_eq!(r.table.columns[1], [1.0, 2.0]);
+        assert!(
+            !r.layout.notes.iter().any(|n| n.contains("dropped")),
+            "{:?}",
+            r.layout.notes
+        );
     }
 
     #[test]

@@ -204,6 +204,9 @@ mod tests {
             ("Torque (Nm)", "Torque", Some("n·m")),
             ("pos_x", "pos_x", None),
             ("(ms)", "(ms)", None),
+            // a name that is only a unit keeps it as its name
+            ("_mm", "_mm", None),
+            ("-s", "-s", None),
         ] {
             assert_eq!(name_unit(n), (bare.to_string(), u), "{n}");
         }

@@ -380,12 +380,12 @@ mod tests {
 
     #[test]
     fn reads_elements_attributes_text_and_lines() {
-        let src = "\u{feff}<?xml version='1.0'?>\n<!-- c -->\n<r:root a='x' b=\"&lt;&#65;&#x42;\">\n  <c n=\"1\"/>\n  <c n=\"2\">t<![CDATA[<raw>]]></c>\n</r:root>\n";
+        let src = "\u{feff}<?xml version='1.0'?>\n<!-- c -->\n<r:root a='x' b=\"&lt;&gt;&amp;&quot;&apos;&#65;&#x42;\">\n  <c n=\"1\"/>\n  <c n=\"2\">t<![CDATA[<raw>]]></c>\n</r:root>\n";
         let r = parse(src).unwrap();
         assert!(r.is("ROOT"));
         assert_eq!(
             (r.line, r.attr("a"), r.attr("b")),
-            (3, Some("x"), Some("<AB"))
+            (3, Some("x"), Some("<>&\"'AB"))
         );
         assert_eq!(r.children.len(), 2);
         assert_eq!(r.children[1].line, 5);
@@ -410,6 +410,7 @@ mod tests {
             ("<a x='a & b'/>", 1, "without its ';'"),
             ("<a/>\n<b/>", 2, "a second root element"),
             ("<a/>\ntext", 2, "text after the root element"),
+            ("<a/>\n\n\n  text", 4, "text after the root element"),
             ("\nhello\n<a/>", 2, "outside the root element"),
             ("<!DOCTYPE a [<!ENTITY x 'y'>]>\n<a/>", 1, "DOCTYPE"),
             ("<a>\n<!-- open\n", 2, "a comment is not closed"),

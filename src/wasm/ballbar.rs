@@ -9,7 +9,7 @@ use wasm_bindgen::prelude::*;
 use super::args::JsArg;
 use super::convert::{
     count_arg, floats_arg, known_keys, name_arg, number_arg, object, opt_number, opt_number_arg,
-    plain, plain_floats, require_object, string_arg, to_js, Obj,
+    plain, plain_floats, require_object, string_arg, to_js, trace_arg, Obj, TraceArg,
 };
 use super::results::JsResult;
 use crate::alignment::{self, examples, AngleSweepConfig, Section, SweepConfig};
@@ -328,20 +328,71 @@ fn centre_from_js(c: &JsValue) -> Result<Option<TraceCentre>, JsError> {
     }))
 }
 
-/// Reads a CSV/TSV ball-bar trace (angle + deviation, or X/Y); errors name
-/// the line.
+/// Reads a ball-bar trace (angle + deviation, or X/Y): a text file, or a
+/// file's bytes as a `Uint8Array` (a MATLAB `.mat` capture, or text);
+/// errors name the line (a `.mat` file's: the byte).
 #[wasm_bindgen(js_name = parseBallbarTrace, unchecked_return_type = "BallbarTrace")]
 pub fn parse_ballbar_trace(
-    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "string | Uint8Array")] text: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "ParseTraceOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
-    let text: &str = &string_arg(&text, "text")?;
+    let trace = trace_arg(&text, "text")?;
     let opts: ParseOptions = if options.is_undefined() || options.is_null() {
         ParseOptions::default()
     } else {
         ParseOptions::arg(options, "options")?
     };
-    trace_to_js(&ballbar::parse_ballbar_trace(text, opts)?)
+    trace_to_js(&match trace {
+        TraceArg::Text(text) => ballbar::parse_ballbar_trace(&text, opts)?,
+        TraceArg::Bytes(bytes) => ballbar::parse_ballbar_trace_bytes(&bytes, opts)?,
+    })
+}
+
+#[cfg(feature = "full")]
+#[wasm_bindgen(typescript_custom_section)]
+const TS_B5R: &str = r#"
+/** A feature of a Renishaw .b5r report: NAME, DT (unit code) and the value as written, in `unit` (null: a unit code the reader does not know). */
+export interface B5rFeature { name: string; dt: string; unit: string | null; /** [as unit] */ value: number; /** [-] 1-based line */ line: number }
+export interface B5rRun { /** RUN_DIRECTION as written ('CW', 'CCW', '' when missing) */ direction: string; features: B5rFeature[]; /** [-] */ line: number }
+export interface B5rAnalysis { /** e.g. 'RENISHAW_DIAGNOSTICS' */ name: string; features: B5rFeature[]; /** [-] */ line: number }
+/** What a .b5r holds that the core reads: settings, metadata, runs' and analyses' features. The raw samples are not read. */
+export interface B5rReport {
+  testName: string | null; instrument: string | null; /** [mm] bar length */ radius: number | null; /** [mm/min] programmed */ feed: number | null;
+  /** e.g. 'XY' */ plane: string | null; /** the axes A and B stand for */ axes: [string, string] | null;
+  /** [element, text] */ metadata: [string, string][]; runs: B5rRun[]; analyses: B5rAnalysis[];
+  /** elements not read, as 'NAME (line N)' */ unread: string[]; notes: string[];
+}
+/** A .b5r feature beside ours: `ours` and `theirsInOurs` in `oursUnit`; null where we compute none or the units are of another quantity. */
+export interface B5rBeside {
+  /** the analysis's name, or 'run CW' */ source: string; feature: string; /** [as theirsUnit] */ theirs: number; theirsUnit: string | null;
+  /** [as oursUnit] */ ours: number | null; /** '' where we compute none */ oursUnit: string; /** [as oursUnit] */ theirsInOurs: number | null; /** [-] 1-based line in the file */ line: number;
+}
+"#;
+
+/// Reads a Renishaw ball-bar results file (`.b5r`, XML): the test's
+/// settings and the features it reports; errors name the line.
+#[cfg(feature = "full")]
+#[wasm_bindgen(js_name = readB5r, unchecked_return_type = "B5rReport")]
+pub fn read_b5r(
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+) -> Result<JsValue, JsError> {
+    let text = string_arg(&text, "text")?;
+    crate::trace::b5r::read(&text)?.js()
+}
+
+/// A `.b5r` report's features beside our circular test of `trace`.
+#[cfg(feature = "full")]
+#[wasm_bindgen(js_name = b5rBeside, unchecked_return_type = "B5rBeside[]")]
+pub fn b5r_beside(
+    #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "BallbarTrace")] trace: JsValue,
+) -> Result<JsValue, JsError> {
+    let text = string_arg(&text, "text")?;
+    require_object(&trace, "trace")?;
+    let trace = plain(&trace, "trace")?;
+    let report = crate::trace::b5r::read(&text)?;
+    let ours = ballbar::circular_test(&trace_from_js(&trace)?)?;
+    ballbar::b5r_beside::beside(&report, &ours).js()
 }
 
 /// ISO 230-4 G, H, F per direction, plus the ball-bar diagnostics.

@@ -457,7 +457,6 @@ pub const NC_BYTES_PER_TEXT_BYTE: usize = 16;
 pub const SIM_BYTES_PER_SEGMENT: usize = 1100;
 
 /// A trace argument: the file's text, or its bytes.
-#[cfg(feature = "full")]
 pub enum TraceArg {
     /// A string (a text trace).
     Text(String),
@@ -469,7 +468,6 @@ pub enum TraceArg {
 /// `.mat` capture, which is not text); anything else is a thrown `Error`
 /// naming the argument. Either is refused above
 /// [`budget::MAX_TEXT_BYTES`] before it is copied into wasm memory.
-#[cfg(feature = "full")]
 pub fn trace_arg(value: &JsValue, what: &str) -> Result<TraceArg, JsError> {
     not_reentered()?;
     if let Some(a) = value.dyn_ref::<js_sys::Uint8Array>() {

@@ -43,6 +43,7 @@ const sections = [0, 100].map((y) => ({
 }));
 const servoTrace = 'time [ms],X [mm],Y [mm],C [deg]\n' + Array.from({ length: 50 }, (_, i) => `${i},${Math.cos(i / 8)},${Math.sin(i / 8)},${i / 10}`).join('\n');
 const ballbarText = 'angle [deg],deviation [um]\n' + Array.from({ length: 37 }, (_, i) => `${i * 10},${Math.sin(i)}`).join('\n');
+const b5rText = '<TEST_DOCUMENT><ANALYSIS NAME="RENISHAW_DIAGNOSTICS"><FEATURE NAME="AF_SQUARENESS" DT="UT_SQUARENESS">12</FEATURE></ANALYSIS></TEST_DOCUMENT>';
 const trace = mt.syntheticBallbarTrace({ backlashX: 0.004, bothDirections: true });
 const sshape = mt.sShapeTestPiece({ machine: 'pocketnc-v2-10', scale: 0.1 });
 const x = angles.map((a) => 1 + 50 * Math.cos(a));
@@ -54,6 +55,7 @@ const GOOD = {
   analyzeFeedVectorTrace: [servoTrace, COND, { time: 'time', timeScale: 1e-3, steadyFrom: 0 }],
   angleSweep: [{ sections: [{ y: 0, offset: { z: 0, x: 0.01 } }, { y: 100, offset: { z: 0.01, x: 0 } }], ranges: [90, 180] }],
   axisInertia: ['nmv5000', 'c'],
+  b5rBeside: [b5rText, trace],
   ballbarExample: ['fig7', 100],
   bestKffp: ['nmv5000', { ...COND, duration: 1 }, { method: 'analytic' }],
   bestKffpFromTrace: ['nmv5000', { ...COND, duration: 1, kffp: { x: 60, y: 60, c: 60 } }, servoTrace, { time: 'time', timeScale: 1e-3, steadyFrom: 0 }, { method: 'analytic' }],
@@ -82,6 +84,7 @@ const GOOD = {
   parseBallbarTrace: [ballbarText, {}],
   parseNc: [arcs, {}],
   radiusReduction: [{ feed: 2000, radius: 10, tA: 0.04, T: 0.015 }],
+  readB5r: [b5rText],
   reverseCompensate: [arcs, { ...TP, iterations: 1 }, ok],
   sShapeTestPiece: [{ machine: 'pocketnc-v2-10', scale: 0.1 }],
   simulateAxis: [axisC, { dt: 1e-3, position: ramp }],

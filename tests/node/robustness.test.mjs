@@ -174,7 +174,16 @@ const CASES = {
   },
   parseBallbarTrace: {
     good: () => mt.parseBallbarTrace(ballbarText),
-    bad: [[''], ['angle,deviation\n'], ['angle,deviation\n0,abc\n'], ['x,y\n0,0\n1,1\n'], ['angle,deviation\n0,1\n', { nominalRadius: -1 }], ['angle,deviation\n0,1\n1,\u00082\n']],
+    bad: [[''], ['angle,deviation\n'], ['angle,deviation\n0,abc\n'], ['x,y\n0,0\n1,1\n'], ['angle,deviation\n0,1\n', { nominalRadius: -1 }], ['angle,deviation\n0,1\n1,\u00082\n'],
+      [new TextEncoder().encode('MATLAB 5.0 MAT-file')], [new Uint8Array(9 << 20)], [42]],
+  },
+  readB5r: {
+    good: () => mt.readB5r('<TEST_DOCUMENT><ANALYSIS NAME="RENISHAW_DIAGNOSTICS"><FEATURE NAME="AF_SQUARENESS" DT="UT_SQUARENESS">12</FEATURE></ANALYSIS></TEST_DOCUMENT>'),
+    bad: [[''], [42], ['<trace/>'], ['<TEST_DOCUMENT><ANALYSIS><FEATURE NAME="X">abc</FEATURE></ANALYSIS></TEST_DOCUMENT>'], ['<!DOCTYPE x><TEST_DOCUMENT/>'], ['x'.repeat(9 << 20)]],
+  },
+  b5rBeside: {
+    good: () => mt.b5rBeside('<TEST_DOCUMENT><ANALYSIS NAME="A"><FEATURE NAME="AF_SQUARENESS" DT="UT_SQUARENESS">12</FEATURE></ANALYSIS></TEST_DOCUMENT>', mt.syntheticBallbarTrace({ backlashX: 0.004 })),
+    bad: [['<TEST_DOCUMENT/>', {}], ['<trace/>', mt.syntheticBallbarTrace({})], [42, mt.syntheticBallbarTrace({})], ['<TEST_DOCUMENT/>', { nominalRadius: 100, feed: null, runs: [] }]],
   },
   circularTest: {
     good: () => mt.circularTest(mt.syntheticBallbarTrace({ backlashX: 0.004 })),

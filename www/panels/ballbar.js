@@ -139,11 +139,16 @@ export async function mount(root, api) {
   };
   const drop = dropZone({
     link: 'ballbar-trace',
-    label: 'Drop a ball-bar trace (CSV/TSV, TwinCAT Scope export, SINUMERIK trace XML, halscope) here, or click to choose one',
-    accept: '.csv,.tsv,.txt,.dat,.xml',
+    label: 'Drop a ball-bar trace (CSV/TSV, TwinCAT Scope export, SINUMERIK trace XML, halscope, MATLAB .mat capture) here, or click to choose one',
+    accept: '.csv,.tsv,.txt,.dat,.xml,.mat',
     onText: async (text, name) => {
       await load(text, name);
       await showMapper(text, name);
+    },
+    // a .mat capture goes to the core as bytes, which reads it by its format
+    onBytes: async (bytes, name) => {
+      await load(bytes, name);
+      await showMapper(bytes, name);
     },
     onRefused: (e, name) => {
       mapBox.replaceChildren();
@@ -157,6 +162,35 @@ export async function mount(root, api) {
     showSource();
     outUi.fail(e);
   }
+  // A Renishaw .b5r report: the core reads its settings and features and
+  // pairs them with ours; it carries no samples the core can read, so the
+  // trace itself comes from the drop zone above (or the synthetic fields).
+  let b5r = null;
+  const b5rInfo = h('p', { id: 'ballbar-b5r-info', class: 'unit' }, 'No Renishaw report loaded (.b5r: its features are shown beside ours).');
+  const b5rDrop = dropZone({
+    id: 'ballbar-b5r-input',
+    label: 'Drop a Renishaw Ballbar 20 report (.b5r) here to see its features beside ours, or click to choose one',
+    accept: '.b5r,.xml',
+    onText: async (text, name) => {
+      b5r = null;
+      try {
+        const r = await api.call('readB5r', [text]);
+        b5r = { text, name };
+        const features = r.runs.reduce((n, x) => n + x.features.length, 0) + r.analyses.reduce((n, a) => n + a.features.length, 0);
+        const settings = [r.testName, r.radius !== null ? `bar ${r.radius} mm` : null, r.feed !== null ? `F ${r.feed} mm/min` : null, r.plane ? `plane ${r.plane}` : null, r.runs.length ? `runs ${r.runs.map((x) => x.direction).join(', ')}` : null].filter(Boolean);
+        b5rInfo.textContent = `${name}: ${settings.join('; ')}; ${features} feature(s). ${r.notes.join('; ')}${r.unread.length ? `; not read: ${r.unread.join(', ')}` : ''}`;
+        await analyse();
+      } catch (e) {
+        b5rInfo.textContent = `${name}: not read (see the error below).`;
+        outUi.fail(e);
+      }
+    },
+    onRefused: (e, name) => {
+      b5r = null;
+      b5rInfo.textContent = `${name}: not read (see the error below).`;
+      outUi.fail(e);
+    },
+  });
   const run = h('button', { id: 'ballbar-run', class: 'primary', dataset: { run: '' }, onclick: () => analyse() }, 'Analyse');
   const out = h('div', { id: 'ballbar-results' });
   const outUi = runState(out);
@@ -337,7 +371,7 @@ export async function mount(root, api) {
   const exUi = runState(exOut);
   const exRun = h('button', { id: 'ballbar-example-run', onclick: () => example() }, 'Run example');
 
-  const traceCard = h('div', { class: 'card' }, h('h3', {}, 'Trace'), h('div', { class: 'fields' }, source.el, ...Object.values(f).map((x) => x.el), harmField), drop, fileInfo, mapBox, run);
+  const traceCard = h('div', { class: 'card' }, h('h3', {}, 'Trace'), h('div', { class: 'fields' }, source.el, ...Object.values(f).map((x) => x.el), harmField), drop, fileInfo, mapBox, b5rDrop, b5rInfo, run);
   const alCard = h('div', { class: 'card', id: 'align-card' }, h('h3', {}, 'Rotary-axis alignment from your sections (Takayama §2.2)'), h('div', { class: 'fields' }, ...Object.values(al).map((x) => x.el)), alDrop, alInfo, secBox, alRun, alOut);
   const exCard = h('div', { class: 'card' }, h('h3', {}, 'The paper’s simulations (Takayama et al., Figs. 6, 7, 8, 12)'), h('div', { class: 'fields' }, exName.el, exReading.el), exRun, exOut);
   // Results shown are marked outdated as soon as an input they came from is edited.
@@ -345,6 +379,16 @@ export async function mount(root, api) {
   alUi.dependsOn(alCard);
   exUi.dependsOn(exCard);
   root.replaceChildren(traceCard, out, alCard, exCard);
+
+  /** The .b5r report's features beside ours, as the core pairs them. */
+  function besideCard(rows) {
+    const num = (v, unit) => (v === null ? '—' : `${fmt(v, 4)}${unit ? ` ${unit}` : ''}`);
+    const t = table(['reported in', 'feature', 'Renishaw (as written)', 'Renishaw in our unit', 'ours', 'line'],
+      rows.map((r) => [r.source, r.feature, num(r.theirs, r.theirsUnit), num(r.theirsInOurs, r.oursUnit), r.oursUnit ? num(r.ours, r.oursUnit) : '— (not computed here)', String(r.line)]));
+    t.querySelector('table').id = 'ballbar-b5r-beside';
+    return h('div', { class: 'card' }, h('h3', {}, `Renishaw report beside ours (${b5r.name})`),
+      h('p', { class: 'note' }, 'Each side in its own sign convention; a unit of another quantity is not converted. The report\'s raw samples are not read: ours come from the trace above.'), t);
+  }
 
   async function getTrace() {
     if (source.value === 'file') {
@@ -389,15 +433,16 @@ export async function mount(root, api) {
       const motion = Array.isArray(harmonics) ? harmonics.filter((c) => c.order >= 2) : [];
       const ranges = Array.from({ length: 34 }, (_, k) => 30 + 10 * k);
       const sweep = await api.call('travelRangeSweep', [{ offset: { z: fit.cx, x: fit.cy }, harmonics: motion, ranges, radius: r0, samples: 1000 }]);
+      const beside = b5r ? await api.call('b5rBeside', [b5r.text, trace]) : null;
       if (!outUi.current(token)) return;
-      render(trace, fit, harmonics, iso, sweep);
+      render(trace, fit, harmonics, iso, sweep, beside);
       outUi.ok();
     } catch (e) {
       if (outUi.current(token)) outUi.fail(e);
     }
   }
 
-  function render(trace, fit, harmonics, iso, sweep) {
+  function render(trace, fit, harmonics, iso, sweep, beside) {
     const r0 = trace.nominalRadius;
     // Polar plot: r = base + deviation (µm), base = 2 × the largest |deviation|.
     const all = trace.runs.flatMap((r) => Array.from(r.deviation, (d) => Math.abs(d) / UM));
@@ -448,6 +493,7 @@ export async function mount(root, api) {
       h('div', { class: 'card' }, h('h3', {}, 'Harmonics of the deviation (least squares, valid on partial ranges)'), barEl),
       h('div', { class: 'card' }, h('h3', {}, 'Travel-range bias of the centre estimate (Takayama §2.1 with these harmonics)'), sweepEl),
       h('div', { class: 'card' }, h('h3', {}, 'ISO 230-4 circular test'), isoTable, h('p', {}, 'Circular hysteresis H: ', h('strong', { id: 'ballbar-h' }, iso.hUm === null ? '— (needs CCW and CW)' : `${fmtRes(iso.hUm)} µm`), ' (µm values shown to 0.01 µm; smaller magnitudes read 0)'), diagTable, downloads),
+      ...(beside ? [besideCard(beside)] : []),
     );
     polarChart(polarEl, { title: `Deviation [µm], magnified (rings labelled with the deviation; 0 = nominal circle)`, rOffset: base, traces, circles: [{ r: base, label: 'nominal' }], markers: [{ x: fit.cx / UM, y: fit.cy / UM, label: 'fitted centre' }] });
     if (Array.isArray(harmonics)) {

@@ -5,7 +5,10 @@
 // core's in Node; a halsampler file (numbers only) is refused until the
 // sample period is given, then read with a generated time; a ball-bar file
 // with EncoderX_Pos/EncoderY_Pos columns is refused by name, and read once
-// the page's mapping menus name those columns.
+// the page's mapping menus name those columns; a ball-bar .mat capture is
+// read as bytes by the core, and a Renishaw .b5r report's features stand
+// beside ours as the core pairs them (the numbers equal b5rBeside's in
+// Node).
 import { readFileSync } from 'node:fs';
 import * as mt from '../../../pkg/mtmotion.js';
 
@@ -89,4 +92,38 @@ export default async function (page, check) {
   await page.selectOption('#ballbar-map-y', 'EncoderY_Pos');
   await page.click('#ballbar-map-read');
   await page.waitForFunction(() => /encoder\.csv: 2 run/.test(document.querySelector('#ballbar-file-info').textContent));
+
+  // ball-bar: a .mat capture (vectors t, x, y) goes to the core as bytes
+  const t = [];
+  const bx = [];
+  const by = [];
+  const at = (i, a) => {
+    const r = 100 + 0.005 * Math.sin(2 * a);
+    t.push(i * 0.01);
+    bx.push(r * Math.cos(a));
+    by.push(r * Math.sin(a));
+  };
+  for (let i = 0; i <= 72; i++) at(i, (i * 5 * Math.PI) / 180);
+  for (let i = 71; i >= 0; i--) at(144 - i, (i * 5 * Math.PI) / 180);
+  const bbMat = mat({ t, x: bx, y: by });
+  await bbInput.setInputFiles({ name: 'ballbar.mat', mimeType: 'application/octet-stream', buffer: bbMat });
+  await page.waitForFunction(() => /ballbar\.mat: 2 run/.test(document.querySelector('#ballbar-file-info').textContent));
+  const matRead = await page.waitForFunction(() => /Layout read: matV5/.test(document.querySelector('#ballbar-trace-format')?.textContent || ''), null, { timeout: 10000 }).then(() => true, () => false);
+  check(matRead, 'the page should say the .mat layout was read (the core\'s layout preview of the bytes)');
+
+  // a Renishaw .b5r report beside ours
+  const b5r = readFileSync(new URL('../../b5r/xy_100mm_1000.b5r', import.meta.url), 'utf8');
+  const pairs = mt.b5rBeside(b5r, mt.parseBallbarTrace(new Uint8Array(bbMat), { nominalRadius: 100 }));
+  await page.setInputFiles('#ballbar-b5r-input', { name: 'report.b5r', mimeType: 'application/xml', buffer: Buffer.from(b5r) });
+  await page.waitForSelector('#ballbar-b5r-beside');
+  const b5rInfo = await page.textContent('#ballbar-b5r-info');
+  check(/report\.b5r: 100mm XY 1000; bar 100 mm; F 1000 mm\/min; plane XY; runs CCW, CW; 12 feature\(s\)/.test(b5rInfo), `the report's settings should be shown: "${b5rInfo}"`);
+  check(b5rInfo.includes('the raw samples are not read'), 'the page should say the samples are not read');
+  const cells = await page.$$eval('#ballbar-b5r-beside tbody tr', (trs) => trs.map((tr) => Array.from(tr.children, (td) => td.textContent)));
+  check(cells.length === pairs.length, `${cells.length} rows beside ours, the core pairs ${pairs.length}`);
+  const sq = cells.find((c) => c[1] === 'AF_SQUARENESS');
+  const wantSq = pairs.find((r) => r.feature === 'AF_SQUARENESS');
+  check(sq && sq[3].endsWith('µrad') && Math.abs(parseFloat(sq[4]) - wantSq.ours) <= 1e-3 * Math.max(1, Math.abs(wantSq.ours)), `squareness beside ours should be the core's ${wantSq.ours} µrad: ${sq}`);
+  const st = cells.find((c) => c[1] === 'AF_STRAIGHTNESS_A');
+  check(st && st[4].includes('not computed here'), `a feature we do not compute should say so: ${st}`);
 }
