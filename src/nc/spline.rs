@@ -229,13 +229,7 @@ fn cubic(
     let Some(first) = g.or(axes.first().copied()).or(i).or(j).or(p).or(q) else {
         return Ok(());
     };
-    if g.is_none() {
-        return Err(err(
-            b,
-            first,
-            "axis words after a G5 block without a motion code: the LinuxCNC manual makes G5 modal, its interpreter runs this block in the mode before the G5 (G0 or G1); write G5, G1 or G0 on the block",
-        ));
-    }
+    own_code(b, g, first, "G5")?;
     let (Some(p), Some(q)) = (p, q) else {
         return Err(err(
             b,
@@ -281,6 +275,21 @@ fn cubic(
     Ok(())
 }
 
+/// The refusal of a spline block `b` without its own code `g` (`name`):
+/// LinuxCNC's interpreter runs such a block in the mode before the spline.
+fn own_code(b: &Block, g: Option<&Word>, first: &Word, name: &str) -> Result<(), NcError> {
+    match g {
+        Some(_) => Ok(()),
+        None => Err(err(
+            b,
+            first,
+            format!(
+                "axis words after a {name} block without a motion code: the LinuxCNC manual makes {name} modal, its interpreter runs this block in the mode before the {name} (G0 or G1); write {name}, G1 or G0 on the block"
+            ),
+        )),
+    }
+}
+
 /// G5.1: the quadratic B-spline of the block.
 fn quadratic(
     b: &Block,
@@ -294,13 +303,7 @@ fn quadratic(
     let Some(first) = g.or(axes.first().copied()).or(i).or(j) else {
         return Ok(());
     };
-    if g.is_none() {
-        return Err(err(
-            b,
-            first,
-            "axis words after a G5.1 block without a motion code: the LinuxCNC manual makes G5.1 modal, its interpreter runs this block in the mode before the G5.1 (G0 or G1); write G5.1, G1 or G0 on the block",
-        ));
-    }
+    own_code(b, g, first, "G5.1")?;
     let (Some(i), Some(j)) = (i, j) else {
         return Err(err(
             b,

@@ -160,9 +160,6 @@ pub enum B5rError {
     /// Malformed XML, or XML that breaks the layout (names the line).
     #[error(transparent)]
     Trace(#[from] TraceError),
-    /// The text is over the trace budget ([`crate::budget`]).
-    #[error(transparent)]
-    Budget(#[from] crate::budget::BudgetError),
 }
 
 fn bad(line: usize, why: impl Into<String>) -> TraceError {
@@ -258,8 +255,8 @@ fn features(e: &Element, notes: &mut Vec<String>) -> Result<Vec<B5rFeature>, Tra
 /// [`B5rError::Trace`]: [`TraceError::BadXml`] for malformed XML, [`TraceError::BadLayout`]
 /// naming the line for XML whose root is not `TEST_DOCUMENT`, a feature
 /// without a name or with a value that is not a number, or a bar length or
-/// feed that is not a positive number; [`B5rError::Budget`] for a text
-/// over the trace budget.
+/// feed that is not a positive number. The wasm bindings check the text
+/// against the trace budget first (`crate::budget::check_text`).
 ///
 /// # Examples
 /// ```
@@ -278,11 +275,9 @@ fn features(e: &Element, notes: &mut Vec<String>) -> Result<Vec<B5rFeature>, Tra
 /// assert!(e.starts_with("line 1: Renishaw .b5r: the root element is <trace>"), "{e}");
 /// ```
 pub fn read(text: &str) -> Result<B5rReport, B5rError> {
-    crate::budget::check_text("trace", text)?;
     Ok(read_checked(text)?)
 }
 
-/// [`read`] of a text within the budget.
 fn read_checked(text: &str) -> Result<B5rReport, TraceError> {
     let root = xml::parse(text)?;
     if !root.is("TEST_DOCUMENT") {

@@ -377,6 +377,7 @@ pub fn read_b5r(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
 ) -> Result<JsValue, JsError> {
     let text = string_arg(&text, "text")?;
+    crate::budget::check_text("trace", &text)?;
     crate::trace::b5r::read(&text)?.js()
 }
 
@@ -390,6 +391,7 @@ pub fn b5r_beside(
     let text = string_arg(&text, "text")?;
     require_object(&trace, "trace")?;
     let trace = plain(&trace, "trace")?;
+    crate::budget::check_text("trace", &text)?;
     let report = crate::trace::b5r::read(&text)?;
     let ours = ballbar::circular_test(&trace_from_js(&trace)?)?;
     ballbar::b5r_beside::beside(&report, &ours).js()
