@@ -356,16 +356,65 @@ mod tests {
     }
 
     #[test]
+    fn corners_need_rewritable_blocks_on_both_sides_and_scale_with_the_override() {
+        let src =
+            "G21 G90\nG0 X2 Y1\nG1 X12 Y1 F1200\nG1 X12 Y11\nG1 X2 Y11\nG1 X2 Y21\nG1 X12 Y21\n";
+        let p = parse(src).unwrap();
+        let all = corners(&p.segments, &regions(&p), &cfg());
+        let lines = |c: &[Corner]| c.iter().map(|c| p.segments[c.seg].line).collect::<Vec<_>>();
+        assert_eq!(lines(&all), vec![3, 4, 5, 6]);
+        // Line 5 outside the lines to compensate: no spike after line 4
+        // (before it) nor after line 5 (its own end).
+        let part = crate::compensate::reverse::region::regions_in(&p, &|l| l != 5);
+        assert_eq!(lines(&corners(&p.segments, &part, &cfg())), vec![3, 6]);
+        // At half the feed (override 0.5) half the depth.
+        let slow = SimConfig {
+            feed_override: 0.5,
+            ..cfg()
+        };
+        let half = corners(&p.segments, &regions(&p), &slow);
+        for (a, b) in all.iter().zip(&half) {
+            assert!((b.depth - 0.5 * a.depth).abs() < 1e-12, "{a:?} {b:?}");
+        }
+    }
+
+    #[test]
+    fn a_corner_in_3d_turns_and_points_out_in_3d() {
+        // From (1, 0, 1)/√2 to (0, 1, 1)/√2: a 60° turn, out along
+        // (1, −1, 0)/√2; then straight down into Z: out has a Z part.
+        let p = parse("G21 G90\nG0 X3 Y2 Z1\nG1 X13 Y2 Z11 F1200\nG1 X13 Y12 Z21\nG1 X13 Y12 Z1\n")
+            .unwrap();
+        let c = corners(&p.segments, &regions(&p), &cfg());
+        assert_eq!(c.len(), 2, "{c:?}");
+        assert!((c[0].turn.to_degrees() - 60.0).abs() < 1e-6, "{c:?}");
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        assert!(
+            (c[0].out[0] - h).abs() < 1e-9
+                && (c[0].out[1] + h).abs() < 1e-9
+                && c[0].out[2].abs() < 1e-9
+        );
+        // (0, 1, 1)/√2 to (0, 0, −1): 135°, out ∝ (0, 1/√2, 1/√2 + 1).
+        assert!((c[1].turn.to_degrees() - 135.0).abs() < 1e-6, "{c:?}");
+        let n = (0.5f64 + (h + 1.0) * (h + 1.0)).sqrt();
+        assert!((c[1].out[1] - h / n).abs() < 1e-9 && (c[1].out[2] - (h + 1.0) / n).abs() < 1e-9);
+    }
+
+    #[test]
     fn a_short_arc_turns_like_a_corner_a_long_one_does_not() {
         // R0.2 quarter arc (0.31 mm, below v·tA = 0.67 mm at F1000): both
         // its joints are corners of 90°; an R20 quarter arc is not.
-        for (r, n) in [(0.2, 2), (20.0, 0)] {
+        // R0.5 (0.785 mm) is short only at override 2 (v·tA 1.33 mm).
+        for (r, ov, n) in [(0.2, 1.0, 2), (20.0, 1.0, 0), (0.5, 1.0, 0), (0.5, 2.0, 2)] {
             let p = parse(&format!(
                 "G21 G90\nG0 X0 Y0\nG1 X50 F1000\nG3 X{} Y{r} J{r}\nG1 Y50\n",
                 50.0 + r
             ))
             .unwrap();
-            let c = corners(&p.segments, &regions(&p), &cfg());
+            let k = SimConfig {
+                feed_override: ov,
+                ..cfg()
+            };
+            let c = corners(&p.segments, &regions(&p), &k);
             assert_eq!(c.len(), n, "R{r}: {c:?}");
             for k in &c {
                 assert!((k.turn.to_degrees() - 90.0).abs() < 1e-3, "{k:?}");
