@@ -3,8 +3,9 @@
 // of large programs at dt = 1 ms: the corpus's 40,306-line CNCjs pocket
 // and a GENERATED 35,000-line raster (zig-zag of G1 moves, made here for
 // the benchmark only — not a real program).
-// The 40,306-line pocket is left out of the reverse loop: it takes minutes
-// (about 150 s natively), far over the 5 s target (see docs/toolpath.md).
+// The 40,306-line pocket is measured on its own below: since the rounds
+// simulate only around the places they correct, it is compensated, not
+// refused (2.4 s natively at dt 2 ms; see docs/toolpath.md).
 // Targets: reverse compensation < 5 s per program; parse + simulate of
 // 35,000 lines < 1 s.
 import { wasm, bench } from './harness.mjs';
@@ -27,9 +28,9 @@ const raster = lines.join('\n');
 bench('parseNc + simulateToolPath generated raster, 35,000 lines', () => wasm.simulateToolPath(raster, cfg), { runs: 3, warmup: 1, target: 1000 });
 // At dt = 1 ms the pocket needs 5.2 M samples (the CAMotics pocket 5.7 M):
 // both simulate, their series thinned to at most 1 M samples (the numbers
-// use all); the pocket's reverse compensation is refused at dt 1 ms by its
-// work budget (8 M simulated samples, src/budget.rs), so it is measured at
-// dt = 3 ms, where it is cut by the work budget (budgetNote).
+// use all); the pocket's reverse compensation is measured at dt = 3 ms
+// (its correction windows have their own budget, src/budget.rs; a cut
+// shows in budgetNote).
 const pocket = read('cncjs_tball-pocket.gcode');
 bench('parseNc + simulateToolPath cncjs_tball-pocket (40,306 lines) at dt 1 ms', () => wasm.simulateToolPath(pocket, cfg), { runs: 3, warmup: 0, target: 1000 });
 const botomata = read('camotics_botomata_bottom.nc');
