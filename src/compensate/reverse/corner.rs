@@ -65,7 +65,7 @@ pub struct Corner {
 }
 
 /// Unit direction of `s` at its end (`at_end`) or start.
-fn tangent(s: &Segment, at_end: bool) -> Option<[f64; 3]> {
+pub fn tangent(s: &Segment, at_end: bool) -> Option<[f64; 3]> {
     let (a, b) = if at_end {
         (1.0 - 1e-6, 1.0)
     } else {
@@ -214,7 +214,7 @@ pub fn search(
     let mut chosen: Vec<(&Corner, f64)> = Vec::new();
     for (e, n) in order {
         let c = &found[n];
-        let cost = 2.0 * 1.45 * c.depth / (orig[c.seg].feed * cfg.feed_override / 60.0);
+        let cost = 1.45 * spike_time(&orig[c.seg], cfg, c.out.map(|x| x * c.depth));
         if cost <= budget {
             budget -= cost;
             chosen.push((c, e));
@@ -284,17 +284,22 @@ fn trial_scale(round: usize, best: f64) -> f64 {
     (base + if k % 2 == 0 { -step } else { step }).max(0.05)
 }
 
-/// The motion time the spikes of `edit` add by their length, `2·|d|/v`
-/// each at the feed of the segment before them, s.
+/// The motion time a spike reaching `d` (mm) out from the end of `s` adds
+/// by its length, `2·|d|/v` at `s`'s feed, s (0 for no spike).
+pub fn spike_time(s: &Segment, cfg: &SimConfig, d: [f64; 3]) -> f64 {
+    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    if len == 0.0 {
+        return 0.0;
+    }
+    2.0 * len / (s.feed * cfg.feed_override / 60.0)
+}
+
+/// The motion time the spikes of `edit` add by their length
+/// ([`spike_time`] summed), s.
 pub fn added_time(orig: &[Segment], cfg: &SimConfig, edit: &Edit) -> f64 {
-    edit.spike
-        .iter()
-        .zip(orig)
-        .filter(|(d, _)| **d != [0.0; 3])
-        .map(|(d, s)| {
-            let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            2.0 * len / (s.feed * cfg.feed_override / 60.0)
-        })
+    orig.iter()
+        .zip(&edit.spike)
+        .map(|(s, &d)| spike_time(s, cfg, d))
         .sum()
 }
 

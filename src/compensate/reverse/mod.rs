@@ -363,17 +363,6 @@ pub const CORNER_TURN: f64 = 10.0 * std::f64::consts::PI / 180.0;
 /// turns by more than [`CORNER_TURN`]: there the tool cuts the corner
 /// short, and a dwell (the NC stops at the corner) removes that error.
 pub fn sharp_corners(orig: &[Segment], rg: &Regions) -> Vec<usize> {
-    let dir = |s: &Segment, at_end: bool| {
-        let (a, b) = if at_end {
-            (1.0 - 1e-6, 1.0)
-        } else {
-            (0.0, 1e-6)
-        };
-        let (p, q) = (s.point_at(a), s.point_at(b));
-        let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
-        let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        (l > 0.0).then(|| [d[0] / l, d[1] / l, d[2] / l])
-    };
     let moves: Vec<usize> = (0..orig.len())
         .filter(|&i| !matches!(orig[i].motion, Motion::Dwell { .. }))
         .collect();
@@ -389,7 +378,10 @@ pub fn sharp_corners(orig: &[Segment], rg: &Regions) -> Vec<usize> {
             if rg.of[i].is_none() || (rg.of[i] != rg.of[k] && !exit) {
                 return None;
             }
-            let (u, v) = (dir(&orig[i], true)?, dir(&orig[k], false)?);
+            let (u, v) = (
+                corner::tangent(&orig[i], true)?,
+                corner::tangent(&orig[k], false)?,
+            );
             let c = (u[0] * v[0] + u[1] * v[1] + u[2] * v[2]).clamp(-1.0, 1.0);
             (c.acos() > CORNER_TURN).then_some(i)
         })
@@ -889,15 +881,13 @@ impl Review<'_> {
         let mut timed: Vec<(f64, f64, usize)> = (0..after.len())
             .filter(|&r| self.changed(r))
             .filter_map(|r| {
-                let m = &self.rg.members[r];
-                let mut part = self.edit.clone();
-                part.spike.iter_mut().enumerate().for_each(|(i, x)| {
-                    if self.rg.of[i] != Some(r) {
-                        *x = [0.0; 3];
-                    }
-                });
-                let t = m.iter().map(|&i| self.edit.dwell_after[i]).sum::<f64>()
-                    + corner::added_time(self.orig, sim, &part);
+                let t: f64 = self.rg.members[r]
+                    .iter()
+                    .map(|&i| {
+                        self.edit.dwell_after[i]
+                            + corner::spike_time(&self.orig[i], sim, self.edit.spike[i])
+                    })
+                    .sum();
                 (t > 0.0).then(|| ((self.before_err[r] - after[r]) / t, t, r))
             })
             .collect();
