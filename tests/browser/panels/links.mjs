@@ -35,10 +35,18 @@ export default async function (page, check) {
   // A dropped ball-bar trace travels in the link and is read again.
   await page.click('[data-tab="ballbar"]');
   const trace = ['angle_deg,deviation_um', ...Array.from({ length: 361 }, (_, i) => `${i},${(2 + 3 * Math.cos((i * Math.PI) / 180)).toFixed(4)}`)].join('\n');
+  await page.waitForSelector('#ballbar-centre-x');
+  const synthetic = await page.textContent('#ballbar-centre-x');
   const input = await page.$('#panel-ballbar .drop input[type=file]:not([multiple])');
   await input.setInputFiles({ name: 'shop-trace.csv', mimeType: 'text/csv', buffer: Buffer.from(trace) });
   await page.waitForFunction(() => /shop-trace\.csv: 1 run/.test(document.querySelector('#ballbar-file-info').textContent));
-  await page.waitForSelector('#ballbar-centre-x');
+  // The file's run replaces the synthetic run's results: wait for it to
+  // settle (not busy) with a centre other than the synthetic one.
+  const settledOn = (before) => page.waitForFunction((b) => {
+    const x = document.querySelector('#ballbar-centre-x');
+    return x && !document.querySelector('#ballbar-results').hasAttribute('aria-busy') && x.textContent !== b;
+  }, before, { timeout: 60_000 });
+  await settledOn(synthetic);
   const centre = await page.textContent('#ballbar-centre-x');
   await page.waitForFunction(() => location.hash.includes('ballbar-trace.z=') && !location.hash.includes('too-large'));
   await open(page.url());
