@@ -59,7 +59,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 ratios.push(r);
                 let changed = c.regions.iter().filter(|n| n.changed).count();
                 println!(
-                    "{name:48} {:9.1} -> {:9.1} µm ×{r:.3}  time {:+.2} %  regions {changed}/{}  {:.2} s{}{}",
+                    "{name:48} {:9.1} -> {:9.1} µm ×{r:.3}  time {:+.2} %  regions {changed}/{}  {:.2} s{}{}{}",
                     c.before.max_error_um,
                     c.after.max_error_um,
                     100.0 * (c.after.motion_time / c.before.motion_time - 1.0),
@@ -67,6 +67,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     start.elapsed().as_secs_f64(),
                     c.unchanged.as_deref().map(|u| format!("\n    unchanged: {u}")).unwrap_or_default(),
                     c.budget_note.as_deref().map(|u| format!("\n    budget: {u}")).unwrap_or_default(),
+                    c.expand_note.as_deref().map(|u| format!("\n    {}: {u}", if c.expanded { "expanded" } else { "in place" })).unwrap_or_default(),
                 );
                 unchanged += usize::from(c.unchanged.is_some());
             }

@@ -391,7 +391,10 @@ fn writer_round_trip_regressions() {
     let text = "O100\nG90 G17 G21\nG0 X0 Y0\nG1 X10 F600\nM98 P200 L2\nM30\nO200\nG91 G1 X1\nM99\n";
     fuzz_targets::nc_write_target(text).unwrap();
     let p = parse(text).unwrap();
-    assert_eq!(p.write(), "G0 X0.\nG1 X10. F600.\nX11.\nX12.\nM30");
+    assert_eq!(
+        p.write(),
+        "G21 G90 G94 G17\nG0 X0.\nG1 X10. F600.\nX11.\nX12.\nM30"
+    );
     // An inch R arc of 172° (R0.1191 in = 3.02514 mm, written R3.0251):
     // the rounded R moved the centre read back by 0.28 µm; such an arc is
     // now written with I/J. A quarter arc of the helical inch R chain

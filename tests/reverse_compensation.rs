@@ -194,13 +194,18 @@ fn semicolon_comments_with_parentheses_survive() {
     }
 }
 
-/// Fixed segments (a subprogram body called twice) never move, and the
-/// result is never worse than the original.
+/// Fixed segments (a subprogram body called twice) never move in place,
+/// and the result is never worse than the original (`expand: false`; the
+/// flat form is tests/reverse_expand.rs's).
 #[test]
 fn fixed_segments_never_move() {
     let src = "G21 G90 G17\nG0 X0 Y0\nG1 X20 F3000\nG3 X20 Y20 I0 J10\nM98 P100 L2\nG1 X0 Y20\nM30\nO100\nG91 G1 X-2 Y1\nG1 X-2 Y-1\nG90\nM99\n";
     let p = parse(src).unwrap();
-    let c = reverse_compensate(src, &ReverseConfig::default()).unwrap();
+    let in_place = ReverseConfig {
+        expand: false,
+        ..ReverseConfig::default()
+    };
+    let c = reverse_compensate(src, &in_place).unwrap();
     let q = parse(&c.nc).unwrap();
     let fixed = |p: &mtmotion::nc::program::Program| -> Vec<[f64; 3]> {
         p.segments
@@ -397,9 +402,13 @@ fn new_lines_are_numbered_like_the_program() {
 /// A program none of whose cutting moves can be rewritten is returned as
 /// it is with one note saying why, and no correction round is reported:
 /// with macro variables (every word computed), and with every cut in a
-/// subprogram body.
+/// subprogram body (`expand: false`: in place).
 #[test]
 fn a_program_with_nothing_to_move_says_why_as_a_whole() {
+    let in_place = ReverseConfig {
+        expand: false,
+        ..ReverseConfig::default()
+    };
     let macro_prog =
         "#1=20\n#2=0\nG0 X0 Y0 Z1\nG1 Z#2 F600\nG1 X#1 F2000\nG1 Y#1\nG1 X#2\nG1 Y[#1-20]\nG0 Z5\nM30\n";
     let sub_prog = "G0 X0 Y0 Z1\nM98 P100\nG0 Z5\nM30\nO100\nG1 Z0 F600\nG1 X20 F2000\nG1 Y20\nG1 X0\nG1 Y0\nM99\n";
@@ -407,7 +416,7 @@ fn a_program_with_nothing_to_move_says_why_as_a_whole() {
         (macro_prog, "macro variables or expressions", (4, 8)),
         (sub_prog, "subprogram or macro bodies", (6, 10)),
     ] {
-        let c = reverse_compensate(text, &ReverseConfig::default()).unwrap();
+        let c = reverse_compensate(text, &in_place).unwrap();
         assert_eq!(c.nc, text);
         let why = c.unchanged.as_deref().unwrap();
         assert!(

@@ -30,7 +30,14 @@
 //!   segments (a subprogram body — a `G91` body called twice moves from
 //!   two different starts —, a canned cycle, a corner `,R`/`,C`). Blocks
 //!   without motion keep their N numbers, comments and M/S/T/D/H words in
-//!   place (not M98/M99); G codes, O numbers and call words are dropped.
+//!   place (not M98/M99), and so do the G codes that set the frame the
+//!   coordinates are in (work offsets, tool length, and a cutter
+//!   compensation whose radius is not known: `frame_code`); other G codes,
+//!   O numbers and call words are dropped, and a `G21 G90 G94 G17` block
+//!   ([`FLAT_MODES`]) comes first, so that a control left in inches,
+//!   incremental, per-revolution feed or another plane reads the written
+//!   millimetres as meant. [`write_expanded`] writes any program flat, and
+//!   refuses one that the flat form would lose something of.
 //!
 //! Numbers are written with up to 4 decimals (0.1 µm) and always with a
 //! decimal point, because FANUC reads `X10` without one as 10 µm when
@@ -43,10 +50,12 @@
 //! Units: mm, degrees for A/B/C, mm/min.
 
 use super::arc::arc;
+use super::macro_line::Stmt;
 use super::program::{
     Arc, DwellP, FeedMode, Modal, Motion, MotionCode, Plane, Pose, Program, Segment, AXES,
 };
 use super::{Block, Word};
+use std::collections::BTreeMap;
 
 /// A number with up to 4 decimals and a decimal point, e.g. `10.`, `-0.5`.
 ///
@@ -121,6 +130,18 @@ fn is_move_word(c: char) -> bool {
     super::polar::is_position(c) || matches!(c, 'I' | 'J' | 'K' | 'R')
 }
 
+impl Out {
+    fn new(program: &Program) -> Self {
+        Self {
+            motion: None,
+            plane: Plane::XY,
+            feed: None,
+            pos: program.options.start,
+            lines: Vec::new(),
+        }
+    }
+}
+
 struct Out {
     motion: Option<MotionCode>,
     plane: Plane,
@@ -165,13 +186,7 @@ impl Program {
 /// assert!((q.segments[1].length() - 6.0 * std::f64::consts::PI).abs() < 1e-9);
 /// ```
 pub fn write(program: &Program, segments: &[Segment]) -> String {
-    let mut out = Out {
-        motion: None,
-        plane: Plane::XY,
-        feed: None,
-        pos: program.options.start,
-        lines: Vec::new(),
-    };
+    let mut out = Out::new(program);
     if needs_flat(program) {
         write_flat(program, segments, &mut out);
         return out.lines.join("\n");
@@ -591,7 +606,7 @@ fn write_block(program: &Program, bi: usize, seg: &Segment, out: &mut Out) {
 /// A segment without a source block, or (`passive`) with its source
 /// block's passive words and comments in front.
 fn write_new(program: &Program, seg: &Segment, passive: Option<&Block>, out: &mut Out) {
-    let mut words: Vec<Word> = passive.map_or_else(Vec::new, passive_words);
+    let mut words: Vec<Word> = passive.map_or_else(Vec::new, |b| passive_words(program, b));
     let host = Block {
         comments: passive.map_or_else(Vec::new, |b| b.comments.clone()),
         ..Block::default()
@@ -659,19 +674,43 @@ fn needs_flat(program: &Program) -> bool {
         })
 }
 
-/// The words of `block` that neither move nor change a mode: N, S, T, D,
-/// H and M (not the subprogram calls and returns M97, M98, M99, M198).
-fn passive_words(block: &Block) -> Vec<Word> {
+/// The words of `block` that move nothing but must stay with it: N, S, T,
+/// D, H and M (not the subprogram calls and returns M97, M98, M99, M198),
+/// and the G codes that choose the frame the written coordinates are in
+/// ([`frame_code`]), with the P of a G54.1/G154 extended work offset.
+fn passive_words(program: &Program, block: &Block) -> Vec<Word> {
+    let extended = block.words_of('G').any(|g| matches!(g_code(g), 541 | 1540));
     block
         .words
         .iter()
         .filter(|w| match w.letter {
             'N' | 'S' | 'T' | 'D' | 'H' => true,
             'M' => !matches!(w.value as i64, 97 | 98 | 99 | 198),
+            'G' => frame_code(program, block, w),
+            'P' => extended,
             _ => false,
         })
         .cloned()
         .collect()
+}
+
+/// G codes a flat program keeps, because the written coordinates mean
+/// something else without them: the work offsets G54–G59 (G54.1, G59.x,
+/// Haas G110–G129 and G154: mtmotion does not simulate their values, so
+/// the segments are in the offset's frame), the tool length offset
+/// G43/G44/G49 (the Z words are the tool tip's), and the cutter
+/// compensation G40 and a G41/G42 whose stretch was simulated on the
+/// programmed path (no known radius: the segments are the contour, not the
+/// tool centre; a stretch with a known radius is written as the tool
+/// centre and its G41/G42 goes).
+fn frame_code(program: &Program, block: &Block, g: &Word) -> bool {
+    match g_code(g) {
+        540..=599 | 1100..=1290 | 1540 | 430 | 434 | 440 | 490 | 400 => true,
+        410 | 411 | 420 | 421 => program.cutter.iter().any(|c| {
+            c.line == block.line && c.file.is_none() == (block.file == 0) && c.radius.is_none()
+        }),
+        _ => false,
+    }
 }
 
 /// A block without motion, flat: its passive words and comments.
@@ -679,7 +718,7 @@ fn write_passive(program: &Program, bi: usize, out: &mut Out) {
     let Some(block) = program.blocks.get(bi) else {
         return;
     };
-    let words = passive_words(block);
+    let words = passive_words(program, block);
     if words.is_empty() && block.comments.is_empty() && !block.percent {
         return;
     }
@@ -759,7 +798,136 @@ fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
     for j in (next..=end.min(program.blocks.len())).filter(|&j| main(j)) {
         write_passive(program, j, out);
     }
+    // The modes every written number assumes, after a leading `%`: a
+    // control left in G20, G91, G95 or another plane would read the flat
+    // program's millimetres otherwise (the source's own G20/G91/G95 words
+    // are not written).
+    let at = out.lines.iter().take_while(|l| l.starts_with('%')).count();
+    out.lines.insert(at, FLAT_MODES.to_string());
 }
+
+/// `program` written flat whatever its form (see the module header), for a
+/// caller that must move words the source computes (macro code, cycles,
+/// subprogram bodies), checked before it is given out:
+/// - it has no cutter compensation (a flat program would carry the
+///   G41/G42 over moves that are no longer the ones it was programmed on)
+///   and no G10 (offsets it sets would be in the source's units);
+/// - every word that moves nothing but matters (M, S, T, D, H and the
+///   frame codes of [`frame_code`]) is in it as often as in the source:
+///   one in a macro-computed word, in a subprogram body or in a block the
+///   run skipped would be lost;
+/// - read back, it gives the same moves, each end within 1 µm.
+///
+/// # Errors
+/// The first reason it cannot be given out, with its line where it has one.
+pub fn write_expanded(program: &Program) -> Result<String, String> {
+    if let Some(c) = program.cutter.first() {
+        return Err(format!(
+            "line {}: cutter compensation ({}) would apply to moves it was not programmed on",
+            c.line, c.code
+        ));
+    }
+    // (letter, text) → (first line, count) of the words a flat program keeps
+    let mut want: BTreeMap<(char, String), (usize, usize)> = BTreeMap::new();
+    for b in &program.blocks {
+        if b.words_of('G').any(|g| g_code(g) == 100) {
+            return Err(format!(
+                "line {}: G10 sets offsets in the source's units",
+                b.line
+            ));
+        }
+        let mut kept = passive_words(program, b);
+        if let Some(Stmt::Block(words, _)) = b.macro_line.as_ref().map(|m| &m.stmt) {
+            for w in words
+                .iter()
+                .filter(|w| matches!(w.letter, 'M' | 'S' | 'T' | 'D' | 'H' | 'G'))
+            {
+                let Some(text) = &w.text else {
+                    return Err(format!(
+                        "line {}, column {}: its {} word is computed by macro code, which a flat program cannot carry",
+                        b.line, w.column, w.letter
+                    ));
+                };
+                kept.push(word(w.letter, text.clone()));
+            }
+        }
+        for w in kept.into_iter().filter(|w| keeps(program, b, w)) {
+            want.entry((w.letter, w.text)).or_insert((b.line, 0)).1 += 1;
+        }
+    }
+    let mut out = Out::new(program);
+    write_flat(program, &program.segments, &mut out);
+    let text = out.lines.join("\n");
+    let back = super::program::parse_with(&text, &program.options)
+        .map_err(|e| format!("written flat it does not read back ({e})"))?;
+    let mut got: BTreeMap<(char, String), usize> = BTreeMap::new();
+    for b in &back.blocks {
+        for w in passive_words(&back, b)
+            .into_iter()
+            .filter(|w| keeps(&back, b, w))
+        {
+            *got.entry((w.letter, w.text)).or_default() += 1;
+        }
+    }
+    if let Some(((letter, t), (line, _))) = want
+        .iter()
+        .find(|(k, (_, n))| got.get(*k).copied().unwrap_or(0) < *n)
+    {
+        return Err(format!(
+            "line {line}: its {letter}{t} is in a subprogram body, a macro line or a block \
+             the run skips, where a flat program would lose it"
+        ));
+    }
+    let moved = |p: &Program| {
+        p.segments
+            .iter()
+            .filter(|s| !matches!(s.motion, Motion::Dwell { .. }))
+            .map(|s| s.end)
+            .collect::<Vec<_>>()
+    };
+    let (a, b) = (moved(program), moved(&back));
+    if a.len() != b.len() {
+        return Err(format!(
+            "written flat it reads back as {} moves instead of {}",
+            b.len(),
+            a.len()
+        ));
+    }
+    let far = |p: &Pose, q: &Pose| {
+        p.to_array()
+            .iter()
+            .zip(q.to_array())
+            .any(|(u, v)| (u - v).abs() > 1e-3)
+    };
+    if let Some(k) = (0..a.len()).find(|&k| far(&a[k], &b[k])) {
+        return Err(format!(
+            "written flat, move {} (line {}) reads back more than 1 µm away",
+            k + 1,
+            program
+                .segments
+                .iter()
+                .filter(|s| !matches!(s.motion, Motion::Dwell { .. }))
+                .nth(k)
+                .map_or(0, |s| s.line)
+        ));
+    }
+    Ok(text)
+}
+
+/// The words [`write_expanded`] counts: those [`passive_words`] keeps,
+/// but not N numbers (a flat program numbers nothing it adds).
+fn keeps(program: &Program, b: &Block, w: &Word) -> bool {
+    match w.letter {
+        'N' => false,
+        'G' => frame_code(program, b, w),
+        'M' => !matches!(w.value as i64, 97 | 98 | 99 | 198),
+        _ => true,
+    }
+}
+
+/// The block that starts a flat program's motion: millimetres, absolute,
+/// feed per minute, XY plane.
+pub const FLAT_MODES: &str = "G21 G90 G94 G17";
 
 #[cfg(test)]
 mod tests {
@@ -781,6 +949,31 @@ mod tests {
         let q = parse(&text).unwrap();
         assert_eq!(q.segments.len(), 3, "a zero-length G1 block moves nothing");
         assert_eq!(q.segments[2].motion, p.segments[2].motion);
+    }
+
+    #[test]
+    fn flat_programs_keep_their_frame() {
+        // G92 forces the flat form; G55, G43 H2, G41 D1 (radius unknown:
+        // the moves are the contour) and G40 stay where they were.
+        let src = "G20 G90 G55\nG92 X0 Y0\nG0 G43 H2 Z1.\nG41 D1 G1 X1. Y0.5 F10.\nY1.\nG40 G0 X0 Y0\nG49 M30";
+        let p = parse(src).unwrap();
+        let text = write(&p, &p.segments);
+        assert_eq!(
+            text,
+            "G21 G90 G94 G17\nG55\nG43 H2 G0 Z25.4\nG41 D1 G1 X25.4 Y12.7 F254.\nY25.4\nG40 G0 X0. Y0.\nG49 M30"
+        );
+        // With the radius known the moves are the tool centre: G41 goes.
+        let mut opts = crate::nc::program::ParseOptions::default();
+        opts.tool_radii.insert("D1", 0.1).unwrap();
+        let q = crate::nc::program::parse_with(src, &opts).unwrap();
+        let text = write(&q, &q.segments);
+        assert!(!text.contains("G41") && text.contains("D1 G1"), "{text}");
+        // G54.1 P3 keeps its P.
+        let p = parse("G90 G54.1 P3\nG92 X0\nG1 X1 F100").unwrap();
+        assert_eq!(
+            write(&p, &p.segments),
+            "G21 G90 G94 G17\nG54.1 P3\nG1 X1. F100."
+        );
     }
 
     #[test]

@@ -81,8 +81,8 @@ export interface ToolPathSimulation {
 export interface RadiusReductionInput { /** [mm/min] */ feed: number; /** [mm] */ radius: number; /** [s] */ tA: number; /** [s] */ T: number }
 export interface CircleLoss { /** [mm/min] */ feed: number; /** [mm] */ radius: number; /** [mm] */ radiusLoss: number }
 export interface AccDec { /** [s] */ tA: number; /** [s] */ T: number; /** [mm] RMS of the Δr residuals */ residual: number }
-/** dwell (unset: automatic 0.1 s, 0: none); timeBudget: largest motion-time growth as a fraction (default 0.05); dwellP: how G4 P is read, and so how an inserted dwell is written ('auto': P100 whole ms for Fanuc/Haas, G4 P0.1 seconds when the program shows LinuxCNC words; 'seconds': LinuxCNC/Grbl; 'milliseconds': Fanuc); fromLine, toLine: the program's own text lines to compensate, 1-based and inclusive (unset: first, last); every line outside stays byte for byte and its error is not made worse; step: the share of the measured deviation each round corrects; cornerSpikes: two new G1 lines out and back at each sharp corner (see docs/toolpath.md). */
-export interface ReverseConfig extends Omit<ToolPathConfig, 'files' | 'toolRadii'> { /** [s] */ dwell?: number; /** [-] */ iterations?: number; /** [-] fraction */ timeBudget?: number; dwellP?: 'auto' | 'milliseconds' | 'seconds'; /** [-] 1-based line */ fromLine?: number; /** [-] 1-based line */ toLine?: number; /** [-] share of the deviation a correction round corrects, (0, 1] (qiu: 1; default 0.5) */ step?: number; /** corner spikes at sharp corners (default true; false: qiu's radii, vertices and dwells only) */ cornerSpikes?: boolean }
+/** dwell (unset: automatic 0.1 s, 0: none); timeBudget: largest motion-time growth as a fraction (default 0.05); dwellP: how G4 P is read, and so how an inserted dwell is written ('auto': P100 whole ms for Fanuc/Haas, G4 P0.1 seconds when the program shows LinuxCNC words; 'seconds': LinuxCNC/Grbl; 'milliseconds': Fanuc); fromLine, toLine: the program's own text lines to compensate, 1-based and inclusive (unset: first, last); every line outside stays byte for byte and its error is not made worse; step: the share of the measured deviation each round corrects; cornerSpikes: two new G1 lines out and back at each sharp corner (see docs/toolpath.md); expand: write the program flat and compensate that when its largest error sits on moves it computes (macros, canned cycles, subprogram bodies; default true; see ReverseCompensation.expanded). */
+export interface ReverseConfig extends Omit<ToolPathConfig, 'files' | 'toolRadii'> { /** [s] */ dwell?: number; /** [-] */ iterations?: number; /** [-] fraction */ timeBudget?: number; dwellP?: 'auto' | 'milliseconds' | 'seconds'; /** [-] 1-based line */ fromLine?: number; /** [-] 1-based line */ toLine?: number; /** [-] share of the deviation a correction round corrects, (0, 1] (qiu: 1; default 0.5) */ step?: number; /** corner spikes at sharp corners (default true; false: qiu's radii, vertices and dwells only) */ cornerSpikes?: boolean; /** write flat when the largest error sits on computed moves (default true) */ expand?: boolean }
 /** One region (cutting moves between rapids and fixed segments); reason says why it was left unchanged. */
 export interface RegionNote {
   /** [-] */ firstLine: number; /** [-] */ lastLine: number; /** [-] */ arcs: number; /** [-] */ lines: number;
@@ -101,6 +101,8 @@ export interface ReverseCompensation {
   /** set when the written program is the original text byte for byte: why, in words (the download is then not offered) */ unchanged: string | null;
   /** set when the work budget cut the correction short: what was kept and what to change */ budgetNote: string | null;
   /** set when dwells were written as P in milliseconds without the program saying how its control reads P: what to set for a control that reads seconds */ dwellNote: string | null;
+  /** the written program is the original written flat (one block per move, absolute mm) and compensated, because its largest error sat on moves it computes (macros, cycles, subprograms); the lines named in the result are the written program's */ expanded: boolean;
+  /** why it was written flat, or why not although its largest error sits on such moves */ expandNote: string | null;
 }
 "#;
 
@@ -436,6 +438,13 @@ pub fn reverse_compensate_js(
         .val(
             "dwellNote",
             c.dwell_note
+                .as_deref()
+                .map_or(JsValue::NULL, JsValue::from_str),
+        )
+        .val("expanded", JsValue::from_bool(c.expanded))
+        .val(
+            "expandNote",
+            c.expand_note
                 .as_deref()
                 .map_or(JsValue::NULL, JsValue::from_str),
         )

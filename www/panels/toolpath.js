@@ -329,9 +329,11 @@ export async function mount(root, api) {
         ...(c.budgetNote ? [h('p', { class: 'note', id: 'toolpath-budget-note' }, `Cut short: ${c.budgetNote}.`)] : []),
         // The core says when the dwells' form is a guess (P in ms, no sign of the control in the program).
         ...(c.dwellNote ? [h('p', { class: 'warn-note', id: 'toolpath-dwell-note', role: 'note' }, `Check the dwells: ${c.dwellNote}.`)] : []),
+        // The core says when it wrote the program flat (its largest error sat on computed moves), or why it could not.
+        ...(c.expandNote ? [h('p', { class: c.expanded ? 'warn-note' : 'note', id: 'toolpath-expand-note', role: 'note' }, c.expanded ? `Written flat: ${c.expandNote}.` : `Not written flat: ${c.expandNote.replace(/^not written flat: /, '')}.`)] : []),
         // The core says when the written program is the original byte for byte: no download of a file that compensates nothing.
         ...(c.unchanged ? [h('p', { class: 'note', id: 'toolpath-unchanged' }, `No compensated program: ${c.unchanged}.`)] : []),
-        h('button', { id: 'toolpath-download', class: 'primary', disabled: Boolean(c.unchanged), title: c.unchanged ?? '', onclick: () => downloadText(`${base}-compensated.nc`, c.nc, 'text/plain') }, c.unchanged ? 'Download compensated .nc (nothing changed)' : 'Download compensated .nc'),
+        h('button', { id: 'toolpath-download', class: 'primary', disabled: Boolean(c.unchanged), title: c.unchanged ?? '', onclick: () => downloadText(`${base}-compensated.nc`, c.nc, 'text/plain') }, c.unchanged ? 'Download compensated .nc (nothing changed)' : c.expanded ? 'Download compensated .nc (written flat)' : 'Download compensated .nc'),
         h('details', { id: 'toolpath-regions', open: c.regions.some((r) => !r.changed) },
           h('summary', {}, `${c.regions.filter((r) => r.changed).length} of ${c.regions.length} region(s) changed; the others are left unchanged, and why`),
           table(['lines', 'arcs / lines', 'before µm', 'after µm', 'changed', 'left unchanged because'], c.regions.slice(0, 500).map((r) => [

@@ -44,6 +44,13 @@
 //! - the output is the original text with only the moved words changed
 //!   ([`crate::nc::patch`]): units, number format, N numbers, comments,
 //!   dwell form and line endings are the original's.
+//! - *written flat* (beyond the paper): when the in-place result's largest
+//!   error sits on a move the program computes (macro code, a canned
+//!   cycle, a subprogram body), whose words cannot move, the program is
+//!   written flat ([`crate::nc::writer::write_expanded`]) and that text is
+//!   compensated; it is kept when, simulated against the original
+//!   program's own path, its maximum error is below [`EXPAND_GAIN`] × the
+//!   in-place one within the time budget ([`Compensation::expanded`]).
 //!
 //! Units: mm, s; errors reported in µm where the field says so.
 
@@ -108,6 +115,10 @@ pub struct ReverseConfig {
     /// false gives qiu's method: radii, vertices and dwells only).
     #[serde(rename = "cornerSpikes")]
     pub corner_spikes: bool,
+    /// Write the program flat and compensate that when its largest error
+    /// sits on moves that cannot be rewritten in place (default true; see
+    /// [`Compensation::expanded`]).
+    pub expand: bool,
 }
 
 /// [`ReverseConfig`] as read: every key named, no other key accepted.
@@ -138,6 +149,7 @@ struct ReverseConfigIn {
     step: f64,
     #[serde(rename = "cornerSpikes")]
     corner_spikes: bool,
+    expand: bool,
 }
 
 impl Default for ReverseConfigIn {
@@ -158,6 +170,7 @@ impl Default for ReverseConfigIn {
             to_line: c.to_line,
             step: c.step,
             corner_spikes: c.corner_spikes,
+            expand: c.expand,
         }
     }
 }
@@ -181,6 +194,7 @@ impl From<ReverseConfigIn> for ReverseConfig {
             to_line: c.to_line,
             step: c.step,
             corner_spikes: c.corner_spikes,
+            expand: c.expand,
         }
     }
 }
@@ -197,6 +211,7 @@ impl Default for ReverseConfig {
             to_line: None,
             step: rounds::DEFAULT_STEP,
             corner_spikes: true,
+            expand: true,
         }
     }
 }
@@ -319,6 +334,13 @@ pub struct Compensation {
     /// confirm (P in milliseconds, [`crate::nc::dialect::DwellForm::guessed`]):
     /// what was written and what to set if the control reads P as seconds.
     pub dwell_note: Option<String>,
+    /// The written program is the original written flat
+    /// ([`crate::nc::writer::write_expanded`]) and compensated, because the
+    /// largest error sat on moves that cannot be rewritten in place.
+    pub expanded: bool,
+    /// Why it was written flat, or why it was not although its largest
+    /// error sits on such moves.
+    pub expand_note: Option<String>,
 }
 
 /// The joints after which a dwell may help: where a run of ≥ 3 short
@@ -457,6 +479,110 @@ pub fn reverse_compensate_with(
     };
     let program = parse_with(text, &opts)?;
     let range = line_range(&program, cfg.from_line, cfg.to_line)?;
+    let pinned = cfg.expand && range.whole && has_pinned_cut(&program);
+    let flat = pinned.then(|| crate::nc::writer::write_expanded(&program));
+    let share = if matches!(flat, Some(Ok(_))) {
+        0.5
+    } else {
+        1.0
+    };
+    let mut c = in_place(text, &program, &range, cfg, &mut |f, s| {
+        progress(f * share, s)
+    })?;
+    let Some(flat) = flat else {
+        return Ok(c);
+    };
+    if !worst_is_pinned(&program, &c.sim_after) {
+        return Ok(c);
+    }
+    let flat = match flat {
+        Ok(flat) => flat,
+        Err(why) => {
+            c.expand_note = Some(format!("not written flat: {why}"));
+            return Ok(c);
+        }
+    };
+    let fp = parse_with(&flat, &opts)?;
+    let whole = line_range(&fp, None, None)?;
+    let mut e = in_place(&flat, &fp, &whole, cfg, &mut |f, s| {
+        progress(0.5 + 0.5 * f, &format!("written flat: {s}"))
+    })?;
+    if e.unchanged.is_some() {
+        c.expand_note = Some("written flat, the program did not improve either".into());
+        return Ok(c);
+    }
+    // The flat program's result, measured against the original's own path.
+    let written = parse_with(&e.nc, &opts)?;
+    let after = simulate(&written.segments, &program.segments, &cfg.sim)?;
+    let time_ok = after.motion_time <= c.before.motion_time * (1.0 + cfg.time_budget) + 1e-9;
+    if !(time_ok && after.max_error < c.sim_after.max_error * EXPAND_GAIN) {
+        c.expand_note = Some(format!(
+            "written flat it would reach {} µm in {} s, against {} µm in {} s in place",
+            crate::numeric::compact(after.max_error * 1e3),
+            crate::numeric::compact(after.motion_time),
+            crate::numeric::compact(c.after.max_error_um),
+            crate::numeric::compact(c.after.motion_time)
+        ));
+        return Ok(c);
+    }
+    e.after = summary(&after);
+    e.sim_after = after;
+    e.before = c.before;
+    e.sim_before = c.sim_before;
+    e.expand_note = Some(EXPANDED.to_string());
+    e.expanded = true;
+    Ok(e)
+}
+
+/// A flat program is given out only when it lowers the in-place result's
+/// maximum error below this share of it.
+const EXPAND_GAIN: f64 = 0.99;
+
+/// What an expanded result says.
+const EXPANDED: &str = "the largest error sat on moves the program computes (macro code, canned \
+     cycles, subprogram bodies, corner roundings), whose words cannot move in place; the \
+     compensated program is written flat: one block per move in execution order, absolute \
+     millimetres (G21 G90 G94 G17), with the work offsets, tool length offsets and M, S, T, D, \
+     H words where they were; the lines named in this result are the written program's";
+
+/// The program has a cutting move reverse compensation cannot rewrite in
+/// place (see [`regions_in`]).
+fn has_pinned_cut(program: &Program) -> bool {
+    let rg = regions_in(program, &|_| true);
+    program
+        .segments
+        .iter()
+        .zip(&rg.editable)
+        .any(|(s, &e)| s.is_cutting() && (!e || s.fixed))
+}
+
+/// The written program's largest error sits on a cutting move that
+/// cannot be rewritten in place.
+fn worst_is_pinned(program: &Program, after: &Simulation) -> bool {
+    let rg = regions_in(program, &|_| true);
+    let worst = after
+        .segments
+        .iter()
+        .filter(|st| {
+            program
+                .segments
+                .get(st.segment)
+                .is_some_and(Segment::is_cutting)
+        })
+        .max_by(|a, b| a.max_error_um.total_cmp(&b.max_error_um));
+    worst.is_some_and(|st| program.segments[st.segment].fixed || !rg.editable[st.segment])
+}
+
+/// [`reverse_compensate_with`] on the program's own blocks: only literal
+/// words move.
+fn in_place(
+    text: &str,
+    program: &Program,
+    range: &LineRange,
+    cfg: &ReverseConfig,
+    progress: &mut dyn FnMut(f64, &str) -> bool,
+) -> Result<Compensation, ToolpathError> {
+    let opts = program.options.clone();
     let orig = &program.segments;
     let mut work = Work::for_program(sample_estimate(orig, &cfg.sim)? as u64);
     let mut tick = |f: f64, s: &str| {
@@ -469,7 +595,7 @@ pub fn reverse_compensate_with(
     tick(0.0, "simulating the original program")?;
     let sim_before = simulate(orig, orig, &cfg.sim)?;
     work.set_original(orig, &sim_before);
-    let rg = regions_in(&program, &|l| range.contains(l));
+    let rg = regions_in(program, &|l| range.contains(l));
     let before_err = region_errors(&rg, &sim_before.segments);
     tick(0.1, "corner spikes")?;
     let allowed = cfg.time_budget * sim_before.motion_time;
@@ -537,7 +663,7 @@ pub fn reverse_compensate_with(
     }
     let checked = check(
         text,
-        &program,
+        program,
         (&opts, range.whole),
         &rg,
         &before_err,
@@ -549,8 +675,8 @@ pub fn reverse_compensate_with(
     )?;
     tick(1.0, "done")?;
     let mut c = finish(
-        &program,
-        &range,
+        program,
+        range,
         &rg,
         &before_err,
         &sim_before,
@@ -559,10 +685,10 @@ pub fn reverse_compensate_with(
         history,
     );
     c.budget_note = work.note();
-    c.unchanged = (c.nc == text).then(|| unchanged_reason(&c.regions, &range));
+    c.unchanged = (c.nc == text).then(|| unchanged_reason(&c.regions, range));
     if !c.dwells.is_empty()
         && c.unchanged.is_none()
-        && crate::nc::dialect::dwell_form(&program).guessed
+        && crate::nc::dialect::dwell_form(program).guessed
     {
         c.dwell_note = Some(format!(
             "{} dwell(s) written as G04 P<milliseconds> (Fanuc, Haas): nothing in the program says \
@@ -1124,6 +1250,8 @@ fn finish(
         sim_after: c.sim,
         unchanged: None,
         dwell_note: None,
+        expanded: false,
+        expand_note: None,
         budget_note: None,
     }
 }
