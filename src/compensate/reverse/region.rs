@@ -183,3 +183,49 @@ pub fn chunks(rg: &Regions, segs: &[Segment], span: f64, feed_override: f64) -> 
     }
     c
 }
+
+/// A rapid lies between regions `r` and `q` (in either order): from the
+/// last move of the earlier one to the first of the later one.
+pub fn rapid_between(orig: &[Segment], rg: &Regions, r: usize, q: usize) -> bool {
+    let (a, b) = (r.min(q), r.max(q));
+    let (Some(&from), Some(&to)) = (
+        rg.members.get(a).and_then(|m| m.last()),
+        rg.members.get(b).and_then(|m| m.first()),
+    ) else {
+        return false;
+    };
+    orig.get(from..to)
+        .is_some_and(|s| s.iter().any(|s| matches!(s.motion, Motion::Rapid)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::nc::program::parse;
+
+    #[test]
+    fn rapid_between_regions() {
+        // Regions: 0 = lines 2–3; 1 = lines 5–7, after a rapid (a dwell
+        // does not part regions); 2 = line 10, after a dwell and a rapid.
+        let p = parse(
+            "G0 X0 Y0\nG1 X5 F600\nY3\nG0 X7\nG1 Y6\nG4 P0.2\nG3 X4 Y9 R3\nG4 P0.1\nG0 Z2\nG1 Z-1\nM30",
+        )
+        .unwrap();
+        let rg = regions_in(&p, &|_| true);
+        assert_eq!(rg.members, vec![vec![1, 2], vec![4, 6], vec![9]]);
+        let o = &p.segments;
+        assert!(rapid_between(o, &rg, 0, 1));
+        assert!(rapid_between(o, &rg, 1, 0), "either order");
+        assert!(rapid_between(o, &rg, 1, 2));
+        assert!(rapid_between(o, &rg, 0, 2), "one rapid anywhere between");
+        assert!(!rapid_between(o, &rg, 1, 1), "none within a region");
+        assert!(!rapid_between(o, &rg, 0, 9), "no such region");
+        // Two regions parted by a fixed move (a subprogram body) and a
+        // dwell, no rapid: not stopped between.
+        let p = parse("G0 X0 Y0\nG1 X5 F600\nM98 P100\nG4 P0.1\nG1 X9 Y2\nM30\nO100\nG1 X6\nM99").unwrap();
+        let rg = regions_in(&p, &|_| true);
+        assert_eq!(rg.members.len(), 2, "{:?}", rg.members);
+        assert!(!rapid_between(&p.segments, &rg, 0, 1));
+        assert!(!rapid_between(&p.segments, &rg, 1, 0));
+    }
+}

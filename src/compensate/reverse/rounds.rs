@@ -138,6 +138,19 @@ impl Work {
         }));
     }
 
+    /// Sets aside `1/share` of the rounds' budget left (for a later stage:
+    /// the dwells), to be given back with [`Work::release`].
+    pub fn hold(&mut self, share: u64) -> u64 {
+        let held = self.left / share.max(1);
+        self.left -= held;
+        held
+    }
+
+    /// Gives back what [`Work::hold`] set aside.
+    pub fn release(&mut self, held: u64) {
+        self.left += held;
+    }
+
     /// Spends `samples` on a correction round when the rounds' budget
     /// holds them; otherwise marks the work as stopped and returns `false`.
     pub fn round(&mut self, samples: u64) -> bool {
