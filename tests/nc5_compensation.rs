@@ -218,3 +218,50 @@ fn pid_feed_drives_in_the_s_shape_simulation() {
     );
     assert!(paper.after.std_mm[0] > 10.0 * none.after.std_mm[0]);
 }
+
+/// The compensation's work budget (budget::MAX_NC5_LINES, MAX_NC5_MOVES):
+/// a program over 200,000 lines is refused before it is read, and one over
+/// 100,000 moves after reading, before any move is solved; the message
+/// names the budget and what to do. A G81 cycle counts the moves it
+/// expands to (item 11 of issue 29: a 99,992-line G81 program was refused
+/// as "line 1, column 1: program: 399963 lines" after 4 s).
+#[test]
+fn programs_over_the_work_budget_are_refused_by_name() {
+    let cfg = Nc5Config {
+        machine: MachineRef::Name("trunnion-ac".into()),
+        errors: GeometricErrors::default(),
+        tool_length: 0.0,
+        monte_carlo: None,
+        cutting: None,
+        compensate_axes: None,
+        feed_drive: None,
+    };
+    let lines = format!("G1 X1 F100\n{}", "\n".repeat(200_000));
+    assert_eq!(
+        compensate_nc5(&lines, &cfg).unwrap_err().to_string(),
+        "compensateNc5: program: 200001 lines, more than the limit of 200000; compensate the program in parts"
+    );
+    // 25,001 holes of a G81 cycle: a rapid over, a rapid to R, the feed to
+    // the bottom and the retract, 4 moves each, plus the first G0
+    let holes: String = (0..25_001)
+        .map(|i| format!("X{} Y{}\n", i % 100, i / 100))
+        .collect();
+    let g81 = format!("G90 G21 G0 X0 Y0 Z10\nG81 Z-1 R1 F100\n{holes}G80\n");
+    let e = compensate_nc5(&g81, &cfg).unwrap_err().to_string();
+    assert!(
+        e.starts_with("compensateNc5: program: 10000")
+            && e.ends_with(" moves (canned cycles and subprogram calls expanded), more than the limit of 100000; compensate the program in parts"),
+        "{e}"
+    );
+    // just under both budgets the same program is read: 24,990 holes
+    let holes: String = (0..24_990)
+        .map(|i| format!("X{} Y{}\n", i % 100, i / 100))
+        .collect();
+    let e = compensate_nc5(
+        &format!("G90 G21 G0 X0 Y0 Z10\nG81 Z-1 R1 F100\n{holes}G80\nG91 G2 X1 Y1 R1\n"),
+        &cfg,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("arcs (G2/G3) are not supported"), "{e}");
+}

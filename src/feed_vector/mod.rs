@@ -313,6 +313,14 @@ pub fn samples(axes: &[AxisParams; 3], cond: &Condition) -> Result<usize, FeedVe
             &format!("gives {n} samples at dt = {dt} s; at most {MAX_SAMPLES} are allowed — shorten it or raise dt"),
         ));
     }
+    // the whole test: each pitch-error harmonic is one `sin` per sample
+    crate::budget::check(
+        "feed-vector test",
+        (n as u64).saturating_mul(axes.iter().map(|a| 1 + a.pitch_error.len() as u64).sum()),
+        crate::budget::MAX_AXIS_SIM_TERMS,
+        "terms (samples × (1 + pitch-error harmonics), over X, Y and C)",
+        "shorten it, raise dt or give fewer pitch-error harmonics",
+    )?;
     Ok(n as usize)
 }
 
