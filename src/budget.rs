@@ -218,8 +218,9 @@ pub const MAX_AXIS_SIM_TERMS: usize = 100_000_000;
 /// more per free parameter where a trial is accepted), counted as the fit
 /// runs; the fit is refused when the next simulation would pass it. A
 /// 1 M-sample trace fitted in 5 iterations (about 25 simulations) in 2.4 s;
-/// the fit may take up to 600 iterations.
-pub const MAX_IDENTIFY_SAMPLES: usize = 50_000_000;
+/// the fit may take up to 600 iterations. At 50 M a 4 M-sample trace was
+/// refused after 3.7-6.4 s of simulations.
+pub const MAX_IDENTIFY_SAMPLES: usize = 30_000_000;
 
 /// Most moves of one 5-axis compensation (`compensateNc5`): each G0/G1 end
 /// point is solved and written out (canned cycles and subprogram calls

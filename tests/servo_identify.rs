@@ -161,13 +161,13 @@ fn a_trial_out_of_range_names_the_range_not_a_rounded_value() {
     );
 }
 
-/// The fit's simulations are within a work budget: a trace whose first
+/// The fit's simulations are within a work budget (30 M samples): a trace whose first
 /// trial and Jacobian alone (samples × (free parameters + 2)) are over it
 /// is refused before any simulation, naming it.
 #[test]
 fn a_trace_over_the_work_budget_is_refused_before_the_fit() {
     let a = machine::preset("nmv5000").unwrap().axes["x"].clone();
-    let n = 10_000_001; // × (3 + 2) simulations > 50,000,000 samples
+    let n = 6_000_001; // × (3 + 2) simulations > 30,000,000 samples
     let tr = MeasuredTrace {
         dt: 1e-3,
         command: vec![0.0; n],
@@ -176,6 +176,6 @@ fn a_trace_over_the_work_budget_is_refused_before_the_fit() {
     };
     assert_eq!(
         identify_axis(&a, &tr).unwrap_err().to_string(),
-        "axis identification: the fit's simulations: 50000005 samples (trace samples × simulations), more than the limit of 50000000; give a shorter trace (a few seconds of a step or a ramp identify the axis) or an initial guess nearer the axis"
+        "axis identification: the fit's simulations: 30000005 samples (trace samples × simulations), more than the limit of 30000000; give a shorter trace (a few seconds of a step or a ramp identify the axis) or an initial guess nearer the axis"
     );
 }
