@@ -224,13 +224,14 @@ pub const MAX_IDENTIFY_SAMPLES: usize = 30_000_000;
 
 /// Most moves of one 5-axis compensation (`compensateNc5`): each G0/G1 end
 /// point is solved and written out (canned cycles and subprogram calls
-/// expanded), then the written program is read back and evaluated. 200,000
-/// moves took 10.3 s and 481 MiB of wasm memory.
-pub const MAX_NC5_MOVES: usize = 100_000;
+/// expanded), then the written program is read back and evaluated.
+/// 100,000 moves took 4.0 s at load 5 and 8.8 s at load 11 (243 MiB of
+/// wasm memory), 200,000 moves 10.3 s and 481 MiB.
+pub const MAX_NC5_MOVES: usize = 50_000;
 
 /// Most lines of a program given to `compensateNc5`, checked before it is
 /// read (the program and its compensated copy are both parsed).
-pub const MAX_NC5_LINES: usize = 200_000;
+pub const MAX_NC5_LINES: usize = 100_000;
 
 /// Most work of one circular test's cyclic-error search: pitches on its
 /// grid (about 2π·R₀ per mm of bar length R₀) × the trace's points merged

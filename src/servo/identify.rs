@@ -214,8 +214,7 @@ pub fn identify_axis(
     };
     // refused before any work when not even the first trial and one
     // Jacobian (a simulation per free parameter) fit in the budget
-    let n = trace.command.len() as u64;
-    work(n * (fit_problem.free.len() as u64 + 2))?;
+    work(fit_problem.per_simulation() * (fit_problem.free.len() as u64 + 2))?;
     // Levenberg–Marquardt ([`crate::numeric::levenberg_marquardt_lazy`]):
     // a trial costs one simulation, the Jacobian (forward differences, one
     // simulation per free parameter) only where a trial is accepted. J is
@@ -299,7 +298,7 @@ fn work(simulated: u64) -> Result<(), crate::budget::BudgetError> {
         "the fit's simulations",
         simulated,
         crate::budget::MAX_IDENTIFY_SAMPLES,
-        "samples (trace samples × simulations)",
+        "samples (trace samples × simulations, twice with a torque trace)",
         "give a shorter trace (a few seconds of a step or a ramp identify the axis) or an initial guess nearer the axis",
     )
 }
@@ -324,8 +323,16 @@ struct Problem<'a> {
 }
 
 impl Problem<'_> {
+    /// What one simulation costs against the budget: the trace's samples,
+    /// twice with a torque trace (its residuals and Jacobian columns are
+    /// twice as long: a 2.67 M-sample trace with torque took 10.5 s to
+    /// reach 30 M samples counted once, one without torque 5.8 s).
+    fn per_simulation(&self) -> u64 {
+        self.trace.command.len() as u64 * if self.tq.is_some() { 2 } else { 1 }
+    }
+
     fn residuals(&self, p: &[f64; 4]) -> Result<Vec<f64>, IdentifyError> {
-        let total = self.simulated.get() + self.trace.command.len() as u64;
+        let total = self.simulated.get() + self.per_simulation();
         work(total)?;
         self.simulated.set(total);
         let a = with(self.initial, p);
@@ -394,22 +401,26 @@ mod tests {
         };
         let limit = crate::budget::MAX_IDENTIFY_SAMPLES as u64;
         let p = [a.j.ln(), a.c.ln(), a.kvp.ln(), a.kpp.ln()];
-        let problem = |done: u64| Problem {
-            initial: &a,
-            trace: &trace,
-            lag: 1e-4,
-            tq: None,
-            free: vec![1, 2, 3],
-            simulated: std::cell::Cell::new(done),
-        };
-        let at = problem(limit - 20);
-        assert_eq!(at.residuals(&p).unwrap().len(), 20);
-        assert_eq!(at.simulated.get(), limit);
-        let over = problem(limit - 19);
-        match over.residuals(&p) {
-            Err(IdentifyError::Budget(b)) => assert_eq!(b.amount, limit + 1),
-            other => panic!("{other:?}"),
+        let torque = vec![1.0; 20];
+        // a torque trace counts each simulation twice (40 here)
+        for (tq, per) in [(None, 20), (Some((&torque, 1.0)), 40)] {
+            let problem = |done: u64| Problem {
+                initial: &a,
+                trace: &trace,
+                lag: 1e-4,
+                tq,
+                free: vec![1, 2, 3],
+                simulated: std::cell::Cell::new(done),
+            };
+            let at = problem(limit - per);
+            assert_eq!(at.residuals(&p).unwrap().len() as u64, per);
+            assert_eq!(at.simulated.get(), limit);
+            let over = problem(limit - per + 1);
+            match over.residuals(&p) {
+                Err(IdentifyError::Budget(b)) => assert_eq!(b.amount, limit + 1),
+                other => panic!("{other:?}"),
+            }
+            assert_eq!(over.simulated.get(), limit - per + 1);
         }
-        assert_eq!(over.simulated.get(), limit - 19);
     }
 }

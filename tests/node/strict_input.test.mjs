@@ -490,8 +490,8 @@ test('item 3: each of the issue\'s calls is refused before the work, naming its 
     // tests/servo_identify.rs: from JS a trace within the 8 M-value argument
     // budget meets it only after seconds of fitting)
     // compensateNc5: lines before reading, moves (cycles expanded) before solving
-    [() => mt.compensateNc5('G1 X1 F100' + '\n'.repeat(200_001), { machine: 'pocketnc-v2-10', errors: {} }), /^compensateNc5: program: 200001 lines, more than the limit of 200000/],
-    [() => mt.compensateNc5(g81(99_990), { machine: 'pocketnc-v2-10', errors: {} }), /^compensateNc5: program: 399963 moves \(canned cycles and subprogram calls expanded\), more than the limit of 100000/],
+    [() => mt.compensateNc5('G1 X1 F100' + '\n'.repeat(100_001), { machine: 'pocketnc-v2-10', errors: {} }), /^compensateNc5: program: 100001 lines, more than the limit of 100000/],
+    [() => mt.compensateNc5(g81(99_990), { machine: 'pocketnc-v2-10', errors: {} }), /^compensateNc5: program: 399963 moves \(canned cycles and subprogram calls expanded\), more than the limit of 50000/],
   ];
   for (const [f, want] of cases) {
     const t = performance.now();

@@ -144,6 +144,32 @@ pub struct Nc5Config {
     pub feed_drive: Option<crate::servo::pid::PidDrive>,
 }
 
+impl Nc5Config {
+    /// The plainest configuration for `machine`: no known errors, a tool
+    /// length of 0, no Monte-Carlo machine, no cutting force, every axis
+    /// compensated, ideal feed drives.
+    ///
+    /// # Examples
+    /// ```
+    /// use mtmotion::compensate::nc5::{compensate_nc5, Nc5Config};
+    /// use mtmotion::machine::MachineRef;
+    /// let cfg = Nc5Config::new(MachineRef::Name("trunnion-ac".into()));
+    /// let r = compensate_nc5("G90\nG1 X10 Y5 Z3 A10 C20 F500\n", &cfg).unwrap();
+    /// assert!(r.before.std_mm.iter().all(|s| s.abs() < 1e-12)); // no errors, nothing to correct
+    /// ```
+    pub fn new(machine: MachineRef) -> Self {
+        Self {
+            machine,
+            errors: GeometricErrors::default(),
+            tool_length: 0.0,
+            monte_carlo: None,
+            cutting: None,
+            compensate_axes: None,
+            feed_drive: None,
+        }
+    }
+}
+
 /// Mean and standard deviation of the errors at the evaluation points.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase")]
