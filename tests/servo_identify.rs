@@ -175,16 +175,18 @@ fn a_trace_over_the_work_budget_is_refused_before_the_fit() {
         torque: None,
     };
     let with_torque = MeasuredTrace {
-        torque: Some(vec![1.0; 2_500_001]),
-        command: vec![0.0; 2_500_001],
-        position: vec![1e-3; 2_500_001],
+        torque: Some(vec![1.0; 3_000_001]),
+        command: vec![0.0; 3_000_001],
+        position: vec![1e-3; 3_000_001],
         ..tr.clone()
     };
-    // twice per simulation with torque, and J is fitted too: × 2 × (4 + 2)
+    // twice per simulation with torque, and J is fitted too: × 2 × (4 + 2),
+    // refused before the fit (a refusal during it would come at the fifth
+    // simulation and name 30000010)
     assert!(identify_axis(&a, &with_torque)
         .unwrap_err()
         .to_string()
-        .starts_with("axis identification: the fit's simulations: 30000012 samples "));
+        .starts_with("axis identification: the fit's simulations: 36000012 samples "));
     assert_eq!(
         identify_axis(&a, &tr).unwrap_err().to_string(),
         "axis identification: the fit's simulations: 30000005 samples (trace samples × simulations, twice with a torque trace), more than the limit of 30000000; give a shorter trace (a few seconds of a step or a ramp identify the axis) or an initial guess nearer the axis"

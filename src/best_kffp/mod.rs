@@ -225,8 +225,7 @@ impl Baseline {
     ) -> Result<Self, FeedVectorError> {
         let n = feed_vector::samples(axes, cond)?;
         let dt = cond.step();
-        let pad = feed_vector::read_ahead_pad(axes, dt);
-        let full = feed_vector::command::sample(n + pad, dt, cond.rw, cond.omega, cond.accel_time);
+        let full = feed_vector::padded_command(axes, cond, n);
         let (cmd, [x, y, c]) = feed_vector::simulate_test(axes, cond, n)?;
         let t_ss = feed_vector::steady_from(axes, cond);
         let summary = feed_vector::assemble(cmd.clone(), x, y, c.clone(), cond, t_ss).summary;
