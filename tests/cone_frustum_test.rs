@@ -340,10 +340,15 @@ fn pitch_harmonics_count_in_the_servo_budget() {
     // the harmonics alone (98 × the steps) are not
     let mut c49 = plain.clone();
     for k in ["a", "c"] {
-        c49.drives.pitch_error.insert(k.into(), harmonics[..49].to_vec());
+        c49.drives
+            .pitch_error
+            .insert(k.into(), harmonics[..49].to_vec());
     }
     let e = cone_frustum_test(&c49).unwrap_err().to_string();
-    assert!(e.contains(" terms (1 ms steps × (1 + pitch-error harmonics)"), "{e}");
+    assert!(
+        e.contains(" terms (1 ms steps × (1 + pitch-error harmonics)"),
+        "{e}"
+    );
     let fast = |mut c: ConeFrustumConfig| {
         c.feed = 1000.0;
         cone_frustum_test(&c).unwrap().deviation
