@@ -213,6 +213,26 @@ pub const MAX_SATURATION_STEPS: usize = 50_000_000;
 /// (8 M samples with 64 harmonics took 22 s; 8 M samples alone 0.9 s).
 pub const MAX_AXIS_SIM_TERMS: usize = 100_000_000;
 
+/// Most simulated samples of one axis identification (`identifyAxis`):
+/// the trace's samples × the fit's simulations so far (one per trial, one
+/// more per free parameter where a trial is accepted), counted as the fit
+/// runs; the fit is refused when the next simulation would pass it. A
+/// 1 M-sample trace fitted in 5 iterations (about 25 simulations) in 2.4 s;
+/// the fit may take up to 600 iterations. At 50 M a 4 M-sample trace was
+/// refused after 3.7-6.4 s of simulations.
+pub const MAX_IDENTIFY_SAMPLES: usize = 30_000_000;
+
+/// Most moves of one 5-axis compensation (`compensateNc5`): each G0/G1 end
+/// point is solved and written out (canned cycles and subprogram calls
+/// expanded), then the written program is read back and evaluated.
+/// 100,000 moves took 4.0 s at load 5 and 8.8 s at load 11 (243 MiB of
+/// wasm memory), 200,000 moves 10.3 s and 481 MiB.
+pub const MAX_NC5_MOVES: usize = 50_000;
+
+/// Most lines of a program given to `compensateNc5`, checked before it is
+/// read (the program and its compensated copy are both parsed).
+pub const MAX_NC5_LINES: usize = 100_000;
+
 /// Most work of one circular test's cyclic-error search: pitches on its
 /// grid (about 2π·R₀ per mm of bar length R₀) × the trace's points merged
 /// by angle (at most 18,000 bins): R₀ = 10 m with 2 × 10⁵ points was

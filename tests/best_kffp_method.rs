@@ -91,3 +91,35 @@ fn bad_options_are_named() {
         .to_string();
     assert!(e.contains("axis x") && e.contains("no K_FFP"), "{e}");
 }
+
+/// The search and the `after` check reuse the one C response of `before`
+/// (C keeps its K_FFP): `before` and `after` are bit for bit the
+/// feed-vector tests of the set and of the returned K_FFP, each simulated
+/// on its own (with pitch error on C, whose harmonics made each C run the
+/// costly part; and with the simulated method's search).
+#[test]
+fn before_and_after_equal_their_own_feed_vector_tests() {
+    let mut m = machine::preset("nmv5000").unwrap();
+    m.axes.get_mut("c").unwrap().pitch_error = (1..=3)
+        .map(|n| mtmotion::servo::WormHarmonic {
+            n: n as f64,
+            w: 2e-6,
+            phi: 0.1 * n as f64,
+        })
+        .collect();
+    for (omega, method) in [(PI, Method::Analytic), (3.2 * PI, Method::Simulated)] {
+        let cond = Condition::paper(omega);
+        let opts = Options {
+            method,
+            ..Options::default()
+        };
+        let r = best_kffp(&m, &cond, &opts).unwrap();
+        assert_eq!(r.before, feed_vector_test(&m, &cond).unwrap().summary);
+        let after = Condition {
+            kffp: Some(r.kffp),
+            ..cond.clone()
+        };
+        assert_eq!(r.after, feed_vector_test(&m, &after).unwrap().summary);
+        assert_ne!(r.after, r.before);
+    }
+}

@@ -298,3 +298,61 @@ fn without_sensitivities_the_readings_are_unchanged() {
     assert_eq!(a.axes, b.axes);
     assert_eq!(a.max_deviation.to_bits(), b.max_deviation.to_bits());
 }
+
+/// The servo simulation's budget counts each worm-gear pitch-error
+/// harmonic as one term per step (issue 29: 64 harmonics on A and C at
+/// just under the 5 M-step budget took 5.2-7.9 s in wasm): at feed 40
+/// mm/min on the trunnion (about 1 M steps per axis) 64 harmonics on A and
+/// C, from the drive errors or from the machine's own axes, are refused
+/// before any step, naming the terms; at feed 1000 mm/min the same
+/// harmonics run, and change the reading.
+#[test]
+fn pitch_harmonics_count_in_the_servo_budget() {
+    let harmonics: Vec<mtmotion::servo::WormHarmonic> = (1..=64)
+        .map(|n| mtmotion::servo::WormHarmonic {
+            n: n as f64,
+            w: 1e-6,
+            phi: 0.0,
+        })
+        .collect();
+    let mut c = cfg("trunnion-ac", 15.0, 10.0, Method::Perpendicular);
+    (c.ideal_servo, c.points, c.feed) = (false, 200, 40.0);
+    let plain = c.clone();
+    for k in ["a", "c"] {
+        c.drives.pitch_error.insert(k.into(), harmonics.clone());
+    }
+    let mut m = mtmotion::machine::preset("trunnion-ac").unwrap();
+    for k in ["a", "c"] {
+        m.axes.get_mut(k).unwrap().pitch_error = harmonics.clone();
+    }
+    let mut own = plain.clone();
+    own.machine = MachineRef::Spec(Box::new(m));
+    for c in [&c, &own] {
+        let e = cone_frustum_test(c).unwrap_err().to_string();
+        assert!(
+            e.contains("servo simulation: 1")
+                && e.ends_with(" terms (1 ms steps × (1 + pitch-error harmonics), over the axes), more than the limit of 100000000; raise the feed or give fewer pitch-error harmonics"),
+            "{e}"
+        );
+    }
+    // each axis's own step counts too: 49 harmonics on A and C are
+    // (5 + 2 × 49) × the steps of one axis, just over the limit, although
+    // the harmonics alone (98 × the steps) are not
+    let mut c49 = plain.clone();
+    for k in ["a", "c"] {
+        c49.drives
+            .pitch_error
+            .insert(k.into(), harmonics[..49].to_vec());
+    }
+    let e = cone_frustum_test(&c49).unwrap_err().to_string();
+    assert!(
+        e.contains(" terms (1 ms steps × (1 + pitch-error harmonics)"),
+        "{e}"
+    );
+    let fast = |mut c: ConeFrustumConfig| {
+        c.feed = 1000.0;
+        cone_frustum_test(&c).unwrap().deviation
+    };
+    let (with, without) = (fast(own), fast(plain));
+    assert!(with.iter().zip(&without).any(|(a, b)| (a - b).abs() > 1e-7));
+}

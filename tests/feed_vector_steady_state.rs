@@ -80,3 +80,48 @@ fn paper_condition_series_are_consistent() {
     assert!((s.t[n - 1] - (r.summary.steady_from + 4.0)).abs() < 3e-3);
     assert_eq!(r.summary.periods, 2);
 }
+
+/// The whole test's work: samples × (1 + pitch-error harmonics) over X, Y
+/// and C (each harmonic one `sin` per sample) is within one budget. With 64
+/// harmonics on all three axes (X and Y declared rotary) 999 s at 1 ms is
+/// refused before any step, naming the terms; 64 on C alone, or 64 on each
+/// over a shorter test, are within it.
+#[test]
+fn pitch_harmonics_count_in_the_tests_work_budget() {
+    let mut m = machine::preset("nmv5000").unwrap();
+    // the count is what matters: 64 copies of one harmonic
+    let one = mtmotion::servo::WormHarmonic {
+        n: 3.0,
+        w: 1e-6,
+        phi: 0.2,
+    };
+    let harmonics = vec![one; 64];
+    for k in ["x", "y", "c"] {
+        let a = m.axes.get_mut(k).unwrap();
+        a.kind = mtmotion::servo::AxisKind::Rotary;
+        a.pitch_error = harmonics.clone();
+    }
+    let long = Condition {
+        duration: Some(999.0),
+        ..Condition::paper(PI)
+    };
+    let e = feed_vector_test(&m, &long).unwrap_err().to_string();
+    assert_eq!(e, "feed-vector test: 194805195 terms (samples × (1 + pitch-error harmonics), over X, Y and C), more than the limit of 100000000; shorten it, raise dt or give fewer pitch-error harmonics");
+    // 512,820 samples × 195 = 99,999,900 terms: within the budget; one more sample is not
+    let samples = mtmotion::feed_vector::samples(
+        &["x", "y", "c"].map(|k| m.axes[k].clone()),
+        &Condition {
+            duration: Some(512.819),
+            ..Condition::paper(PI)
+        },
+    )
+    .unwrap();
+    assert_eq!(samples, 512_820);
+    let over = Condition {
+        duration: Some(512.820),
+        ..Condition::paper(PI)
+    };
+    assert!(
+        mtmotion::feed_vector::samples(&["x", "y", "c"].map(|k| m.axes[k].clone()), &over).is_err()
+    );
+}

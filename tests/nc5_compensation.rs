@@ -65,15 +65,7 @@ fn compensation_cuts_std_by_at_least_80_percent() {
 
 #[test]
 fn zero_errors_leave_the_motion_unchanged() {
-    let cfg = Nc5Config {
-        machine: MachineRef::Name("pocketnc-v2-10".into()),
-        errors: GeometricErrors::default(),
-        tool_length: 0.0,
-        monte_carlo: None,
-        cutting: None,
-        compensate_axes: None,
-        feed_drive: None,
-    };
+    let cfg = Nc5Config::new(MachineRef::Name("pocketnc-v2-10".into()));
     let nc = program();
     let r = compensate_nc5(&nc, &cfg).unwrap();
     let a = mtmotion::nc::program::parse(&nc).unwrap();
@@ -88,15 +80,7 @@ fn zero_errors_leave_the_motion_unchanged() {
 
 #[test]
 fn errors_name_the_line() {
-    let cfg = Nc5Config {
-        machine: MachineRef::Name("trunnion-ac".into()),
-        errors: GeometricErrors::default(),
-        tool_length: 0.0,
-        monte_carlo: None,
-        cutting: None,
-        compensate_axes: None,
-        feed_drive: None,
-    };
+    let cfg = Nc5Config::new(MachineRef::Name("trunnion-ac".into()));
     let e = compensate_nc5("G90\nG1 X1 F100\nG2 X2 Y1 R1\n", &cfg)
         .unwrap_err()
         .to_string();
@@ -217,4 +201,44 @@ fn pid_feed_drives_in_the_s_shape_simulation() {
         none.before, none.after, paper.before, paper.after, paper.total_reduction_percent
     );
     assert!(paper.after.std_mm[0] > 10.0 * none.after.std_mm[0]);
+}
+
+/// The compensation's work budget (budget::MAX_NC5_LINES, MAX_NC5_MOVES):
+/// a program over 100,000 lines is refused before it is read, and one over
+/// 50,000 moves after reading, before any move is solved; the message
+/// names the budget and what to do. A G81 cycle counts the moves it
+/// expands to (item 11 of issue 29: a 99,992-line G81 program was refused
+/// as "line 1, column 1: program: 399963 lines" after 4 s).
+#[test]
+fn programs_over_the_work_budget_are_refused_by_name() {
+    let cfg = Nc5Config::new(MachineRef::Name("trunnion-ac".into()));
+    let lines = format!("G1 X1 F100\n{}", "\n".repeat(100_000));
+    assert_eq!(
+        compensate_nc5(&lines, &cfg).unwrap_err().to_string(),
+        "compensateNc5: program: 100001 lines, more than the limit of 100000; compensate the program in parts"
+    );
+    // 12,500 holes of a G81 cycle: 4h + 3 moves (the first G0; the G81
+    // block's own hole and the first listed one, both at X0 Y0, 3 each; 4
+    // for each other hole: over, to R, to the bottom, the retract)
+    let holes: String = (0..12_500)
+        .map(|i| format!("X{} Y{}\n", i % 100, i / 100))
+        .collect();
+    let g81 = format!("G90 G21 G0 X0 Y0 Z10\nG81 Z-1 R1 F100\n{holes}G80\n");
+    let e = compensate_nc5(&g81, &cfg).unwrap_err().to_string();
+    assert!(
+        e.starts_with("compensateNc5: program: 50003 moves")
+            && e.ends_with(" moves (canned cycles and subprogram calls expanded), more than the limit of 50000; compensate the program in parts"),
+        "{e}"
+    );
+    // just under both budgets the same program is read: 12,499 holes (49,999 moves)
+    let holes: String = (0..12_499)
+        .map(|i| format!("X{} Y{}\n", i % 100, i / 100))
+        .collect();
+    let e = compensate_nc5(
+        &format!("G90 G21 G0 X0 Y0 Z10\nG81 Z-1 R1 F100\n{holes}G80\nG91 G2 X1 Y1 R1\n"),
+        &cfg,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("arcs (G2/G3) are not supported"), "{e}");
 }

@@ -14,7 +14,6 @@ use std::time::Instant;
 
 use mtmotion::compensate::nc5::{compensate_nc5, Nc5Config};
 use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
-use mtmotion::kinematics::errors::GeometricErrors;
 use mtmotion::machine::MachineRef;
 use mtmotion::nc::macro_expr::MAX_EXPR_DEPTH;
 use mtmotion::nc::program::{parse, parse_all, ParseOptions, Program};
@@ -110,15 +109,7 @@ fn assert_depth_error(e: &NcError, form: &Form, via: &str) {
 }
 
 fn nc5_config() -> Nc5Config {
-    Nc5Config {
-        machine: MachineRef::Name("pocketnc-v2-10".into()),
-        errors: GeometricErrors::default(),
-        tool_length: 0.0,
-        monte_carlo: None,
-        cutting: None,
-        compensate_axes: None,
-        feed_drive: None,
-    }
+    Nc5Config::new(MachineRef::Name("pocketnc-v2-10".into()))
 }
 
 #[test]

@@ -134,3 +134,61 @@ fn bad_traces_are_named() {
         .to_string()
         .contains("initial.c"));
 }
+
+/// An initial guess so far off that a trial step leaves a parameter's
+/// range (issue 29 item 11: j = 1e-9 gave "`kpp` = 10000: must be between
+/// 1e-3 and 1e4", a parameter the caller did not set, printed with a value
+/// that looked inside its range) is said as the fit's doing: which
+/// parameter the trial took out of which range, and the initial guess.
+#[test]
+fn a_trial_out_of_range_names_the_range_not_a_rounded_value() {
+    let truth = machine::preset("nmv5000").unwrap().axes["x"].clone();
+    let command: Vec<f64> = (0..2000).map(|i| 0.05 * (i as f64 / 50.0).sin()).collect();
+    let position = simulate_axis(&truth, 1e-3, &command).unwrap().position;
+    let tr = MeasuredTrace {
+        dt: 1e-3,
+        command,
+        position,
+        torque: None,
+    };
+    let e = identify_axis(&AxisParams { j: 1e-9, ..truth }, &tr)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("the fit left the physical range from this initial guess (j = 1e-9, c = ")
+            && e.ends_with("): a trial step took `kpp` out of its range (must be between 1e-3 and 1e4 1/s); start from values nearer the axis"),
+        "{e}"
+    );
+}
+
+/// The fit's simulations are within a work budget (30 M samples): a trace whose first
+/// trial and Jacobian alone (samples × (free parameters + 2)) are over it
+/// is refused before any simulation, naming it.
+#[test]
+fn a_trace_over_the_work_budget_is_refused_before_the_fit() {
+    let a = machine::preset("nmv5000").unwrap().axes["x"].clone();
+    let n = 6_000_001; // × (3 + 2) simulations > 30,000,000 samples
+    let tr = MeasuredTrace {
+        dt: 1e-3,
+        command: vec![0.0; n],
+        position: vec![1e-3; n],
+        torque: None,
+    };
+    let with_torque = MeasuredTrace {
+        torque: Some(vec![1.0; 3_000_001]),
+        command: vec![0.0; 3_000_001],
+        position: vec![1e-3; 3_000_001],
+        ..tr.clone()
+    };
+    // twice per simulation with torque, and J is fitted too: × 2 × (4 + 2),
+    // refused before the fit (a refusal during it would come at the fifth
+    // simulation and name 30000010)
+    assert!(identify_axis(&a, &with_torque)
+        .unwrap_err()
+        .to_string()
+        .starts_with("axis identification: the fit's simulations: 36000012 samples "));
+    assert_eq!(
+        identify_axis(&a, &tr).unwrap_err().to_string(),
+        "axis identification: the fit's simulations: 30000005 samples (trace samples × simulations, twice with a torque trace), more than the limit of 30000000; give a shorter trace (a few seconds of a step or a ramp identify the axis) or an initial guess nearer the axis"
+    );
+}

@@ -34,7 +34,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{matched_set, BestKffpError, Method, Options};
+use super::{matched_set, Baseline, BestKffpError, Method, Options};
 use crate::feed_vector::{self, Condition, FeedVectorResult, KffpSet, Summary};
 use crate::machine::Machine;
 use crate::servo::identify::{identify_axis, MeasuredTrace};
@@ -178,9 +178,10 @@ pub fn best_kffp_from_trace(
         model.axes.insert(a.axis.clone(), a.params.clone());
     }
     let machine = &model;
-    let model_before = feed_vector::feed_vector_test(machine, cond)?.summary;
-    let mismatch = measured.mean_angle_diff - model_before.mean_angle_diff;
     let axes = feed_vector::axes_for(machine, cond)?;
+    let base = Baseline::simulate(&axes, cond)?;
+    let model_before = base.summary;
+    let mismatch = measured.mean_angle_diff - model_before.mean_angle_diff;
     let c = &axes[2];
     let alpha = crate::servo::response::alpha_th(c, cond.omega)
         .map_err(|source| BestKffpError::Servo { axis: "c", source })?;
@@ -190,7 +191,7 @@ pub fn best_kffp_from_trace(
         m => m,
     };
     let (kffp, model_after) = matched_set(
-        machine,
+        &base,
         cond,
         &axes,
         alpha + mismatch,

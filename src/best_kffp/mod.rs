@@ -156,7 +156,8 @@ pub fn best_kffp(
     check_options(opts)?;
     cond.validate()?;
     let axes = feed_vector::axes_for(machine, cond)?;
-    let before = feed_vector::feed_vector_test(machine, cond)?.summary;
+    let base = Baseline::simulate(&axes, cond)?;
+    let before = base.summary;
     let [x, y, c] = &axes;
     let alpha = crate::servo::response::alpha_th(c, cond.omega)
         .map_err(|source| BestKffpError::Servo { axis: "c", source })?;
@@ -165,7 +166,7 @@ pub fn best_kffp(
         Method::Auto => Method::Analytic,
         m => m,
     };
-    let (kffp, after) = matched_set(machine, cond, &axes, alpha, 0.0, method, opts)?;
+    let (kffp, after) = matched_set(&base, cond, &axes, alpha, 0.0, method, opts)?;
     let (kx, ky) = (kffp.x, kffp.y);
     let residual = |a: &crate::servo::AxisParams, k: f64, name: &'static str| {
         let mut a = a.clone();
@@ -197,13 +198,71 @@ fn check_options(opts: &Options) -> Result<(), BestKffpError> {
     })
 }
 
+/// One simulation of the feed-vector test with the set K_FFP: its summary
+/// (`before`), and the padded command and C response that the simulated
+/// search and the `after` check reuse. C keeps its set K_FFP, so its
+/// response is the same in every run (bit for bit): it is simulated once,
+/// not three times (with 64 pitch-error harmonics on C each C run was
+/// about 2.3 s of a 9 s call).
+pub(crate) struct Baseline {
+    n: usize,
+    t_ss: f64,
+    dt: f64,
+    /// The command padded for the Pre-Control read-ahead.
+    full: feed_vector::command::Command,
+    /// The command cut to `n` samples.
+    cmd: feed_vector::command::Command,
+    c: crate::servo::simulate::AxisResponse,
+    /// The test's summary with the axes' own K_FFP.
+    pub summary: Summary,
+}
+
+impl Baseline {
+    /// Simulates the test on `axes` (as [`feed_vector::feed_vector_test`]).
+    pub(crate) fn simulate(
+        axes: &[crate::servo::AxisParams; 3],
+        cond: &Condition,
+    ) -> Result<Self, FeedVectorError> {
+        let n = feed_vector::samples(axes, cond)?;
+        let dt = cond.step();
+        let full = feed_vector::padded_command(axes, cond, n);
+        let (cmd, [x, y, c]) = feed_vector::simulate_test(axes, cond, n)?;
+        let t_ss = feed_vector::steady_from(axes, cond);
+        let summary = feed_vector::assemble(cmd.clone(), x, y, c.clone(), cond, t_ss).summary;
+        Ok(Self {
+            n,
+            t_ss,
+            dt,
+            full,
+            cmd,
+            c,
+            summary,
+        })
+    }
+
+    /// The test's summary with X and Y replaced by `x` and `y`.
+    fn with_xy(
+        &self,
+        x: &crate::servo::AxisParams,
+        y: &crate::servo::AxisParams,
+        cond: &Condition,
+    ) -> Result<Summary, FeedVectorError> {
+        let xr = feed_vector::run_axis("x", x, self.dt, &self.full.x, self.n)?;
+        let yr = feed_vector::run_axis("y", y, self.dt, &self.full.y, self.n)?;
+        Ok(
+            feed_vector::assemble(self.cmd.clone(), xr, yr, self.c.clone(), cond, self.t_ss)
+                .summary,
+        )
+    }
+}
+
 /// The K_FFP set whose X and Y lags on the model equal `lag` (rad; C
 /// keeps its K_FFP), and, with the simulated method, shifted in common
 /// until the saturating simulation's mean α − β is `sim_target` (rad);
 /// with the model's simulated summary for that set.
 #[allow(clippy::too_many_arguments)]
-fn matched_set(
-    machine: &Machine,
+pub(crate) fn matched_set(
+    base: &Baseline,
     cond: &Condition,
     axes: &[crate::servo::AxisParams; 3],
     lag: f64,
@@ -215,7 +274,7 @@ fn matched_set(
     let mut kx = analytic::match_lag(x, cond.omega, lag, opts.k_min, opts.k_max, "x")?;
     let mut ky = analytic::match_lag(y, cond.omega, lag, opts.k_min, opts.k_max, "y")?;
     if method == Method::Simulated {
-        let shift = simulated_shift_to(axes, cond, kx, ky, sim_target, opts)?;
+        let shift = simulated_shift_to(base, axes, cond, kx, ky, sim_target, opts)?;
         kx += shift;
         ky += shift;
     }
@@ -224,17 +283,17 @@ fn matched_set(
         y: ky,
         c: c.kffp,
     };
-    let after_cond = Condition {
-        kffp: Some(kffp),
-        ..cond.clone()
-    };
-    let after = feed_vector::feed_vector_test(machine, &after_cond)?.summary;
+    let (mut xa, mut ya) = (x.clone(), y.clone());
+    xa.kffp = kx;
+    ya.kffp = ky;
+    let after = base.with_xy(&xa, &ya, cond)?;
     Ok((kffp, after))
 }
 
 /// The common K_FFP shift of X and Y that brings the simulated mean α − β
 /// to `target` rad.
 fn simulated_shift_to(
+    base: &Baseline,
     axes: &[crate::servo::AxisParams; 3],
     cond: &Condition,
     kx: f64,
@@ -242,26 +301,14 @@ fn simulated_shift_to(
     target: f64,
     opts: &Options,
 ) -> Result<f64, BestKffpError> {
-    let n = feed_vector::samples(axes, cond)?;
-    let t_ss = feed_vector::steady_from(axes, cond);
-    let (cmd, [_, _, c_resp]) = feed_vector::simulate_test(axes, cond, n)?;
-    let dt = cond.step();
-    let pad = feed_vector::read_ahead_pad(axes, dt);
-    let full = feed_vector::command::sample(n + pad, dt, cond.rw, cond.omega, cond.accel_time);
     let failure: std::cell::RefCell<Option<FeedVectorError>> = std::cell::RefCell::new(None);
     let mut eval = |delta: f64| -> f64 {
         let mut x = axes[0].clone();
         let mut y = axes[1].clone();
         x.kffp = kx + delta;
         y.kffp = ky + delta;
-        let run = || -> Result<f64, FeedVectorError> {
-            let xr = feed_vector::run_axis("x", &x, dt, &full.x, n)?;
-            let yr = feed_vector::run_axis("y", &y, dt, &full.y, n)?;
-            let r = feed_vector::assemble(cmd.clone(), xr, yr, c_resp.clone(), cond, t_ss);
-            Ok(r.summary.mean_angle_diff - target)
-        };
-        match run() {
-            Ok(v) => v,
+        match base.with_xy(&x, &y, cond) {
+            Ok(s) => s.mean_angle_diff - target,
             Err(e) => {
                 *failure.borrow_mut() = Some(e);
                 f64::NAN

@@ -245,6 +245,23 @@ pub fn cone_frustum_test(cfg: &ConeFrustumConfig) -> Result<ConeFrustumResult, C
             "steps (1 ms steps of the whole revolution × axes)",
             "raise the feed (a revolution at 1 mm/min takes hours) or set idealServo: true",
         )?;
+        // each worm-gear pitch-error harmonic is one `sin` per step, as in
+        // `simulateAxis` (64 on A and C at 5 M steps took 5.2-7.9 s)
+        let harmonics = |k: &usize| {
+            machine.axes.get(AXES[*k]).map_or(0, |p| {
+                cfg.drives.applied_to(AXES[*k], p.clone()).pitch_error.len() as u64
+            })
+        };
+        crate::budget::check(
+            "servo simulation",
+            present
+                .iter()
+                .map(|k| per_axis.saturating_mul(1 + harmonics(k)))
+                .fold(0u64, u64::saturating_add),
+            crate::budget::MAX_AXIS_SIM_TERMS,
+            "terms (1 ms steps × (1 + pitch-error harmonics), over the axes)",
+            "raise the feed or give fewer pitch-error harmonics",
+        )?;
     }
     let cmd = commands(cfg, &chain, &machine, &geo, &s)?;
     let (q_act, series) = drive_axes(cfg, &machine, &cmd.q, &present, &s)?;

@@ -313,6 +313,14 @@ pub fn samples(axes: &[AxisParams; 3], cond: &Condition) -> Result<usize, FeedVe
             &format!("gives {n} samples at dt = {dt} s; at most {MAX_SAMPLES} are allowed — shorten it or raise dt"),
         ));
     }
+    // the whole test: each pitch-error harmonic is one `sin` per sample
+    crate::budget::check(
+        "feed-vector test",
+        (n as u64).saturating_mul(axes.iter().map(|a| 1 + a.pitch_error.len() as u64).sum()),
+        crate::budget::MAX_AXIS_SIM_TERMS,
+        "terms (samples × (1 + pitch-error harmonics), over X, Y and C)",
+        "shorten it, raise dt or give fewer pitch-error harmonics",
+    )?;
     Ok(n as usize)
 }
 
@@ -354,6 +362,23 @@ pub(crate) fn run_axis(
     Ok(r)
 }
 
+/// The command of a test with `n` samples, padded for the Pre-Control
+/// read-ahead ([`read_ahead_pad`]).
+pub(crate) fn padded_command(
+    axes: &[AxisParams; 3],
+    cond: &Condition,
+    n: usize,
+) -> command::Command {
+    let dt = cond.step();
+    command::sample(
+        n + read_ahead_pad(axes, dt),
+        dt,
+        cond.rw,
+        cond.omega,
+        cond.accel_time,
+    )
+}
+
 /// The padded command of a test with `n` samples, and the three responses.
 pub(crate) fn simulate_test(
     axes: &[AxisParams; 3],
@@ -361,8 +386,7 @@ pub(crate) fn simulate_test(
     n: usize,
 ) -> Result<(command::Command, [AxisResponse; 3]), FeedVectorError> {
     let dt = cond.step();
-    let pad = read_ahead_pad(axes, dt);
-    let mut cmd = command::sample(n + pad, dt, cond.rw, cond.omega, cond.accel_time);
+    let mut cmd = padded_command(axes, cond, n);
     let x = run_axis("x", &axes[0], dt, &cmd.x, n)?;
     let y = run_axis("y", &axes[1], dt, &cmd.y, n)?;
     let c = run_axis("c", &axes[2], dt, &cmd.theta, n)?;

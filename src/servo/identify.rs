@@ -46,14 +46,18 @@ pub enum IdentifyError {
     /// The initial axis is not a valid axis.
     #[error(transparent)]
     Servo(#[from] ServoError),
+    /// The fit's simulations would pass the work budget
+    /// ([`crate::budget::MAX_IDENTIFY_SAMPLES`]).
+    #[error("axis identification: {0}")]
+    Budget(#[from] crate::budget::BudgetError),
     /// The fit's own trial left the physical range (the caller's values
     /// were valid): said as the fit's doing, with the initial guess, not
     /// as a bad parameter the caller never set.
-    #[error("the fit left the physical range from this initial guess (j = {}, c = {}, kvp = {}, kpp = {}): a trial step gave {why}; start from values nearer the axis", crate::numeric::compact(.initial[0]), crate::numeric::compact(.initial[1]), crate::numeric::compact(.initial[2]), crate::numeric::compact(.initial[3]))]
+    #[error("the fit left the physical range from this initial guess (j = {}, c = {}, kvp = {}, kpp = {}): a trial step {why}; start from values nearer the axis", crate::numeric::compact(.initial[0]), crate::numeric::compact(.initial[1]), crate::numeric::compact(.initial[2]), crate::numeric::compact(.initial[3]))]
     FitDiverged {
         /// The initial j, c, kvp, kpp.
         initial: [f64; 4],
-        /// The trial's servo error.
+        /// What the trial step did, e.g. "took `kpp` out of its range (…)".
         why: String,
     },
 }
@@ -206,7 +210,11 @@ pub fn identify_axis(
         } else {
             vec![1, 2, 3]
         },
+        simulated: std::cell::Cell::new(0),
     };
+    // refused before any work when not even the first trial and one
+    // Jacobian (a simulation per free parameter) fit in the budget
+    work(fit_problem.per_simulation() * (fit_problem.free.len() as u64 + 2))?;
     // Levenberg–Marquardt ([`crate::numeric::levenberg_marquardt_lazy`]):
     // a trial costs one simulation, the Jacobian (forward differences, one
     // simulation per free parameter) only where a trial is accepted. J is
@@ -232,7 +240,7 @@ pub fn identify_axis(
     let fit = levenberg_marquardt_lazy(start, cost, normal, |v| v, &opts).map_err(|e| match e {
         IdentifyError::Servo(s) => IdentifyError::FitDiverged {
             initial: [initial.j, initial.c, initial.kvp, initial.kpp],
-            why: s.to_string(),
+            why: trial_error(&s),
         },
         e => e,
     })?;
@@ -250,6 +258,18 @@ pub fn identify_axis(
         rms_torque,
         iterations,
     })
+}
+
+/// What a trial step of the fit ran into, in words. A trial past a
+/// parameter's range is said as such: its value printed with 6 digits
+/// (1e4 + 1e-9 as "10000") looked inside the range it was refused for.
+fn trial_error(e: &ServoError) -> String {
+    match e {
+        ServoError::BadParameter {
+            field, expected, ..
+        } => format!("took `{field}` out of its range ({expected})"),
+        other => format!("gave {other}"),
+    }
 }
 
 /// The initial guess' J, C, Kvp and Kpp must be > 0: the fit works on their logarithms.
@@ -271,6 +291,18 @@ fn check_initial(initial: &AxisParams) -> Result<(), IdentifyError> {
     Ok(())
 }
 
+/// `Ok` while `simulated` samples are within the identification's work
+/// budget.
+fn work(simulated: u64) -> Result<(), crate::budget::BudgetError> {
+    crate::budget::check(
+        "the fit's simulations",
+        simulated,
+        crate::budget::MAX_IDENTIFY_SAMPLES,
+        "samples (trace samples × simulations, twice with a torque trace)",
+        "give a shorter trace (a few seconds of a step or a ramp identify the axis) or an initial guess nearer the axis",
+    )
+}
+
 /// Sum of squares.
 fn sq(r: &[f64]) -> f64 {
     r.iter().map(|x| x * x).sum::<f64>()
@@ -286,10 +318,23 @@ struct Problem<'a> {
     tq: Option<(&'a Vec<f64>, f64)>,
     /// The parameters fitted (J only with a torque trace).
     free: Vec<usize>,
+    /// Samples simulated so far ([`crate::budget::MAX_IDENTIFY_SAMPLES`]).
+    simulated: std::cell::Cell<u64>,
 }
 
 impl Problem<'_> {
+    /// What one simulation costs against the budget: the trace's samples,
+    /// twice with a torque trace (its residuals and Jacobian columns are
+    /// twice as long: a 2.67 M-sample trace with torque took 10.5 s to
+    /// reach 30 M samples counted once, one without torque 5.8 s).
+    fn per_simulation(&self) -> u64 {
+        self.trace.command.len() as u64 * if self.tq.is_some() { 2 } else { 1 }
+    }
+
     fn residuals(&self, p: &[f64; 4]) -> Result<Vec<f64>, IdentifyError> {
+        let total = self.simulated.get() + self.per_simulation();
+        work(total)?;
+        self.simulated.set(total);
         let a = with(self.initial, p);
         let r = simulate_axis(&a, self.trace.dt, &self.trace.command)?;
         let mut out: Vec<f64> = r
@@ -334,5 +379,48 @@ impl Problem<'_> {
             jtr,
             cost: sq(&r),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The running budget: each simulation of the fit adds the trace's
+    /// samples, and the one that would pass the limit is refused by name.
+    #[test]
+    fn the_fits_simulations_are_counted_against_the_budget() {
+        let a = crate::machine::preset("nmv5000").unwrap().axes["x"].clone();
+        let command: Vec<f64> = (0..20).map(|i| i as f64 * 1e-3).collect();
+        let position = command.iter().map(|c| c - 1e-4).collect();
+        let trace = MeasuredTrace {
+            dt: 1e-3,
+            command,
+            position,
+            torque: None,
+        };
+        let limit = crate::budget::MAX_IDENTIFY_SAMPLES as u64;
+        let p = [a.j.ln(), a.c.ln(), a.kvp.ln(), a.kpp.ln()];
+        let torque = vec![1.0; 20];
+        // a torque trace counts each simulation twice (40 here)
+        for (tq, per) in [(None, 20), (Some((&torque, 1.0)), 40)] {
+            let problem = |done: u64| Problem {
+                initial: &a,
+                trace: &trace,
+                lag: 1e-4,
+                tq,
+                free: vec![1, 2, 3],
+                simulated: std::cell::Cell::new(done),
+            };
+            let at = problem(limit - per);
+            assert_eq!(at.residuals(&p).unwrap().len() as u64, per);
+            assert_eq!(at.simulated.get(), limit);
+            let over = problem(limit - per + 1);
+            match over.residuals(&p) {
+                Err(IdentifyError::Budget(b)) => assert_eq!(b.amount, limit + 1),
+                other => panic!("{other:?}"),
+            }
+            assert_eq!(over.simulated.get(), limit - per + 1);
+        }
     }
 }
