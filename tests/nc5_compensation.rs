@@ -91,6 +91,33 @@ fn errors_name_the_line() {
     assert!(e.contains("line 2"), "{e}");
 }
 
+/// A macro program is written flat; a spindle speed computed by macro
+/// code cannot be carried into it, so the compensation is refused naming
+/// the line and column (it was written without its `S#1 M3`: the spindle
+/// never started). With the speed literal, the flat program keeps
+/// `S8000 M3`, the work offset and the tool length offset in order.
+#[test]
+fn a_flat_program_keeps_its_spindle_or_is_refused() {
+    let cfg = Nc5Config::new(MachineRef::Name("pocketnc-v2-10".into()));
+    let body = "G0 G43 H4 X10. Y5. Z20. A0 B0\n#2=15.\nG1 X[#2] Y7.5 Z12. A5. B10. F800.\nG1 X22. Y9. Z11. A8. B15.\nM30\n";
+    let e = compensate_nc5(&format!("G21 G90 G56\n#1=8000\nS#1 M3\n{body}"), &cfg)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("written flat") && e.contains("line 3, column 1: its S word is computed"),
+        "{e}"
+    );
+    let r = compensate_nc5(&format!("G21 G90 G56\nS8000 M3\n{body}"), &cfg).unwrap();
+    let lines: Vec<&str> = r.nc.lines().collect();
+    assert_eq!(
+        &lines[..3],
+        ["G21 G90 G94 G17", "G56", "S8000 M3"],
+        "{}",
+        r.nc
+    );
+    assert!(lines[3].starts_with("G43 H4 G0 X10."), "{}", r.nc);
+}
+
 /// thasana §II-D corrects only X, Y, A and B. On the Pocket NC (X Y Z A B)
 /// that leaves Z as programmed: the written program's Z words equal the
 /// original's, the reduction of the X, Y, A, B std stays large, and Z's

@@ -7,9 +7,9 @@
 //! budget, the result reads back, and each program's after/before ratio
 //! is pinned at what was measured (a regression fails). The median ratio
 //! is printed and pinned too: 0.063 over the eight LinuxCNC and CNCjs
-//! programs, 0.258 over ten with the two Fusion 360 programs, which are
-//! not changed at all (ratio 1.000: their sharp-corner dwells would exceed
-//! the time budget); see docs/toolpath.md.
+//! programs, 0.235 over ten with the two Fusion 360 programs; programs
+//! whose error sits on moves they compute are checked to be written flat
+//! (`EXPANDED`), all others not; see docs/toolpath.md.
 //!
 //! The default run takes the small programs; the larger ones run with
 //! `cargo test --release --test reverse_corpus -- --ignored`.
@@ -32,17 +32,19 @@ const SMALL: &[(&str, f64)] = &[
 const LARGE: &[(&str, f64)] = &[
     ("linuxcnc_arcspiral.ngc", 0.418),
     ("linuxcnc_cds.ngc", 0.028),
-    ("linuxcnc_tort.ngc", 0.718),
+    ("linuxcnc_tort.ngc", 0.510),
 ];
-/// Commercial-CAM output (Fusion 360 pockets and contours with tabs):
-/// every region's error is at sharp corners whose dwells would exceed the
-/// +5 % time budget, so nothing is changed (121 and 323 µm kept). The
+/// Commercial-CAM output (Fusion 360 pockets and contours with tabs),
+/// measured 2026-11-27 (corner spikes, the damped step, the budget held
+/// for the dwells): the contour with tabs 323.4 -> 120.5 µm; the wall
+/// tester unchanged at 121.0 µm (its largest error is at the top of a
+/// retract in the air, G1 Z15 then a 0.57 mm G1, where no round helped). The
 /// CAMotics pocket `camotics_botomata_bottom.nc` (5567 s) is not here: at
 /// dt 1 ms it was refused by the work budget before the rounds became
 /// local; it is pinned in `UNREFUSED`, unchanged too.
 const CAM: &[(&str, f64)] = &[
     ("ledfloor_1003.nc", 1.0),
-    ("ledfloor_1112_tab_test_29bit_715_tab_thickness.nc", 1.0),
+    ("ledfloor_1112_tab_test_29bit_715_tab_thickness.nc", 0.373),
 ];
 
 /// The ten programs added to the shared corpus on 2026-11-26 that parse,
@@ -57,9 +59,9 @@ const CAM: &[(&str, f64)] = &[
 const ADDED: &[(&str, f64)] = &[
     ("gcws_FANUC0M.nc", 0.004),
     ("gcws_HAAS.nc", 0.035),
-    ("linuxcnc_Pasta.ngc", 1.0),
+    ("linuxcnc_Pasta.ngc", 0.655),
     ("linuxcnc_rgh.ngc", 1.0),
-    ("ugs_Gates_combined_R12.nc", 1.0),
+    ("ugs_Gates_combined_R12.nc", 0.944),
     ("ugs_arc_rword_test.gcode", 0.023),
     ("ugs_no_spaces.gcode", 0.003),
 ];
@@ -69,7 +71,7 @@ const ADDED: &[(&str, f64)] = &[
 /// medians: the edited Fusion 360 program 534.75 -> 515.25 µm (its one
 /// region changed), LinuxCNC's lathe threading unchanged at 156.90 µm
 /// (1 of 3 regions changed, the largest error is in another).
-const FIELD: &[(&str, f64)] = &[("cncsprayer_fusion-output.nc", 0.964)];
+const FIELD: &[(&str, f64)] = &[("cncsprayer_fusion-output.nc", 0.721)];
 
 /// Programs whose largest error sits on moves they compute, compensated
 /// written flat (`Compensation::expanded`; tA 40 ms, T 15 ms, dt 1 ms):
@@ -118,7 +120,7 @@ const UNCHANGED: &[(&str, &str)] = &[
 const UNREFUSED: &[(&str, f64)] = &[
     ("camotics_botomata_bottom.nc", 1.0),
     ("camotics_cameo.nc", 1.0),
-    ("cncjs_tball-pocket.gcode", 0.940),
+    ("cncjs_tball-pocket.gcode", 0.026),
     ("linuxcnc_mmount.ngc", 1.0),
 ];
 
@@ -259,7 +261,7 @@ fn every_simulating_corpus_program_is_never_worse_median_pinned() {
     r.extend(check(CAM));
     let m = median(r);
     eprintln!("median after/before (10 programs, with the CAM ones): {m:.3}");
-    assert!(m <= 0.265, "median {m:.3} rose above the measured 0.258");
+    assert!(m <= 0.24, "median {m:.3} rose above the measured 0.235");
     check(ADDED);
     check(FIELD);
     check(EXPANDED);

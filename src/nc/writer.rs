@@ -827,57 +827,11 @@ pub fn write_expanded(program: &Program) -> Result<String, String> {
             c.line, c.code
         ));
     }
-    // (letter, text) → (first line, count) of the words a flat program keeps
-    let mut want: BTreeMap<(char, String), (usize, usize)> = BTreeMap::new();
-    for b in &program.blocks {
-        if b.words_of('G').any(|g| g_code(g) == 100) {
-            return Err(format!(
-                "line {}: G10 sets offsets in the source's units",
-                b.line
-            ));
-        }
-        let mut kept = passive_words(program, b);
-        if let Some(Stmt::Block(words, _)) = b.macro_line.as_ref().map(|m| &m.stmt) {
-            for w in words
-                .iter()
-                .filter(|w| matches!(w.letter, 'M' | 'S' | 'T' | 'D' | 'H' | 'G'))
-            {
-                let Some(text) = &w.text else {
-                    return Err(format!(
-                        "line {}, column {}: its {} word is computed by macro code, which a flat program cannot carry",
-                        b.line, w.column, w.letter
-                    ));
-                };
-                kept.push(word(w.letter, text.clone()));
-            }
-        }
-        for w in kept.into_iter().filter(|w| keeps(program, b, w)) {
-            want.entry((w.letter, w.text)).or_insert((b.line, 0)).1 += 1;
-        }
-    }
+    let want = flat_words(program)?;
     let mut out = Out::new(program);
     write_flat(program, &program.segments, &mut out);
     let text = out.lines.join("\n");
-    let back = super::program::parse_with(&text, &program.options)
-        .map_err(|e| format!("written flat it does not read back ({e})"))?;
-    let mut got: BTreeMap<(char, String), usize> = BTreeMap::new();
-    for b in &back.blocks {
-        for w in passive_words(&back, b)
-            .into_iter()
-            .filter(|w| keeps(&back, b, w))
-        {
-            *got.entry((w.letter, w.text)).or_default() += 1;
-        }
-    }
-    if let Some(((letter, t), (line, _))) = want
-        .iter()
-        .find(|(k, (_, n))| got.get(*k).copied().unwrap_or(0) < *n)
-    {
-        return Err(format!(
-            "line {line}: its {letter}{t} is in a subprogram body, a macro line or a block \
-             the run skips, where a flat program would lose it"
-        ));
-    }
+    let back = keeps_all(program, &text, &want)?;
     let moved = |p: &Program| {
         p.segments
             .iter()
@@ -912,6 +866,85 @@ pub fn write_expanded(program: &Program) -> Result<String, String> {
         ));
     }
     Ok(text)
+}
+
+/// [`write`], refusing a program written flat (see [`needs_flat`]) that
+/// would lose a word that moves nothing but matters, as
+/// [`write_expanded`] does (a macro-computed `S#1 M3`, an M8 in a
+/// subprogram body, a G10); the segments may be edited.
+///
+/// # Errors
+/// What would be lost, with its line.
+pub fn write_checked(program: &Program, segments: &[Segment]) -> Result<String, String> {
+    if !needs_flat(program) {
+        return Ok(write(program, segments));
+    }
+    let want = flat_words(program)?;
+    let text = write(program, segments);
+    keeps_all(program, &text, &want)?;
+    Ok(text)
+}
+
+/// (letter, text) → (first line, count) of the words a flat program keeps
+/// ([`keeps`]), from the source; refuses a G10 and such a word computed
+/// by macro code.
+type Kept = BTreeMap<(char, String), (usize, usize)>;
+
+fn flat_words(program: &Program) -> Result<Kept, String> {
+    let mut want = Kept::new();
+    for b in &program.blocks {
+        if b.words_of('G').any(|g| g_code(g) == 100) {
+            return Err(format!(
+                "line {}: G10 sets offsets in the source's units",
+                b.line
+            ));
+        }
+        let mut kept = passive_words(program, b);
+        if let Some(Stmt::Block(words, _)) = b.macro_line.as_ref().map(|m| &m.stmt) {
+            for w in words
+                .iter()
+                .filter(|w| matches!(w.letter, 'M' | 'S' | 'T' | 'D' | 'H' | 'G'))
+            {
+                let Some(text) = &w.text else {
+                    return Err(format!(
+                        "line {}, column {}: its {} word is computed by macro code, which a flat program cannot carry",
+                        b.line, w.column, w.letter
+                    ));
+                };
+                kept.push(word(w.letter, text.clone()));
+            }
+        }
+        for w in kept.into_iter().filter(|w| keeps(program, b, w)) {
+            want.entry((w.letter, w.text)).or_insert((b.line, 0)).1 += 1;
+        }
+    }
+    Ok(want)
+}
+
+/// `text` (`program` written flat) read back, when it holds every word of
+/// `want` as often.
+fn keeps_all(program: &Program, text: &str, want: &Kept) -> Result<Program, String> {
+    let back = super::program::parse_with(text, &program.options)
+        .map_err(|e| format!("written flat it does not read back ({e})"))?;
+    let mut got: BTreeMap<(char, String), usize> = BTreeMap::new();
+    for b in &back.blocks {
+        for w in passive_words(&back, b)
+            .into_iter()
+            .filter(|w| keeps(&back, b, w))
+        {
+            *got.entry((w.letter, w.text)).or_default() += 1;
+        }
+    }
+    if let Some(((letter, t), (line, _))) = want
+        .iter()
+        .find(|(k, (_, n))| got.get(*k).copied().unwrap_or(0) < *n)
+    {
+        return Err(format!(
+            "line {line}: its {letter}{t} is in a subprogram body, a macro line or a block \
+             the run skips, where a flat program would lose it"
+        ));
+    }
+    Ok(back)
 }
 
 /// The words [`write_expanded`] counts: those [`passive_words`] keeps,

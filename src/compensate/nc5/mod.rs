@@ -62,6 +62,11 @@ pub enum Nc5Error {
     /// Machine errors.
     #[error(transparent)]
     Machine(#[from] crate::machine::MachineError),
+    /// The corrected program must be written flat (macro code, a
+    /// subprogram, a cycle) and that would lose a word
+    /// ([`crate::nc::writer::write_checked`]).
+    #[error("NC program: the corrected program is written flat (one block per move), and {0}")]
+    Flat(String),
     /// Something the compensation does not handle.
     #[error("NC program: line {line}: {why}")]
     Unsupported {
@@ -417,7 +422,7 @@ pub fn compensate_nc5(text: &str, cfg: &Nc5Config) -> Result<Nc5Result, Nc5Error
         };
         corrected.push(qc);
     }
-    let nc = write_corrected(&program, &corrected, &axes);
+    let nc = write_corrected(&program, &corrected, &axes)?;
     let after = evaluate_written(&nc, cfg, &eval, &pts)?;
     let (b, a) = (stats(&before), stats(&after));
     let red = |x: f64, y: f64| if x > 0.0 { 100.0 * (1.0 - y / x) } else { 0.0 };
@@ -520,7 +525,11 @@ fn compensated_axes(
 
 /// The program with each G0/G1 end point replaced by its corrected axis
 /// values (axes not compensated keep their programmed value).
-fn write_corrected(program: &Program, corrected: &[[f64; 6]], axes: &[usize]) -> String {
+fn write_corrected(
+    program: &Program,
+    corrected: &[[f64; 6]],
+    axes: &[usize],
+) -> Result<String, Nc5Error> {
     let mut segs = program.segments.clone();
     let mut k = 0;
     let mut last: Option<NcPose> = None;
@@ -544,7 +553,7 @@ fn write_corrected(program: &Program, corrected: &[[f64; 6]], axes: &[usize]) ->
         }
         last = Some(s.end);
     }
-    crate::nc::writer::write(program, &segs)
+    crate::nc::writer::write_checked(program, &segs).map_err(Nc5Error::Flat)
 }
 
 /// The errors of the program as written (read back, so its rounding

@@ -222,7 +222,8 @@ mod tests {
         assert!(!rapid_between(o, &rg, 0, 9), "no such region");
         // Two regions parted by a fixed move (a subprogram body) and a
         // dwell, no rapid: not stopped between.
-        let p = parse("G0 X0 Y0\nG1 X5 F600\nM98 P100\nG4 P0.1\nG1 X9 Y2\nM30\nO100\nG1 X6\nM99").unwrap();
+        let p = parse("G0 X0 Y0\nG1 X5 F600\nM98 P100\nG4 P0.1\nG1 X9 Y2\nM30\nO100\nG1 X6\nM99")
+            .unwrap();
         let rg = regions_in(&p, &|_| true);
         assert_eq!(rg.members.len(), 2, "{:?}", rg.members);
         assert!(!rapid_between(&p.segments, &rg, 0, 1));
