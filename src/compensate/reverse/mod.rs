@@ -512,8 +512,8 @@ pub fn reverse_compensate_with(
         return Ok(c);
     }
     // The flat program's result, measured against the original's own path.
-    let written = parse_with(&e.nc, &opts)?;
-    let after = simulate(&written.segments, &program.segments, &cfg.sim)?;
+    let written = motion_of(&e.nc, &opts)?;
+    let after = simulate(&written, &program.segments, &cfg.sim)?;
     let time_ok = after.motion_time <= c.before.motion_time * (1.0 + cfg.time_budget) + 1e-9;
     if !(time_ok && after.max_error < c.sim_after.max_error * EXPAND_GAIN) {
         c.expand_note = Some(format!(
@@ -532,6 +532,15 @@ pub fn reverse_compensate_with(
     e.expand_note = Some(EXPANDED.to_string());
     e.expanded = true;
     Ok(e)
+}
+
+/// The segments of a written program, read without the modal state per
+/// block that only a writer needs (368 bytes a block: 368 MB of a 1 M-line
+/// program, held beside the original's while the check simulates).
+fn motion_of(text: &str, opts: &ParseOptions) -> Result<Vec<Segment>, crate::nc::NcError> {
+    crate::nc::files::parse_files_keeping(text, &[], opts, crate::nc::program::Keep::Motion)
+        .map(|p| p.segments)
+        .map_err(|e| e.first())
 }
 
 /// A flat program is given out only when it lowers the in-place result's
@@ -686,7 +695,7 @@ fn in_place(
         range,
         &rg,
         &before_err,
-        &sim_before,
+        sim_before,
         checked,
         notes,
         history,
@@ -899,7 +908,7 @@ fn check(
         }
         let segments = rebuild(orig, &rv.edit);
         let nc = write_source(text, program, &segments);
-        let Ok(written) = parse_with(&nc, opts) else {
+        let Ok(written) = motion_of(&nc, opts) else {
             // A writer limit: never hand out a program that does not read back.
             break;
         };
@@ -907,7 +916,7 @@ fn check(
             // Out of budget: the original program, unchecked edits never.
             break;
         }
-        let sim = simulate(&written.segments, orig, &cfg.sim)?;
+        let sim = simulate(&written, orig, &cfg.sim)?;
         let after = region_errors(rg, &sim.segments);
         let over_time = sim.motion_time > limit;
         let unimproved = rv.revert_unimproved(&after, sim.motion_time - limit, &cfg.sim);
@@ -1182,7 +1191,7 @@ fn finish(
     range: &LineRange,
     rg: &Regions,
     before_err: &[f64],
-    sim_before: &Simulation,
+    sim_before: Simulation,
     c: Checked,
     notes: Vec<Option<String>>,
     history: Vec<f64>,
@@ -1213,8 +1222,8 @@ fn finish(
             }
         })
         .collect();
-    regions.extend(fixed_moves_note(program, range, rg, sim_before, &c.sim));
-    regions.extend(outside_notes(program, rg, range, sim_before, &c.sim));
+    regions.extend(fixed_moves_note(program, range, rg, &sim_before, &c.sim));
+    regions.extend(outside_notes(program, rg, range, &sim_before, &c.sim));
     let dwells = c
         .edit
         .dwell_after
@@ -1238,7 +1247,7 @@ fn finish(
         })
         .collect();
     Compensation {
-        before: summary(sim_before),
+        before: summary(&sim_before),
         after: summary(&c.sim),
         segments: changes(program, &c.segments, &c.edit),
         dwells,
@@ -1246,7 +1255,7 @@ fn finish(
         regions,
         history_um: history,
         nc: c.nc,
-        sim_before: sim_before.clone(),
+        sim_before,
         sim_after: c.sim,
         unchanged: None,
         dwell_note: None,
