@@ -76,6 +76,9 @@ async function measure(lines) {
   const exports = wasm.initSync({ module: readFileSync(new URL('mtmotion_bg.wasm', pkg)) });
   const mib = (b) => `${(b / 2 ** 20).toFixed(0)} MiB`;
   const s = (ms) => `${(ms / 1000).toFixed(2)} s`;
+  // CPU time of the process (user + system) beside the wall time: on a
+  // loaded machine the wall time is several times the CPU time.
+  const cpu = () => { const u = process.cpuUsage(); return (u.user + u.system) / 1000; };
   let t0 = performance.now();
   const text = camProgram(lines);
   console.log(`${lines.toLocaleString('en')} lines, ${mib(text.length)} generated in ${s(performance.now() - t0)}`);
@@ -84,16 +87,19 @@ async function measure(lines) {
   let tCheck = 0;
   if (!process.env.NO_CHECK) {
     t0 = performance.now();
+    const c0 = cpu();
     const checked = wasm.checkNc(text);
     tCheck = performance.now() - t0;
+    const cCheck = cpu() - c0;
     if (checked.errors.length) throw new Error(`checkNc: ${checked.errors[0].message} (line ${checked.errors[0].line})`);
     const sum = checked.summary;
-    console.log(`  checkNc: ${s(tCheck)}; ${(sum.lines + sum.arcs + sum.rapids).toLocaleString('en')} moves, motion time ${sum.motionTime.toFixed(0)} s; wasm memory ${mib(exports.memory.buffer.byteLength)}`);
+    console.log(`  checkNc: ${s(tCheck)} (CPU ${s(cCheck)}); ${(sum.lines + sum.arcs + sum.rapids).toLocaleString('en')} moves, motion time ${sum.motionTime.toFixed(0)} s; wasm memory ${mib(exports.memory.buffer.byteLength)}`);
   }
 
   const objects = process.env.SIM === 'objects';
   const name = objects ? 'simulateToolPath' : 'simulateToolPathColumns';
   t0 = performance.now();
+  const c1 = cpu();
   let sim = null;
   try {
     sim = wasm[name](text, { dt: 0.001 });
@@ -101,8 +107,9 @@ async function measure(lines) {
     console.log(`  ${name} refused after ${s(performance.now() - t0)}: ${e.message}`);
   }
   const tSim = performance.now() - t0;
+  const cSim = cpu() - c1;
   const stats = sim ? (objects ? sim.segments.length : sim.segmentColumns.line.length) : 0;
-  if (sim) console.log(`  ${name}: ${s(tSim)}; ${sim.samples.toLocaleString('en')} samples, max error ${sim.maxErrorUm.toFixed(1)} µm at line ${sim.maxErrorLine}, ${stats.toLocaleString('en')} segment statistics; wasm memory ${mib(exports.memory.buffer.byteLength)}`);
+  if (sim) console.log(`  ${name}: ${s(tSim)} (CPU ${s(cSim)}); ${sim.samples.toLocaleString('en')} samples, max error ${sim.maxErrorUm.toFixed(1)} µm at line ${sim.maxErrorLine}, ${stats.toLocaleString('en')} segment statistics; wasm memory ${mib(exports.memory.buffer.byteLength)}`);
   const rss = process.resourceUsage().maxRSS * 1024;
   const load = (await import('node:os')).loadavg()[0].toFixed(1);
   console.log(`  check + simulate: ${s(tCheck + tSim)} (aimed at ≤ 10 s); wasm memory after both ${mib(exports.memory.buffer.byteLength)}; peak RSS ${mib(rss)} (aimed at ≤ 1 GiB); load average ${load}`);
