@@ -63,7 +63,8 @@ pub const MAX_SEGMENTS: usize = 2_500_000;
 /// holds wasm memory while the run lasts: its timed command (184 B), its
 /// reference-path element (200 B) and hierarchy share (about 32 B), its
 /// running statistics (24 B, and 112 B more for reverse compensation's
-/// halves), besides the program's own segment (168 B); the statistics
+/// halves), besides the program's own segment (168 B, which
+/// `simulateToolPathColumns` drops once the path is built); the statistics
 /// returned are 45 B as columns (`simulateToolPathColumns`, what the page
 /// calls) or 176 B and a JS object each (`simulateToolPath`). So 2 M
 /// segments need about 1.3 GB with columns (the 2 M-line program of

@@ -8,16 +8,45 @@
 //! nothing else. Programs: the paper-like examples, a 3D program with
 //! rapids, helices and arcs in three planes that passes its own path
 //! twice, and a run long enough (over 1 M samples) to thin its series.
+//! `simulate_columns_owned`, which drops the program's segments before the
+//! run, gives the same columns and series.
 
 use mtmotion::nc::program::parse;
 use mtmotion::toolpath::columns::{KIND_ARC, KIND_LINE, KIND_RAPID};
-use mtmotion::toolpath::{example, simulate_columns, simulate_with_progress, Lag, SimConfig};
+use mtmotion::toolpath::{
+    example, simulate_columns, simulate_columns_owned, simulate_with_progress, Lag, SimConfig,
+};
 
 fn same(text: &str, cfg: &SimConfig) -> usize {
     let p = parse(text).unwrap();
     let whole = simulate_with_progress(&p.segments, &p.segments, cfg, &mut |_| true).unwrap();
     let (sim, col) = simulate_columns(&p.segments, &p.segments, cfg, &mut |_| true).unwrap();
     assert!(sim.segments.is_empty());
+    // The segments taken and dropped before the run: the same run.
+    let (owned, owned_col) =
+        simulate_columns_owned(p.segments.clone(), cfg, &mut |_| true).unwrap();
+    // bit for bit (NaN, "no mean deviation", is not equal to itself)
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(
+        (
+            &owned_col.segment,
+            &owned_col.line,
+            &owned_col.kind,
+            &owned_col.samples
+        ),
+        (&col.segment, &col.line, &col.kind, &col.samples)
+    );
+    for (a, b) in [
+        (&owned_col.length, &col.length),
+        (&owned_col.radius, &col.radius),
+        (&owned_col.max_error_um, &col.max_error_um),
+        (&owned_col.mean_deviation, &col.mean_deviation),
+    ] {
+        assert_eq!(bits(a), bits(b));
+    }
+    assert_eq!(owned.max_error.to_bits(), sim.max_error.to_bits());
+    assert_eq!(owned.max_error_line, sim.max_error_line);
+    assert_eq!(owned.error, sim.error);
     assert_eq!(col.len(), whole.segments.len());
     for (i, g) in whole.segments.iter().enumerate() {
         assert_eq!(col.segment[i] as usize, g.segment, "{i}");

@@ -24,7 +24,7 @@ pub const KIND_RAPID: u8 = 2;
 /// order, one column per field of [`super::SegmentStats`] (its
 /// `segment`, `line`, `kind`, `length`, `radius`, `max_error_um`,
 /// `mean_deviation`, `samples`).
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default)]
 pub struct SegmentColumns {
     /// Index into the reference program's segments.
     pub segment: Vec<u32>,
@@ -80,22 +80,14 @@ impl SegmentColumns {
         self.segment.is_empty()
     }
 
-    /// Appends element `el` of the reference path, whose segment is `seg`,
-    /// with its largest error `max_error` (mm), its mean normal deviation
-    /// (mm) and its sample count.
-    pub(super) fn push(
-        &mut self,
-        el: &Element,
-        seg: &Segment,
-        max_error: f64,
-        mean_deviation: Option<f64>,
-        samples: usize,
-    ) {
+    /// Appends element `el` of the reference path, whose segment is `seg`:
+    /// its segment, line, kind, length and radius (the statistics follow
+    /// with [`SegmentColumns::push_stats`], once the run is done).
+    pub(super) fn push_segment(&mut self, el: &Element, seg: &Segment) {
         let (kind, radius) = kind_radius(seg);
         // Segments, lines and samples are within the budgets
         // (`budget::MAX_TOOLPATH_SEGMENTS`, `MAX_NC_LINES`,
         // `MAX_TOOLPATH_SAMPLES`), far below `u32::MAX`.
-        let u32_of = |v: usize| u32::try_from(v).unwrap_or(u32::MAX);
         self.segment.push(u32_of(el.segment));
         self.line.push(u32_of(seg.line));
         self.kind.push(match kind {
@@ -105,8 +97,24 @@ impl SegmentColumns {
         });
         self.length.push(el.len);
         self.radius.push(radius);
+    }
+
+    /// Appends the statistics of the next element: its largest error
+    /// `max_error` (mm), its mean normal deviation (mm) and its sample
+    /// count.
+    pub(super) fn push_stats(
+        &mut self,
+        max_error: f64,
+        mean_deviation: Option<f64>,
+        samples: usize,
+    ) {
         self.max_error_um.push(max_error * 1e3);
         self.mean_deviation.push(mean_deviation.unwrap_or(f64::NAN));
         self.samples.push(u32_of(samples));
     }
+}
+
+/// `v` as u32 (saturating; every count here is far below `u32::MAX`).
+fn u32_of(v: usize) -> u32 {
+    u32::try_from(v).unwrap_or(u32::MAX)
 }

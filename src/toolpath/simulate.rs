@@ -226,7 +226,7 @@ fn simulate_keeping(
     max_series: Option<usize>,
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Simulation, ToolpathError> {
-    let done = run_all(command, reference, cfg, max_series, true, progress)?;
+    let done = prepare(command, reference, cfg, max_series)?.run(cfg, true, progress)?;
     let segments = done
         .path
         .elements
@@ -235,7 +235,8 @@ fn simulate_keeping(
         .zip(&done.run.halves)
         .map(|((el, a), h)| a.stats(el, &reference[el.segment], h))
         .collect();
-    Ok(done.finish(reference, cfg, segments))
+    let line = reference[done.path.elements[done.run.max_el].segment].line;
+    Ok(done.finish(cfg, line, segments))
 }
 
 /// As [`simulate_with_progress`] with the per-segment statistics as
@@ -252,13 +253,58 @@ pub fn simulate_columns(
     cfg: &SimConfig,
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<(Simulation, SegmentColumns), ToolpathError> {
-    let done = run_all(command, reference, cfg, Some(MAX_SERIES), false, progress)?;
-    let els = &done.path.elements;
+    let (prep, columns) = prepare_columns(command, reference, cfg)?;
+    run_columns(prep, columns, cfg, progress)
+}
+
+/// As [`simulate_columns`] of a program against itself, taking its
+/// segments and dropping them once the timed command and the reference
+/// path are built: the run does not hold them (168 B a segment in wasm;
+/// 336 MB of a 2 M-segment program).
+///
+/// # Errors
+/// As [`simulate_columns`].
+pub fn simulate_columns_owned(
+    segments: Vec<Segment>,
+    cfg: &SimConfig,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<(Simulation, SegmentColumns), ToolpathError> {
+    let (prep, columns) = prepare_columns(&segments, &segments, cfg)?;
+    drop(segments);
+    run_columns(prep, columns, cfg, progress)
+}
+
+/// [`prepare`] with series of at most [`MAX_SERIES`] samples, and the
+/// columns of the reference path's elements with their segment, line,
+/// kind, length and radius.
+fn prepare_columns(
+    command: &[Segment],
+    reference: &[Segment],
+    cfg: &SimConfig,
+) -> Result<(Prepared, SegmentColumns), ToolpathError> {
+    let prep = prepare(command, reference, cfg, Some(MAX_SERIES))?;
+    let els = &prep.path.elements;
     let mut columns = SegmentColumns::with_capacity(els.len());
-    for (el, a) in els.iter().zip(&done.run.acc) {
-        columns.push(el, &reference[el.segment], a.max_error, a.mean(), a.samples);
+    for el in els {
+        columns.push_segment(el, &reference[el.segment]);
     }
-    Ok((done.finish(reference, cfg, Vec::new()), columns))
+    Ok((prep, columns))
+}
+
+/// Runs `prep` without the halves and completes `columns` with each
+/// element's statistics.
+fn run_columns(
+    prep: Prepared,
+    mut columns: SegmentColumns,
+    cfg: &SimConfig,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<(Simulation, SegmentColumns), ToolpathError> {
+    let done = prep.run(cfg, false, progress)?;
+    for a in &done.run.acc {
+        columns.push_stats(a.max_error, a.mean(), a.samples);
+    }
+    let line = columns.line.get(done.run.max_el).map_or(0, |&l| l as usize);
+    Ok((done.finish(cfg, line, Vec::new()), columns))
 }
 
 /// A finished run: its measurement, the reference path, the sample count,
@@ -271,17 +317,26 @@ struct Done {
     nominal_time: f64,
 }
 
-/// Simulates `command` sample by sample and measures it against
-/// `reference`, keeping series of at most `max_series` samples (none for
-/// `None`) and the halves' statistics when `halves`.
-fn run_all(
+/// A run ready to start: the timed command, the reference path, the
+/// sample count, the end point of the reference (mm) and the series
+/// stride (0: no series).
+struct Prepared {
+    tl: Timeline,
+    path: Path,
+    n: usize,
+    end: [f64; 3],
+    stride: usize,
+}
+
+/// Checks the config and the budgets and builds the timed `command` and
+/// the `reference` path, for series of at most `max_series` samples (none
+/// for `None`).
+fn prepare(
     command: &[Segment],
     reference: &[Segment],
     cfg: &SimConfig,
     max_series: Option<usize>,
-    halves: bool,
-    progress: &mut dyn FnMut(f64) -> bool,
-) -> Result<Done, ToolpathError> {
+) -> Result<Prepared, ToolpathError> {
     cfg.validate()?;
     check_segments(command)?;
     check_segments(reference)?;
@@ -294,38 +349,65 @@ fn run_all(
     let n = sample_count(&tl, cfg, tmax, command)?;
     let end = reference.last().map_or(tl.origin, |s| s.end.p());
     let stride = max_series.map_or(0, |m| n.div_ceil(m));
-    let mut run = Run::new(&path, 0..path.elements.len(), n, stride, halves);
-    let mut stepper = Stepper::new(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt);
-    for k in 0..n {
-        if k % PROGRESS_EVERY == 0 && k > 0 && !progress(k as f64 / n as f64) {
-            return Err(ToolpathError::Cancelled);
-        }
-        let s = stepper.next_sample();
-        run.sample(&path, k, &s, end);
-    }
-    Ok(Done {
-        run,
+    Ok(Prepared {
+        tl,
         path,
         n,
+        end,
         stride,
-        nominal_time: tl.end_time,
     })
 }
 
-impl Done {
-    /// The simulation of this run against `reference`, with `segments`.
-    fn finish(
+impl Prepared {
+    /// Simulates the command sample by sample and measures it against the
+    /// reference, gathering the halves' statistics when `halves`.
+    fn run(
         self,
-        reference: &[Segment],
         cfg: &SimConfig,
-        segments: Vec<SegmentStats>,
-    ) -> Simulation {
-        let Done {
+        halves: bool,
+        progress: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Done, ToolpathError> {
+        let Prepared {
+            tl,
+            path,
+            n,
+            end,
+            stride,
+        } = self;
+        let mut run = Run::new(&path, 0..path.elements.len(), n, stride, halves);
+        let mut stepper = Stepper::new(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt);
+        for k in 0..n {
+            if k % PROGRESS_EVERY == 0 && k > 0 && !progress(k as f64 / n as f64) {
+                return Err(ToolpathError::Cancelled);
+            }
+            let s = stepper.next_sample();
+            run.sample(&path, k, &s, end);
+        }
+        Ok(Done {
             run,
             path,
             n,
             stride,
+            nominal_time: tl.end_time,
+        })
+    }
+}
+
+impl Done {
+    /// The simulation of this run, whose largest error is on source line
+    /// `max_error_line`, with `segments`.
+    fn finish(
+        self,
+        cfg: &SimConfig,
+        max_error_line: usize,
+        segments: Vec<SegmentStats>,
+    ) -> Simulation {
+        let Done {
+            run,
+            n,
+            stride,
             nominal_time,
+            ..
         } = self;
         let rec = run
             .series
@@ -339,7 +421,7 @@ impl Done {
             max_error_time: run.max_k as f64 * cfg.dt,
             samples: n,
             series_stride: stride.max(1),
-            max_error_line: reference[path.elements[run.max_el].segment].line,
+            max_error_line,
             t: rec.f.t,
             cmd: rec.f.cmd,
             sim: rec.f.sim,

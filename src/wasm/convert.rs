@@ -456,11 +456,6 @@ pub const NC_BYTES_PER_TEXT_BYTE: usize = 16;
 /// reference path, statistics; see `budget::MAX_TOOLPATH_SEGMENTS`).
 pub const SIM_BYTES_PER_SEGMENT: usize = 1100;
 
-/// The same for `simulateToolPathColumns`, whose per-segment statistics
-/// are columns without reverse compensation's halves (see
-/// `toolpath::columns` and `budget::MAX_TOOLPATH_SEGMENTS`).
-pub const SIM_COLUMNS_BYTES_PER_SEGMENT: usize = 650;
-
 /// A trace argument: the file's text, or its bytes.
 pub enum TraceArg {
     /// A string (a text trace).
