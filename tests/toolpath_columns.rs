@@ -112,6 +112,17 @@ fn columns_equal_the_segment_statistics_in_3d_with_rapids_and_a_second_pass() {
         ..SimConfig::default()
     };
     assert_eq!(same(text, &cfg), 14);
+    // The kinds and radii themselves, not only as SegmentStats gives them:
+    // five arcs (R6 by I/J, R6.2, R4, R3, R6 again) and four rapids.
+    let p = parse(text).unwrap();
+    let (_, col) = simulate_columns(&p.segments, &p.segments, &cfg, &mut |_| true).unwrap();
+    let of = |k| col.kind.iter().filter(|&&c| c == k).count();
+    assert_eq!((of(KIND_ARC), of(KIND_RAPID), of(KIND_LINE)), (5, 4, 5));
+    let mut radii: Vec<f64> = col.radius.iter().copied().filter(|&r| r > 0.0).collect();
+    radii.sort_by(f64::total_cmp);
+    assert_eq!(radii, [3.0, 4.0, 6.0, 6.0, 6.2]);
+    assert!(!col.is_empty() && col.len() == col.samples.len());
+    assert!(mtmotion::toolpath::SegmentColumns::default().is_empty());
 }
 
 #[test]
