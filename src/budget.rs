@@ -59,11 +59,19 @@ pub const MAX_EXECUTED_BLOCKS: usize = 4_000_000;
 pub const MAX_SEGMENTS: usize = 2_500_000;
 
 /// Most segments one tool-path simulation (or reverse compensation) may
-/// simulate: each holds about 1.1 KB of wasm memory while it runs (its
-/// timed command, its reference-path element, its running statistics and
-/// the statistics returned to JS), so 1 M segments need about 1.1 GB; the
+/// simulate, as many as one program may give ([`MAX_SEGMENTS`]). Each
+/// holds wasm memory while the run lasts: its timed command (184 B), its
+/// reference-path element (200 B) and hierarchy share (about 32 B), its
+/// running statistics (24 B, and 112 B more for reverse compensation's
+/// halves), besides the program's own segment (168 B, which
+/// `simulateToolPathColumns` drops once the path is built); the statistics
+/// returned are 45 B as columns (`simulateToolPathColumns`, what the page
+/// calls) or 176 B and a JS object each (`simulateToolPath`). So 2 M
+/// segments need about 1.3 GB with columns (the 2 M-line program of
+/// `bench/node/large-program.bench.mjs`, docs/performance.md §8) and
+/// 2.5 M about 1.6 GB, within the 4 GB a wasm memory may grow to; the
 /// samples are budgeted apart ([`MAX_TOOLPATH_SAMPLES`]).
-pub const MAX_TOOLPATH_SEGMENTS: usize = 1_000_000;
+pub const MAX_TOOLPATH_SEGMENTS: usize = MAX_SEGMENTS;
 
 /// Loop iterations (backward jumps: END, endwhile, GOTO back) a macro
 /// program may make before it is stopped as endless. A quarter of

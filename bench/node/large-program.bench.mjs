@@ -2,14 +2,15 @@
 // short G1 chords with a Z wave, small G2/G3 arcs at the row ends, feed
 // changes and comments, as a Fusion 360 or Mastercam finishing post
 // writes. In a fresh Node process per size it is checked (checkNc) and
-// simulated (simulateToolPath, dt = 1 ms) by the wasm build; the time of
+// simulated (simulateToolPathColumns, dt = 1 ms: what the page calls, its
+// per-segment statistics as typed arrays) by the wasm build; the time of
 // each call, the wasm memory after it (memory.buffer.byteLength, which
-// only grows: the peak) and the process's peak RSS are printed. The
-// 2 M-line program is over the simulation's segment budget
-// (budget::MAX_TOOLPATH_SEGMENTS), so its refusal is printed, and the
-// largest program under it (990,000 lines) is simulated too.
+// only grows: the peak) and the process's peak RSS are printed, with the
+// load average. SIM=objects simulates with simulateToolPath instead (one
+// JS object per segment).
 //   node bench/node/run.mjs large-program
 //   LINES=200000 node bench/node/large-program.bench.mjs   (one size)
+//   NO_CHECK=1 LINES=2000000 node bench/node/large-program.bench.mjs   (the simulation alone)
 //   node bench/node/large-program.bench.mjs --write /tmp/big.nc   (the text only)
 import { writeFileSync } from 'node:fs';
 import { performance } from 'node:perf_hooks';
@@ -60,7 +61,7 @@ if (process.env.LINES === undefined) {
   // One fresh process per size: the wasm memory of one never shrinks.
   const { spawnSync } = await import('node:child_process');
   const { fileURLToPath } = await import('node:url');
-  for (const lines of [2_000_000, 990_000]) {
+  for (const lines of [2_000_000, 1_000_000]) {
     const r = spawnSync(process.execPath, ['--max-old-space-size=4096', fileURLToPath(import.meta.url)], { env: { ...process.env, LINES: String(lines) }, stdio: 'inherit' });
     if (r.status !== 0) console.log(`(the ${lines.toLocaleString('en')}-line run failed: status ${r.status} ${r.signal ?? ''})`);
   }
@@ -75,26 +76,40 @@ async function measure(lines) {
   const exports = wasm.initSync({ module: readFileSync(new URL('mtmotion_bg.wasm', pkg)) });
   const mib = (b) => `${(b / 2 ** 20).toFixed(0)} MiB`;
   const s = (ms) => `${(ms / 1000).toFixed(2)} s`;
+  // CPU time of the process (user + system) beside the wall time: on a
+  // loaded machine the wall time is several times the CPU time.
+  const cpu = () => { const u = process.cpuUsage(); return (u.user + u.system) / 1000; };
   let t0 = performance.now();
   const text = camProgram(lines);
   console.log(`${lines.toLocaleString('en')} lines, ${mib(text.length)} generated in ${s(performance.now() - t0)}`);
 
-  t0 = performance.now();
-  const checked = wasm.checkNc(text);
-  const tCheck = performance.now() - t0;
-  if (checked.errors.length) throw new Error(`checkNc: ${checked.errors[0].message} (line ${checked.errors[0].line})`);
-  const sum = checked.summary;
-  console.log(`  checkNc: ${s(tCheck)}; ${(sum.lines + sum.arcs + sum.rapids).toLocaleString('en')} moves, motion time ${sum.motionTime.toFixed(0)} s; wasm memory ${mib(exports.memory.buffer.byteLength)}`);
+  // NO_CHECK=1: the simulation alone in a fresh module (its own peak).
+  let tCheck = 0;
+  if (!process.env.NO_CHECK) {
+    t0 = performance.now();
+    const c0 = cpu();
+    const checked = wasm.checkNc(text);
+    tCheck = performance.now() - t0;
+    const cCheck = cpu() - c0;
+    if (checked.errors.length) throw new Error(`checkNc: ${checked.errors[0].message} (line ${checked.errors[0].line})`);
+    const sum = checked.summary;
+    console.log(`  checkNc: ${s(tCheck)} (CPU ${s(cCheck)}); ${(sum.lines + sum.arcs + sum.rapids).toLocaleString('en')} moves, motion time ${sum.motionTime.toFixed(0)} s; wasm memory ${mib(exports.memory.buffer.byteLength)}`);
+  }
 
+  const objects = process.env.SIM === 'objects';
+  const name = objects ? 'simulateToolPath' : 'simulateToolPathColumns';
   t0 = performance.now();
+  const c1 = cpu();
   let sim = null;
   try {
-    sim = wasm.simulateToolPath(text, { dt: 0.001 });
+    sim = wasm[name](text, { dt: 0.001 });
   } catch (e) {
-    console.log(`  simulateToolPath refused after ${s(performance.now() - t0)}: ${e.message}`);
+    console.log(`  ${name} refused after ${s(performance.now() - t0)}: ${e.message}`);
   }
   const tSim = performance.now() - t0;
-  if (sim) console.log(`  simulateToolPath: ${s(tSim)}; ${sim.samples.toLocaleString('en')} samples, max error ${sim.maxErrorUm.toFixed(1)} µm, ${sim.segments.length.toLocaleString('en')} segment statistics`);
+  const cSim = cpu() - c1;
+  const stats = sim ? (objects ? sim.segments.length : sim.segmentColumns.line.length) : 0;
+  if (sim) console.log(`  ${name}: ${s(tSim)} (CPU ${s(cSim)}); ${sim.samples.toLocaleString('en')} samples, max error ${sim.maxErrorUm.toFixed(1)} µm at line ${sim.maxErrorLine}, ${stats.toLocaleString('en')} segment statistics; wasm memory ${mib(exports.memory.buffer.byteLength)}`);
   const rss = process.resourceUsage().maxRSS * 1024;
   const load = (await import('node:os')).loadavg()[0].toFixed(1);
   console.log(`  check + simulate: ${s(tCheck + tSim)} (aimed at ≤ 10 s); wasm memory after both ${mib(exports.memory.buffer.byteLength)}; peak RSS ${mib(rss)} (aimed at ≤ 1 GiB); load average ${load}`);

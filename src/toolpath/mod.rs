@@ -9,7 +9,8 @@
 //! whole command directly (tested; [`sampler`] is that filter's fast
 //! evaluation of the command); the contour error is the exact distance
 //! from the simulated point to the commanded lines and arcs ([`contour`]).
-//! [`mod@simulate`] ties them together; [`locality`] re-simulates only
+//! [`mod@simulate`] ties them together (its per-segment statistics also as
+//! [`columns`] for programs of millions of segments); [`locality`] re-simulates only
 //! around changed segments (the reach of Eqs. 1–2); [`identify`] is Eq. 3 and the
 //! identification of `tA` and `T`; [`example`] holds the built-in test paths
 //! that resemble the paper's Fig. 2.
@@ -26,6 +27,7 @@
 #![allow(clippy::needless_range_loop)] // per-axis loops index several arrays at once
 
 pub mod bvh;
+pub mod columns;
 pub mod contour;
 pub mod example;
 pub mod filter;
@@ -38,9 +40,11 @@ pub mod timeline;
 
 use serde::{Deserialize, Serialize};
 
+pub use columns::SegmentColumns;
 pub use simulate::{
-    sample_estimate, simulate, simulate_program, simulate_stats, simulate_text, simulate_thinned,
-    simulate_with_progress, SegmentStats, Simulation, PROGRESS_EVERY,
+    sample_estimate, simulate, simulate_columns, simulate_columns_owned, simulate_program,
+    simulate_stats, simulate_text, simulate_thinned, simulate_with_progress, SegmentStats,
+    Simulation, PROGRESS_EVERY,
 };
 
 /// The servo time constant: one for all axes or one per axis X, Y, Z.
@@ -156,7 +160,7 @@ pub enum ToolpathError {
     /// The run would need too many samples.
     /// More segments than [`crate::budget::MAX_TOOLPATH_SEGMENTS`]: each
     /// holds memory while the simulation runs.
-    #[error("the simulation would hold {segments} segments, more than the limit of {limit} (each holds about 1.1 KB of memory while it runs); segment {next} is line {line}: split the program there or earlier and simulate each part")]
+    #[error("the simulation would hold {segments} segments, more than the limit of {limit} (each holds about 0.65 KB of memory while it runs); segment {next} is line {line}: split the program there or earlier and simulate each part")]
     TooManySegments {
         /// Segments of the program.
         segments: usize,

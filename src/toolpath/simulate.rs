@@ -20,11 +20,12 @@
 
 use serde::Serialize;
 
+use super::columns::{kind_radius, SegmentColumns};
 use super::contour::{Element, Nearest, Path, Tracker};
 use super::filter::{Filtered, Sample, Stepper};
 use super::timeline::Timeline;
 use super::{SimConfig, ToolpathError, MAX_SAMPLES, MAX_SERIES};
-use crate::nc::program::{parse, Motion, Program, Segment};
+use crate::nc::program::{parse, Program, Segment};
 
 /// Statistics of one reference segment.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -74,6 +75,14 @@ struct Acc {
     max_error: f64,
     sum_dev: f64,
     n_dev: usize,
+}
+
+/// Running statistics of one reference element over the first and the
+/// second half of its length: reverse compensation's own input
+/// ([`SegmentStats::half_deviation`], `half_vector`, `half_max`), not
+/// gathered for [`simulate_columns`] (112 B per element).
+#[derive(Debug, Clone, Copy, Default)]
+struct Halves {
     /// Sum and count of the normal deviation over each half.
     half: [f64; 4],
     /// Sum of `near − simulated` per half and axis, and the count per half.
@@ -217,6 +226,117 @@ fn simulate_keeping(
     max_series: Option<usize>,
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<Simulation, ToolpathError> {
+    let done = prepare(command, reference, cfg, max_series)?.run(cfg, true, progress)?;
+    let segments = done
+        .path
+        .elements
+        .iter()
+        .zip(&done.run.acc)
+        .zip(&done.run.halves)
+        .map(|((el, a), h)| a.stats(el, &reference[el.segment], h))
+        .collect();
+    let line = reference[done.path.elements[done.run.max_el].segment].line;
+    Ok(done.finish(cfg, line, segments))
+}
+
+/// As [`simulate_with_progress`] with the per-segment statistics as
+/// [`SegmentColumns`] (the returned [`Simulation::segments`] is empty):
+/// the same numbers as the serialised fields of [`SegmentStats`], without
+/// the halves only reverse compensation reads, in a quarter of the memory
+/// (a program of millions of segments; see [`super::columns`]).
+///
+/// # Errors
+/// As [`simulate_with_progress`].
+pub fn simulate_columns(
+    command: &[Segment],
+    reference: &[Segment],
+    cfg: &SimConfig,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<(Simulation, SegmentColumns), ToolpathError> {
+    let (prep, columns) = prepare_columns(command, reference, cfg)?;
+    run_columns(prep, columns, cfg, progress)
+}
+
+/// As [`simulate_columns`] of a program against itself, taking its
+/// segments and dropping them once the timed command and the reference
+/// path are built: the run does not hold them (168 B a segment in wasm;
+/// 336 MB of a 2 M-segment program).
+///
+/// # Errors
+/// As [`simulate_columns`].
+pub fn simulate_columns_owned(
+    segments: Vec<Segment>,
+    cfg: &SimConfig,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<(Simulation, SegmentColumns), ToolpathError> {
+    let (prep, columns) = prepare_columns(&segments, &segments, cfg)?;
+    drop(segments);
+    run_columns(prep, columns, cfg, progress)
+}
+
+/// [`prepare`] with series of at most [`MAX_SERIES`] samples, and the
+/// columns of the reference path's elements with their segment, line,
+/// kind, length and radius.
+fn prepare_columns(
+    command: &[Segment],
+    reference: &[Segment],
+    cfg: &SimConfig,
+) -> Result<(Prepared, SegmentColumns), ToolpathError> {
+    let prep = prepare(command, reference, cfg, Some(MAX_SERIES))?;
+    let els = &prep.path.elements;
+    let mut columns = SegmentColumns::with_capacity(els.len());
+    for el in els {
+        columns.push_segment(el, &reference[el.segment]);
+    }
+    Ok((prep, columns))
+}
+
+/// Runs `prep` without the halves and completes `columns` with each
+/// element's statistics.
+fn run_columns(
+    prep: Prepared,
+    mut columns: SegmentColumns,
+    cfg: &SimConfig,
+    progress: &mut dyn FnMut(f64) -> bool,
+) -> Result<(Simulation, SegmentColumns), ToolpathError> {
+    let done = prep.run(cfg, false, progress)?;
+    for a in &done.run.acc {
+        columns.push_stats(a.max_error, a.mean(), a.samples);
+    }
+    let line = columns.line.get(done.run.max_el).map_or(0, |&l| l as usize);
+    Ok((done.finish(cfg, line, Vec::new()), columns))
+}
+
+/// A finished run: its measurement, the reference path, the sample count,
+/// the series stride and the nominal time (s).
+struct Done {
+    run: Run,
+    path: Path,
+    n: usize,
+    stride: usize,
+    nominal_time: f64,
+}
+
+/// A run ready to start: the timed command, the reference path, the
+/// sample count, the end point of the reference (mm) and the series
+/// stride (0: no series).
+struct Prepared {
+    tl: Timeline,
+    path: Path,
+    n: usize,
+    end: [f64; 3],
+    stride: usize,
+}
+
+/// Checks the config and the budgets and builds the timed `command` and
+/// the `reference` path, for series of at most `max_series` samples (none
+/// for `None`).
+fn prepare(
+    command: &[Segment],
+    reference: &[Segment],
+    cfg: &SimConfig,
+    max_series: Option<usize>,
+) -> Result<Prepared, ToolpathError> {
     cfg.validate()?;
     check_segments(command)?;
     check_segments(reference)?;
@@ -229,48 +349,94 @@ fn simulate_keeping(
     let n = sample_count(&tl, cfg, tmax, command)?;
     let end = reference.last().map_or(tl.origin, |s| s.end.p());
     let stride = max_series.map_or(0, |m| n.div_ceil(m));
-    let mut run = Run::new(&path, 0..path.elements.len(), n, stride);
-    let mut stepper = Stepper::new(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt);
-    for k in 0..n {
-        if k % PROGRESS_EVERY == 0 && k > 0 && !progress(k as f64 / n as f64) {
-            return Err(ToolpathError::Cancelled);
-        }
-        let s = stepper.next_sample();
-        run.sample(&path, k, &s, end);
-    }
-    let segments = path
-        .elements
-        .iter()
-        .zip(&run.acc)
-        .map(|(el, a)| a.stats(el, &reference[el.segment]))
-        .collect();
-    let rec = run
-        .series
-        .map(|mut r| {
-            r.flush();
-            r
-        })
-        .unwrap_or_default();
-    Ok(Simulation {
-        // The filter's sample times are k·dt.
-        max_error_time: run.max_k as f64 * cfg.dt,
-        samples: n,
-        series_stride: stride.max(1),
-        max_error_line: reference[path.elements[run.max_el].segment].line,
-        t: rec.f.t,
-        cmd: rec.f.cmd,
-        sim: rec.f.sim,
-        near: rec.near,
-        vel_cmd: rec.f.vel_cmd,
-        vel_sim: rec.f.vel_sim,
-        error: rec.error,
-        segment: rec.segment,
-        max_error: run.max_error,
-        // The end of the last sample farther than 1 µm from the end point.
-        motion_time: run.last_far as f64 * cfg.dt,
-        nominal_time: tl.end_time,
-        segments,
+    Ok(Prepared {
+        tl,
+        path,
+        n,
+        end,
+        stride,
     })
+}
+
+impl Prepared {
+    /// Simulates the command sample by sample and measures it against the
+    /// reference, gathering the halves' statistics when `halves`.
+    fn run(
+        self,
+        cfg: &SimConfig,
+        halves: bool,
+        progress: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Done, ToolpathError> {
+        let Prepared {
+            tl,
+            path,
+            n,
+            end,
+            stride,
+        } = self;
+        let mut run = Run::new(&path, 0..path.elements.len(), n, stride, halves);
+        let mut stepper = Stepper::new(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt);
+        for k in 0..n {
+            if k % PROGRESS_EVERY == 0 && k > 0 && !progress(k as f64 / n as f64) {
+                return Err(ToolpathError::Cancelled);
+            }
+            let s = stepper.next_sample();
+            run.sample(&path, k, &s, end);
+        }
+        Ok(Done {
+            run,
+            path,
+            n,
+            stride,
+            nominal_time: tl.end_time,
+        })
+    }
+}
+
+impl Done {
+    /// The simulation of this run, whose largest error is on source line
+    /// `max_error_line`, with `segments`.
+    fn finish(
+        self,
+        cfg: &SimConfig,
+        max_error_line: usize,
+        segments: Vec<SegmentStats>,
+    ) -> Simulation {
+        let Done {
+            run,
+            n,
+            stride,
+            nominal_time,
+            ..
+        } = self;
+        let rec = run
+            .series
+            .map(|mut r| {
+                r.flush();
+                r
+            })
+            .unwrap_or_default();
+        Simulation {
+            // The filter's sample times are k·dt.
+            max_error_time: run.max_k as f64 * cfg.dt,
+            samples: n,
+            series_stride: stride.max(1),
+            max_error_line,
+            t: rec.f.t,
+            cmd: rec.f.cmd,
+            sim: rec.f.sim,
+            near: rec.near,
+            vel_cmd: rec.f.vel_cmd,
+            vel_sim: rec.f.vel_sim,
+            error: rec.error,
+            segment: rec.segment,
+            max_error: run.max_error,
+            // The end of the last sample farther than 1 µm from the end point.
+            motion_time: run.last_far as f64 * cfg.dt,
+            nominal_time,
+            segments,
+        }
+    }
 }
 
 /// How many samples [`simulate()`] takes for `command` under `cfg`: the
@@ -359,6 +525,8 @@ struct Run {
     /// Running statistics per element of the reference path, from element
     /// `base` on (a window keeps only its own).
     acc: Vec<Acc>,
+    /// The same over each half of the element, when gathered (else empty).
+    halves: Vec<Halves>,
     base: usize,
     /// Largest contour error on cutting moves, mm, its sample and element.
     max_error: f64,
@@ -390,11 +558,19 @@ struct Series {
 
 impl Run {
     /// A run of `n` samples on `path` with statistics for the elements
-    /// `elements`, keeping series at `stride` (none when 0).
-    fn new(path: &Path, elements: std::ops::Range<usize>, n: usize, stride: usize) -> Self {
+    /// `elements` (over their halves too when `halves`), keeping series at
+    /// `stride` (none when 0).
+    fn new(
+        path: &Path,
+        elements: std::ops::Range<usize>,
+        n: usize,
+        stride: usize,
+        halves: bool,
+    ) -> Self {
         Self {
             tracker: Tracker::at(path, elements.start),
             acc: vec![Acc::default(); elements.len()],
+            halves: vec![Halves::default(); if halves { elements.len() } else { 0 }],
             base: elements.start,
             max_error: 0.0,
             max_k: 0,
@@ -419,7 +595,8 @@ impl Run {
             return;
         };
         let e = nr.element;
-        let slot = e.checked_sub(self.base).and_then(|i| self.acc.get_mut(i));
+        let i = e.checked_sub(self.base);
+        let slot = i.and_then(|i| self.acc.get_mut(i));
         let (Some(a), Some(el)) = (slot, path.elements.get(e)) else {
             return;
         };
@@ -428,7 +605,10 @@ impl Run {
             // far below `u32::MAX`.
             series.offer(k, s, &nr, u32::try_from(el.segment).unwrap_or(u32::MAX));
         }
-        a.add(el, &nr, q);
+        a.add(&nr);
+        if let Some(h) = i.and_then(|i| self.halves.get_mut(i)) {
+            h.add(el, &nr, q);
+        }
         if !el.rapid && nr.dist > self.max_error {
             self.max_error = nr.dist;
             self.max_k = k;
@@ -495,36 +675,28 @@ fn d3(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 impl Acc {
-    /// Adds the sample `q` whose nearest point `nr` lies on element `el`.
+    /// Adds a sample whose nearest point is `nr`.
     #[inline]
-    fn add(&mut self, el: &Element, nr: &Nearest, q: [f64; 3]) {
+    fn add(&mut self, nr: &Nearest) {
         self.samples += 1;
-        let h = usize::from(nr.s - el.s0 > 0.5 * el.len);
-        for ax in 0..3 {
-            self.vec[h][ax] += nr.point[ax] - q[ax];
-        }
-        self.vec[h][3] += 1.0;
         if nr.dist > self.max_error {
             self.max_error = nr.dist;
-        }
-        if nr.dist > self.half_max[h] {
-            self.half_max[h] = nr.dist;
         }
         if nr.normal.is_finite() {
             self.sum_dev += nr.normal;
             self.n_dev += 1;
-            self.half[2 * h] += nr.normal;
-            self.half[2 * h + 1] += 1.0;
         }
     }
 
-    /// The statistics of element `el`, whose reference segment is `seg`.
-    fn stats(&self, el: &Element, seg: &Segment) -> SegmentStats {
-        let (kind, radius) = match seg.motion {
-            Motion::Arc(a) => ("arc", a.radius),
-            Motion::Rapid => ("rapid", 0.0),
-            _ => ("line", 0.0),
-        };
+    /// The mean normal deviation, mm (`None` with no sample that has one).
+    fn mean(&self) -> Option<f64> {
+        (self.n_dev > 0).then(|| self.sum_dev / self.n_dev as f64)
+    }
+
+    /// The statistics of element `el`, whose reference segment is `seg`,
+    /// with its halves' `h`.
+    fn stats(&self, el: &Element, seg: &Segment, h: &Halves) -> SegmentStats {
+        let (kind, radius) = kind_radius(seg);
         SegmentStats {
             segment: el.segment,
             line: seg.line,
@@ -532,17 +704,36 @@ impl Acc {
             length: el.len,
             radius,
             max_error_um: self.max_error * 1e3,
-            mean_deviation: (self.n_dev > 0).then(|| self.sum_dev / self.n_dev as f64),
-            half_deviation: [0, 1].map(|h| {
-                let half = &self.half;
-                (half[2 * h + 1] > 0.0).then(|| half[2 * h] / half[2 * h + 1])
+            mean_deviation: self.mean(),
+            half_deviation: [0, 1].map(|k| {
+                let half = &h.half;
+                (half[2 * k + 1] > 0.0).then(|| half[2 * k] / half[2 * k + 1])
             }),
-            half_vector: [0, 1].map(|h| {
-                let v = &self.vec[h];
+            half_vector: [0, 1].map(|k| {
+                let v = &h.vec[k];
                 (v[3] > 0.0).then(|| [v[0] / v[3], v[1] / v[3], v[2] / v[3]])
             }),
-            half_max: self.half_max,
+            half_max: h.half_max,
             samples: self.samples,
+        }
+    }
+}
+
+impl Halves {
+    /// Adds the sample `q` whose nearest point `nr` lies on element `el`.
+    #[inline]
+    fn add(&mut self, el: &Element, nr: &Nearest, q: [f64; 3]) {
+        let h = usize::from(nr.s - el.s0 > 0.5 * el.len);
+        for ax in 0..3 {
+            self.vec[h][ax] += nr.point[ax] - q[ax];
+        }
+        self.vec[h][3] += 1.0;
+        if nr.dist > self.half_max[h] {
+            self.half_max[h] = nr.dist;
+        }
+        if nr.normal.is_finite() {
+            self.half[2 * h] += nr.normal;
+            self.half[2 * h + 1] += 1.0;
         }
     }
 }
@@ -566,7 +757,7 @@ pub(super) fn measure_window(
     let els = &path.elements;
     let lo = els.partition_point(|e| e.segment < keep.start);
     let hi = els.partition_point(|e| e.segment < keep.end);
-    let mut run = Run::new(path, lo..hi, n, 0);
+    let mut run = Run::new(path, lo..hi, n, 0, true);
     if !tl.items.is_empty() {
         let mut stepper = Stepper::with_phase(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt, phase);
         for k in 0..n.min(measured.end) {
@@ -579,7 +770,8 @@ pub(super) fn measure_window(
     els[lo..hi]
         .iter()
         .zip(&run.acc)
-        .map(|(el, a)| a.stats(el, &reference[el.segment]))
+        .zip(&run.halves)
+        .map(|((el, a), h)| a.stats(el, &reference[el.segment], h))
         .collect()
 }
 

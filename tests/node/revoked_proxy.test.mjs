@@ -89,6 +89,7 @@ const GOOD = {
   sShapeTestPiece: [{ machine: 'pocketnc-v2-10', scale: 0.1 }],
   simulateAxis: [axisC, { dt: 1e-3, position: ramp }],
   simulateToolPath: [arcs, TP, ok],
+  simulateToolPathColumns: [arcs, TP, ok],
   start: [],
   syntheticBallbarTrace: [{ offsetX: 0.003 }],
   toolpathExample: ['lines'],

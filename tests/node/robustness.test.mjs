@@ -129,6 +129,8 @@ const CASES = {
       ['G1 X10 F1000', { ...TP, T: { x: NaN } }], ['G1 X199000 F1000', { ...TP, dt: 6e-5 }], ['G1 X10 F1000', [0.04, 0.015, 0.001]],
       ['G0 X0 Y0\nG41 D1 G1 X10 F100\nG3 X10 Y0 I-10 J0\nG40 G1 X0', { ...TP, toolRadii: 'D1=20' }], ['G1 X10 F1000', { ...TP, toolRadii: { D1: Infinity } }]],
   },
+  // the same bad arguments as simulateToolPath (below CASES)
+  simulateToolPathColumns: { good: () => mt.simulateToolPathColumns(arcs, TP), bad: [] },
   radiusReduction: {
     good: () => mt.radiusReduction({ feed: 2000, radius: 10, tA: 0.04, T: 0.015 }),
     bad: [[{}], [{ feed: 0, radius: 1, tA: 0.04, T: 0.01 }], [{ feed: 1000, radius: -1, tA: 0.04, T: 0.01 }], [{ feed: 1000, radius: 1e-320, tA: 0.04, T: 0.01 }],
@@ -229,6 +231,7 @@ const CASES = {
     bad: [[{ scale: -1 }], [{ scale: NaN }], [{ machine: 'pocketnc-v2-10', feed: 1e-300 }], [{ machine: 'pocketnc-v2-10', feed: 1e308 }], [[]]],
   },
 };
+CASES.simulateToolPathColumns.bad = CASES.simulateToolPath.bad;
 
 /** Paths of every non-finite number in `v` (typed arrays included). */
 function nonFinite(v, path = 'result', out = []) {

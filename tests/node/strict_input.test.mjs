@@ -103,6 +103,7 @@ const GOOD = {
   sShapeTestPiece: () => [{ machine: 'pocketnc-v2-10', scale: 0.1 }],
   simulateAxis: () => [axisC, { dt: 1e-3, position: ramp }],
   simulateToolPath: () => [arcs, TP, () => true],
+  simulateToolPathColumns: () => [arcs, TP, () => true],
   start: () => [],
   syntheticBallbarTrace: () => [{ offsetX: 0.003, harmonics: [{ order: 3, amplitude: 0.001 }] }],
   toolpathExample: () => ['lines'],

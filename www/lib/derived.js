@@ -4,8 +4,7 @@
 // arrays. Each one is a core call plus drawing preparation, no model.
 import { programPieces } from './pieces.js';
 
-/** SegmentStats fields, packed as columns (typed arrays) for the crossing. */
-const NUMBERS = ['segment', 'line', 'length', 'radius', 'maxErrorUm', 'meanDeviation', 'samples'];
+/** SegmentColumns.kind codes (the core's toolpath::columns). */
 const KINDS = ['line', 'arc', 'rapid'];
 
 /**
@@ -36,22 +35,15 @@ export const derived = {
    */
   programPieces: (wasm, text, options) => programPieces(wasm.parseNc(text, options).segments),
   /**
-   * simulateToolPath, its per-segment statistics as columns: cameo's 35k
-   * segment objects took ~0.2 s to receive on the page's thread; the page
-   * rebuilds them with unpackSimulation in a few ms.
+   * simulateToolPath with its per-segment statistics as columns (the
+   * core's simulateToolPathColumns): cameo's 35k segment objects took
+   * ~0.2 s to receive on the page's thread, and 2 M of them were seconds
+   * and hundreds of MB; the page rebuilds the objects it shows with
+   * unpackSimulation.
    * @param {typeof import('../pkg/mtmotion.js')} wasm
    * @param {string} text
    * @param {import('../pkg/mtmotion.js').ToolPathConfig} config
    * @param {Function} [onProgress]
    */
-  simulateToolPathPacked: (wasm, text, config, onProgress) => {
-    const { segments, ...rest } = wasm.simulateToolPath(text, config, onProgress);
-    const col = Object.fromEntries(NUMBERS.map((k) => [k, new Float64Array(segments.length)]));
-    const kind = new Uint8Array(segments.length);
-    segments.forEach((g, i) => {
-      for (const k of NUMBERS) col[k][i] = g[k] ?? NaN;
-      kind[i] = KINDS.indexOf(g.kind);
-    });
-    return { ...rest, segmentColumns: { ...col, kind } };
-  },
+  simulateToolPathPacked: (wasm, text, config, onProgress) => wasm.simulateToolPathColumns(text, config, onProgress),
 };
