@@ -613,12 +613,12 @@ mod tests {
         assert_eq!(Table::parse("\n# x\n"), Err(TraceError::Empty));
         assert_eq!(Table::parse("a,b\n"), Err(TraceError::NoData { line: 1 }));
         assert_eq!(Table::parse("1,2\n"), Err(TraceError::NoHeader { line: 1 }));
-        let e = Table::parse("a,b\n1,2\n3\n").unwrap_err();
+        let e = Table::parse("a,b\n1,2\n3\n4,5\n").unwrap_err();
         assert_eq!(
             e.to_string(),
             "line 3: 1 fields, expected 2 as in the header"
         );
-        let e = Table::parse("a,b\n1,nan\n").unwrap_err();
+        let e = Table::parse("a,b\n1,nan\n2,3\n").unwrap_err();
         assert!(matches!(
             e,
             TraceError::BadNumber {
