@@ -240,4 +240,25 @@ mod tests {
             "line 4, column 6 ('z'): 'inf' is not a number"
         );
     }
+
+    #[test]
+    fn a_single_column_of_whole_numbers_is_data_not_sample_numbers() {
+        // halsampler -t needs a value beside the sample number
+        let r = read("0\n1\n2\n5\n", Some(0.5)).unwrap();
+        assert_eq!(r.table.names, ["column 1", "time"]);
+        assert_eq!(
+            r.table.columns,
+            [vec![0.0, 1.0, 2.0, 5.0], vec![0.0, 0.5, 1.0, 1.5]]
+        );
+        let r = read("0 7\n1 8\n2 9\n5 3\n", Some(0.5)).unwrap();
+        assert_eq!(r.table.names, ["sample", "column 2", "time"]);
+        assert_eq!(r.table.columns[2], [0.0, 0.5, 1.0, 2.5]);
+        // sample numbers are whole and not negative
+        for first in [["-3", "-2", "-1"], ["0.5", "1.5", "2.5"]] {
+            let text: String = first.iter().map(|f| format!("{f} 7\n")).collect();
+            let r = read(&text, Some(0.5)).unwrap();
+            assert_eq!(r.table.names[0], "column 1", "{text}");
+            assert_eq!(r.table.columns[2], [0.0, 0.5, 1.0], "{text}");
+        }
+    }
 }
