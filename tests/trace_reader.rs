@@ -293,3 +293,93 @@ fn every_refusal_names_its_cause_and_first_offending_line() {
         "the trace is empty: expected a header line such as 'time,x,y,c'"
     );
 }
+
+/// The layout preview marks what the feed-vector import reads each column
+/// as; a text column in between takes no role and shifts none.
+#[test]
+fn the_preview_marks_each_columns_role_past_text_columns() {
+    let text =
+        "Note;Zeit [ms];Status;POS X(um);Y;C [deg];TCMD C(Nm)\na;0;ok;1;2;3;4\nb;1;ok;2;3;4;5\n";
+    let mut r = read_table(text, &ReadOptions::default()).unwrap();
+    mtmotion::feed_vector::trace_analysis::roles(&mut r);
+    let got: Vec<(&str, Option<&str>)> = r
+        .layout
+        .columns
+        .iter()
+        .map(|c| (c.name.as_str(), c.role))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("Note", None),
+            ("Zeit [ms]", Some("time")),
+            ("Status", None),
+            ("POS X(um)", Some("x")),
+            ("Y", Some("y")),
+            ("C [deg]", Some("c")),
+            ("TCMD C(Nm)", Some("torque"))
+        ]
+    );
+}
+
+/// A preamble line of numbers with fewer fields than the table is
+/// metadata, not the first data row.
+#[test]
+fn a_short_preamble_line_of_numbers_is_metadata() {
+    let text = "1;2\n3;4\nt;x;y\n0;1;2\n1;2;3\n";
+    let r = read_table(text, &ReadOptions::default()).unwrap();
+    assert_eq!(
+        (r.layout.header_line, r.layout.first_data_line),
+        (Some(3), 4)
+    );
+    assert_eq!(r.table.columns, [[0.0, 1.0], [1.0, 2.0], [2.0, 3.0]]);
+    let m: Vec<(&str, &str)> = r
+        .layout
+        .metadata
+        .iter()
+        .map(|m| (m.key.as_str(), m.value.as_str()))
+        .collect();
+    assert_eq!(m, [("1", "2"), ("3", "4")]);
+}
+
+/// A key/value preamble line of a number (`Rate;1000`) above the header is
+/// metadata, not data: a row followed by a line of names and a row is not
+/// where the data start.
+#[test]
+fn a_rate_line_above_the_header_is_metadata() {
+    let text = "Machine: NMV5000\nRate;1000\nt;x\n0;1\n1;2\n2;3\n";
+    let r = read_table(text, &ReadOptions::default()).unwrap();
+    assert_eq!(
+        (r.layout.header_line, r.layout.first_data_line),
+        (Some(3), 4)
+    );
+    assert_eq!(r.table.names, ["t", "x"]);
+    assert_eq!(r.table.columns, [[0.0, 1.0, 2.0], [1.0, 2.0, 3.0]]);
+    let m: Vec<(&str, &str)> = r
+        .layout
+        .metadata
+        .iter()
+        .map(|m| (m.key.as_str(), m.value.as_str()))
+        .collect();
+    assert_eq!(m, [("Machine", "NMV5000"), ("Rate", "1000")]);
+    // the same above a header of three: a line of three numbers too
+    let r = read_table("1;2;3\nt;x;y\n0;1;2\n1;2;3\n", &ReadOptions::default()).unwrap();
+    assert_eq!(r.layout.header_line, Some(2));
+    assert_eq!(r.layout.metadata[0].value, "2 3");
+}
+
+/// A data row has at least half its fields numbers: one number in three
+/// fields is no row of numbers, and the refusal says so at line 2.
+#[test]
+fn a_row_needs_half_its_fields_numbers() {
+    let e = read_table(
+        "t;Status;Note\n0;ok;a\n1;ok;b\n2;ok;c\n",
+        &ReadOptions::default(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.starts_with("line 2: no row of numbers found"), "{e}");
+    // two in three is a row: the text column is ignored
+    let r = read_table("t;x;Note\n0;1;a\n1;2;b\n", &ReadOptions::default()).unwrap();
+    assert_eq!(r.table.names, ["t", "x"]);
+}
