@@ -383,3 +383,31 @@ fn a_row_needs_half_its_fields_numbers() {
     let r = read_table("t;x;Note\n0;1;a\n1;2;b\n", &ReadOptions::default()).unwrap();
     assert_eq!(r.table.names, ["t", "x"]);
 }
+
+/// A sample period must be above 0 s and at most 1e4 s; the refusal names
+/// the option and the header's line.
+#[test]
+fn a_sample_period_of_zero_is_refused() {
+    let text = "a,b\n1,2\n3,4\n";
+    for (dt, ok) in [
+        (0.0, false),
+        (-0.0, false),
+        (1e-9, true),
+        (1e4, true),
+        (1.0001e4, false),
+    ] {
+        let opts = ReadOptions {
+            sample_period: Some(dt),
+            ..ReadOptions::default()
+        };
+        match read_table(text, &opts) {
+            Ok(r) => assert!(ok && r.table.columns[2] == [0.0, dt], "{dt}"),
+            Err(e) => assert!(
+                !ok && e.to_string().starts_with(&format!(
+                    "line 1: option samplePeriod: {dt} s is not a sample period"
+                )),
+                "{dt}: {e}"
+            ),
+        }
+    }
+}

@@ -606,6 +606,14 @@ mod tests {
         assert_eq!(t.lines, vec![4, 5]);
         let w = Table::parse("a b\n1 2\n").unwrap();
         assert_eq!(w.delimiter, ' ');
+        // one column: one word per line is no space-delimited table
+        let one = Table::parse("x\n1\n2\n").unwrap();
+        assert_eq!(
+            (one.delimiter, one.columns.as_slice()),
+            (',', [vec![1.0, 2.0]].as_slice())
+        );
+        assert_eq!(detect("x"), None);
+        assert_eq!(detect("x y"), Some(' '));
     }
 
     #[test]
