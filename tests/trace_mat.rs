@@ -283,3 +283,131 @@ fn every_refusal_names_its_byte_and_cause() {
         assert!(e.contains(cause), "{what}: {e}");
     }
 }
+
+/// The bytes of `v` as data type `ty`, in the writer's byte order.
+fn typed(w: &Mat, ty: u32, v: &[f64]) -> Vec<u8> {
+    let b = |le: Vec<u8>| -> Vec<u8> {
+        if w.big {
+            le.into_iter().rev().collect()
+        } else {
+            le
+        }
+    };
+    v.iter()
+        .flat_map(|&x| match ty {
+            1 => b((x as i8).to_le_bytes().to_vec()),
+            2 | 16 => b((x as u8).to_le_bytes().to_vec()),
+            3 => b((x as i16).to_le_bytes().to_vec()),
+            4 => b((x as u16).to_le_bytes().to_vec()),
+            5 => b((x as i32).to_le_bytes().to_vec()),
+            6 => b((x as u32).to_le_bytes().to_vec()),
+            7 => b((x as f32).to_le_bytes().to_vec()),
+            9 => b(x.to_le_bytes().to_vec()),
+            12 => b((x as i64).to_le_bytes().to_vec()),
+            _ => b((x as u64).to_le_bytes().to_vec()),
+        })
+        .collect()
+}
+
+/// MATLAB stores a double array in the smallest type that holds its
+/// values (miINT8 … miUINT64, miSINGLE): each reads back as the same
+/// numbers, with its sign, in both byte orders.
+#[test]
+fn every_numeric_data_type_reads_back_in_both_byte_orders() {
+    let cases: [(u32, &str, [f64; 3]); 11] = [
+        (1, "int8", [-3.0, 100.0, -128.0]),
+        (2, "uint8", [200.0, 1.0, 255.0]),
+        (3, "int16", [-300.0, 7.0, -32768.0]),
+        (4, "uint16", [60000.0, 2.0, 65535.0]),
+        (5, "int32", [-70000.0, 3.0, -2147483648.0]),
+        (6, "uint32", [3e9, 4.0, 4294967295.0]),
+        (7, "single", [1.5, -2.25, 3.0e38]),
+        (9, "double", [0.1, -2.0, 1e300]),
+        (12, "int64", [-5e12, 6.0, -9.0e18]),
+        (13, "uint64", [1e19, 8.0, 1.8e19]),
+        (16, "utf8", [65.0, 66.0, 200.0]),
+    ];
+    for big in [false, true] {
+        let w = Mat { big };
+        let mut bytes = w.header();
+        for (ty, name, v) in &cases {
+            // dims 3×1: a column vector
+            bytes.extend(w.matrix(6, 0, &[3, 1], name, &w.el(*ty, &typed(&w, *ty, v))));
+        }
+        let got = read_bytes(&bytes, &ReadOptions::default())
+            .unwrap_or_else(|e| panic!("big {big}: {e}"));
+        let names: Vec<&str> = cases.iter().map(|c| c.1).collect();
+        assert_eq!(got.table.names, names, "big {big}");
+        for (k, (_, name, v)) in cases.iter().enumerate() {
+            let want: Vec<f64> = if *name == "single" {
+                v.iter().map(|&x| x as f32 as f64).collect()
+            } else {
+                v.to_vec()
+            };
+            assert_eq!(got.table.columns[k], want, "{name}, big {big}");
+        }
+    }
+}
+
+/// A Simulink signal of two columns reads as two named columns, one
+/// without a label is named by its place; a dSPACE signal without a Name
+/// is `Y(i)`, and a name written as a 2-row char array reads row by row.
+#[test]
+fn signals_without_labels_and_of_two_columns_are_named() {
+    let w = Mat { big: false };
+    let t = [0.0, 0.5, 1.0];
+    let two: Vec<u8> = [1.0f64, 2.0, 3.0, 10.0, 20.0, 30.0]
+        .iter()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    // Simulink's values are samples × columns (column-major)
+    let col: Vec<u8> = [4.0f64, 5.0, 6.0]
+        .iter()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    let sig = vec![
+        vec![
+            w.matrix(6, 0, &[3, 2], "", &w.el(9, &two)),
+            w.chars("", "pos"),
+        ],
+        vec![w.matrix(6, 0, &[3, 1], "", &w.el(9, &col)), w.chars("", "")],
+    ];
+    let top = w.structure(
+        "ScopeData",
+        &["time", "signals"],
+        &[vec![
+            w.doubles("", &t),
+            w.structure("", &["values", "label"], &sig),
+        ]],
+    );
+    let got = read_bytes(&[w.header(), top].concat(), &ReadOptions::default()).unwrap();
+    assert_eq!(
+        got.table.names,
+        ["time [s]", "pos(1)", "pos(2)", "signals(2)"]
+    );
+    assert_eq!(got.table.columns[1], [1.0, 2.0, 3.0]);
+    assert_eq!(got.table.columns[2], [10.0, 20.0, 30.0]);
+    assert_eq!(got.table.columns[3], [4.0, 5.0, 6.0]);
+    // dSPACE: Y(2) has no Name; Y(1)'s name is a 2×3 char array ("abc", "de")
+    let rows2: Vec<u8> = "adbec "
+        .encode_utf16()
+        .flat_map(|c| c.to_le_bytes())
+        .collect();
+    let name2 = w.matrix(4, 0, &[2, 3], "", &w.el(4, &rows2));
+    let ys = vec![
+        vec![name2, w.doubles("", &[1.0, 2.0, 3.0])],
+        vec![
+            w.matrix(6, 0, &[0, 0], "", &w.el(9, &[])),
+            w.doubles("", &[4.0, 5.0, 6.0]),
+        ],
+    ];
+    let x = w.structure("", &["Data"], &[vec![w.doubles("", &t)]]);
+    let top = w.structure(
+        "cap",
+        &["X", "Y"],
+        &[vec![x, w.structure("", &["Name", "Data"], &ys)]],
+    );
+    let got = read_bytes(&[w.header(), top].concat(), &ReadOptions::default()).unwrap();
+    assert_eq!(got.table.names, ["time [s]", "abc\nde", "Y(2)"]);
+    assert_eq!(got.table.columns[2], [4.0, 5.0, 6.0]);
+}
