@@ -10,7 +10,7 @@
 
 use mtmotion::feed_vector::trace_analysis::{analyze_trace, ColumnMap};
 use mtmotion::feed_vector::FeedVectorResult;
-use mtmotion::trace::{read_table, ColumnKind, ReadOptions, Table};
+use mtmotion::trace::{read_table, ColumnKind, ReadOptions, Table, TableRead};
 use std::f64::consts::PI;
 
 #[path = "support/feed_vector_trace.rs"]
@@ -125,12 +125,7 @@ fn every_layout_reads_back_to_the_same_numbers() {
                 ("tab", Some("mm"))
             ),
             "preamble" => {
-                let m: Vec<(&str, &str)> = got
-                    .layout
-                    .metadata
-                    .iter()
-                    .map(|m| (m.key.as_str(), m.value.as_str()))
-                    .collect();
+                let m = metadata(&got);
                 assert_eq!(
                     m,
                     [
@@ -322,23 +317,29 @@ fn the_preview_marks_each_columns_role_past_text_columns() {
     );
 }
 
+/// The metadata lines above the header, as (key, value).
+fn metadata(r: &TableRead) -> Vec<(&str, &str)> {
+    r.layout
+        .metadata
+        .iter()
+        .map(|m| (m.key.as_str(), m.value.as_str()))
+        .collect()
+}
+
+/// The header's line and the first data line.
+fn lines_of(r: &TableRead) -> (Option<usize>, usize) {
+    (r.layout.header_line, r.layout.first_data_line)
+}
+
 /// A preamble line of numbers with fewer fields than the table is
 /// metadata, not the first data row.
 #[test]
 fn a_short_preamble_line_of_numbers_is_metadata() {
     let text = "1;2\n3;4\nt;x;y\n0;1;2\n1;2;3\n";
     let r = read_table(text, &ReadOptions::default()).unwrap();
-    assert_eq!(
-        (r.layout.header_line, r.layout.first_data_line),
-        (Some(3), 4)
-    );
+    assert_eq!(lines_of(&r), (Some(3), 4));
     assert_eq!(r.table.columns, [[0.0, 1.0], [1.0, 2.0], [2.0, 3.0]]);
-    let m: Vec<(&str, &str)> = r
-        .layout
-        .metadata
-        .iter()
-        .map(|m| (m.key.as_str(), m.value.as_str()))
-        .collect();
+    let m = metadata(&r);
     assert_eq!(m, [("1", "2"), ("3", "4")]);
 }
 
@@ -349,18 +350,10 @@ fn a_short_preamble_line_of_numbers_is_metadata() {
 fn a_rate_line_above_the_header_is_metadata() {
     let text = "Machine: NMV5000\nRate;1000\nt;x\n0;1\n1;2\n2;3\n";
     let r = read_table(text, &ReadOptions::default()).unwrap();
-    assert_eq!(
-        (r.layout.header_line, r.layout.first_data_line),
-        (Some(3), 4)
-    );
+    assert_eq!(lines_of(&r), (Some(3), 4));
     assert_eq!(r.table.names, ["t", "x"]);
     assert_eq!(r.table.columns, [[0.0, 1.0, 2.0], [1.0, 2.0, 3.0]]);
-    let m: Vec<(&str, &str)> = r
-        .layout
-        .metadata
-        .iter()
-        .map(|m| (m.key.as_str(), m.value.as_str()))
-        .collect();
+    let m = metadata(&r);
     assert_eq!(m, [("Machine", "NMV5000"), ("Rate", "1000")]);
     // the same above a header of three: a line of three numbers too
     let r = read_table("1;2;3\nt;x;y\n0;1;2\n1;2;3\n", &ReadOptions::default()).unwrap();
