@@ -409,7 +409,7 @@ impl Table {
     pub fn parse(text: &str) -> Result<Self, TraceError> {
         let lines = data_lines(text)?;
         let h = header_index(&lines).map_err(|e| match e {
-            TraceError::NoData { .. } if lines.len() > 1 => strict_diagnosis(text),
+            TraceError::NoData { .. } => strict_diagnosis(text),
             e => e,
         })?;
         let (header_line, header) = lines[h];
@@ -613,6 +613,9 @@ mod tests {
             (',', [vec![1.0, 2.0]].as_slice())
         );
         assert_eq!(detect("x"), None);
+        // the delimiter is the data's: a header name may hold another one
+        let c = Table::parse("X [mm, ist];Y [mm, ist]\n1;2\n3;4\n").unwrap();
+        assert_eq!((c.delimiter, c.names[1].as_str()), (';', "Y [mm, ist]"));
         assert_eq!(detect("x y"), Some(' '));
     }
 
@@ -620,12 +623,31 @@ mod tests {
     fn errors_name_lines_and_columns() {
         assert_eq!(Table::parse("\n# x\n"), Err(TraceError::Empty));
         assert_eq!(Table::parse("a,b\n"), Err(TraceError::NoData { line: 1 }));
+        // a one-line file of a control's layout says what that layout lacks
+        assert_eq!(
+            Table::parse("Sampling period is 1000 ns\n")
+                .unwrap_err()
+                .to_string(),
+            "line 1: halscope log: no sample follows the sampling period"
+        );
         assert_eq!(Table::parse("1,2\n"), Err(TraceError::NoHeader { line: 1 }));
         let e = Table::parse("a,b\n1,2\n3\n4,5\n").unwrap_err();
         assert_eq!(
             e.to_string(),
             "line 3: 1 fields, expected 2 as in the header"
         );
+        // one trailing delimiter is tolerated, an extra value is not
+        assert_eq!(
+            Table::parse("a,b\n1,2\n3,4,\n").unwrap().columns[1],
+            [2.0, 4.0]
+        );
+        let e = Table::parse("a,b\n1,2\n1,2,3\n4,5\n").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "line 3: 3 fields, expected 2 as in the header"
+        );
+        let e = Table::parse("a,b\n1,2\n1,\n4,5\n").unwrap_err();
+        assert_eq!(e.to_string(), "line 3, column 2 ('b'): '' is not a number");
         let e = Table::parse("a,b\n1,nan\n2,3\n").unwrap_err();
         assert!(matches!(
             e,
