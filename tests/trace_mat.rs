@@ -10,7 +10,7 @@
 
 use mtmotion::feed_vector::trace_analysis::{analyze_trace_bytes, ColumnMap};
 use mtmotion::feed_vector::FeedVectorResult;
-use mtmotion::trace::{read_bytes, read_table, ReadOptions};
+use mtmotion::trace::{mat, read_bytes, read_table, ReadOptions};
 #[path = "support/feed_vector_trace.rs"]
 mod feed_vector_trace;
 use feed_vector_trace::{close, sim};
@@ -394,12 +394,15 @@ fn signals_without_labels_and_of_two_columns_are_named() {
         .flat_map(|c| c.to_le_bytes())
         .collect();
     let name2 = w.matrix(4, 0, &[2, 3], "", &w.el(4, &rows2));
+    // Y(3)'s name is a cell holding its text, as some exports write it
+    let in_cell = w.matrix(1, 0, &[1, 1], "", &w.chars("", "Z"));
     let ys = vec![
         vec![name2, w.doubles("", &[1.0, 2.0, 3.0])],
         vec![
             w.matrix(6, 0, &[0, 0], "", &w.el(9, &[])),
             w.doubles("", &[4.0, 5.0, 6.0]),
         ],
+        vec![in_cell, w.doubles("", &[7.0, 8.0, 9.0])],
     ];
     let x = w.structure("", &["Data"], &[vec![w.doubles("", &t)]]);
     let top = w.structure(
@@ -407,7 +410,20 @@ fn signals_without_labels_and_of_two_columns_are_named() {
         &["X", "Y"],
         &[vec![x, w.structure("", &["Name", "Data"], &ys)]],
     );
-    let got = read_bytes(&[w.header(), top].concat(), &ReadOptions::default()).unwrap();
-    assert_eq!(got.table.names, ["time [s]", "abc\nde", "Y(2)"]);
+    let file = [w.header(), top].concat();
+    let got = read_bytes(&file, &ReadOptions::default()).unwrap();
+    assert_eq!(got.table.names, ["time [s]", "abc\nde", "Y(2)", "Z"]);
     assert_eq!(got.table.columns[2], [4.0, 5.0, 6.0]);
+    assert_eq!(got.table.columns[3], [7.0, 8.0, 9.0]);
+    // a struct array's length; anything else has none
+    let vars = mat::variables(&file).unwrap();
+    let (name, v) = &vars[0];
+    assert_eq!((name.as_str(), v.len(), v.is_empty()), ("cap", 1, false));
+    let y = v.field(0, "Y").unwrap();
+    assert_eq!((y.len(), y.is_empty()), (3, false));
+    let data = y.field(2, "Data").unwrap();
+    assert_eq!((data.len(), data.is_empty()), (0, true));
+    assert!(
+        v.field(1, "Y").is_none() && v.field(0, "Q").is_none() && data.field(0, "Data").is_none()
+    );
 }
