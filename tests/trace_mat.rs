@@ -396,19 +396,23 @@ fn signals_without_labels_and_of_two_columns_are_named() {
     let name2 = w.matrix(4, 0, &[2, 3], "", &w.el(4, &rows2));
     // Y(3)'s name is a cell holding its text, as some exports write it
     let in_cell = w.matrix(1, 0, &[1, 1], "", &w.chars("", "Z"));
+    // Units: none (an empty array: a tag alone, the last one ending the
+    // struct's data exactly), and one the core does not know
+    let none = w.el(14, &[]);
     let ys = vec![
-        vec![name2, w.doubles("", &[1.0, 2.0, 3.0])],
+        vec![name2, w.doubles("", &[1.0, 2.0, 3.0]), none.clone()],
         vec![
             w.matrix(6, 0, &[0, 0], "", &w.el(9, &[])),
             w.doubles("", &[4.0, 5.0, 6.0]),
+            w.chars("", "V"),
         ],
-        vec![in_cell, w.doubles("", &[7.0, 8.0, 9.0])],
+        vec![in_cell, w.doubles("", &[7.0, 8.0, 9.0]), none],
     ];
     let x = w.structure("", &["Data"], &[vec![w.doubles("", &t)]]);
     let top = w.structure(
         "cap",
         &["X", "Y"],
-        &[vec![x, w.structure("", &["Name", "Data"], &ys)]],
+        &[vec![x, w.structure("", &["Name", "Data", "Unit"], &ys)]],
     );
     let file = [w.header(), top].concat();
     let got = read_bytes(&file, &ReadOptions::default()).unwrap();
