@@ -431,3 +431,56 @@ fn signals_without_labels_and_of_two_columns_are_named() {
         v.field(1, "Y").is_none() && v.field(0, "Q").is_none() && data.field(0, "Data").is_none()
     );
 }
+
+/// Small data elements (at most 4 bytes packed into the tag): a 2-byte
+/// name reads; one that claims 5 bytes, or 3 bytes of miINT32 dimensions,
+/// is refused at its own byte.
+#[test]
+fn small_data_elements_read_and_are_refused_at_their_byte() {
+    let w = Mat { big: false };
+    let flags = w.el(6, &[w.u32(6), w.u32(0)].concat()); // bytes 136–151
+    let dims = w.el(5, &[w.u32(1), w.u32(2)].concat()); // bytes 152–167
+    let data: Vec<u8> = [1.5f64, -2.0]
+        .iter()
+        .flat_map(|x| x.to_le_bytes())
+        .collect();
+    let file = |inner: Vec<u8>| [w.header(), w.el(14, &inner)].concat();
+    let good = file(
+        [
+            flags.clone(),
+            dims.clone(),
+            w.small(1, b"ab"),
+            w.el(9, &data),
+        ]
+        .concat(),
+    );
+    let r = read_bytes(&good, &ReadOptions::default()).unwrap();
+    assert_eq!(
+        (r.table.names[0].as_str(), r.table.columns[0].as_slice()),
+        ("ab", [1.5, -2.0].as_slice())
+    );
+    let five = [w.u32((5 << 16) | 1).to_vec(), b"abcd".to_vec()].concat();
+    let bad_name = file([flags.clone(), dims, five, w.el(9, &data)].concat());
+    let short_dims = file(
+        [
+            flags,
+            w.small(5, &[1, 0, 0]),
+            w.small(1, b"ab"),
+            w.el(9, &data),
+        ]
+        .concat(),
+    );
+    for (bytes, want) in [
+        (
+            bad_name,
+            "byte 168: MATLAB .mat: a small data element of 5 bytes (at most 4)",
+        ),
+        (
+            short_dims,
+            "byte 156: MATLAB .mat: 3 bytes of miINT32 (a multiple of 4 expected)",
+        ),
+    ] {
+        let e = read_bytes(&bytes, &ReadOptions::default()).unwrap_err();
+        assert_eq!(e.to_string(), want);
+    }
+}
