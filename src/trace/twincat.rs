@@ -423,6 +423,9 @@ mod tests {
         let r = read_table(swapped, &ReadOptions::default()).unwrap();
         assert_eq!(r.table.names, ["time [ms]", "X", "Z"]);
         assert_eq!(r.table.columns[0], [0.0, 1.0, 2.0]);
+        // a channel table's columns are numbered 1, 2, … in table order
+        let fields: Vec<usize> = r.layout.columns.iter().map(|c| c.field).collect();
+        assert_eq!(fields, [1, 2, 3]);
     }
 
     #[test]
