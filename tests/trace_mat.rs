@@ -484,3 +484,119 @@ fn small_data_elements_read_and_are_refused_at_their_byte() {
         assert_eq!(e.to_string(), want);
     }
 }
+
+/// Broken arrays inside a well-formed file: each refusal names the byte
+/// where the fault is and what was expected there.
+#[test]
+fn broken_arrays_are_refused_at_their_byte() {
+    let w = Mat { big: false };
+    let file = |body: Vec<u8>| [w.header(), body].concat();
+    let two: Vec<u8> = [1.0f64, 2.0].iter().flat_map(|x| x.to_le_bytes()).collect();
+    let flags = |class: u32| w.el(6, &[w.u32(class), w.u32(0)].concat()); // 136–151
+    let dims = |d: &[u32]| w.el(5, &d.iter().flat_map(|&x| w.u32(x)).collect::<Vec<u8>>());
+    let raw = |parts: &[Vec<u8>]| file(w.el(14, &parts.concat()));
+    // nested cells, 20 deep
+    let mut deep = w.doubles("", &[1.0]);
+    for _ in 0..20 {
+        deep = w.matrix(1, 0, &[1, 1], "", &deep);
+    }
+    let cases: Vec<(&str, Vec<u8>, String)> = vec![
+        (
+            "flags of another type",
+            raw(&[w.el(5, &[w.u32(6), w.u32(0)].concat()), dims(&[1, 2]), w.el(1, b"x"), w.el(9, &two)]),
+            "byte 144: MATLAB .mat: an array's flags (miUINT32, 8 bytes) were expected".into(),
+        ),
+        (
+            "dimensions too large",
+            raw(&[flags(6), dims(&[100_000, 100_000]), w.el(1, b"x"), w.el(9, &two)]),
+            "byte 160: MATLAB .mat: dimensions [100000, 100000] are too large".into(),
+        ),
+        (
+            "fewer values than the dimensions",
+            raw(&[flags(6), dims(&[1, 3]), w.el(1, b"x"), w.el(9, &two)]),
+            "byte 192: MATLAB .mat: 'x' has 2 values for dimensions [1, 3]".into(),
+        ),
+        (
+            "an object",
+            raw(&[flags(3), dims(&[1, 1]), w.el(1, b"o")]),
+            "byte 136: MATLAB .mat: 'o' is mxOBJECT (a MATLAB object), which is not read; a trace is real numbers, text, structs and cells".into(),
+        ),
+        (
+            "a field name length of 0",
+            raw(&[flags(2), dims(&[1, 1]), w.el(1, b"s"), w.small(5, &w.u32(0)), w.el(1, b"abcd")]),
+            "byte 200: MATLAB .mat: 's': field names of 4 bytes with a name length of 0".into(),
+        ),
+        (
+            "a number where a struct field's array belongs",
+            file(w.structure("s", &["a"], &[vec![w.el(9, &two)]])),
+            "byte 240: MATLAB .mat: data type 9 inside a struct or cell (miMATRIX expected)".into(),
+        ),
+        ("nested too deep", file(deep), "structs or cells nested deeper than 16 levels".into()),
+        (
+            "a number at the top level",
+            file(w.el(9, &two)),
+            "byte 136: MATLAB .mat: data type 9 at the top level (miMATRIX expected)".into(),
+        ),
+    ];
+    for (what, bytes, want) in cases {
+        let e = read_bytes(&bytes, &ReadOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("byte ") && e.ends_with(&want), "{what}: {e}");
+    }
+    // dSPACE and Simulink structs without their data say which is missing
+    let x = w.structure("", &["Name"], &[vec![w.chars("", "Time")]]);
+    let y = w.structure("", &["Data"], &[vec![w.doubles("", &[1.0])]]);
+    let cap = file(w.structure("cap", &["X", "Y"], &[vec![x, y]]));
+    let e = read_bytes(&cap, &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        e,
+        "byte 0: MATLAB .mat: 'cap.X' has no Data vector (the time)"
+    );
+    let x = w.structure("", &["Data"], &[vec![w.doubles("", &[0.0])]]);
+    let y = w.structure("", &["Name"], &[vec![w.chars("", "pos")]]);
+    let cap = file(w.structure("cap", &["X", "Y"], &[vec![x, y]]));
+    let e = read_bytes(&cap, &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        e,
+        "byte 0: MATLAB .mat: 'cap.Y(1)' ('pos') has no Data vector"
+    );
+    let s = w.structure("", &["label"], &[vec![w.chars("", "pos")]]);
+    let sl = file(w.structure(
+        "sd",
+        &["time", "signals"],
+        &[vec![w.doubles("", &[0.0]), s]],
+    ));
+    let e = read_bytes(&sl, &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert_eq!(e, "byte 0: MATLAB .mat: 'sd.signals(1)' has no values");
+    let s = w.structure("", &["values"], &[vec![w.doubles("", &[1.0])]]);
+    let sl = file(w.structure("sd", &["time", "signals"], &[vec![w.chars("", "t"), s]]));
+    let e = read_bytes(&sl, &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert_eq!(e, "byte 0: MATLAB .mat: 'sd.time' is not a vector");
+    // text stored as miUTF8 reads as its characters
+    let utf8 = file(w.structure(
+        "cap",
+        &["X", "Y"],
+        &[vec![
+            w.structure("", &["Data"], &[vec![w.doubles("", &[0.0, 1.0])]]),
+            w.structure(
+                "",
+                &["Name", "Data"],
+                &[vec![
+                    w.matrix(4, 0, &[1, 3], "", &w.el(16, "Xµm".as_bytes())),
+                    w.doubles("", &[5.0, 6.0]),
+                ]],
+            ),
+        ]],
+    ));
+    let r = read_bytes(&utf8, &ReadOptions::default()).unwrap();
+    assert_eq!(r.table.names[1], "Xµm");
+}
