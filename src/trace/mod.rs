@@ -660,6 +660,9 @@ mod tests {
         let t = Table::parse("a,b\n1,2\n").unwrap();
         let e = t.column(&["x", "pos_x"], 1.0).unwrap_err().to_string();
         assert!(e.contains("'x' or 'pos_x'") && e.contains("a, b"), "{e}");
-        assert!(t.column_at(3, 1.0).is_err());
+        assert!(t.column_at(3, 1.0).is_err() && t.column_at(0, 1.0).is_err());
+        // the 1-based column, scaled to core units
+        assert_eq!(t.column_at(2, 1e-3).unwrap(), [2e-3]);
+        assert_eq!(t.column(&["a"], 4.0).unwrap(), [4.0]);
     }
 }
