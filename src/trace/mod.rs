@@ -593,6 +593,40 @@ mod tests {
             .contains("a binary file"));
         // Text with a few non-ASCII characters (µ, °) stays text.
         assert_eq!(binary_kind("Zeit [s];X [µm];C [°]\n0;1;2\n"), None);
+        // each signature, and what is not one
+        for (text, kind) in [
+            ("PNG,x\n1,2\n", None), // a column named PNG
+            ("\u{89}PNG\r\n", Some("a PNG image")),
+            ("GIF89a\u{1}\u{0}", Some("a GIF image")),
+            (
+                "PK\u{3}\u{4}\u{14}\u{0}",
+                Some("a ZIP archive or an Excel/Office file"),
+            ),
+            (
+                "\u{fffd}\u{fffd}\u{fffd}\u{fffd}\u{0}\u{10}JFIF\u{0}",
+                Some("a JPEG image"),
+            ),
+            ("\u{fffd}\u{fffd}\u{fffd}x,y\n1,2\n", None), // no JFIF: not a JPEG by its head
+            ("\u{ff}\u{d8}\u{ff}\u{e0}", Some("a JPEG image")),
+            ("\u{1f}\u{fffd}\u{8}\u{0}", Some("a gzip archive")),
+            ("t,x\n0,\u{0}1\n", Some("a binary file")), // a NUL, however short
+        ] {
+            assert_eq!(binary_kind(text), kind, "{text:?}");
+        }
+        // more than 10 % replacement or control characters in 32 or more
+        let share = |bad: usize, c: char| -> String {
+            (0..40).map(|i| if i < bad { c } else { 'a' }).collect()
+        };
+        assert_eq!(binary_kind(&share(4, '\u{fffd}')), None); // 4 of 40: 10 %
+        assert_eq!(binary_kind(&share(5, '\u{fffd}')), Some("a binary file"));
+        assert_eq!(binary_kind(&share(5, '\u{7}')), Some("a binary file"));
+        // line ends, tabs and form feeds are text
+        assert_eq!(binary_kind(&share(20, '\u{c}')), None);
+        assert_eq!(binary_kind(&share(20, '\t')), None);
+        // under 32 characters the share is not judged
+        let short: String = "\u{7}".repeat(31);
+        assert_eq!(binary_kind(&short), None);
+        assert_eq!(binary_kind(&(short + "\u{7}")), Some("a binary file"));
     }
 
     #[test]
