@@ -533,6 +533,21 @@ fn broken_arrays_are_refused_at_their_byte() {
         ),
         ("nested too deep", file(deep), "structs or cells nested deeper than 16 levels".into()),
         (
+            "a function handle",
+            raw(&[flags(16), dims(&[1, 1]), w.el(1, b"f")]),
+            "byte 136: MATLAB .mat: 'f' is mxFUNCTION (a function handle), which is not read; a trace is real numbers, text, structs and cells".into(),
+        ),
+        (
+            "an opaque object",
+            raw(&[flags(17), dims(&[1, 1]), w.el(1, b"o")]),
+            "byte 136: MATLAB .mat: 'o' is mxOPAQUE (a MATLAB object), which is not read; a trace is real numbers, text, structs and cells".into(),
+        ),
+        (
+            "an unknown class",
+            raw(&[flags(40), dims(&[1, 1]), w.el(1, b"u")]),
+            "byte 136: MATLAB .mat: 'u' is array class 40, which is not read; a trace is real numbers, text, structs and cells".into(),
+        ),
+        (
             "a number at the top level",
             file(w.el(9, &two)),
             "byte 136: MATLAB .mat: data type 9 at the top level (miMATRIX expected)".into(),
@@ -599,4 +614,47 @@ fn broken_arrays_are_refused_at_their_byte() {
     ));
     let r = read_bytes(&utf8, &ReadOptions::default()).unwrap();
     assert_eq!(r.table.names[1], "Xµm");
+}
+
+/// Compressed elements follow each other unpadded; plain ones are padded
+/// to 8 bytes. A matrix or an empty vector among the vectors is named and
+/// left out. A big-endian v7.3 file is refused as the little-endian one is.
+#[test]
+fn compressed_elements_in_a_row_and_what_is_left_out() {
+    let w = Mat { big: false };
+    let t = w.compressed(&w.doubles("t", &[0.0, 1.0, 2.0]));
+    let x = w.compressed(&w.doubles("x", &[5.0, 6.0, 7.0]));
+    assert!(
+        t.len() % 8 != 0,
+        "the case needs an unpadded length: {}",
+        t.len()
+    );
+    let m = w.matrix(6, 0, &[2, 2], "m", &w.el(9, &[0u8; 32]));
+    let e = w.doubles("e", &[]);
+    let file = [w.header(), t, m, x, e].concat();
+    let r = read_bytes(&file, &ReadOptions::default()).unwrap();
+    assert_eq!(r.table.names, ["t", "x"]);
+    assert_eq!(r.table.columns[1], [5.0, 6.0, 7.0]);
+    let notes = r.layout.notes.join(" | ");
+    for v in ["m", "e"] {
+        assert!(
+            notes.contains(&format!("variable '{v}' is not a real vector: ignored")),
+            "{notes}"
+        );
+    }
+    let big = Mat { big: true };
+    let mut v73 = big.header();
+    v73[124..126].copy_from_slice(&0x0200u16.to_be_bytes());
+    let e = read_bytes(&v73, &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("byte 124: MATLAB .mat: a v7.3 (HDF5) MAT-file"),
+        "{e}"
+    );
+    let e = mat::variables(b"hello").unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "byte 0: MATLAB .mat: not a MATLAB 5.0 MAT-file (its header text is missing)"
+    );
 }

@@ -187,11 +187,13 @@ fn element(
                 ),
             )
         })?;
-    // miCOMPRESSED is not padded
+    // miCOMPRESSED is not padded; any other element's data is padded to
+    // 8 bytes from its own start (after a compressed element it need not
+    // start on a multiple of 8 in the file)
     let next = if first == 15 {
         end
     } else {
-        end.div_ceil(8) * 8
+        pos + 8 + n.div_ceil(8) * 8
     }
     .min(buf.len());
     Ok((
