@@ -512,6 +512,18 @@ fn broken_arrays_are_refused_at_their_byte() {
             "byte 160: MATLAB .mat: dimensions [100000, 100000] are too large".into(),
         ),
         (
+            "one value more than 64 MiB of doubles",
+            raw(&[flags(6), dims(&[4097, 2048]), w.el(1, b"x"), w.el(9, &two)]),
+            "byte 160: MATLAB .mat: dimensions [4097, 2048] are too large".into(),
+        ),
+        (
+            // 2048 × 4096 doubles are 64 MiB: the largest array reserved
+            "the largest array",
+            raw(&[flags(6), dims(&[2048, 4096]), w.el(1, b"x"), w.el(9, &two)]),
+            "byte 192: MATLAB .mat: 'x' has 2 values for dimensions [2048, 4096]".into(),
+        ),
+        ("the header alone", w.header(), "no capture found: no struct with X and Y (dSPACE) or time and signals (Simulink), and no real vector (variables: )".into()),
+        (
             "fewer values than the dimensions",
             raw(&[flags(6), dims(&[1, 3]), w.el(1, b"x"), w.el(9, &two)]),
             "byte 192: MATLAB .mat: 'x' has 2 values for dimensions [1, 3]".into(),
