@@ -495,11 +495,22 @@ fn broken_arrays_are_refused_at_their_byte() {
     let flags = |class: u32| w.el(6, &[w.u32(class), w.u32(0)].concat()); // 136–151
     let dims = |d: &[u32]| w.el(5, &d.iter().flat_map(|&x| w.u32(x)).collect::<Vec<u8>>());
     let raw = |parts: &[Vec<u8>]| file(w.el(14, &parts.concat()));
-    // nested cells, 20 deep
-    let mut deep = w.doubles("", &[1.0]);
-    for _ in 0..20 {
-        deep = w.matrix(1, 0, &[1, 1], "", &deep);
-    }
+    // a vector inside 16 nested cells is read (and is no capture); 17 are too deep
+    let nested = |k: usize| {
+        let mut v = w.doubles("", &[1.0]);
+        for _ in 0..k {
+            v = w.matrix(1, 0, &[1, 1], "", &v);
+        }
+        file(v)
+    };
+    let deep = nested(17);
+    let e = read_bytes(&nested(16), &ReadOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("byte 128: MATLAB .mat: no capture found"),
+        "{e}"
+    );
     let cases: Vec<(&str, Vec<u8>, String)> = vec![
         (
             "flags of another type",
@@ -543,7 +554,12 @@ fn broken_arrays_are_refused_at_their_byte() {
             file(w.structure("s", &["a"], &[vec![w.el(9, &two)]])),
             "byte 240: MATLAB .mat: data type 9 inside a struct or cell (miMATRIX expected)".into(),
         ),
-        ("nested too deep", file(deep), "structs or cells nested deeper than 16 levels".into()),
+        ("nested too deep", deep, "structs or cells nested deeper than 16 levels".into()),
+        (
+            "short flags",
+            raw(&[w.el(6, &w.u32(6)), dims(&[1, 2]), w.el(1, b"x"), w.el(9, &two)]),
+            "byte 144: MATLAB .mat: an array's flags (miUINT32, 8 bytes) were expected".into(),
+        ),
         (
             "a function handle",
             raw(&[flags(16), dims(&[1, 1]), w.el(1, b"f")]),
