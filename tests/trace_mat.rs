@@ -588,42 +588,53 @@ fn broken_arrays_are_refused_at_their_byte() {
         assert!(e.starts_with("byte ") && e.ends_with(&want), "{what}: {e}");
     }
     // dSPACE and Simulink structs without their data say which is missing
-    let x = w.structure("", &["Name"], &[vec![w.chars("", "Time")]]);
-    let y = w.structure("", &["Data"], &[vec![w.doubles("", &[1.0])]]);
-    let cap = file(w.structure("cap", &["X", "Y"], &[vec![x, y]]));
-    let e = read_bytes(&cap, &ReadOptions::default())
-        .unwrap_err()
-        .to_string();
-    assert_eq!(
-        e,
-        "byte 0: MATLAB .mat: 'cap.X' has no Data vector (the time)"
-    );
-    let x = w.structure("", &["Data"], &[vec![w.doubles("", &[0.0])]]);
-    let y = w.structure("", &["Name"], &[vec![w.chars("", "pos")]]);
-    let cap = file(w.structure("cap", &["X", "Y"], &[vec![x, y]]));
-    let e = read_bytes(&cap, &ReadOptions::default())
-        .unwrap_err()
-        .to_string();
-    assert_eq!(
-        e,
-        "byte 0: MATLAB .mat: 'cap.Y(1)' ('pos') has no Data vector"
-    );
-    let s = w.structure("", &["label"], &[vec![w.chars("", "pos")]]);
-    let sl = file(w.structure(
-        "sd",
-        &["time", "signals"],
-        &[vec![w.doubles("", &[0.0]), s]],
-    ));
-    let e = read_bytes(&sl, &ReadOptions::default())
-        .unwrap_err()
-        .to_string();
-    assert_eq!(e, "byte 0: MATLAB .mat: 'sd.signals(1)' has no values");
-    let s = w.structure("", &["values"], &[vec![w.doubles("", &[1.0])]]);
-    let sl = file(w.structure("sd", &["time", "signals"], &[vec![w.chars("", "t"), s]]));
-    let e = read_bytes(&sl, &ReadOptions::default())
-        .unwrap_err()
-        .to_string();
-    assert_eq!(e, "byte 0: MATLAB .mat: 'sd.time' is not a vector");
+    let st = |name: &str, field: &str, value: Vec<u8>| w.structure(name, &[field], &[vec![value]]);
+    let two_fields = |name: &str, f: [&str; 2], a: Vec<u8>, b: Vec<u8>| {
+        file(w.structure(name, &f, &[vec![a, b]]))
+    };
+    for (bytes, want) in [
+        (
+            two_fields(
+                "cap",
+                ["X", "Y"],
+                st("", "Name", w.chars("", "Time")),
+                st("", "Data", w.doubles("", &[1.0])),
+            ),
+            "'cap.X' has no Data vector (the time)",
+        ),
+        (
+            two_fields(
+                "cap",
+                ["X", "Y"],
+                st("", "Data", w.doubles("", &[0.0])),
+                st("", "Name", w.chars("", "pos")),
+            ),
+            "'cap.Y(1)' ('pos') has no Data vector",
+        ),
+        (
+            two_fields(
+                "sd",
+                ["time", "signals"],
+                w.doubles("", &[0.0]),
+                st("", "label", w.chars("", "pos")),
+            ),
+            "'sd.signals(1)' has no values",
+        ),
+        (
+            two_fields(
+                "sd",
+                ["time", "signals"],
+                w.chars("", "t"),
+                st("", "values", w.doubles("", &[1.0])),
+            ),
+            "'sd.time' is not a vector",
+        ),
+    ] {
+        let e = read_bytes(&bytes, &ReadOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, format!("byte 0: MATLAB .mat: {want}"));
+    }
     // text stored as miUTF8 reads as its characters
     let utf8 = file(w.structure(
         "cap",
