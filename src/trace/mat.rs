@@ -244,13 +244,12 @@ fn numbers(el: &Element, e: Endian) -> Result<Vec<f64>, TraceError> {
                 }
             }
             let le8 = u64::from_le_bytes(b);
+            // unsigned types (miUINT8, miUTF8, miUINT16, miUINT32,
+            // miUINT64) are le8 itself: the bytes above their size are zero
             match el.ty {
                 1 => le8 as u8 as i8 as f64,
-                2 | 16 => le8 as u8 as f64,
                 3 => le8 as u16 as i16 as f64,
-                4 => le8 as u16 as f64,
                 5 => le8 as u32 as i32 as f64,
-                6 => le8 as u32 as f64,
                 7 => f32::from_bits(le8 as u32) as f64,
                 9 => f64::from_bits(le8),
                 12 => le8 as i64 as f64,
