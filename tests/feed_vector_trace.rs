@@ -57,19 +57,19 @@ fn err(text: &str) -> String {
 fn malformed_traces_name_line_and_column() {
     assert!(err("").contains("empty"));
     assert_eq!(
-        err("time,x,y,c\n0,8,0,0\n0.001,8,0,zero\n"),
+        err("time,x,y,c\n0,8,0,0\n0.001,8,0,zero\n0.002,8,0,0\n"),
         "line 3, column 4 ('c'): 'zero' is not a number"
     );
-    let e = err("time,x,y,c\n0,8,0,0\n0.002,8,0,0\n0.001,8,0,0\n");
+    let e = err("time,x,y,c\n0,8,0,0\n0.002,8,0,0\n0.001,8,0,0\n0.003,8,0,0\n");
     assert!(
         e.starts_with("line 4, column 1 ('time')") && e.contains("does not increase"),
         "{e}"
     );
     let e = err("time,x,y\n0,8,0\n0.001,8,0\n");
     assert!(e.contains("'c'") && e.contains("time, x, y"), "{e}");
-    let e = err("time,x,y,c\n0,8,0,0\n0.001,8,0\n");
+    let e = err("time,x,y,c\n0,8,0,0\n0.001,8,0\n0.002,8,0,0\n");
     assert!(e.starts_with("line 3"), "{e}");
-    let e = err("time,x,y,c\n0,8,0,0\n0.001,inf,0,0\n");
+    let e = err("time,x,y,c\n0,8,0,0\n0.001,inf,0,0\n0.002,8,0,0\n");
     assert!(e.starts_with("line 3, column 2 ('x')"), "{e}");
 }
 

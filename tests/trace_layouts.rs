@@ -313,7 +313,7 @@ fn every_refusal_names_its_cause_and_line() {
         ("Sampling period is 1000 ns\n\nx +1\nx nan\nx 3\n".into(), None, 4, "'nan' is not a number"),
         ("Sampling period is 1000 ns\n\nx +1\nx 2\n".into(), Some(1.0), 1, "states its sample period"),
         ("1.5 2\n1.6 2\n1.7 2\n".into(), None, 1, "numbers only (no header line, as halsampler writes it), so it has no time axis: give samplePeriod"),
-        ("<a>\n<traceData>\n</a>\n".into(), None, 3, "XML: </a> closes <traceData>"),
+        ("<a>\n<traceData>\n</a>\n<!-- end -->\n".into(), None, 3, "XML: </a> closes <traceData>"),
         ("<a>\n<traceData><dataFrame>\n<dataSignal name='X'/>\n<rec time='0' f1='1' f2='3'/>\n</dataFrame></traceData></a>\n".into(), None, 4, "has f2, but the frame names 1 signals"),
     ];
     for (text, dt, line, cause) in cases {
@@ -327,5 +327,12 @@ fn every_refusal_names_its_cause_and_line() {
             "{text:?}: {e}"
         );
         assert!(e.contains(cause), "{text:?}: {e}");
+        // the fault is never on the file's last line, so a message that
+        // points at the last line whatever the fault cannot pass
+        let last = text.trim_end().lines().count();
+        assert!(
+            line < last,
+            "{text:?}: the case must have lines after its fault"
+        );
     }
 }

@@ -58,11 +58,11 @@ fn servo_trace_reads_the_same_with_every_line_ending() {
 fn other_control_characters_name_their_line_and_column() {
     for (text, want) in [
         (
-            "t,x\n0,1\n1,2\u{7}\n",
+            "t,x\n0,1\n1,2\u{7}\n2,3\n",
             "line 3, column 4: control character U+0007 is not allowed in a trace; save it as plain text (CSV or TSV)",
         ),
         (
-            "t,x\r0,1\r1\u{c},2\r",
+            "t,x\r0,1\r1\u{c},2\r2,3\r",
             "line 3, column 2: control character U+000C is not allowed in a trace; save it as plain text (CSV or TSV)",
         ),
         // Ctrl-Z is only an end-of-file mark at the very end.
@@ -71,13 +71,16 @@ fn other_control_characters_name_their_line_and_column() {
             "line 2, column 4: control character U+001A is not allowed in a trace; save it as plain text (CSV or TSV)",
         ),
         (
-            "\u{feff}t,x\n0,1\n\u{feff}\u{1b}1,2\n",
+            "\u{feff}t,x\n0,1\n\u{feff}\u{1b}1,2\n2,3\n",
             "line 3, column 2: control character U+001B is not allowed in a trace; save it as plain text (CSV or TSV)",
         ),
     ] {
         assert_eq!(Table::parse(text).unwrap_err().to_string(), want);
     }
-    let e = parse_ballbar_trace("angle,deviation\n0,1\n10,\u{8}2\n", ParseOptions::default());
+    let e = parse_ballbar_trace(
+        "angle,deviation\n0,1\n10,\u{8}2\n20,3\n",
+        ParseOptions::default(),
+    );
     assert!(e
         .unwrap_err()
         .to_string()

@@ -10,7 +10,7 @@
 
 use mtmotion::feed_vector::trace_analysis::{analyze_trace, ColumnMap};
 use mtmotion::feed_vector::FeedVectorResult;
-use mtmotion::trace::{read_table, ColumnKind, ReadOptions, Table};
+use mtmotion::trace::{read_table, ColumnKind, ReadOptions, Table, TableRead};
 use std::f64::consts::PI;
 
 #[path = "support/feed_vector_trace.rs"]
@@ -125,12 +125,7 @@ fn every_layout_reads_back_to_the_same_numbers() {
                 ("tab", Some("mm"))
             ),
             "preamble" => {
-                let m: Vec<(&str, &str)> = got
-                    .layout
-                    .metadata
-                    .iter()
-                    .map(|m| (m.key.as_str(), m.value.as_str()))
-                    .collect();
+                let m = metadata(&got);
                 assert_eq!(
                     m,
                     [
@@ -292,4 +287,120 @@ fn every_refusal_names_its_cause_and_first_offending_line() {
             .to_string(),
         "the trace is empty: expected a header line such as 'time,x,y,c'"
     );
+}
+
+/// The layout preview marks what the feed-vector import reads each column
+/// as; a text column in between takes no role and shifts none.
+#[test]
+fn the_preview_marks_each_columns_role_past_text_columns() {
+    let text =
+        "Note;Zeit [ms];Status;POS X(um);Y;C [deg];TCMD C(Nm)\na;0;ok;1;2;3;4\nb;1;ok;2;3;4;5\n";
+    let mut r = read_table(text, &ReadOptions::default()).unwrap();
+    mtmotion::feed_vector::trace_analysis::roles(&mut r);
+    let got: Vec<(&str, Option<&str>)> = r
+        .layout
+        .columns
+        .iter()
+        .map(|c| (c.name.as_str(), c.role))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("Note", None),
+            ("Zeit [ms]", Some("time")),
+            ("Status", None),
+            ("POS X(um)", Some("x")),
+            ("Y", Some("y")),
+            ("C [deg]", Some("c")),
+            ("TCMD C(Nm)", Some("torque"))
+        ]
+    );
+}
+
+/// The metadata lines above the header, as (key, value).
+fn metadata(r: &TableRead) -> Vec<(&str, &str)> {
+    r.layout
+        .metadata
+        .iter()
+        .map(|m| (m.key.as_str(), m.value.as_str()))
+        .collect()
+}
+
+/// The header's line and the first data line.
+fn lines_of(r: &TableRead) -> (Option<usize>, usize) {
+    (r.layout.header_line, r.layout.first_data_line)
+}
+
+/// A preamble line of numbers with fewer fields than the table is
+/// metadata, not the first data row.
+#[test]
+fn a_short_preamble_line_of_numbers_is_metadata() {
+    let text = "1;2\n3;4\nt;x;y\n0;1;2\n1;2;3\n";
+    let r = read_table(text, &ReadOptions::default()).unwrap();
+    assert_eq!(lines_of(&r), (Some(3), 4));
+    assert_eq!(r.table.columns, [[0.0, 1.0], [1.0, 2.0], [2.0, 3.0]]);
+    let m = metadata(&r);
+    assert_eq!(m, [("1", "2"), ("3", "4")]);
+}
+
+/// A key/value preamble line of a number (`Rate;1000`) above the header is
+/// metadata, not data: a row followed by a line of names and a row is not
+/// where the data start.
+#[test]
+fn a_rate_line_above_the_header_is_metadata() {
+    let text = "Machine: NMV5000\nRate;1000\nt;x\n0;1\n1;2\n2;3\n";
+    let r = read_table(text, &ReadOptions::default()).unwrap();
+    assert_eq!(lines_of(&r), (Some(3), 4));
+    assert_eq!(r.table.names, ["t", "x"]);
+    assert_eq!(r.table.columns, [[0.0, 1.0, 2.0], [1.0, 2.0, 3.0]]);
+    let m = metadata(&r);
+    assert_eq!(m, [("Machine", "NMV5000"), ("Rate", "1000")]);
+    // the same above a header of three: a line of three numbers too
+    let r = read_table("1;2;3\nt;x;y\n0;1;2\n1;2;3\n", &ReadOptions::default()).unwrap();
+    assert_eq!(r.layout.header_line, Some(2));
+    assert_eq!(r.layout.metadata[0].value, "2 3");
+}
+
+/// A data row has at least half its fields numbers: one number in three
+/// fields is no row of numbers, and the refusal says so at line 2.
+#[test]
+fn a_row_needs_half_its_fields_numbers() {
+    let e = read_table(
+        "t;Status;Note\n0;ok;a\n1;ok;b\n2;ok;c\n",
+        &ReadOptions::default(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.starts_with("line 2: no row of numbers found"), "{e}");
+    // two in three is a row: the text column is ignored
+    let r = read_table("t;x;Note\n0;1;a\n1;2;b\n", &ReadOptions::default()).unwrap();
+    assert_eq!(r.table.names, ["t", "x"]);
+}
+
+/// A sample period must be above 0 s and at most 1e4 s; the refusal names
+/// the option and the header's line.
+#[test]
+fn a_sample_period_of_zero_is_refused() {
+    let text = "a,b\n1,2\n3,4\n";
+    for (dt, ok) in [
+        (0.0, false),
+        (-0.0, false),
+        (1e-9, true),
+        (1e4, true),
+        (1.0001e4, false),
+    ] {
+        let opts = ReadOptions {
+            sample_period: Some(dt),
+            ..ReadOptions::default()
+        };
+        match read_table(text, &opts) {
+            Ok(r) => assert!(ok && r.table.columns[2] == [0.0, dt], "{dt}"),
+            Err(e) => assert!(
+                !ok && e.to_string().starts_with(&format!(
+                    "line 1: option samplePeriod: {dt} s is not a sample period"
+                )),
+                "{dt}: {e}"
+            ),
+        }
+    }
 }

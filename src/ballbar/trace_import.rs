@@ -858,7 +858,7 @@ mod tests {
             e.contains("'angle' and 'deviation'") && e.contains("foo, bar"),
             "{e}"
         );
-        let e = parse_ballbar_trace("angle,dev\n0,1\n1,2\n2\n", o.clone())
+        let e = parse_ballbar_trace("angle,dev\n0,1\n1,2\n2\n3,4\n", o.clone())
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("line 4:"), "{e}");
@@ -866,7 +866,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("at least 8 points"), "{e}");
-        let e = parse_ballbar_trace("angle,dev,dir\n0,1,1\n1,2,0\n", o.clone())
+        let e = parse_ballbar_trace("angle,dev,dir\n0,1,1\n1,2,0\n2,3,1\n", o.clone())
             .unwrap_err()
             .to_string();
         assert_eq!(e, "line 3: direction must be +1 (CCW) or -1 (CW), got 0");

@@ -508,7 +508,10 @@ mod tests {
             ),
         ];
         for (text, want) in cases {
-            assert_eq!(read(text).unwrap_err().to_string(), want, "{text}");
+            // a line after each fault, so a message that names the last
+            // line whatever the fault cannot pass
+            let text = format!("{text}\n<!-- more -->\n");
+            assert_eq!(read(&text).unwrap_err().to_string(), want, "{text}");
         }
     }
 }

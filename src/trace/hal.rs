@@ -70,11 +70,11 @@ pub fn read_halscope(lines: &[(usize, &str)], opts: &ReadOptions) -> Result<Tabl
                 first,
                 format!(
                     "'{}' is not 'Sampling period is <n> ns' with n > 0",
-                    super::clip(head.trim())
+                    super::clip_at(head.trim(), 40)
                 ),
             )
         })?;
-    let dt = ns * 1e-9;
+    let dt = ns / 1e9; // correctly rounded: 2000 ns is 2e-6 s, not 2.0000000000000003e-6
     if let Some(given) = opts.sample_period {
         if (given - dt).abs() > 1e-9 * dt {
             return Err(TraceError::BadOption {
@@ -189,4 +189,76 @@ pub fn halsampler_index(mut read: TableRead, opts: &ReadOptions) -> Result<Table
         ));
     }
     Ok(read)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::trace::{read_table, ReadOptions};
+
+    fn read(text: &str, dt: Option<f64>) -> Result<crate::trace::TableRead, String> {
+        let opts = ReadOptions {
+            sample_period: dt,
+            ..ReadOptions::default()
+        };
+        read_table(text, &opts).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn halscope_checks_its_period_against_the_given_one() {
+        let log = "Sampling period is 2000 ns\n\nx +1 y +2\nx +1.5 y +2.5\nx +2 y +3\n";
+        // the same period given (or none) is accepted; the time is row × 2 µs
+        for dt in [None, Some(2e-6)] {
+            let r = read(log, dt).unwrap();
+            assert_eq!(r.table.columns[2], [0.0, 2e-6, 4e-6], "{dt:?}");
+        }
+        // one part in a million off is another period
+        let e = read(log, Some(2e-6 * (1.0 + 1e-6))).unwrap_err();
+        assert!(
+            e.starts_with(
+                "line 1: option samplePeriod: the log states its sample period (0.000002 s)"
+            ),
+            "{e}"
+        );
+        // a period of 0 ns is no period
+        let e = read(&log.replace("2000 ns", "0 ns"), None).unwrap_err();
+        assert_eq!(
+            e,
+            "line 1: halscope log: 'Sampling period is 0 ns' is not 'Sampling period is <n> ns' with n > 0"
+        );
+    }
+
+    #[test]
+    fn a_bad_halscope_value_names_its_field() {
+        let log = "Sampling period is 1000 ns\n\nx +1 y +2 z +3\nx bad y +2 z +3\nx +1 y +2 z +3\n";
+        assert_eq!(
+            read(log, None).unwrap_err(),
+            "line 4, column 2 ('x'): 'bad' is not a number"
+        );
+        let log = log.replace("x bad y +2 z +3", "x +1 y +2 z inf");
+        assert_eq!(
+            read(&log, None).unwrap_err(),
+            "line 4, column 6 ('z'): 'inf' is not a number"
+        );
+    }
+
+    #[test]
+    fn a_single_column_of_whole_numbers_is_data_not_sample_numbers() {
+        // halsampler -t needs a value beside the sample number
+        let r = read("0\n1\n2\n5\n", Some(0.5)).unwrap();
+        assert_eq!(r.table.names, ["column 1", "time"]);
+        assert_eq!(
+            r.table.columns,
+            [vec![0.0, 1.0, 2.0, 5.0], vec![0.0, 0.5, 1.0, 1.5]]
+        );
+        let r = read("0 7\n1 8\n2 9\n5 3\n", Some(0.5)).unwrap();
+        assert_eq!(r.table.names, ["sample", "column 2", "time"]);
+        assert_eq!(r.table.columns[2], [0.0, 0.5, 1.0, 2.5]);
+        // sample numbers are whole and not negative
+        for first in [["-3", "-2", "-1"], ["0.5", "1.5", "2.5"]] {
+            let text: String = first.iter().map(|f| format!("{f} 7\n")).collect();
+            let r = read(&text, Some(0.5)).unwrap();
+            assert_eq!(r.table.names[0], "column 1", "{text}");
+            assert_eq!(r.table.columns[2], [0.0, 0.5, 1.0], "{text}");
+        }
+    }
 }

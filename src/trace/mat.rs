@@ -187,11 +187,13 @@ fn element(
                 ),
             )
         })?;
-    // miCOMPRESSED is not padded
+    // miCOMPRESSED is not padded; any other element's data is padded to
+    // 8 bytes from its own start (after a compressed element it need not
+    // start on a multiple of 8 in the file)
     let next = if first == 15 {
         end
     } else {
-        end.div_ceil(8) * 8
+        pos + 8 + n.div_ceil(8) * 8
     }
     .min(buf.len());
     Ok((
@@ -242,13 +244,12 @@ fn numbers(el: &Element, e: Endian) -> Result<Vec<f64>, TraceError> {
                 }
             }
             let le8 = u64::from_le_bytes(b);
+            // unsigned types (miUINT8, miUTF8, miUINT16, miUINT32,
+            // miUINT64) are le8 itself: the bytes above their size are zero
             match el.ty {
                 1 => le8 as u8 as i8 as f64,
-                2 | 16 => le8 as u8 as f64,
                 3 => le8 as u16 as i16 as f64,
-                4 => le8 as u16 as f64,
                 5 => le8 as u32 as i32 as f64,
-                6 => le8 as u32 as f64,
                 7 => f32::from_bits(le8 as u32) as f64,
                 9 => f64::from_bits(le8),
                 12 => le8 as i64 as f64,

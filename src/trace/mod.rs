@@ -409,7 +409,7 @@ impl Table {
     pub fn parse(text: &str) -> Result<Self, TraceError> {
         let lines = data_lines(text)?;
         let h = header_index(&lines).map_err(|e| match e {
-            TraceError::NoData { .. } if lines.len() > 1 => strict_diagnosis(text),
+            TraceError::NoData { .. } => strict_diagnosis(text),
             e => e,
         })?;
         let (header_line, header) = lines[h];
@@ -593,6 +593,40 @@ mod tests {
             .contains("a binary file"));
         // Text with a few non-ASCII characters (µ, °) stays text.
         assert_eq!(binary_kind("Zeit [s];X [µm];C [°]\n0;1;2\n"), None);
+        // each signature, and what is not one
+        for (text, kind) in [
+            ("PNG,x\n1,2\n", None), // a column named PNG
+            ("\u{89}PNG\r\n", Some("a PNG image")),
+            ("GIF89a\u{1}\u{0}", Some("a GIF image")),
+            (
+                "PK\u{3}\u{4}\u{14}\u{0}",
+                Some("a ZIP archive or an Excel/Office file"),
+            ),
+            (
+                "\u{fffd}\u{fffd}\u{fffd}\u{fffd}\u{0}\u{10}JFIF\u{0}",
+                Some("a JPEG image"),
+            ),
+            ("\u{fffd}\u{fffd}\u{fffd}x,y\n1,2\n", None), // no JFIF: not a JPEG by its head
+            ("\u{ff}\u{d8}\u{ff}\u{e0}", Some("a JPEG image")),
+            ("\u{1f}\u{fffd}\u{8}\u{0}", Some("a gzip archive")),
+            ("t,x\n0,\u{0}1\n", Some("a binary file")), // a NUL, however short
+        ] {
+            assert_eq!(binary_kind(text), kind, "{text:?}");
+        }
+        // more than 10 % replacement or control characters in 32 or more
+        let share = |bad: usize, c: char| -> String {
+            (0..40).map(|i| if i < bad { c } else { 'a' }).collect()
+        };
+        assert_eq!(binary_kind(&share(4, '\u{fffd}')), None); // 4 of 40: 10 %
+        assert_eq!(binary_kind(&share(5, '\u{fffd}')), Some("a binary file"));
+        assert_eq!(binary_kind(&share(5, '\u{7}')), Some("a binary file"));
+        // line ends, tabs and form feeds are text
+        assert_eq!(binary_kind(&share(20, '\u{c}')), None);
+        assert_eq!(binary_kind(&share(20, '\t')), None);
+        // under 32 characters the share is not judged
+        let short: String = "\u{7}".repeat(31);
+        assert_eq!(binary_kind(&short), None);
+        assert_eq!(binary_kind(&(short + "\u{7}")), Some("a binary file"));
     }
 
     #[test]
@@ -606,19 +640,49 @@ mod tests {
         assert_eq!(t.lines, vec![4, 5]);
         let w = Table::parse("a b\n1 2\n").unwrap();
         assert_eq!(w.delimiter, ' ');
+        // one column: one word per line is no space-delimited table
+        let one = Table::parse("x\n1\n2\n").unwrap();
+        assert_eq!(
+            (one.delimiter, one.columns.as_slice()),
+            (',', [vec![1.0, 2.0]].as_slice())
+        );
+        assert_eq!(detect("x"), None);
+        // the delimiter is the data's: a header name may hold another one
+        let c = Table::parse("X [mm, ist];Y [mm, ist]\n1;2\n3;4\n").unwrap();
+        assert_eq!((c.delimiter, c.names[1].as_str()), (';', "Y [mm, ist]"));
+        assert_eq!(detect("x y"), Some(' '));
     }
 
     #[test]
     fn errors_name_lines_and_columns() {
         assert_eq!(Table::parse("\n# x\n"), Err(TraceError::Empty));
         assert_eq!(Table::parse("a,b\n"), Err(TraceError::NoData { line: 1 }));
+        // a one-line file of a control's layout says what that layout lacks
+        assert_eq!(
+            Table::parse("Sampling period is 1000 ns\n")
+                .unwrap_err()
+                .to_string(),
+            "line 1: halscope log: no sample follows the sampling period"
+        );
         assert_eq!(Table::parse("1,2\n"), Err(TraceError::NoHeader { line: 1 }));
-        let e = Table::parse("a,b\n1,2\n3\n").unwrap_err();
+        let e = Table::parse("a,b\n1,2\n3\n4,5\n").unwrap_err();
         assert_eq!(
             e.to_string(),
             "line 3: 1 fields, expected 2 as in the header"
         );
-        let e = Table::parse("a,b\n1,nan\n").unwrap_err();
+        // one trailing delimiter is tolerated, an extra value is not
+        assert_eq!(
+            Table::parse("a,b\n1,2\n3,4,\n").unwrap().columns[1],
+            [2.0, 4.0]
+        );
+        let e = Table::parse("a,b\n1,2\n1,2,3\n4,5\n").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "line 3: 3 fields, expected 2 as in the header"
+        );
+        let e = Table::parse("a,b\n1,2\n1,\n4,5\n").unwrap_err();
+        assert_eq!(e.to_string(), "line 3, column 2 ('b'): '' is not a number");
+        let e = Table::parse("a,b\n1,nan\n2,3\n").unwrap_err();
         assert!(matches!(
             e,
             TraceError::BadNumber {
@@ -630,6 +694,9 @@ mod tests {
         let t = Table::parse("a,b\n1,2\n").unwrap();
         let e = t.column(&["x", "pos_x"], 1.0).unwrap_err().to_string();
         assert!(e.contains("'x' or 'pos_x'") && e.contains("a, b"), "{e}");
-        assert!(t.column_at(3, 1.0).is_err());
+        assert!(t.column_at(3, 1.0).is_err() && t.column_at(0, 1.0).is_err());
+        // the 1-based column, scaled to core units
+        assert_eq!(t.column_at(2, 1e-3).unwrap(), [2e-3]);
+        assert_eq!(t.column(&["a"], 4.0).unwrap(), [4.0]);
     }
 }

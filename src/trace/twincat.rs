@@ -356,3 +356,100 @@ pub fn read(lines: &[(usize, &str)], opts: &ReadOptions) -> Result<TableRead, Tr
     }
     Ok(read)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::trace::read_table;
+
+    fn lines(text: &str) -> Vec<(usize, &str)> {
+        text.lines().enumerate().map(|(i, l)| (i + 1, l)).collect()
+    }
+
+    #[test]
+    fn the_separator_is_the_character_after_name() {
+        assert_eq!(separator("Name\tScope"), Some('\t'));
+        assert_eq!(separator("\u{feff}Name,Scope"), Some(','));
+        // a longer word, or a quote, is no Scope View key
+        assert_eq!(separator("Names,x"), None);
+        assert_eq!(separator("Name\"x"), None);
+        assert_eq!(separator("Name"), None);
+        // a first column called 'Name' without a SampleTime[ms] row is a table
+        assert!(!is_twincat(&lines("Name\tValue\n1\t2\n")));
+        assert!(is_twincat(&lines("Name\tX\nSampleTime[ms]\t1\n0\t1\n")));
+        let r = read_table("Name\tValue\n1\t2\n3\t4\n", &ReadOptions::default()).unwrap();
+        assert_eq!(r.layout.format, "delimited");
+    }
+
+    #[test]
+    fn a_bad_sample_names_its_line_column_and_channel() {
+        let text = "Name\tS\nName\tX\tName\tY\nSampleTime[ms]\t1\tSampleTime[ms]\t1\n\n0\t1\t0\t2\n1\t1\tq\t3\n2\t1\t2\t3\n";
+        let e = read_table(text, &ReadOptions::default()).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "line 6, column 3 ('time'): 'q' is not a number"
+        );
+        let text = text
+            .replace("\tq\t", "\t1\t")
+            .replace("1\t1\t1\t3", "1\tz\t1\t3");
+        let e = read_table(&text, &ReadOptions::default()).unwrap_err();
+        assert_eq!(e.to_string(), "line 6, column 2 ('X'): 'z' is not a number");
+    }
+
+    #[test]
+    fn a_channel_of_another_sample_time_is_left_out_naming_its_line() {
+        // X and Z on the 1 ms axis, Y on a 2 ms axis: Y departs on line 7
+        let text = "Name\tS\nName\tX\tZ\tName\tY\nSampleTime[ms]\t1\t1\tSampleTime[ms]\t2\nUnit\tV (Volt)\t(None)\tUnit\tmm\n\n0\t1\t5\t0\t2\n1\t1.5\t6\t2\t3\n2\t2\t7\t4\t4\n";
+        let r = read_table(text, &ReadOptions::default()).unwrap();
+        assert_eq!(r.table.names, ["time [ms]", "X", "Z"]);
+        assert_eq!(r.table.columns[1], [1.0, 1.5, 2.0]);
+        assert_eq!(r.table.columns[2], [5.0, 6.0, 7.0]);
+        let notes = r.layout.notes.join(" | ");
+        assert!(
+            notes.contains("channel 'Y' (time in field 4) departs from the time axis on line 7 (2 ms where the axis has 1 ms): left out"),
+            "{notes}"
+        );
+        // a unit the core does not know is named; '(None)' is no unit
+        assert_eq!(
+            r.layout.columns[1].note.as_deref(),
+            Some("sample time 1 ms (applied by the export), unit 'V (Volt)' not read")
+        );
+        assert_eq!(
+            r.layout.columns[2].note.as_deref(),
+            Some("sample time 1 ms (applied by the export)")
+        );
+        // the base group is the one with most channels, wherever it is
+        let swapped = "Name\tS\nName\tY\tName\tX\tZ\nSampleTime[ms]\t2\tSampleTime[ms]\t1\t1\n\n0\t2\t0\t1\t5\n2\t3\t1\t1.5\t6\n4\t4\t2\t2\t7\n";
+        let r = read_table(swapped, &ReadOptions::default()).unwrap();
+        assert_eq!(r.table.names, ["time [ms]", "X", "Z"]);
+        assert_eq!(r.table.columns[0], [0.0, 1.0, 2.0]);
+        // a channel table's columns are numbered 1, 2, … in table order
+        let fields: Vec<usize> = r.layout.columns.iter().map(|c| c.field).collect();
+        assert_eq!(fields, [1, 2, 3]);
+    }
+
+    #[test]
+    fn every_separator_is_named() {
+        for (sep, name) in [
+            (';', ";"),
+            (' ', "spaces"),
+            (',', ","),
+            ('\t', "tab"),
+            ('|', "none"),
+        ] {
+            let text =
+                format!("Name{sep}S\nName{sep}X\nSampleTime[ms]{sep}1\n\n0{sep}1\n1{sep}2\n");
+            let r = read_table(&text, &ReadOptions::default())
+                .unwrap_or_else(|e| panic!("{sep:?}: {e}"));
+            assert_eq!(
+                (
+                    r.layout.format,
+                    r.layout.delimiter,
+                    r.table.columns[1].as_slice()
+                ),
+                ("twincatScope", name, [1.0, 2.0].as_slice()),
+                "{sep:?}"
+            );
+        }
+    }
+}

@@ -3,7 +3,10 @@
 // each column as (the page's default column menus); a .mat capture is read
 // from a Uint8Array by traceLayout and analyzeFeedVectorTrace; text passed
 // as bytes reads as the string does; parseBallbarTrace maps
-// EncoderX_Pos/EncoderY_Pos through options.columns.
+// EncoderX_Pos/EncoderY_Pos through options.columns; analyzeFeedVectorTrace
+// reads the issue's 'Time [ms],X [mm],Y [mm],C [deg]' trace with its
+// columns auto-detected and their units applied by the core (at most 2
+// periods in 3 s, not 1,499).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
@@ -94,4 +97,16 @@ test('parseBallbarTrace reads EncoderX_Pos/EncoderY_Pos through options.columns'
   assert.ok(Math.abs(t.nominalRadius - 100) < 1e-9, `${t.nominalRadius}`);
   assert.throws(() => mt.parseBallbarTrace(text, { columns: { x: 'EncoderX' } }), /columns\.x: no column named 'EncoderX' in the file/);
   assert.throws(() => mt.parseBallbarTrace(text, { columns: { z: 'a' } }), /options\.columns: unknown key 'z'|unknown field `z`|'z'/);
+});
+
+test('analyzeFeedVectorTrace reads Time [ms] as milliseconds with the columns auto-detected', () => {
+  const s = sim.series;
+  let text = 'Time [ms],X [mm],Y [mm],C [deg]\n';
+  for (let i = 0; i < n; i++) text += `${s.t[i] * 1e3},${s.x[i]},${s.y[i]},${deg(s.c[i])}\n`;
+  const got = mt.analyzeFeedVectorTrace(text, cond);
+  assert.ok(Math.abs(got.series.t[n - 1] - 3) < 1e-9, `the trace ends at ${got.series.t[n - 1]} s`);
+  assert.ok(got.summary.periods <= 2, `${got.summary.periods} periods`);
+  assert.equal(got.summary.periods, sim.summary.periods);
+  // the old reading (header units ignored: ms taken for s) is refused, not summarised
+  assert.throws(() => mt.analyzeFeedVectorTrace(text, cond, { headerUnits: false }), /^Error: C turns at .*the time unit/);
 });
