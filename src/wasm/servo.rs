@@ -391,7 +391,8 @@ pub fn trace_layout(
 }
 
 #[cfg(feature = "full")]
-/// The columns of a CSV/TSV trace and the unit each header states; throws
+/// The numeric columns of a trace in any layout `traceLayout` reads, and
+/// the unit each header states (text columns left out); throws
 /// for a file that is not a text trace ("this is not a text trace (it
 /// looks like a PNG image)") or a malformed table (line and column).
 #[wasm_bindgen(js_name = traceColumns, unchecked_return_type = "TraceColumn[]")]
@@ -400,7 +401,9 @@ pub fn trace_columns(
 ) -> Result<JsValue, JsError> {
     let text: &str = &string_arg(&text, "text")?;
     crate::budget::check_text("trace", text)?;
-    let table = crate::trace::Table::parse(text)?;
+    // The tolerant reader every import uses (delimiters, decimal commas,
+    // text columns, the controls' layouts), not the strict CSV table.
+    let table = crate::trace::read_table(text, &crate::trace::ReadOptions::default())?.table;
     let out = js_sys::Array::new();
     for n in &table.names {
         let (bare, unit) = crate::trace::name_unit(n);
