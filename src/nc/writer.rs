@@ -813,7 +813,7 @@ fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
 ///   G41/G42 over moves that are no longer the ones it was programmed on)
 ///   and no G10 (offsets it sets would be in the source's units);
 /// - every word that moves nothing but matters (M, S, T, D, H and the
-///   frame codes of [`frame_code`]) is in it as often as in the source:
+///   frame codes: work offsets, tool length, cutter compensation) is in it as often as in the source:
 ///   one in a macro-computed word, in a subprogram body or in a block the
 ///   run skipped would be lost;
 /// - read back, it gives the same moves, each end within 1 µm.
@@ -868,7 +868,7 @@ pub fn write_expanded(program: &Program) -> Result<String, String> {
     Ok(text)
 }
 
-/// [`write`], refusing a program written flat (see [`needs_flat`]) that
+/// [`write()`], refusing a program written flat (as the module header says) that
 /// would lose a word that moves nothing but matters, as
 /// [`write_expanded`] does (a macro-computed `S#1 M3`, an M8 in a
 /// subprogram body, a G10); the segments may be edited.

@@ -49,7 +49,7 @@
 //!   cycle, a subprogram body), whose words cannot move, the program is
 //!   written flat ([`crate::nc::writer::write_expanded`]) and that text is
 //!   compensated; it is kept when, simulated against the original
-//!   program's own path, its maximum error is below [`EXPAND_GAIN`] × the
+//!   program's own path, its maximum error is below 0.99 × the
 //!   in-place one within the time budget ([`Compensation::expanded`]).
 //!
 //! Units: mm, s; errors reported in µm where the field says so.
