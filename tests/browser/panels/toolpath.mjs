@@ -66,13 +66,25 @@ export default async function (page, check) {
   await page.fill('#toolpath-from', '');
   await page.fill('#toolpath-to', '');
 
-  // A program whose every word is a macro expression cannot be rewritten:
-  // the core returns it byte for byte and says why; no download is offered.
-  await page.fill('#toolpath-nc', '#1=20\n#2=0\nG0 X0 Y0 Z1\nG1 Z#2 F600\nG1 X#1 F2000\nG1 Y#1\nG1 X#2\nG1 Y[#1-20]\nG0 Z5\nM30\n');
+  // A program whose every word is a macro expression cannot be rewritten
+  // in place: the core writes it flat and compensates that, and the page
+  // says so and offers the flat program.
+  const macro = '#1=20\n#2=0\nG0 X0 Y0 Z1\nG1 Z#2 F600\nG1 X#1 F2000\nG1 Y#1\nG1 X#2\nG1 Y[#1-20]\nG0 Z5\nM30\n';
+  await page.fill('#toolpath-nc', macro);
+  await page.click('#toolpath-compensate');
+  await page.waitForSelector('#toolpath-expand-note, #toolpath-comp-out .error-box', { timeout: 60_000 });
+  const flat = (await page.textContent('#toolpath-comp-out')) ?? '';
+  check(/Written flat: the largest error sat on moves the program computes/.test(flat) && !/No compensated program/.test(flat), `a macro program is compensated written flat: ${flat.slice(0, 200)}`);
+  check(!(await page.isDisabled('#toolpath-download')) && /written flat/.test((await page.textContent('#toolpath-download')) ?? ''), 'the flat program is offered for download, saying so');
+  check(((await page.textContent('#toolpath-comp-nc')) ?? '').startsWith('G21 G90 G94 G17'), 'the flat program starts with its modes');
+  // With a spindle speed computed by macro code it cannot be written flat
+  // either: the core returns it byte for byte and says why; no download.
+  await page.fill('#toolpath-nc', `#3=8000\nS#3 M3\n${macro}`);
   await page.click('#toolpath-compensate');
   await page.waitForSelector('#toolpath-unchanged, #toolpath-comp-out .error-box', { timeout: 60_000 });
   const unchanged = (await page.textContent('#toolpath-comp-out')) ?? '';
   check(/No compensated program: nothing in the program changed/.test(unchanged) && /macro/.test(unchanged), `an unchanged program says why: ${unchanged.slice(0, 200)}`);
+  check(/Not written flat: line 2, column 1: its S word is computed by macro code/.test(unchanged), `and why it is not written flat: ${unchanged.slice(0, 400)}`);
   check(await page.isDisabled('#toolpath-download'), 'no download is offered for an unchanged program');
 
   // The real programs are in the shared corpus (tests/support/corpus.mjs).
