@@ -156,6 +156,21 @@ fn what_a_flat_program_would_lose_is_refused_by_line() {
 }
 
 #[test]
+fn subprogram_calls_and_numbered_bodies_are_written_flat() {
+    // The body's N numbers and the M98/M99 calls go (the flat text runs
+    // the body's moves in place); nothing that matters is lost.
+    // The call is a macro line (its P computed): its literal M98 is no
+    // word a flat program must keep either.
+    let src = "N10 G21 G90 G0 X0 Y0 Z1\n#1=100\nN20 M98 P#1 L2\nN30 M30\nO100\nN100 G91 G1 X5. Y1. F300\nN110 G90\nN120 M99\n";
+    let p = parse(src).unwrap();
+    let flat = write_expanded(&p).unwrap();
+    assert!(!flat.contains("M98") && !flat.contains("N100"), "{flat}");
+    let back = parse(&flat).unwrap();
+    let ends: Vec<f64> = back.segments.iter().map(|s| s.end.x).collect();
+    assert_eq!(ends, vec![0.0, 5.0, 10.0], "{flat}");
+}
+
+#[test]
 fn a_program_that_cannot_be_written_flat_says_why_in_the_result() {
     // The error sits on the macro-computed chords, but S is computed too.
     let src = MACRO.replace("S8000 M3", "#9=8000\nS#9 M3");
