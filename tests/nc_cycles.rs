@@ -578,3 +578,28 @@ fn rigid_tapping_feeds_at_pitch_times_speed() {
     let e = parse("G0 X0 Y0 Z10\nG95 G84.3 X1 Z-5 R3 F1.25").unwrap_err();
     assert!(e.message.contains("G84.3 without a feed"), "{e}");
 }
+
+/// G87's K (the top of the back bore) and its I/J shift are read in the
+/// program's unit and K is shifted by the work offset, like R and Z: an
+/// inch G87 after a G92 that moves Z by 0.3 in (7.62 mm). By hand, in mm:
+/// hole X25.4 Y50.8, shift I0.08 = 2.032, R 2.54 + 7.62 = 10.16, bottom
+/// −10.16 + 7.62 = −2.54, top of the bore −6.096 + 7.62 = 1.524.
+#[test]
+fn g87_levels_and_shift_are_in_inch_and_shifted_by_g92() {
+    check(
+        "G20 G0 X0 Y0 Z0.5\nG92 Z0.2\nG98 G87 X1 Y2 Z-0.4 R0.1 I0.08 J0 K-0.24 F4",
+        &[
+            ('R', [0.0, 0.0, 12.7]),
+            ('R', [25.4, 50.8, 12.7]),
+            ('R', [25.4, 50.8, 10.16]),
+            ('R', [27.432, 50.8, 10.16]),
+            ('R', [27.432, 50.8, -2.54]),
+            ('R', [25.4, 50.8, -2.54]),
+            ('F', [25.4, 50.8, 1.524]),
+            ('F', [25.4, 50.8, -2.54]),
+            ('R', [27.432, 50.8, -2.54]),
+            ('R', [27.432, 50.8, 12.7]),
+            ('R', [25.4, 50.8, 12.7]),
+        ],
+    );
+}
