@@ -107,7 +107,7 @@ fn an_inch_canned_cycle_is_written_in_millimetres_after_the_modes() {
     // Two G81 holes and a G1 slot between them, in inch, absolute.
     let src = "G20 G17 G90 G54\nG0 X0.25 Y0.4 Z0.5\nG81 X0.25 Y0.4 Z-0.3 R0.1 F8.\nX1.35 Y0.55\nG80\nG1 Z-0.05 F12.\nX0.25 Y0.45\nG0 Z0.5\nM30\n";
     let p = parse(src).unwrap();
-    let flat = write_expanded(&p).unwrap();
+    let (flat, _) = write_expanded(&p).unwrap();
     let lines: Vec<&str> = flat.lines().collect();
     assert_eq!(lines[0], FLAT_MODES);
     assert_eq!(lines[1], "G54");
@@ -163,7 +163,7 @@ fn subprogram_calls_and_numbered_bodies_are_written_flat() {
     // word a flat program must keep either.
     let src = "N10 G21 G90 G0 X0 Y0 Z1\n#1=100\nN20 M98 P#1 L2\nN30 M30\nO100\nN100 G91 G1 X5. Y1. F300\nN110 G90\nN120 M99\n";
     let p = parse(src).unwrap();
-    let flat = write_expanded(&p).unwrap();
+    let (flat, _) = write_expanded(&p).unwrap();
     assert!(!flat.contains("M98") && !flat.contains("N100"), "{flat}");
     let back = parse(&flat).unwrap();
     let ends: Vec<f64> = back.segments.iter().map(|s| s.end.x).collect();

@@ -675,23 +675,33 @@ fn needs_flat(program: &Program) -> bool {
 }
 
 /// The words of `block` that move nothing but must stay with it: N, S, T,
-/// D, H and M (not the subprogram calls and returns M97, M98, M99, M198),
-/// and the G codes that choose the frame the written coordinates are in
+/// D, H and M (not the subprogram calls and returns [`CALL_M`]), and the
+/// G codes that choose the frame the written coordinates are in
 /// ([`frame_code`]), with the P of a G54.1/G154 extended work offset.
 fn passive_words(program: &Program, block: &Block) -> Vec<Word> {
     let extended = block.words_of('G').any(|g| matches!(g_code(g), 541 | 1540));
     block
         .words
         .iter()
-        .filter(|w| match w.letter {
-            'N' | 'S' | 'T' | 'D' | 'H' => true,
-            'M' => !matches!(w.value as i64, 97 | 98 | 99 | 198),
-            'G' => frame_code(program, block, w),
-            'P' => extended,
-            _ => false,
-        })
+        .filter(|w| passive(program, block, w, extended))
         .cloned()
         .collect()
+}
+
+/// M codes that call or return from a subprogram: a flat program runs
+/// the body in place and writes none of them.
+const CALL_M: [i64; 4] = [97, 98, 99, 198];
+
+/// `w` of `block` is a word [`passive_words`] keeps (`extended`: the block
+/// selects a G54.1/G154 work offset, whose P is kept).
+fn passive(program: &Program, block: &Block, w: &Word, extended: bool) -> bool {
+    match w.letter {
+        'N' | 'S' | 'T' | 'D' | 'H' => true,
+        'M' => !CALL_M.contains(&(w.value as i64)),
+        'G' => frame_code(program, block, w),
+        'P' => extended,
+        _ => false,
+    }
 }
 
 /// G codes a flat program keeps, because the written coordinates mean
@@ -818,9 +828,12 @@ fn write_flat(program: &Program, segments: &[Segment], out: &mut Out) {
 ///   run skipped would be lost;
 /// - read back, it gives the same moves, each end within 1 µm.
 ///
+/// Returns the text and the program it reads back as (with `program`'s
+/// options).
+///
 /// # Errors
 /// The first reason it cannot be given out, with its line where it has one.
-pub fn write_expanded(program: &Program) -> Result<String, String> {
+pub fn write_expanded(program: &Program) -> Result<(String, Program), String> {
     if let Some(c) = program.cutter.first() {
         return Err(format!(
             "line {}: cutter compensation ({}) would apply to moves it was not programmed on",
@@ -832,11 +845,12 @@ pub fn write_expanded(program: &Program) -> Result<String, String> {
     write_flat(program, &program.segments, &mut out);
     let text = out.lines.join("\n");
     let back = keeps_all(program, &text, &want)?;
+    // (end, source line) of each move
     let moved = |p: &Program| {
         p.segments
             .iter()
             .filter(|s| !matches!(s.motion, Motion::Dwell { .. }))
-            .map(|s| s.end)
+            .map(|s| (s.end, s.line))
             .collect::<Vec<_>>()
     };
     let (a, b) = (moved(program), moved(&back));
@@ -853,19 +867,14 @@ pub fn write_expanded(program: &Program) -> Result<String, String> {
             .zip(q.to_array())
             .any(|(u, v)| (u - v).abs() > 1e-3)
     };
-    if let Some(k) = (0..a.len()).find(|&k| far(&a[k], &b[k])) {
+    if let Some(k) = (0..a.len()).find(|&k| far(&a[k].0, &b[k].0)) {
         return Err(format!(
             "written flat, move {} (line {}) reads back more than 1 µm away",
             k + 1,
-            program
-                .segments
-                .iter()
-                .filter(|s| !matches!(s.motion, Motion::Dwell { .. }))
-                .nth(k)
-                .map_or(0, |s| s.line)
+            a[k].1
         ));
     }
-    Ok(text)
+    Ok((text, back))
 }
 
 /// [`write()`], refusing a program written flat (as the module header says) that
@@ -886,10 +895,11 @@ pub fn write_checked(program: &Program, segments: &[Segment]) -> Result<String, 
 }
 
 /// (letter, text) → (first line, count) of the words a flat program keeps
-/// ([`keeps`]), from the source; refuses a G10 and such a word computed
-/// by macro code.
+/// ([`keeps`]).
 type Kept = BTreeMap<(char, String), (usize, usize)>;
 
+/// The source's [`Kept`] words, macro lines' literal ones included;
+/// refuses a G10 and such a word computed by macro code.
 fn flat_words(program: &Program) -> Result<Kept, String> {
     let mut want = Kept::new();
     for b in &program.blocks {
@@ -950,12 +960,7 @@ fn keeps_all(program: &Program, text: &str, want: &Kept) -> Result<Program, Stri
 /// The words [`write_expanded`] counts: those [`passive_words`] keeps,
 /// but not N numbers (a flat program numbers nothing it adds).
 fn keeps(program: &Program, b: &Block, w: &Word) -> bool {
-    match w.letter {
-        'N' => false,
-        'G' => frame_code(program, b, w),
-        'M' => !matches!(w.value as i64, 97 | 98 | 99 | 198),
-        _ => true,
-    }
+    w.letter != 'N' && passive(program, b, w, true)
 }
 
 /// The block that starts a flat program's motion: millimetres, absolute,

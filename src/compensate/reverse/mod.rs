@@ -479,30 +479,26 @@ pub fn reverse_compensate_with(
     };
     let program = parse_with(text, &opts)?;
     let range = line_range(&program, cfg.from_line, cfg.to_line)?;
-    let pinned = cfg.expand && range.whole && has_pinned_cut(&program);
-    let flat = pinned.then(|| crate::nc::writer::write_expanded(&program));
-    let share = if matches!(flat, Some(Ok(_))) {
-        0.5
+    // The cutting moves that cannot be rewritten in place.
+    let pinned = if cfg.expand && range.whole {
+        pinned_cuts(&program)
     } else {
-        1.0
+        Vec::new()
     };
+    let share = if pinned.contains(&true) { 0.5 } else { 1.0 };
     let mut c = in_place(text, &program, &range, cfg, &mut |f, s| {
         progress(f * share, s)
     })?;
-    let Some(flat) = flat else {
-        return Ok(c);
-    };
-    if !worst_is_pinned(&program, &c.sim_after) {
+    if !worst_is_pinned(&program, &pinned, &c.sim_after) {
         return Ok(c);
     }
-    let flat = match flat {
+    let (flat, fp) = match crate::nc::writer::write_expanded(&program) {
         Ok(flat) => flat,
         Err(why) => {
             c.expand_note = Some(format!("not written flat: {why}"));
             return Ok(c);
         }
     };
-    let fp = parse_with(&flat, &opts)?;
     let whole = line_range(&fp, None, None)?;
     let mut e = in_place(&flat, &fp, &whole, cfg, &mut |f, s| {
         progress(0.5 + 0.5 * f, &format!("written flat: {s}"))
@@ -554,21 +550,21 @@ const EXPANDED: &str = "the largest error sat on moves the program computes (mac
      millimetres (G21 G90 G94 G17), with the work offsets, tool length offsets and M, S, T, D, \
      H words where they were; the lines named in this result are the written program's";
 
-/// The program has a cutting move reverse compensation cannot rewrite in
-/// place (see [`regions_in`]).
-fn has_pinned_cut(program: &Program) -> bool {
+/// Per segment of `program`: a cutting move reverse compensation cannot
+/// rewrite in place (fixed, or its block not editable; see [`regions_in`]).
+fn pinned_cuts(program: &Program) -> Vec<bool> {
     let rg = regions_in(program, &|_| true);
     program
         .segments
         .iter()
         .zip(&rg.editable)
-        .any(|(s, &e)| s.is_cutting() && (!e || s.fixed))
+        .map(|(s, &e)| s.is_cutting() && (!e || s.fixed))
+        .collect()
 }
 
-/// The written program's largest error sits on a cutting move that
-/// cannot be rewritten in place.
-fn worst_is_pinned(program: &Program, after: &Simulation) -> bool {
-    let rg = regions_in(program, &|_| true);
+/// The written program's largest error on a cutting move sits on a
+/// `pinned` one ([`pinned_cuts`]; none when it is empty).
+fn worst_is_pinned(program: &Program, pinned: &[bool], after: &Simulation) -> bool {
     let worst = after
         .segments
         .iter()
@@ -579,7 +575,7 @@ fn worst_is_pinned(program: &Program, after: &Simulation) -> bool {
                 .is_some_and(Segment::is_cutting)
         })
         .max_by(|a, b| a.max_error_um.total_cmp(&b.max_error_um));
-    worst.is_some_and(|st| program.segments[st.segment].fixed || !rg.editable[st.segment])
+    worst.is_some_and(|st| pinned.get(st.segment).copied().unwrap_or(false))
 }
 
 /// [`reverse_compensate_with`] on the program's own blocks: only literal
