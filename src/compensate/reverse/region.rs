@@ -52,8 +52,8 @@ pub fn regions_in(program: &Program, inside: &dyn Fn(usize) -> bool) -> Regions 
     let n = segs.len();
     let mut count = vec![0usize; program.blocks.len()];
     for s in segs {
-        if let Some(b) = s.block.filter(|&b| b < count.len()) {
-            count[b] += 1;
+        if let Some(c) = s.block.and_then(|b| count.get_mut(b)) {
+            *c += 1;
         }
     }
     let editable: Vec<bool> = segs
@@ -228,5 +228,38 @@ mod tests {
         assert_eq!(rg.members.len(), 2, "{:?}", rg.members);
         assert!(!rapid_between(&p.segments, &rg, 0, 1));
         assert!(!rapid_between(&p.segments, &rg, 1, 0));
+    }
+
+    #[test]
+    fn line_joints_and_region_errors() {
+        // Segments: 0 rapid, 1 rapid (rapid–rapid: no joint), 2–3 lines
+        // (a joint), 4 arc (line–arc and arc–line: none), 5 line, 6 rapid
+        // (line–rapid: none), 7 line, 8 line in another region after the
+        // rapid (a joint of their own), 9 rapid.
+        let p = parse(
+            "G0 X1 Y2\nX3\nG1 X7 F600\nY5\nG2 X10 Y8 R3\nG1 X13\nG0 Z4\nG1 Z-1\nX15 Y9\nG0 Z5\nM30",
+        )
+        .unwrap();
+        let rg = regions_in(&p, &|_| true);
+        assert_eq!(rg.members, vec![vec![2, 3, 4, 5], vec![7, 8]]);
+        assert_eq!(rg.line_joints, vec![(2, 3), (7, 8)]);
+        assert_eq!(rg.movable, vec![true, true]);
+        assert_eq!(kinds(&rg, 0, &p.segments), (1, 3), "one arc, three lines");
+        assert_eq!(kinds(&rg, 1, &p.segments), (0, 2));
+        // The errors, mm, of a simulation's statistics (in µm).
+        let cfg = crate::toolpath::SimConfig {
+            dt: 0.002,
+            ..crate::toolpath::SimConfig::default()
+        };
+        let sim = crate::toolpath::simulate(&p.segments, &p.segments, &cfg).unwrap();
+        let e = region_errors(&rg, &sim.segments);
+        let by_seg = segment_errors(p.segments.len(), &sim.segments);
+        for (r, m) in rg.members.iter().enumerate() {
+            let want = m.iter().map(|&i| by_seg[i]).fold(0.0, f64::max);
+            assert!(want > 1e-3, "region {r}: {want} mm");
+            assert_eq!(e[r], want, "region {r}");
+        }
+        let st = &sim.segments[3];
+        assert_eq!(by_seg[st.segment], st.max_error_um * 1e-3);
     }
 }
