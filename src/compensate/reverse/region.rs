@@ -262,4 +262,23 @@ mod tests {
         let st = &sim.segments[3];
         assert_eq!(by_seg[st.segment], st.max_error_um * 1e-3);
     }
+
+    #[test]
+    fn chunks_cut_a_region_by_nominal_time() {
+        // Lines of 10, 2, 18, 1 and 4 mm at F600 with a feed override of
+        // 2: 0.5, 0.1, 0.9, 0.05 and 0.2 s. Cut at 0.55 s: a chunk closes
+        // once it holds 0.55 s or more (0.6 s, 0.9 s), the last is shorter.
+        let p = parse("G0 X0 Y0\nG1 X10 F600\nX12\nX30\nX31\nX35\nG0 Z3\nM30").unwrap();
+        let rg = regions_in(&p, &|_| true);
+        let c = chunks(&rg, &p.segments, 0.55, 2.0);
+        assert_eq!(c.members, vec![vec![1, 2], vec![3], vec![4, 5]]);
+        assert_eq!(c.region, vec![0, 0, 0]);
+        assert_eq!(c.of[0], None);
+        assert_eq!(c.of[3], Some(1));
+        assert_eq!(c.of[6], None);
+        // At the programmed feed (override 1) the times double: 1, 0.2,
+        // 1.8, 0.1 and 0.4 s; cut at 1.1 s.
+        let c = chunks(&rg, &p.segments, 1.1, 1.0);
+        assert_eq!(c.members, vec![vec![1, 2], vec![3], vec![4, 5]]);
+    }
 }
