@@ -6,8 +6,10 @@
 //! against the original path), the motion time stays within the +5 %
 //! budget, the result reads back, and each program's after/before ratio
 //! is pinned at what was measured (a regression fails). The median ratio
-//! is printed and pinned too: 0.063 over the eight LinuxCNC and CNCjs
-//! programs, 0.235 over ten with the two Fusion 360 programs; programs
+//! is printed and pinned too: 0.032 over the eight LinuxCNC and CNCjs
+//! programs, 0.067 over ten with the two Fusion 360 programs (0.063 and
+//! 0.235 before the nearest-point search broke ties towards the commanded
+//! point, `tests/toolpath_repeated_pass.rs`); programs
 //! whose error sits on moves they compute are checked to be written flat
 //! (`EXPANDED`), all others not; see docs/toolpath.md.
 //!
@@ -22,12 +24,14 @@ mod corpus;
 use corpus::read;
 
 /// (file, after/before ratio measured, tA 40 ms, T 15 ms, dt 1 ms).
+/// comp 0.951 -> 0.036 when ties of the nearest-point search went to the
+/// commanded pass (its six passes meet at the origin).
 const SMALL: &[(&str, f64)] = &[
     ("cncjs_arc-xz-plane.gcode", 0.008),
     ("cncjs_arc-yz-plane.gcode", 0.008),
     ("cncjs_circle-inch.gcode", 0.003),
     ("cncjs_helical-thread-milling.gcode", 0.098),
-    ("linuxcnc_comp.ngc", 0.951),
+    ("linuxcnc_comp.ngc", 0.036),
 ];
 const LARGE: &[(&str, f64)] = &[
     ("linuxcnc_arcspiral.ngc", 0.418),
@@ -38,13 +42,16 @@ const LARGE: &[(&str, f64)] = &[
 /// measured 2026-11-27 (corner spikes, the damped step, the budget held
 /// for the dwells): the contour with tabs 323.4 -> 120.5 µm; the wall
 /// tester unchanged at 121.0 µm (its largest error is at the top of a
-/// retract in the air, G1 Z15 then a 0.57 mm G1, where no round helped). The
-/// CAMotics pocket `camotics_botomata_bottom.nc` (5567 s) is not here: at
+/// retract in the air, G1 Z15 then a 0.57 mm G1, where no round helped).
+/// With ties of the nearest-point search broken towards the commanded
+/// point (its plunges and retracts of several depths share vertical
+/// lines): the wall tester 121.0 -> 30.0 µm (0.248), the contour with
+/// tabs 0.373 -> 0.363. The CAMotics pocket `camotics_botomata_bottom.nc` (5567 s) is not here: at
 /// dt 1 ms it was refused by the work budget before the rounds became
 /// local; it is pinned in `UNREFUSED`, unchanged too.
 const CAM: &[(&str, f64)] = &[
-    ("ledfloor_1003.nc", 1.0),
-    ("ledfloor_1112_tab_test_29bit_715_tab_thickness.nc", 0.373),
+    ("ledfloor_1003.nc", 0.248),
+    ("ledfloor_1112_tab_test_29bit_715_tab_thickness.nc", 0.363),
 ];
 
 /// The ten programs added to the shared corpus on 2026-11-26 that parse,
@@ -55,14 +62,16 @@ const CAM: &[(&str, f64)] = &[
 /// (Gates) are unchanged (1.000): Pasta's corner dwells would exceed the
 /// time budget (361.7 µm kept), rgh's one region no round lowered
 /// (1789.8 µm, its `F100100.` feeds), Gates's written error did not fall
-/// (264.5 µm kept).
+/// (264.5 µm kept). With ties of the nearest-point search broken towards
+/// the commanded point: Haas 0.030, Pasta 0.630 (24 of 24 regions), Gates
+/// 0.880 (20 of 21), the R-word test 0.021.
 const ADDED: &[(&str, f64)] = &[
     ("gcws_FANUC0M.nc", 0.004),
-    ("gcws_HAAS.nc", 0.035),
-    ("linuxcnc_Pasta.ngc", 0.655),
+    ("gcws_HAAS.nc", 0.030),
+    ("linuxcnc_Pasta.ngc", 0.630),
     ("linuxcnc_rgh.ngc", 1.0),
-    ("ugs_Gates_combined_R12.nc", 0.944),
-    ("ugs_arc_rword_test.gcode", 0.023),
+    ("ugs_Gates_combined_R12.nc", 0.880),
+    ("ugs_arc_rword_test.gcode", 0.021),
     ("ugs_no_spaces.gcode", 0.003),
 ];
 
@@ -116,9 +125,13 @@ const UNCHANGED: &[(&str, &str)] = &[
 /// error rose, 101.1 -> 109.1 µm, so the region went back), the CNCjs
 /// pocket 438.3 -> 412.0 µm, mmount unchanged (its moves are
 /// macro-computed); all four stopped by the window budget. Natively 59,
-/// 22, 5 and 7 s.
+/// 22, 5 and 7 s. The botomata pocket cuts its part twice (a `G10 L2`
+/// work offset this model does not apply puts both copies on one path):
+/// with ties of the nearest-point search broken towards the commanded
+/// point each copy keeps its own samples, every region takes dwells at
+/// its exits into a rapid, 213.8 -> 6.7 µm (0.031, +4.0 % time).
 const UNREFUSED: &[(&str, f64)] = &[
-    ("camotics_botomata_bottom.nc", 1.0),
+    ("camotics_botomata_bottom.nc", 0.031),
     ("camotics_cameo.nc", 1.0),
     ("cncjs_tball-pocket.gcode", 0.026),
     ("linuxcnc_mmount.ngc", 1.0),
@@ -257,11 +270,11 @@ fn every_simulating_corpus_program_is_never_worse_median_pinned() {
     r.extend(check(LARGE));
     let m = median(r.clone());
     eprintln!("median after/before (8 programs): {m:.3}");
-    assert!(m <= 0.07, "median {m:.3} rose above the measured 0.063");
+    assert!(m <= 0.035, "median {m:.3} rose above the measured 0.032");
     r.extend(check(CAM));
     let m = median(r);
     eprintln!("median after/before (10 programs, with the CAM ones): {m:.3}");
-    assert!(m <= 0.24, "median {m:.3} rose above the measured 0.235");
+    assert!(m <= 0.07, "median {m:.3} rose above the measured 0.067");
     check(ADDED);
     check(FIELD);
     check(EXPANDED);
