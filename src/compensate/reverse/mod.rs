@@ -30,6 +30,11 @@
 //!   regions), the checked program with the lowest maximum error is
 //!   returned if it is below the original's (whole program, time budget,
 //!   no fixed move raised), and each region whose own error rose says so;
+//! - *tangent arc–line joints* (beyond the paper): when the written
+//!   program's largest error sits where a line meets an arc tangentially,
+//!   the compensation runs again with such lines keeping their ends
+//!   ([`geometry::Edit::tangent_lines`]), and that result is kept when
+//!   its maximum error is lower;
 //! - fixed segments (subprogram bodies, canned-cycle expansions, Fanuc
 //!   corners) never move, and arcs touching them keep their radius;
 //! - *dwells*: candidates are the joints where a run of at least three short
@@ -491,9 +496,20 @@ pub fn reverse_compensate_with(
         Vec::new()
     };
     let share = if pinned.contains(&true) { 0.5 } else { 1.0 };
-    let mut c = in_place(text, &program, &range, cfg, &mut |f, s| {
+    let mut c = in_place(text, &program, &range, cfg, false, &mut |f, s| {
         progress(f * share, s)
     })?;
+    if worst_at_tangent_line(&program, &c.sim_after) {
+        // Its largest error sits where a line meets an arc tangentially:
+        // the variant that keeps such lines' ends (geometry::Edit::
+        // tangent_lines), kept when its written program is better.
+        let t = in_place(text, &program, &range, cfg, true, &mut |_, s| {
+            progress(share, &format!("tangent arc–line joints: {s}"))
+        })?;
+        if t.unchanged.is_none() && t.after.max_error_um < c.after.max_error_um {
+            c = t;
+        }
+    }
     if !worst_is_pinned(&program, &pinned, &c.sim_after) {
         return Ok(c);
     }
@@ -505,7 +521,7 @@ pub fn reverse_compensate_with(
         }
     };
     let whole = line_range(&fp, None, None)?;
-    let mut e = in_place(&flat, &fp, &whole, cfg, &mut |f, s| {
+    let mut e = in_place(&flat, &fp, &whole, cfg, false, &mut |f, s| {
         progress(0.5 + 0.5 * f, &format!("written flat: {s}"))
     })?;
     if e.unchanged.is_some() {
@@ -583,13 +599,39 @@ fn worst_is_pinned(program: &Program, pinned: &[bool], after: &Simulation) -> bo
     worst.is_some_and(|st| pinned.get(st.segment).copied().unwrap_or(false))
 }
 
+/// The written program's largest error on a cutting move sits on a line
+/// that meets an arc tangentially, or on such an arc
+/// ([`geometry::tangent_joint`]).
+fn worst_at_tangent_line(program: &Program, after: &Simulation) -> bool {
+    let segs = &program.segments;
+    let worst = after
+        .segments
+        .iter()
+        .filter(|st| segs.get(st.segment).is_some_and(Segment::is_cutting))
+        .max_by(|a, b| a.max_error_um.total_cmp(&b.max_error_um));
+    let Some(w) = worst.map(|st| st.segment) else {
+        return false;
+    };
+    let line_arc = |i: usize, k: usize| {
+        let (a, b) = (&segs[i], &segs[k]);
+        let kinds = matches!(
+            (a.motion, b.motion),
+            (Motion::Linear, Motion::Arc(_)) | (Motion::Arc(_), Motion::Linear)
+        );
+        kinds && geometry::tangent_joint(a, b)
+    };
+    (w > 0 && line_arc(w - 1, w)) || (w + 1 < segs.len() && line_arc(w, w + 1))
+}
+
 /// [`reverse_compensate_with`] on the program's own blocks: only literal
-/// words move.
+/// words move; with `tangent`, lines meeting arcs tangentially keep their
+/// ends ([`geometry::Edit::tangent_lines`]).
 fn in_place(
     text: &str,
     program: &Program,
     range: &LineRange,
     cfg: &ReverseConfig,
+    tangent: bool,
     progress: &mut dyn FnMut(f64, &str) -> bool,
 ) -> Result<Compensation, ToolpathError> {
     let opts = program.options.clone();
@@ -614,12 +656,14 @@ fn in_place(
     } else {
         Vec::new()
     };
+    let mut start = identity(orig, vec![0.0; orig.len()]);
+    start.tangent_lines = tangent;
     let spikes = corner::search(
         orig,
         &cfg.sim,
         &found,
         &sim_before.segments,
-        &identity(orig, vec![0.0; orig.len()]),
+        &start,
         allowed,
         &mut work,
     )?;
@@ -673,6 +717,7 @@ fn in_place(
     tick(0.7, "checking the written program")?;
     // Without dwells: the plain rounds' regions that beat the original.
     let mut fallback = identity(orig, vec![0.0; orig.len()]);
+    fallback.tangent_lines = tangent;
     for (r, &e) in plain.error.iter().enumerate() {
         if e < before_err[r] {
             copy_region(&rg, r, &plain.edit, &mut fallback);
