@@ -6,8 +6,11 @@
 //! against the original path), the motion time stays within the +5 %
 //! budget, the result reads back, and each program's after/before ratio
 //! is pinned at what was measured (a regression fails). The median ratio
-//! is printed and pinned too: 0.063 over the eight LinuxCNC and CNCjs
-//! programs, 0.235 over ten with the two Fusion 360 programs; programs
+//! is printed and pinned too: 0.022 over the eight LinuxCNC and CNCjs
+//! programs, 0.063 over ten with the two Fusion 360 programs (0.063 and
+//! 0.235 before the nearest-point search broke ties towards the commanded
+//! point, `tests/toolpath_repeated_pass.rs`, and tangent arc–line joints
+//! were tried); programs
 //! whose error sits on moves they compute are checked to be written flat
 //! (`EXPANDED`), all others not; see docs/toolpath.md.
 //!
@@ -22,12 +25,15 @@ mod corpus;
 use corpus::read;
 
 /// (file, after/before ratio measured, tA 40 ms, T 15 ms, dt 1 ms).
+/// comp 0.951 -> 0.036 when ties of the nearest-point search went to the
+/// commanded pass (its six passes meet at the origin), 0.017 with tangent
+/// arc–line joints tried (`geometry::Edit::tangent_lines`).
 const SMALL: &[(&str, f64)] = &[
     ("cncjs_arc-xz-plane.gcode", 0.008),
     ("cncjs_arc-yz-plane.gcode", 0.008),
     ("cncjs_circle-inch.gcode", 0.003),
     ("cncjs_helical-thread-milling.gcode", 0.098),
-    ("linuxcnc_comp.ngc", 0.951),
+    ("linuxcnc_comp.ngc", 0.017),
 ];
 const LARGE: &[(&str, f64)] = &[
     ("linuxcnc_arcspiral.ngc", 0.418),
@@ -38,13 +44,16 @@ const LARGE: &[(&str, f64)] = &[
 /// measured 2026-11-27 (corner spikes, the damped step, the budget held
 /// for the dwells): the contour with tabs 323.4 -> 120.5 µm; the wall
 /// tester unchanged at 121.0 µm (its largest error is at the top of a
-/// retract in the air, G1 Z15 then a 0.57 mm G1, where no round helped). The
-/// CAMotics pocket `camotics_botomata_bottom.nc` (5567 s) is not here: at
+/// retract in the air, G1 Z15 then a 0.57 mm G1, where no round helped).
+/// With ties of the nearest-point search broken towards the commanded
+/// point (its plunges and retracts of several depths share vertical
+/// lines): the wall tester 121.0 -> 30.0 µm (0.248; 24.6 µm, 0.204, with
+/// tangent arc–line joints tried), the contour with tabs 0.373 -> 0.363. The CAMotics pocket `camotics_botomata_bottom.nc` (5567 s) is not here: at
 /// dt 1 ms it was refused by the work budget before the rounds became
 /// local; it is pinned in `UNREFUSED`, unchanged too.
 const CAM: &[(&str, f64)] = &[
-    ("ledfloor_1003.nc", 1.0),
-    ("ledfloor_1112_tab_test_29bit_715_tab_thickness.nc", 0.373),
+    ("ledfloor_1003.nc", 0.204),
+    ("ledfloor_1112_tab_test_29bit_715_tab_thickness.nc", 0.363),
 ];
 
 /// The ten programs added to the shared corpus on 2026-11-26 that parse,
@@ -55,14 +64,16 @@ const CAM: &[(&str, f64)] = &[
 /// (Gates) are unchanged (1.000): Pasta's corner dwells would exceed the
 /// time budget (361.7 µm kept), rgh's one region no round lowered
 /// (1789.8 µm, its `F100100.` feeds), Gates's written error did not fall
-/// (264.5 µm kept).
+/// (264.5 µm kept). With ties of the nearest-point search broken towards
+/// the commanded point: Haas 0.030, Pasta 0.630 (24 of 24 regions), Gates
+/// 0.880 (20 of 21), the R-word test 0.021.
 const ADDED: &[(&str, f64)] = &[
     ("gcws_FANUC0M.nc", 0.004),
-    ("gcws_HAAS.nc", 0.035),
-    ("linuxcnc_Pasta.ngc", 0.655),
+    ("gcws_HAAS.nc", 0.030),
+    ("linuxcnc_Pasta.ngc", 0.630),
     ("linuxcnc_rgh.ngc", 1.0),
-    ("ugs_Gates_combined_R12.nc", 0.944),
-    ("ugs_arc_rword_test.gcode", 0.023),
+    ("ugs_Gates_combined_R12.nc", 0.880),
+    ("ugs_arc_rword_test.gcode", 0.021),
     ("ugs_no_spaces.gcode", 0.003),
 ];
 
@@ -70,8 +81,11 @@ const ADDED: &[(&str, f64)] = &[
 /// measured as pinned here (tA 40 ms, T 15 ms, dt 1 ms), kept out of the
 /// medians: the edited Fusion 360 program 534.75 -> 515.25 µm (its one
 /// region changed), LinuxCNC's lathe threading unchanged at 156.90 µm
-/// (1 of 3 regions changed, the largest error is in another).
-const FIELD: &[(&str, f64)] = &[("cncsprayer_fusion-output.nc", 0.721)];
+/// (1 of 3 regions changed, the largest error is in another). The Fusion
+/// 360 program 0.721 -> 0.215 (534.75 -> 115.10 µm) when a line meeting
+/// an arc tangentially keeps its end (`geometry::Edit::tangent_lines`,
+/// tried where the largest error sits at such a joint).
+const FIELD: &[(&str, f64)] = &[("cncsprayer_fusion-output.nc", 0.215)];
 
 /// Programs whose largest error sits on moves they compute, compensated
 /// written flat (`Compensation::expanded`; tA 40 ms, T 15 ms, dt 1 ms):
@@ -116,9 +130,13 @@ const UNCHANGED: &[(&str, &str)] = &[
 /// error rose, 101.1 -> 109.1 µm, so the region went back), the CNCjs
 /// pocket 438.3 -> 412.0 µm, mmount unchanged (its moves are
 /// macro-computed); all four stopped by the window budget. Natively 59,
-/// 22, 5 and 7 s.
+/// 22, 5 and 7 s. The botomata pocket cuts its part twice (a `G10 L2`
+/// work offset this model does not apply puts both copies on one path):
+/// with ties of the nearest-point search broken towards the commanded
+/// point each copy keeps its own samples, every region takes dwells at
+/// its exits into a rapid, 213.8 -> 6.7 µm (0.031, +4.0 % time).
 const UNREFUSED: &[(&str, f64)] = &[
-    ("camotics_botomata_bottom.nc", 1.0),
+    ("camotics_botomata_bottom.nc", 0.031),
     ("camotics_cameo.nc", 1.0),
     ("cncjs_tball-pocket.gcode", 0.026),
     ("linuxcnc_mmount.ngc", 1.0),
@@ -257,13 +275,42 @@ fn every_simulating_corpus_program_is_never_worse_median_pinned() {
     r.extend(check(LARGE));
     let m = median(r.clone());
     eprintln!("median after/before (8 programs): {m:.3}");
-    assert!(m <= 0.07, "median {m:.3} rose above the measured 0.063");
+    assert!(m <= 0.025, "median {m:.3} rose above the measured 0.022");
     r.extend(check(CAM));
     let m = median(r);
     eprintln!("median after/before (10 programs, with the CAM ones): {m:.3}");
-    assert!(m <= 0.24, "median {m:.3} rose above the measured 0.235");
+    assert!(m <= 0.065, "median {m:.3} rose above the measured 0.063");
     check(ADDED);
     check(FIELD);
     check(EXPANDED);
     check(UNREFUSED);
+}
+
+/// LinuxCNC threading at dt 2 ms, written flat: its passes are 12.7 µm
+/// apart, closer than their error, so reverting the regions whose own
+/// error rose moved samples between passes check after check without
+/// settling, and the original came back (it was ×0.761 before ties of
+/// the nearest-point search went to the commanded pass, unchanged after).
+/// Now the checked program with the lowest maximum error is returned when
+/// it is below the original's (measured 153.4 -> 7.0 µm, ×0.045, +4.4 %
+/// time), and every region whose own error rose says so.
+#[test]
+#[ignore = "seconds in a release build: run with --release -- --ignored"]
+fn an_unsettled_check_returns_its_best_checked_program() {
+    if corpus::available("an_unsettled_check_returns_its_best_checked_program").is_none() {
+        return;
+    }
+    let text = read("linuxcnc_threading.ngc");
+    let mut cfg = ReverseConfig::default();
+    cfg.sim.dt = 0.002;
+    let c = reverse_compensate(&text, &cfg).unwrap();
+    assert!(c.expanded, "{:?}", c.expand_note);
+    let r = c.after.max_error_um / c.before.max_error_um;
+    assert!(r <= 0.05, "ratio {r:.3}, measured 0.045");
+    assert!(c.after.motion_time <= c.before.motion_time * (1.0 + cfg.time_budget) + cfg.sim.dt);
+    let rose = |n: &&mtmotion::compensate::reverse::RegionNote| n.after_um > n.before_um + 0.1;
+    assert!(c.regions.iter().any(|n| rose(&n)), "{:?}", c.regions);
+    for n in &c.regions {
+        assert_eq!(rose(&n), n.reason.contains("its own error rose"), "{n:?}");
+    }
 }

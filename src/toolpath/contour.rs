@@ -19,11 +19,20 @@
 //! equally near (a circle programmed twice) the one closer along the path
 //! to the last nearest point on a cutting move wins, so the search moves
 //! on and a return rapid crossing the contour does not carry it to another
-//! pass. Known limit: where the tool passes a point that another pass
-//! shares (LinuxCNC's `comp.ngc`: all six passes meet at the origin), a
-//! pass that is strictly nearer there takes the tracker, and later ties go
-//! to the pass nearest along the path to it; breaking ties towards the
-//! commanded segment would be exact, and is not done.
+//! pass. A simulation ([`super::simulate()`]) also follows the *commanded*
+//! point along the path ([`Tracker::follow`], the local search only: the
+//! command moves continuously) and breaks ties towards it
+//! ([`Tracker::tie_towards`]), also against an equally near element the
+//! exact check finds far along the path: where the tool passes a point
+//! another pass shares and that pass is strictly nearer for a moment (a
+//! retract rising through the upper layers' contours, which end at the
+//! same corner), the tracker comes back to the commanded pass as soon as
+//! the two tie again, instead of staying on the other pass. Without it the
+//! CAMotics botomata pocket, whose second copy of the part (a `G10 L2`
+//! work offset this model does not apply) repeats the first's path, had
+//! every sample of the second copy counted on the first copy's segments
+//! (the maximum error is the same; the per-segment statistics, which
+//! reverse compensation corrects and judges by, were not).
 //! Each element carries a bounding sphere; an element whose sphere is
 //! farther than the best distance so far (+ 2 nm) cannot win and is skipped
 //! without computing its nearest point — the result is the same as
@@ -371,6 +380,9 @@ pub struct Tracker {
     /// broken towards it, so a rapid that crosses a contour cut several
     /// times does not carry the tracker over to another pass.
     s_cut: f64,
+    /// Arc length ties are broken towards instead of `s_cut`, when set
+    /// ([`Tracker::tie_towards`]: the commanded point's).
+    s_tie: Option<f64>,
     err: f64,
     last: Option<[f64; 3]>,
     /// The elements that may lie within `near_r` of `near_q` (ascending):
@@ -398,6 +410,7 @@ impl Default for Tracker {
             cur: 0,
             s: 0.0,
             s_cut: 0.0,
+            s_tie: None,
             err: 0.0,
             last: None,
             near: Vec::new(),
@@ -422,13 +435,37 @@ impl Tracker {
     }
 
     /// Nearer, or as near (within 1 nm, e.g. a path that repeats itself)
-    /// and closer along the path to the last nearest point on a cutting
-    /// move.
+    /// and closer along the path to the arc length set by
+    /// [`Tracker::tie_towards`], else to the last nearest point on a
+    /// cutting move.
     #[inline]
     fn better(&self, cand: &Nearest, best: &Nearest) -> bool {
+        let s = self.s_tie.unwrap_or(self.s_cut);
         cand.dist < best.dist - 1e-9
-            || (cand.dist <= best.dist + 1e-9
-                && (cand.s - self.s_cut).abs() < (best.s - self.s_cut).abs())
+            || (cand.dist <= best.dist + 1e-9 && (cand.s - s).abs() < (best.s - s).abs())
+    }
+
+    /// Breaks the ties of the following searches towards arc length `s`
+    /// (a simulation sets the commanded point's, [`Tracker::follow`]).
+    #[inline]
+    pub fn tie_towards(&mut self, s: f64) {
+        self.s_tie = Some(s);
+    }
+
+    /// Follows a point that moves continuously along the path (the
+    /// commanded point) by the local search alone, and returns the arc
+    /// length of its nearest point (`None` for an empty path).
+    #[inline]
+    pub fn follow(&mut self, path: &Path, q: [f64; 3]) -> Option<f64> {
+        let best = self.local(path, q)?;
+        self.cur = best.element;
+        self.s = best.s;
+        if !path.elements[best.element].rapid {
+            self.s_cut = best.s;
+        }
+        self.err = best.dist;
+        self.last = Some(q);
+        Some(best.s)
     }
 
     /// The nearest point of `path` to `q`, searched around the last one.
@@ -451,17 +488,29 @@ impl Tracker {
         let mut best = self.local(path, q)?;
         if best.dist > EXACT_SLACK {
             let need = best.dist - EXACT_SLACK;
-            self.cover(path, q, need);
+            // With a tie target, equally near elements count too.
+            let reach = if self.s_tie.is_some() {
+                best.dist + 2e-9
+            } else {
+                need
+            };
+            self.cover(path, q, reach);
             // Among the elements nearer than `need`, the nearest; of equally
             // near ones (a pass programmed twice) the one closer along the
-            // path, as in the local search, whatever the list's order.
+            // path, as in the local search, whatever the list's order. With
+            // a tie target, also an element as near as the local one and
+            // closer to the target along the path (the commanded pass).
             let mut found: Option<Nearest> = None;
             for &i in &self.near {
                 let i = i as usize;
-                let bound = found.map_or(need, |f| f.dist + 2e-9);
+                let bound = found.map_or(reach, |f| f.dist + 2e-9);
                 if !path.farther_than(i, q, bound) {
                     let cand = path.nearest_on(i, q, self.s);
-                    if cand.dist < need && found.is_none_or(|f| self.better(&cand, &f)) {
+                    let takes = cand.dist < need
+                        || (self.s_tie.is_some()
+                            && cand.element != best.element
+                            && self.better(&cand, &best));
+                    if takes && found.is_none_or(|f| self.better(&cand, &f)) {
                         found = Some(cand);
                     }
                 }

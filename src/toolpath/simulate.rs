@@ -522,6 +522,9 @@ pub(super) fn sample_count(
 /// statistics per element, the motion time, and the series kept.
 struct Run {
     tracker: Tracker,
+    /// Follows the commanded point along the reference path; the
+    /// tracker's ties go towards it ([`Tracker::tie_towards`]).
+    command: Tracker,
     /// Running statistics per element of the reference path, from element
     /// `base` on (a window keeps only its own).
     acc: Vec<Acc>,
@@ -569,6 +572,7 @@ impl Run {
     ) -> Self {
         Self {
             tracker: Tracker::at(path, elements.start),
+            command: Tracker::at(path, elements.start),
             acc: vec![Acc::default(); elements.len()],
             halves: vec![Halves::default(); if halves { elements.len() } else { 0 }],
             base: elements.start,
@@ -590,6 +594,9 @@ impl Run {
         // The commanded point: on the reference path when the reference is
         // the command, close to it otherwise (reverse compensation).
         let lag = d3(s.cmd, q);
+        if let Some(sc) = self.command.follow(path, s.cmd) {
+            self.tracker.tie_towards(sc);
+        }
         // `None` only for an empty path, which the caller refuses.
         let Some(nr) = self.tracker.nearest_within(path, q, lag) else {
             return;

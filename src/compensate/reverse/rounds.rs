@@ -187,6 +187,7 @@ pub fn identity(orig: &[Segment], dwell_after: Vec<f64>) -> Edit {
         vertex_shift: vec![[0.0; 3]; orig.len()],
         dwell_after,
         spike: vec![[0.0; 3]; orig.len()],
+        tangent_lines: false,
     }
 }
 
