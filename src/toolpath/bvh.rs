@@ -81,26 +81,33 @@ fn node_count(n: usize) -> usize {
 impl Bvh {
     /// The hierarchy over spheres `(centre, radius)`, one per element.
     pub fn new(spheres: &[([f64; 3], f64)]) -> Self {
-        Self::from_fn(spheres.len(), |i| spheres[i])
+        Self::from_fn(spheres.len(), |i| spheres[i].0, |i| spheres[i])
     }
 
     /// The hierarchy over `n` spheres, `sphere(i)` the `(centre, radius)`
-    /// of element `i`: for a caller that computes them rather than holds
-    /// them (the path of a 2 M-segment program would hold 64 MB of them in
-    /// wasm while the hierarchy is built).
-    pub fn from_fn(n: usize, sphere: impl Fn(usize) -> ([f64; 3], f64)) -> Self {
+    /// of element `i` and `centre(i)` its centre, for a caller that
+    /// computes them rather than holds them (the path of a 2 M-segment
+    /// program would hold 64 MB of them in wasm while the hierarchy is
+    /// built); `centre` orders the elements at each split, so it should
+    /// be cheap.
+    pub fn from_fn(
+        n: usize,
+        centre: impl Fn(usize) -> [f64; 3],
+        sphere: impl Fn(usize) -> ([f64; 3], f64),
+    ) -> Self {
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(node_count(n)),
             order: (0..n as u32).collect(),
         };
         if n > 0 {
-            bvh.build(&sphere, 0, n);
+            bvh.build(&centre, &sphere, 0, n);
         }
         bvh
     }
 
     fn build(
         &mut self,
+        centre: &impl Fn(usize) -> [f64; 3],
         sphere: &impl Fn(usize) -> ([f64; 3], f64),
         start: usize,
         end: usize,
@@ -128,10 +135,10 @@ impl Bvh {
             .unwrap_or(0);
         let mid = (start + end) / 2;
         self.order[start..end].select_nth_unstable_by(mid - start, |&i, &j| {
-            sphere(i as usize).0[axis].total_cmp(&sphere(j as usize).0[axis])
+            centre(i as usize)[axis].total_cmp(&centre(j as usize)[axis])
         });
-        self.build(sphere, start, mid);
-        let right = self.build(sphere, mid, end);
+        self.build(centre, sphere, start, mid);
+        let right = self.build(centre, sphere, mid, end);
         self.nodes[me].start = right as u32;
         self.nodes[me].count = 0;
         me
