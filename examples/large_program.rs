@@ -1,7 +1,9 @@
-//! Parse + simulate one large NC program natively, stage by stage, the way
-//! `simulateToolPath` does in wasm (blocks kept only for the motion, the
-//! text and the blocks dropped before the simulation): the time of each
-//! stage and the process's peak resident memory after it (Linux `VmHWM`).
+//! Check and simulate one large NC program natively, stage by stage, the
+//! way `checkNc` then `simulateToolPathColumns` do in wasm (blocks kept
+//! only for the motion, the text and the blocks dropped before the
+//! simulation): the time of each stage, the heap it had live at most (a
+//! counting global allocator: the figure that sets the wasm memory, which
+//! only grows) and the process's peak resident memory (Linux `VmHWM`).
 //! For profiling the 2 M-line program of `bench/node/large-program.bench.mjs`
 //! (docs/performance.md §8):
 //!
@@ -10,15 +12,67 @@
 //! cargo run --release --example large_program -- /tmp/big.nc
 //! perf record -g target/release/examples/large_program /tmp/big.nc
 //! ```
+//!
+//! The heap figures are 64-bit: a `usize`, a pointer and a `Vec` header
+//! are twice their wasm32 size, so the wasm figures are somewhat smaller.
 
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::time::Instant;
 
-use mtmotion::nc::files::parse_files_keeping;
+use mtmotion::nc::files::parse_files_owned;
 use mtmotion::nc::program::{Keep, ParseOptions};
-use mtmotion::toolpath::{simulate_with_progress, SimConfig};
+use mtmotion::nc::summary::summarize;
+use mtmotion::toolpath::{simulate_columns_owned, SimConfig};
+
+/// The system allocator, counting the bytes live and their peak.
+struct Counting;
+
+static LIVE: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        let p = unsafe { System.alloc(l) };
+        if !p.is_null() {
+            let now = LIVE.fetch_add(l.size(), Relaxed) + l.size();
+            PEAK.fetch_max(now, Relaxed);
+        }
+        p
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        unsafe { System.dealloc(p, l) };
+        LIVE.fetch_sub(l.size(), Relaxed);
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, new: usize) -> *mut u8 {
+        let q = unsafe { System.realloc(p, l, new) };
+        if !q.is_null() {
+            // a moved block is live twice while it is copied
+            let now = LIVE.fetch_add(new, Relaxed) + new;
+            PEAK.fetch_max(now, Relaxed);
+            LIVE.fetch_sub(l.size(), Relaxed);
+        }
+        q
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Heap live now and at most since the last call, MiB; resets the peak.
+fn heap() -> String {
+    let mib = |b: usize| b as f64 / f64::from(1 << 20);
+    let live = LIVE.load(Relaxed);
+    let peak = PEAK.swap(live, Relaxed);
+    format!(
+        "heap peak {:.0} MiB, live after {:.0} MiB",
+        mib(peak),
+        mib(live)
+    )
+}
 
 /// Peak resident memory so far, MiB (0 where `/proc` is missing).
-fn peak_mib() -> f64 {
+fn peak_rss() -> f64 {
     std::fs::read_to_string("/proc/self/status")
         .ok()
         .and_then(|s| {
@@ -33,48 +87,61 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = std::env::args()
         .nth(1)
         .ok_or("usage: large_program FILE.nc")?;
+    let read = || std::fs::read_to_string(&path);
     let t0 = Instant::now();
-    let text = std::fs::read_to_string(&path)?;
+    let text = read()?;
     println!(
-        "read {} bytes in {:.2} s; peak {:.0} MiB",
+        "read {} bytes in {:.2} s; {}",
         text.len(),
         t0.elapsed().as_secs_f64(),
-        peak_mib()
+        heap()
     );
     if std::env::var_os("LEX_ONLY").is_some() {
         let t0 = Instant::now();
         let (blocks, _) = mtmotion::nc::lex_all(&text);
         println!(
-            "lex alone: {:.2} s, {} blocks; peak {:.0} MiB",
+            "lex alone: {:.2} s, {} blocks; {}",
             t0.elapsed().as_secs_f64(),
             blocks.len(),
-            peak_mib()
+            heap()
         );
         return Ok(());
     }
+    let opts = ParseOptions::default();
+    let cfg = SimConfig::default();
+    // checkNc: parse for the motion, summarise, drop all.
     let t0 = Instant::now();
-    let mut p = parse_files_keeping(&text, &[], &ParseOptions::default(), Keep::Motion)
+    let p = parse_files_owned(text, Vec::new(), &opts, Keep::Motion)
         .map_err(|e| e.first().to_string())?;
+    let summary = summarize(&p, cfg.rapid_feed);
     println!(
-        "parse: {:.2} s, {} blocks, {} segments; peak {:.0} MiB",
+        "check: {:.2} s, {} blocks, {} segments, {:.0} s of motion; {}",
         t0.elapsed().as_secs_f64(),
         p.blocks.len(),
         p.segments.len(),
-        peak_mib()
+        summary.motion_time,
+        heap()
     );
-    drop(text);
-    drop(std::mem::take(&mut p.blocks));
+    drop(p);
+    // simulateToolPathColumns: its own copy of the text, parsed again.
+    let text = read()?;
     let t0 = Instant::now();
-    let cfg = SimConfig::default();
-    let s = simulate_with_progress(&p.segments, &p.segments, &cfg, &mut |_| true)?;
+    let mut p = parse_files_owned(text, Vec::new(), &opts, Keep::Motion)
+        .map_err(|e| e.first().to_string())?;
+    drop(std::mem::take(&mut p.blocks));
+    println!("parse: {:.2} s; {}", t0.elapsed().as_secs_f64(), heap());
+    let t0 = Instant::now();
+    let segments = std::mem::take(&mut p.segments);
+    let (s, columns) = simulate_columns_owned(segments, &cfg, &mut |_| true)?;
     println!(
-        "simulate: {:.2} s, {} samples, max error {:.3} µm at line {}, {} segment statistics; peak {:.0} MiB",
+        "simulate: {:.2} s, {} samples, max error {:.3} µm at line {}, {} segment statistics; {}",
         t0.elapsed().as_secs_f64(),
         s.samples,
         s.max_error * 1e3,
         s.max_error_line,
-        s.segments.len(),
-        peak_mib()
+        columns.line.len(),
+        heap()
     );
+    println!("peak RSS {:.0} MiB", peak_rss());
     Ok(())
 }

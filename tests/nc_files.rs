@@ -1,10 +1,12 @@
 //! Several program files at once: M98, G65 and o-word calls find their
 //! subprograms in extra files; errors and warnings in an extra file name
 //! the file, line and column; the main program's end is the end of the
-//! run; the main file is picked among dropped files.
+//! run; the main file is picked among dropped files. Read from owned texts
+//! (`parse_files_owned`, what the wasm bindings call: the texts freed once
+//! lexed) a program gives the same program and the same errors.
 
-use mtmotion::nc::files::{main_file, parse_files, NcFile};
-use mtmotion::nc::program::ParseOptions;
+use mtmotion::nc::files::{main_file, parse_files, parse_files_keeping, parse_files_owned, NcFile};
+use mtmotion::nc::program::{Keep, ParseOptions};
 
 fn file(name: &str, text: &str) -> NcFile {
     NcFile {
@@ -51,6 +53,33 @@ fn calls_reach_subprograms_in_other_files() {
     assert!(p.segments.iter().all(|s| s.fixed));
     // Segments keep their line in their own file.
     assert_eq!(p.segments[1].line, 3);
+}
+
+/// `parse_files_owned` is `parse_files_keeping` with the texts given up:
+/// the same segments, warnings, blocks and errors (their files and lines
+/// included), for both `Keep`s.
+#[test]
+fn owned_texts_read_as_borrowed_ones() {
+    let o = ParseOptions::default();
+    let cases: [(&str, Vec<NcFile>); 4] = [
+        (
+            "G0 X0\nM98 P2000\nG0 X100\nM30",
+            vec![file("O2000.nc", "O2000\nG91 G1 X5 F100 M8\nG90\nM99")],
+        ),
+        (
+            "G0 X0\nM98 P2000\nG1 Y\nM30",
+            vec![file("O2000.nc", "O2000\nG1 X1 F100 M8\nG1 X\nM99")],
+        ),
+        ("G90 G21\nG0 X1 Y1\nG2 X3 Y1 R1 F300\n(done)\nM30", vec![]),
+        ("G1 X1\nG0 X(open", vec![]),
+    ];
+    for keep in [Keep::All, Keep::Motion] {
+        for (text, files) in &cases {
+            let borrowed = parse_files_keeping(text, files, &o, keep);
+            let owned = parse_files_owned(text.to_string(), files.clone(), &o, keep);
+            assert_eq!(borrowed, owned, "{text}");
+        }
+    }
 }
 
 #[test]

@@ -1,4 +1,4 @@
-//! The tool-path simulation holds about 0.65 KB of memory per segment while
+//! The tool-path simulation holds about 0.4 to 0.7 KB of memory per segment while
 //! it runs, so it refuses a program of more than
 //! `budget::MAX_TOOLPATH_SEGMENTS` segments before any work, naming the
 //! count, the limit and the source line of the first segment over it; a

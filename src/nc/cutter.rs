@@ -236,7 +236,7 @@ pub(super) fn cutter_word(
         (None, Some(d)) if matches!(g, 410 | 420) => Some(Word {
             letter: 'D',
             value: d,
-            text: format!("{d}"),
+            text: format!("{d}").into(),
             column: w.column,
         }),
         _ => None,

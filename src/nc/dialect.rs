@@ -140,7 +140,7 @@ pub fn dwell_form(program: &Program) -> DwellForm {
             .words
             .iter()
             .find(|w| matches!(w.letter, 'P' | 'X' | 'U'))?;
-        Some((g.text.clone(), t.letter, t.text.contains('.')))
+        Some((g.text.to_string(), t.letter, t.text.contains('.')))
     });
     let g = first.as_ref().map(|(text, ..)| text.clone());
     let linuxcnc =

@@ -66,6 +66,40 @@ pub fn parse_files_keeping(
     options: &ParseOptions,
     keep: Keep,
 ) -> Result<Program, NcErrors> {
+    lex_files(text, files)?.interpret(options, keep)
+}
+
+/// As [`parse_files_keeping`], taking the texts and freeing them once they
+/// are lexed, before the program runs: a caller that holds its own copy of
+/// a large program (the wasm bindings' copy of the JS string) does not
+/// hold it beside the segments (59 MB of the 2 M-line program of
+/// `bench/node/large-program.bench.mjs`).
+///
+/// # Errors
+/// As [`parse_files`].
+pub fn parse_files_owned(
+    text: String,
+    files: Vec<NcFile>,
+    options: &ParseOptions,
+    keep: Keep,
+) -> Result<Program, NcErrors> {
+    let lexed = lex_files(&text, &files)?;
+    drop(text);
+    drop(files);
+    lexed.interpret(options, keep)
+}
+
+/// A program and its files lexed into one list of blocks: the errors
+/// found, and where each extra file's blocks start with its name.
+struct Lexed {
+    blocks: Vec<Block>,
+    errors: NcErrors,
+    spans: Vec<(usize, String)>,
+}
+
+/// Lexes `text` and then `files` into one list of blocks (the budgets
+/// checked over all of them); `Err` for a text refused as a whole.
+fn lex_files(text: &str, files: &[NcFile]) -> Result<Lexed, NcErrors> {
     if !files.is_empty() {
         // one budget spans the program and its files (20 files of 100,000
         // lines took 1.25 GB when every block kept its modal state)
@@ -81,7 +115,7 @@ pub fn parse_files_keeping(
     }
     let mut words = 0;
     let (mut blocks, mut errors) = super::lex_counting(text, &mut words);
-    let mut spans: Vec<(usize, &str)> = Vec::new();
+    let mut spans = Vec::new();
     let mut offset = blocks.len();
     for (k, f) in files.iter().enumerate() {
         let (bs, es) = super::lex_counting(&f.text, &mut words);
@@ -89,7 +123,7 @@ pub fn parse_files_keeping(
             e.file = Some(f.name.clone());
             errors.push(e);
         }
-        spans.push((offset, f.name.as_str()));
+        spans.push((offset, f.name.clone()));
         let n = bs.len();
         blocks.extend(bs.into_iter().map(|b| Block {
             file: k + 1,
@@ -105,40 +139,57 @@ pub fn parse_files_keeping(
     {
         return Err(NcErrors::from(e.clone()));
     }
-    match interpret_keeping(blocks, options, keep) {
-        Ok(mut p) if errors.is_empty() => {
-            relocate_program(&mut p, &spans);
-            Ok(p)
-        }
-        Ok(_) => Err(errors),
-        Err(e) => {
-            for mut x in e.errors {
-                relocate_error(&mut x, &spans);
-                errors.push(x);
+    Ok(Lexed {
+        blocks,
+        errors,
+        spans,
+    })
+}
+
+impl Lexed {
+    /// Runs the lexed program: the program, or every error of the lexing
+    /// and the run in source order.
+    fn interpret(self, options: &ParseOptions, keep: Keep) -> Result<Program, NcErrors> {
+        let Lexed {
+            blocks,
+            mut errors,
+            spans,
+        } = self;
+        match interpret_keeping(blocks, options, keep) {
+            Ok(mut p) if errors.is_empty() => {
+                relocate_program(&mut p, &spans);
+                Ok(p)
             }
-            errors
-                .errors
-                .sort_by(|a, b| (&a.file, a.line, a.column).cmp(&(&b.file, b.line, b.column)));
-            Err(errors)
+            Ok(_) => Err(errors),
+            Err(e) => {
+                for mut x in e.errors {
+                    relocate_error(&mut x, &spans);
+                    errors.push(x);
+                }
+                errors
+                    .errors
+                    .sort_by(|a, b| (&a.file, a.line, a.column).cmp(&(&b.file, b.line, b.column)));
+                Err(errors)
+            }
         }
     }
 }
 
 /// The file and the line in it of a line of the joined program.
-fn locate(line: usize, spans: &[(usize, &str)]) -> (Option<String>, usize) {
+fn locate(line: usize, spans: &[(usize, String)]) -> (Option<String>, usize) {
     match spans.iter().rev().find(|(off, _)| line > *off) {
-        Some((off, name)) => (Some((*name).to_string()), line - off),
+        Some((off, name)) => (Some(name.clone()), line - off),
         None => (None, line),
     }
 }
 
-fn relocate_error(e: &mut NcError, spans: &[(usize, &str)]) {
+fn relocate_error(e: &mut NcError, spans: &[(usize, String)]) {
     if e.file.is_none() {
         (e.file, e.line) = locate(e.line, spans);
     }
 }
 
-fn relocate_program(p: &mut Program, spans: &[(usize, &str)]) {
+fn relocate_program(p: &mut Program, spans: &[(usize, String)]) {
     if spans.is_empty() {
         return;
     }

@@ -259,7 +259,7 @@ impl Macros {
             out.push(Word {
                 letter: w.letter,
                 value,
-                text,
+                text: text.into(),
                 column: w.column,
             });
         }

@@ -225,7 +225,7 @@ pub fn lex_macro(src: &str, line: usize) -> Result<Block, NcError> {
             block.words.push(Word {
                 letter: 'N',
                 value: *v,
-                text: text.clone(),
+                text: text.as_str().into(),
                 column: code[0].col,
             });
             c.i = 2;

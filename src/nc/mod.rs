@@ -33,6 +33,7 @@ pub mod modal_call;
 mod moves;
 mod non_modal;
 pub mod num_style;
+pub mod num_text;
 pub mod nurbs;
 pub mod patch;
 pub mod polar;
@@ -82,7 +83,7 @@ pub struct Word {
     /// Numeric value.
     pub value: f64,
     /// The number exactly as written (for round-trip output).
-    pub text: String,
+    pub text: num_text::NumText,
     /// 1-based column of the letter.
     pub column: usize,
 }
@@ -563,7 +564,7 @@ fn lex_colon_number(
     block.words.push(Word {
         letter: 'O',
         value,
-        text,
+        text: text.into(),
         column: col,
     });
     Ok(())
@@ -830,7 +831,7 @@ fn lex_word(chars: &[char], i: &mut usize, line: usize) -> Result<Word, NcError>
     Ok(Word {
         letter,
         value,
-        text,
+        text: text.into(),
         column: col,
     })
 }

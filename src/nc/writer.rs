@@ -107,7 +107,7 @@ fn word(letter: char, text: String) -> Word {
     Word {
         letter,
         value: text.parse().unwrap_or(0.0),
-        text,
+        text: text.into(),
         column: 0,
     }
 }
@@ -925,7 +925,9 @@ fn flat_words(program: &Program) -> Result<Kept, String> {
             }
         }
         for w in kept.into_iter().filter(|w| keeps(program, b, w)) {
-            want.entry((w.letter, w.text)).or_insert((b.line, 0)).1 += 1;
+            want.entry((w.letter, String::from(w.text)))
+                .or_insert((b.line, 0))
+                .1 += 1;
         }
     }
     Ok(want)
@@ -942,7 +944,7 @@ fn keeps_all(program: &Program, text: &str, want: &Kept) -> Result<Program, Stri
             .into_iter()
             .filter(|w| keeps(&back, b, w))
         {
-            *got.entry((w.letter, w.text)).or_default() += 1;
+            *got.entry((w.letter, String::from(w.text))).or_default() += 1;
         }
     }
     if let Some(((letter, t), (line, _))) = want

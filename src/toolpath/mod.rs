@@ -160,7 +160,7 @@ pub enum ToolpathError {
     /// The run would need too many samples.
     /// More segments than [`crate::budget::MAX_TOOLPATH_SEGMENTS`]: each
     /// holds memory while the simulation runs.
-    #[error("the simulation would hold {segments} segments, more than the limit of {limit} (each holds about 0.65 KB of memory while it runs); segment {next} is line {line}: split the program there or earlier and simulate each part")]
+    #[error("the simulation would hold {segments} segments, more than the limit of {limit} (each holds about 0.4 to 0.7 KB of memory while it runs); segment {next} is line {line}: split the program there or earlier and simulate each part")]
     TooManySegments {
         /// Segments of the program.
         segments: usize,

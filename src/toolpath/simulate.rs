@@ -284,7 +284,7 @@ fn prepare_columns(
 ) -> Result<(Prepared, SegmentColumns), ToolpathError> {
     let prep = prepare(command, reference, cfg, Some(MAX_SERIES))?;
     let els = &prep.path.elements;
-    let mut columns = SegmentColumns::with_capacity(els.len());
+    let mut columns = SegmentColumns::for_segments(els.len());
     for el in els {
         columns.push_segment(el, &reference[el.segment]);
     }
@@ -300,6 +300,7 @@ fn run_columns(
     progress: &mut dyn FnMut(f64) -> bool,
 ) -> Result<(Simulation, SegmentColumns), ToolpathError> {
     let done = prep.run(cfg, false, progress)?;
+    columns.reserve_stats();
     for a in &done.run.acc {
         columns.push_stats(a.max_error, a.mean(), a.samples);
     }

@@ -454,9 +454,11 @@ pub const RESERVE_STEP: usize = 16 << 20;
 pub const RESERVE_AT_MOST: usize = 1 << 30;
 
 /// Wasm memory an NC program needs while it is read, per byte of its text
-/// (blocks, words, segments: 932 MiB for the 59 MiB of the 2 M-line
-/// program of `bench/node/large-program.bench.mjs`).
-pub const NC_BYTES_PER_TEXT_BYTE: usize = 16;
+/// (blocks and words, then the segments, the text freed once lexed: the
+/// 59 MiB of the 2 M-line program of `bench/node/large-program.bench.mjs`
+/// grew the memory to 780 MiB in `checkNc` without a reservation, so 13 B
+/// a byte, 764 MiB beside the text's own copy).
+pub const NC_BYTES_PER_TEXT_BYTE: usize = 13;
 
 /// Wasm memory the tool-path simulation holds per segment (timeline,
 /// reference path, statistics; see `budget::MAX_TOOLPATH_SEGMENTS`).

@@ -12,7 +12,7 @@ use super::convert::{
     reserve, string_arg, to_js, Obj, NC_BYTES_PER_TEXT_BYTE, SIM_BYTES_PER_SEGMENT,
 };
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
-use crate::nc::files::{main_file, parse_files_keeping, NcFile};
+use crate::nc::files::{main_file, parse_files_owned, NcFile};
 use crate::nc::program::{Keep, ParseOptions, Program, Segment, ToolRadii, Warning};
 use crate::nc::summary::{summarize, Summary};
 use crate::nc::{NcError, NcErrors};
@@ -141,11 +141,12 @@ pub fn parse_nc(
 /// Reads `parseNc`/`checkNc`'s arguments and parses: an `Err` for a bad
 /// argument, `Ok(Err(_))` for the program's own errors.
 fn parse_args(text: &JsValue, options: JsValue) -> Result<Result<Program, NcErrors>, JsError> {
-    let text: &str = &string_arg(text, "text")?;
+    let text = string_arg(text, "text")?;
     let (files, options) = take_files(options)?;
     let opts = parse_options(options)?;
-    reserve_for_nc(text, &files);
-    Ok(parse_files_keeping(text, &files, &opts, Keep::Motion))
+    reserve_for_nc(&text, &files);
+    // the texts are freed once lexed, before the segments are made
+    Ok(parse_files_owned(text, files, &opts, Keep::Motion))
 }
 
 /// Reserves the wasm memory reading `text` and `files` will take, in one
@@ -404,12 +405,10 @@ fn sim_args(
     };
     let on_progress = callback_arg(on_progress, "onProgress")?;
     reserve_for_nc(&text, &files);
-    let mut p = parse_files_keeping(&text, &files, &opts, Keep::Motion)
+    // The texts are freed once lexed, the blocks once run: neither is
+    // simulated, and their memory goes to the simulation.
+    let mut p = parse_files_owned(text, files, &opts, Keep::Motion)
         .map_err(|e| JsError::new(&e.first().to_string()))?;
-    // Neither the text nor the blocks are simulated: their memory goes to
-    // the simulation.
-    drop(text);
-    drop(files);
     drop(std::mem::take(&mut p.blocks));
     if p.segments.len() <= crate::budget::MAX_TOOLPATH_SEGMENTS {
         reserve(p.segments.len() * bytes_per_segment);
