@@ -111,8 +111,18 @@ impl Timeline {
         dwell_stop: f64,
     ) -> Self {
         let origin = segments.first().map_or([0.0; 3], |s| s.start.p());
+        // One item per segment, two per rapid with a stop: sized exactly
+        // (doubled, a 1 M-segment program's items would take 480 MB).
+        let stops = if rapid_stop > 0.0 {
+            segments
+                .iter()
+                .filter(|s| matches!(s.motion, Motion::Rapid))
+                .count()
+        } else {
+            0
+        };
         let mut tl = Self {
-            items: Vec::with_capacity(segments.len()),
+            items: Vec::with_capacity(segments.len() + stops),
             origin,
             end_time: 0.0,
             max_speed: 0.0,
