@@ -15,7 +15,7 @@ use mtmotion::compensate::reverse::rounds::identity;
 use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
 use mtmotion::nc::program::{parse, Motion, Segment};
 use mtmotion::toolpath::contour::Path;
-use mtmotion::toolpath::locality::{plan, simulate_window};
+use mtmotion::toolpath::locality::{plan, plan_capped, simulate_window, MAX_CORE};
 use mtmotion::toolpath::{simulate, simulate_stats, Lag, SimConfig};
 
 /// A zigzag raster of `passes` passes in one cut (no rapid after the
@@ -132,13 +132,28 @@ fn edited(orig: &[Segment], every: usize) -> (Vec<Segment>, Vec<usize>, Vec<bool
 /// per core segment within 0.1 µm; returns (window samples, whole samples,
 /// segments compared, largest difference µm).
 fn compare(text: &str, every: usize) -> (usize, usize, usize, f64) {
+    let ((samples, whole, compared, worst), windows) = compare_capped(text, every, MAX_CORE);
+    assert!(windows > 1 && samples < whole, "{samples} of {whole}");
+    (samples, whole, compared, worst)
+}
+
+/// As [`compare`] with at most `max_core` segments in a window's core;
+/// also the number of windows.
+fn compare_capped(
+    text: &str,
+    every: usize,
+    max_core: usize,
+) -> ((usize, usize, usize, f64), usize) {
     let p = parse(text).unwrap();
     let orig = &p.segments;
     let (cmd, at, changed) = edited(orig, every);
     let cfg = cfg();
     let whole = simulate_stats(&cmd, orig, &cfg).unwrap();
-    let windows = plan(&cmd, &at, &changed, &cfg).unwrap();
+    let windows = plan_capped(&cmd, &at, &changed, &cfg, max_core).unwrap();
     assert!(!windows.is_empty());
+    assert!(windows.iter().all(|w| w.core.len() <= max_core));
+    // Cores in order, never overlapping.
+    assert!(windows.windows(2).all(|p| p[0].core.end <= p[1].core.start));
     let path = Path::new(orig);
     let mut compared = 0;
     let mut worst: f64 = 0.0;
@@ -181,12 +196,24 @@ fn compare(text: &str, every: usize) -> (usize, usize, usize, f64) {
         }
     }
     let samples = windows.iter().map(|w| w.samples).sum();
-    assert!(
-        windows.len() > 1 && samples < whole.samples,
-        "{samples} of {}",
-        whole.samples
+    ((samples, whole.samples, compared, worst), windows.len())
+}
+
+/// A stretch of changes longer than a window's core is cut into windows
+/// of at most that many core segments, each restarted with its own
+/// pre-roll: the statistics still equal the whole program's within
+/// 0.1 µm (what keeps a correction round over the whole of a 1 M-segment
+/// program from simulating it as one window).
+#[test]
+fn windows_cut_at_the_core_cap_equal_the_whole_program() {
+    let text = raster(40);
+    let ((_, _, n_all, _), w_all) = compare_capped(&text, 2, MAX_CORE);
+    let ((_, _, n, worst), w) = compare_capped(&text, 2, 12);
+    eprintln!(
+        "cap 12: {w} windows (uncapped {w_all}), {n} segments compared, worst {worst:.2e} µm"
     );
-    (samples, whole.samples, compared, worst)
+    assert!(w > 3 * w_all, "{w} {w_all}");
+    assert_eq!(n, n_all);
 }
 
 #[test]
