@@ -13,9 +13,10 @@
 use mtmotion::compensate::reverse::geometry::rebuild_indexed;
 use mtmotion::compensate::reverse::rounds::identity;
 use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
+use mtmotion::nc::patch::write_source;
 use mtmotion::nc::program::{parse, Motion, Segment};
 use mtmotion::toolpath::contour::Path;
-use mtmotion::toolpath::locality::{plan, simulate_window};
+use mtmotion::toolpath::locality::{plan, plan_capped, simulate_window, MAX_CORE};
 use mtmotion::toolpath::{simulate, simulate_stats, Lag, SimConfig};
 
 /// A zigzag raster of `passes` passes in one cut (no rapid after the
@@ -132,13 +133,28 @@ fn edited(orig: &[Segment], every: usize) -> (Vec<Segment>, Vec<usize>, Vec<bool
 /// per core segment within 0.1 µm; returns (window samples, whole samples,
 /// segments compared, largest difference µm).
 fn compare(text: &str, every: usize) -> (usize, usize, usize, f64) {
+    let ((samples, whole, compared, worst), windows) = compare_capped(text, every, MAX_CORE);
+    assert!(windows > 1 && samples < whole, "{samples} of {whole}");
+    (samples, whole, compared, worst)
+}
+
+/// As [`compare`] with at most `max_core` segments in a window's core;
+/// also the number of windows.
+fn compare_capped(
+    text: &str,
+    every: usize,
+    max_core: usize,
+) -> ((usize, usize, usize, f64), usize) {
     let p = parse(text).unwrap();
     let orig = &p.segments;
     let (cmd, at, changed) = edited(orig, every);
     let cfg = cfg();
     let whole = simulate_stats(&cmd, orig, &cfg).unwrap();
-    let windows = plan(&cmd, &at, &changed, &cfg).unwrap();
+    let windows = plan_capped(&cmd, &at, &changed, &cfg, max_core).unwrap();
     assert!(!windows.is_empty());
+    assert!(windows.iter().all(|w| w.core.len() <= max_core));
+    // Cores in order, never overlapping.
+    assert!(windows.windows(2).all(|p| p[0].core.end <= p[1].core.start));
     let path = Path::new(orig);
     let mut compared = 0;
     let mut worst: f64 = 0.0;
@@ -181,12 +197,24 @@ fn compare(text: &str, every: usize) -> (usize, usize, usize, f64) {
         }
     }
     let samples = windows.iter().map(|w| w.samples).sum();
-    assert!(
-        windows.len() > 1 && samples < whole.samples,
-        "{samples} of {}",
-        whole.samples
+    ((samples, whole.samples, compared, worst), windows.len())
+}
+
+/// A stretch of changes longer than a window's core is cut into windows
+/// of at most that many core segments, each restarted with its own
+/// pre-roll: the statistics still equal the whole program's within
+/// 0.1 µm (what keeps a correction round over the whole of a 1 M-segment
+/// program from simulating it as one window).
+#[test]
+fn windows_cut_at_the_core_cap_equal_the_whole_program() {
+    let text = raster(40);
+    let ((_, _, n_all, _), w_all) = compare_capped(&text, 2, MAX_CORE);
+    let ((_, _, n, worst), w) = compare_capped(&text, 2, 12);
+    eprintln!(
+        "cap 12: {w} windows (uncapped {w_all}), {n} segments compared, worst {worst:.2e} µm"
     );
-    (samples, whole.samples, compared, worst)
+    assert!(w > 3 * w_all, "{w} {w_all}");
+    assert_eq!(n, n_all);
 }
 
 #[test]
@@ -290,4 +318,140 @@ fn a_zero_length_move_is_timed_as_the_next_one() {
     let w = plan(&cmd, &at, &[true, false, false, false], &cfg()).unwrap();
     assert_eq!(w.len(), 1, "{w:?}");
     assert_eq!(w[0].core, 0..3, "{w:?}");
+}
+
+/// The CAM-like program of `bench/node/large-program.bench.mjs`
+/// (`camProgram`) at `lines` lines: rows of 0.2 mm chords at F3000 along a
+/// slightly slanted X with a 1 mm Z wave, four decimals, 0.2 mm-radius
+/// half circles between rows, a comment every 500 lines and a feed change
+/// every 250.
+fn cam_program(lines: usize) -> String {
+    let f = |v: f64| {
+        let s = format!("{v:.4}");
+        s.replacen(
+            "0.",
+            ".",
+            usize::from(s.starts_with("0.") || s.starts_with("-0.")),
+        )
+    };
+    let mut out: Vec<String> = [
+        "%",
+        "O1000 (GENERATED FINISHING PASS)",
+        "N10 G21 G90 G17 G94",
+        "N20 T1 M6",
+        "N30 S12000 M3",
+        "N40 G0 X10. Y10. Z5.",
+        "N50 G1 Z0. F600.",
+    ]
+    .map(String::from)
+    .to_vec();
+    let (mut x, mut y, mut dir) = (10.0f64, 10.0f64, 1.0f64);
+    let mut n = out.len();
+    'rows: loop {
+        for _ in 0..500 {
+            if n >= lines - 3 {
+                break 'rows;
+            }
+            if n % 500 == 0 {
+                out.push(format!("(PASS {} ROW Y{})", n / 500, f(y)));
+                n += 1;
+                continue;
+            }
+            x += 0.2 * dir;
+            y += 0.001;
+            let z = -0.5 + 0.5 * (x * 0.3 + y * 0.2).sin();
+            out.push(if n % 250 == 0 {
+                let feed = if n % 1000 == 0 { 2800 } else { 3000 };
+                format!("G1 X{} Y{} Z{} F{feed}.", f(x), f(y), f(z))
+            } else {
+                format!("G1 X{} Y{} Z{}", f(x), f(y), f(z))
+            });
+            n += 1;
+        }
+        y += 0.4;
+        out.push(format!(
+            "{} X{} Y{} I0. J.2",
+            if dir > 0.0 { "G3" } else { "G2" },
+            f(x),
+            f(y)
+        ));
+        n += 1;
+        dir = -dir;
+    }
+    out.extend(["G0 Z5.", "M30", "%"].map(String::from));
+    out.join("\n") + "\n"
+}
+
+/// The correction rounds' windowed prediction of their final program
+/// equals a whole-program re-simulation of that program as written
+/// (rebuilt, written into the text with its four decimals, read back)
+/// against the original path: per segment and over the program within
+/// 0.1 µm, on a generated 20,000-line CAM-like program (issue 27's
+/// program at 1/50 of its size, tA 40 ms, T 15 ms, dt 2 ms, one region
+/// without rapids: every round's windows cover the whole program, cut at
+/// the core cap).
+///
+/// NOT MET today, so ignored (run it with `--ignored`): 382.46 µm
+/// windowed against 382.27 µm re-simulated over the program, up to
+/// 12.6 µm apart on one segment (line 7518), 7.2 µm on the last chord
+/// before an end arc (line 10024), 0.2–0.4 µm on many segments of 2
+/// samples. Where the contour error (up to
+/// 0.7 mm) exceeds the row spacing (0.4 mm), samples of a neighbouring
+/// row or of the arc come nearest to a segment, which a window does not
+/// see (`toolpath::locality`, module header), and segments of two
+/// samples change their maximum with a sample's assignment. The same
+/// numbers before this issue's memory changes.
+#[test]
+#[ignore = "issue 27: the windowed prediction is not within 0.1 µm on this program (see the doc)"]
+fn windowed_rounds_predict_the_written_program_within_a_tenth_of_a_micron() {
+    use mtmotion::compensate::reverse::geometry::rebuild;
+    use mtmotion::compensate::reverse::region::regions;
+    use mtmotion::compensate::reverse::rounds::{run, LocalStats, Work};
+    let text = cam_program(20_000);
+    let p = parse(&text).unwrap();
+    let orig = &p.segments;
+    assert!(orig.len() > 19_000, "{}", orig.len());
+    let cfg = SimConfig {
+        t_a: 0.04,
+        t: Lag::All(0.015),
+        dt: 2e-3,
+        ..SimConfig::default()
+    };
+    let sim = simulate(orig, orig, &cfg).unwrap();
+    let mut work = Work::new(u64::MAX, sim.samples as u64);
+    work.set_original(orig, &sim);
+    let rg = regions(&p);
+    let start = identity(orig, vec![0.0; orig.len()]);
+    let r = run(orig, &rg, (&cfg, 0.5), 6, start, &mut work).unwrap();
+    // The windowed statistics of the rounds' final edit, from the
+    // original's (what a round computes).
+    let mut local = LocalStats::new(orig, &work);
+    assert!(local.update(orig, &cfg, &r.edit, &mut work).unwrap());
+    let written = write_source(&text, &p, &rebuild(orig, &r.edit));
+    let back = parse(&written).unwrap().segments;
+    let whole = simulate(&back, orig, &cfg).unwrap();
+    let (mut worst, mut at): (f64, usize) = (0.0, 0);
+    let mut windowed_max: f64 = 0.0;
+    let mut n = 0;
+    for st in &whole.segments {
+        if !orig[st.segment].is_cutting() {
+            continue;
+        }
+        let w = local.by_seg[st.segment].as_ref().unwrap();
+        let d = (w.max_error_um - st.max_error_um).abs();
+        if d > worst {
+            worst = d;
+            at = st.line;
+        }
+        windowed_max = windowed_max.max(w.max_error_um);
+        n += 1;
+    }
+    eprintln!(
+        "{n} segments: windowed {windowed_max:.4} µm, whole re-simulation {:.4} µm (original {:.4} µm), worst segment difference {worst:.2e} µm (line {at})",
+        whole.max_error * 1e3,
+        sim.max_error * 1e3
+    );
+    assert!(n > 19_000 && whole.max_error < 0.6 * sim.max_error);
+    assert!((windowed_max - whole.max_error * 1e3).abs() <= 0.1);
+    assert!(worst <= 0.1, "{worst} µm at line {at}");
 }

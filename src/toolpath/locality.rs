@@ -17,7 +17,9 @@
 //! with a pre-roll of at least [`memory`] of command before them and a
 //! post-roll of at least [`memory`] after them (the tool lags the command,
 //! so a core segment's samples fall inside); windows whose pre- and
-//! post-rolls would overlap are merged. A window is sampled on the whole
+//! post-rolls would overlap are merged, up to [`MAX_CORE`] core segments
+//! (a longer stretch of changes is cut into windows that each restart
+//! with their own pre-roll). A window is sampled on the whole
 //! program's grid (`k·dt` from the program start,
 //! [`Stepper::with_phase`](super::filter::Stepper::with_phase)), measured
 //! against the whole
@@ -38,6 +40,7 @@ use std::ops::Range;
 
 use super::contour::Path;
 use super::simulate::{measure_window, sample_count, timeline};
+use super::timeline::Timeline;
 use super::{SegmentStats, SimConfig, ToolpathError};
 use crate::nc::program::Segment;
 
@@ -46,6 +49,14 @@ use crate::nc::program::Segment;
 pub fn memory(cfg: &SimConfig) -> f64 {
     cfg.t_a + 12.0 * cfg.t.per_axis().into_iter().fold(0.0, f64::max)
 }
+
+/// Most reference segments in one window's core: a longer stretch of
+/// changes is cut into windows of this many, each with its own pre- and
+/// post-roll (an exact restart, see the module header), so that a window's
+/// statistics, timed command and running sums stay small (a correction
+/// round that changes the whole of a 1 M-segment program simulated it as
+/// one window, 530 MB beside the statistics it updates).
+pub const MAX_CORE: usize = 100_000;
 
 /// One window of a command (see the module header).
 #[derive(Debug, Clone, PartialEq)]
@@ -82,7 +93,23 @@ pub fn plan(
     changed: &[bool],
     cfg: &SimConfig,
 ) -> Result<Vec<Window>, ToolpathError> {
+    plan_capped(command, at, changed, cfg, MAX_CORE)
+}
+
+/// As [`plan`] with at most `max_core` (at least 1) reference segments in
+/// a window's core instead of [`MAX_CORE`].
+///
+/// # Errors
+/// As [`plan`].
+pub fn plan_capped(
+    command: &[Segment],
+    at: &[usize],
+    changed: &[bool],
+    cfg: &SimConfig,
+    max_core: usize,
+) -> Result<Vec<Window>, ToolpathError> {
     cfg.validate()?;
+    let max_core = max_core.max(1);
     let n = at.len();
     if changed.len() != n
         || at.windows(2).any(|w| w[0] >= w[1])
@@ -98,14 +125,21 @@ pub fn plan(
     }
     let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
     let m = memory(cfg);
-    let tl = timeline(command, cfg, tmax);
-    let total = sample_count(&tl, cfg, tmax, command)?;
     // Start time of each command segment (a zero-length one: the next's).
-    let mut start = vec![f64::NAN; command.len() + 1];
-    start[command.len()] = tl.end_time;
-    for it in tl.items.iter().rev() {
-        start[it.segment] = it.t0;
-    }
+    let (mut start, end_time) = start_times(command, cfg, tmax, TIMED_AT_ONCE);
+    let total = sample_count(
+        &Timeline {
+            items: Vec::new(),
+            origin: [0.0; 3],
+            end_time,
+            max_speed: 0.0,
+        },
+        cfg,
+        tmax,
+        command,
+    )
+    // Too long: the whole timeline, for the error naming the slowest move.
+    .or_else(|_| sample_count(&timeline(command, cfg, tmax), cfg, tmax, command))?;
     for j in (0..command.len()).rev() {
         if start[j].is_nan() {
             start[j] = start[j + 1];
@@ -127,18 +161,26 @@ pub fn plan(
     };
     // Cores: the pieces within `m` of a changed one, merged where their
     // windows would overlap (one window costs less than both).
+    // A core stops growing at `max_core` segments: the next one starts
+    // where it ends, with its own pre-roll.
     let mut cores: Vec<(Range<usize>, usize)> = Vec::new();
     for i in (0..n).filter(|&i| changed[i]) {
         let (lo, hi) = (ps[i] - m, pe[i] + m);
         // Segment i itself is inside: pe[i] > lo and ps[i] < hi.
-        let core = pe.partition_point(|&e| e < lo)..ps.partition_point(|&s| s <= hi);
+        let mut core = pe.partition_point(|&e| e < lo)..ps.partition_point(|&s| s <= hi);
         let (ca, cb) = extent(&core);
         match cores.last_mut() {
-            Some((c, end)) if ca < *end => {
+            Some((c, end)) if ca < *end && core.end <= c.start + max_core => {
                 c.end = c.end.max(core.end);
                 *end = (*end).max(cb);
+                continue;
             }
-            _ => cores.push((core, cb)),
+            Some((c, _)) => core.start = core.start.max(c.end),
+            None => {}
+        }
+        if core.start < core.end {
+            let (_, cb) = extent(&core);
+            cores.push((core, cb));
         }
     }
     Ok(cores
@@ -174,6 +216,31 @@ pub fn plan(
         .collect())
 }
 
+/// Start time of each segment of `command` (NaN for one the timeline
+/// skips; one more entry, the end time) and the end time, s: the items'
+/// start times of [`timeline`], bit for bit (their durations summed in
+/// the same order), from timelines of `at_once` segments at a time
+/// ([`TIMED_AT_ONCE`]), so that the whole program's timed command (230 B
+/// a segment) is never held for the start times alone.
+fn start_times(command: &[Segment], cfg: &SimConfig, tmax: f64, at_once: usize) -> (Vec<f64>, f64) {
+    let mut start = vec![f64::NAN; command.len() + 1];
+    let mut t = 0.0;
+    for (k, part) in command.chunks(at_once).enumerate() {
+        for it in &timeline(part, cfg, tmax).items {
+            let s = &mut start[k * at_once + it.segment];
+            if s.is_nan() {
+                *s = t;
+            }
+            t += it.tau;
+        }
+    }
+    start[command.len()] = t;
+    (start, t)
+}
+
+/// Segments timed at once by [`start_times`].
+const TIMED_AT_ONCE: usize = 1 << 16;
+
 /// The statistics of window `w`'s core segments (every one listed, as in
 /// [`simulate()`](super::simulate())'s `segments`): `command` simulated
 /// over the window alone and measured against the whole reference path
@@ -197,4 +264,42 @@ pub fn simulate_window(
         (w.phase, w.samples),
         (w.measured.clone(), w.core.clone()),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::nc::program::parse;
+
+    /// The start times timed a few segments at a time are the whole
+    /// timeline's, bit for bit (rapids with their stop, a dwell, a
+    /// zero-length move).
+    #[test]
+    fn start_times_by_parts_are_the_whole_timelines() {
+        let text = "G0 X1 Y1\nG1 X10 F600\nG2 X20 Y1 I5 J0\nG4 P0.3\nG0 X5 Y5\nG1 X5 Y5\n\
+                    G1 Y8\nG1 X12 Y9 Z1 F900\nG3 X14 Y11 R2\nG0 Z5\nG1 X3 F300";
+        let p = parse(text).unwrap();
+        let cfg = SimConfig::default();
+        let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
+        let tl = timeline(&p.segments, &cfg, tmax);
+        let mut want = vec![f64::NAN; p.segments.len() + 1];
+        for it in tl.items.iter().rev() {
+            want[it.segment] = it.t0;
+        }
+        want[p.segments.len()] = tl.end_time;
+        for at_once in [1, 2, 3, 7, p.segments.len()] {
+            let (got, end) = start_times(&p.segments, &cfg, tmax, at_once);
+            assert_eq!(end.to_bits(), tl.end_time.to_bits(), "{at_once}");
+            for (g, w) in got.iter().zip(&want) {
+                assert!(g.to_bits() == w.to_bits(), "{at_once}: {got:?} {want:?}");
+            }
+        }
+        assert!(got_nan(&start_times(&p.segments, &cfg, tmax, 2).0));
+    }
+
+    /// The zero-length move has no item: its start is NaN before `plan`
+    /// fills it.
+    fn got_nan(s: &[f64]) -> bool {
+        s.iter().any(|x| x.is_nan())
+    }
 }

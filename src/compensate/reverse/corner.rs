@@ -194,12 +194,12 @@ pub fn search(
     orig: &[Segment],
     cfg: &SimConfig,
     found: &[Corner],
-    before: &[SegmentStats],
+    before: &[Option<SegmentStats>],
     start: &Edit,
     time_left: f64,
     work: &mut Work,
 ) -> Result<Spikes, ToolpathError> {
-    let by0 = by_segment(before, orig.len());
+    let by0: Vec<Option<&SegmentStats>> = before.iter().map(Option::as_ref).collect();
     let found: Vec<Corner> = found
         .iter()
         .copied()

@@ -106,7 +106,9 @@ pub fn rebuild(orig: &[Segment], edit: &Edit) -> Vec<Segment> {
 pub fn rebuild_indexed(orig: &[Segment], edit: &Edit) -> (Vec<Segment>, Vec<usize>) {
     let (starts, ends) = joints(orig, edit);
     let mut at = Vec::with_capacity(orig.len());
-    let mut out = Vec::with_capacity(orig.len() + 8);
+    // Sized exactly: grown by doubling, the command of a 1 M-segment
+    // program with a few spikes would reserve 2 M segments (368 MB).
+    let mut out = Vec::with_capacity(orig.len() + added(orig, edit, (&starts, &ends)));
     let mut pen = orig.first().map_or([0.0; 3], |s| s.start.p());
     for (i, s) in orig.iter().enumerate() {
         let mut seg = s.clone();
@@ -154,7 +156,29 @@ pub fn rebuild_indexed(orig: &[Segment], edit: &Edit) -> (Vec<Segment>, Vec<usiz
             out.push(d);
         }
     }
+    debug_assert_eq!(
+        out.len(),
+        out.capacity(),
+        "rebuild_indexed: size counted by added()"
+    );
     (out, at)
+}
+
+/// How many segments [`rebuild_indexed`] adds to `orig`'s: a connector
+/// where a move's new start is not the pen's position, two per spike, one
+/// per dwell (the same tests as there).
+fn added(orig: &[Segment], edit: &Edit, (starts, ends): (&[[f64; 3]], &[[f64; 3]])) -> usize {
+    let mut pen = orig.first().map_or([0.0; 3], |s| s.start.p());
+    let mut n = 0;
+    for (i, s) in orig.iter().enumerate() {
+        if is_move(s) {
+            n += usize::from(dist(pen, starts[i]) > 1e-6);
+            pen = ends[i];
+            n += 2 * usize::from(edit.spike.get(i).is_some_and(|sp| *sp != [0.0; 3]));
+            n += usize::from(edit.dwell_after.get(i).is_some_and(|&d| d > 0.0));
+        }
+    }
+    n
 }
 
 /// The new radius of segment `i` (0 when the edit has none), mm.

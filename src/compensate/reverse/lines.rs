@@ -27,7 +27,7 @@
 
 use super::region::Regions;
 use super::RegionNote;
-use crate::nc::program::{Motion, Program};
+use crate::nc::program::{Motion, Program, Segment};
 use crate::toolpath::{Simulation, ToolpathError};
 
 /// The lines to compensate, 1-based and inclusive.
@@ -111,7 +111,7 @@ pub fn line_range(
 /// after it (where there are any), with their largest error before and
 /// after, so an error peak outside the range is never unexplained.
 pub fn outside_notes(
-    program: &Program,
+    segs: &[Segment],
     rg: &Regions,
     range: &LineRange,
     before: &Simulation,
@@ -120,7 +120,6 @@ pub fn outside_notes(
     if range.whole {
         return Vec::new();
     }
-    let segs = &program.segments;
     let side = |keep: &dyn Fn(usize) -> bool| -> Option<RegionNote> {
         let moves: Vec<usize> = (0..segs.len())
             .filter(|&i| segs[i].is_cutting() && rg.of[i].is_none() && keep(segs[i].line))

@@ -496,41 +496,47 @@ pub fn reverse_compensate_with(
         Vec::new()
     };
     let share = if pinned.contains(&true) { 0.5 } else { 1.0 };
-    let mut c = in_place(text, &program, &range, cfg, false, &mut |f, s| {
+    let mut src = Source::new(text, program);
+    let mut c = in_place(&mut src, &range, cfg, false, &mut |f, s| {
         progress(f * share, s)
     })?;
-    if worst_at_tangent_line(&program, &c.sim_after) {
+    if worst_at_tangent_line(src.segments(), &c.sim_after) {
         // Its largest error sits where a line meets an arc tangentially:
         // the variant that keeps such lines' ends (geometry::Edit::
         // tangent_lines), kept when its written program is better.
-        let t = in_place(text, &program, &range, cfg, true, &mut |_, s| {
+        let t = in_place(&mut src, &range, cfg, true, &mut |_, s| {
             progress(share, &format!("tangent arc–line joints: {s}"))
         })?;
         if t.unchanged.is_none() && t.after.max_error_um < c.after.max_error_um {
             c = t;
         }
     }
-    if !worst_is_pinned(&program, &pinned, &c.sim_after) {
+    if !worst_is_pinned(src.segments(), &pinned, &c.sim_after) {
         return Ok(c);
     }
-    let (flat, fp) = match crate::nc::writer::write_expanded(&program) {
+    let (flat, fp) = match crate::nc::writer::write_expanded(src.program()?) {
         Ok(flat) => flat,
         Err(why) => {
             c.expand_note = Some(format!("not written flat: {why}"));
             return Ok(c);
         }
     };
+    src.slim();
     let whole = line_range(&fp, None, None)?;
-    let mut e = in_place(&flat, &fp, &whole, cfg, false, &mut |f, s| {
-        progress(0.5 + 0.5 * f, &format!("written flat: {s}"))
-    })?;
+    let mut e = in_place(
+        &mut Source::new(&flat, fp),
+        &whole,
+        cfg,
+        false,
+        &mut |f, s| progress(0.5 + 0.5 * f, &format!("written flat: {s}")),
+    )?;
     if e.unchanged.is_some() {
         c.expand_note = Some("written flat, the program did not improve either".into());
         return Ok(c);
     }
     // The flat program's result, measured against the original's own path.
     let written = motion_of(&e.nc, &opts)?;
-    let after = simulate(&written, &program.segments, &cfg.sim)?;
+    let after = simulate(&written, src.segments(), &cfg.sim)?;
     let time_ok = after.motion_time <= c.before.motion_time * (1.0 + cfg.time_budget) + 1e-9;
     if !(time_ok && after.max_error < c.sim_after.max_error * EXPAND_GAIN) {
         c.expand_note = Some(format!(
@@ -585,16 +591,11 @@ fn pinned_cuts(program: &Program) -> Vec<bool> {
 
 /// The written program's largest error on a cutting move sits on a
 /// `pinned` one ([`pinned_cuts`]; none when it is empty).
-fn worst_is_pinned(program: &Program, pinned: &[bool], after: &Simulation) -> bool {
+fn worst_is_pinned(segments: &[Segment], pinned: &[bool], after: &Simulation) -> bool {
     let worst = after
         .segments
         .iter()
-        .filter(|st| {
-            program
-                .segments
-                .get(st.segment)
-                .is_some_and(Segment::is_cutting)
-        })
+        .filter(|st| segments.get(st.segment).is_some_and(Segment::is_cutting))
         .max_by(|a, b| a.max_error_um.total_cmp(&b.max_error_um));
     worst.is_some_and(|st| pinned.get(st.segment).copied().unwrap_or(false))
 }
@@ -602,8 +603,7 @@ fn worst_is_pinned(program: &Program, pinned: &[bool], after: &Simulation) -> bo
 /// The written program's largest error on a cutting move sits on a line
 /// that meets an arc tangentially, or on such an arc
 /// ([`geometry::tangent_joint`]).
-fn worst_at_tangent_line(program: &Program, after: &Simulation) -> bool {
-    let segs = &program.segments;
+fn worst_at_tangent_line(segs: &[Segment], after: &Simulation) -> bool {
     let worst = after
         .segments
         .iter()
@@ -623,19 +623,126 @@ fn worst_at_tangent_line(program: &Program, after: &Simulation) -> bool {
     (w > 0 && line_arc(w - 1, w)) || (w + 1 < segs.len() && line_arc(w, w + 1))
 }
 
+/// The program under compensation. Only the patch writer
+/// ([`crate::nc::patch`]) reads its blocks and per-block modal state
+/// (about 750 MB of a 1 M-line program, beside 175 MB of segments): they
+/// are dropped while the rounds and checks simulate ([`Source::slim`]) and
+/// read again from the text for a write ([`Source::program`]); everything
+/// else reads the segments, which are kept.
+struct Source<'t> {
+    text: &'t str,
+    program: Program,
+    /// The blocks and modal states are there.
+    full: bool,
+}
+
+impl<'t> Source<'t> {
+    /// `program`, parsed from `text` with its own options, whole.
+    fn new(text: &'t str, program: Program) -> Self {
+        Self {
+            text,
+            program,
+            full: true,
+        }
+    }
+
+    fn segments(&self) -> &[Segment] {
+        &self.program.segments
+    }
+
+    /// Drops the blocks and modal states.
+    fn slim(&mut self) {
+        self.program.blocks = Vec::new();
+        self.program.modal = Vec::new();
+        self.full = false;
+    }
+
+    /// The whole program, read again if slimmed (the same segments, or an
+    /// error: never a program whose blocks are not its segments').
+    fn program(&mut self) -> Result<&Program, ToolpathError> {
+        if !self.full {
+            let p = parse_with(self.text, &self.program.options)?;
+            if p.segments != self.program.segments {
+                return Err(ToolpathError::Config {
+                    field: "text",
+                    message: "the program read a second time gave other moves; please report it"
+                        .into(),
+                });
+            }
+            self.program.blocks = p.blocks;
+            self.program.modal = p.modal;
+            self.full = true;
+        }
+        Ok(&self.program)
+    }
+}
+
+/// What the compensation reads of the blocks, taken before they are
+/// dropped ([`Source::slim`]).
+struct Facts {
+    blocks: usize,
+    has_macros: bool,
+    dwell_guessed: bool,
+}
+
+/// What the compensation keeps of the original program's simulation once
+/// the rounds have their start ([`rounds::Work::set_original`]): its
+/// summary and per-segment maxima, not its series and statistics (the
+/// returned one is simulated again at the end, the same numbers).
+struct Before {
+    summary: Summary,
+    max_error: f64,
+    motion_time: f64,
+    /// Samples kept in its series.
+    kept: usize,
+    /// Maximum error per original segment, mm.
+    seg: Vec<f64>,
+    /// The same in µm, as [`try_dwells`] orders the joints.
+    seg_um: Vec<f64>,
+}
+
+impl Before {
+    fn of(sim: &Simulation, n: usize) -> Self {
+        let mut seg_um = vec![0.0f64; n];
+        for st in &sim.segments {
+            if let Some(e) = seg_um.get_mut(st.segment) {
+                *e = e.max(st.max_error_um);
+            }
+        }
+        Self {
+            summary: summary(sim),
+            max_error: sim.max_error,
+            motion_time: sim.motion_time,
+            kept: sim.t.len(),
+            seg: segment_errors(n, &sim.segments),
+            seg_um,
+        }
+    }
+}
+
 /// [`reverse_compensate_with`] on the program's own blocks: only literal
 /// words move; with `tangent`, lines meeting arcs tangentially keep their
 /// ends ([`geometry::Edit::tangent_lines`]).
 fn in_place(
-    text: &str,
-    program: &Program,
+    src: &mut Source,
     range: &LineRange,
     cfg: &ReverseConfig,
     tangent: bool,
     progress: &mut dyn FnMut(f64, &str) -> bool,
 ) -> Result<Compensation, ToolpathError> {
-    let opts = program.options.clone();
-    let orig = &program.segments;
+    let text = src.text;
+    let (opts, facts, rg) = {
+        let program = src.program()?;
+        let facts = Facts {
+            blocks: program.blocks.len(),
+            has_macros: program.has_macros(),
+            dwell_guessed: crate::nc::dialect::dwell_form(program).guessed,
+        };
+        let rg = regions_in(program, &|l| range.contains(l));
+        (program.options.clone(), facts, rg)
+    };
+    src.slim();
+    let orig = src.segments();
     let mut work = Work::for_program(sample_estimate(orig, &cfg.sim)? as u64);
     let mut tick = |f: f64, s: &str| {
         if progress(f, s) {
@@ -647,26 +754,21 @@ fn in_place(
     tick(0.0, "simulating the original program")?;
     let sim_before = simulate(orig, orig, &cfg.sim)?;
     work.set_original(orig, &sim_before);
-    let rg = regions_in(program, &|l| range.contains(l));
     let before_err = region_errors(&rg, &sim_before.segments);
+    let before = Before::of(&sim_before, orig.len());
+    drop(sim_before);
     tick(0.1, "corner spikes")?;
-    let allowed = cfg.time_budget * sim_before.motion_time;
+    let allowed = cfg.time_budget * before.motion_time;
     let found = if cfg.corner_spikes {
         corner::corners(orig, &rg, &cfg.sim)
     } else {
         Vec::new()
     };
+    let stats = work.original_stats().unwrap_or_default();
     let mut start = identity(orig, vec![0.0; orig.len()]);
     start.tangent_lines = tangent;
-    let spikes = corner::search(
-        orig,
-        &cfg.sim,
-        &found,
-        &sim_before.segments,
-        &start,
-        allowed,
-        &mut work,
-    )?;
+    let spikes = corner::search(orig, &cfg.sim, &found, &stats, &start, allowed, &mut work)?;
+    drop(stats);
     tick(0.25, "correction rounds")?;
     // Half of what is left waits for the dwells, which rounds that reach
     // the budget would leave nothing: the CAMotics cameo raster (35k
@@ -685,19 +787,31 @@ fn in_place(
     work.release(held);
     let mut history = spikes.history_um.clone();
     history.extend(&plain.history_um);
-    let mut edit = plain.edit.clone();
-    let mut best = plain.error.clone();
     let mut notes: Vec<Option<String>> = vec![None; rg.members.len()];
     tick(0.5, "dwells")?;
     let spent = corner::added_time(orig, &cfg.sim, &spikes.edit);
-    match try_dwells(
+    let dwelt = try_dwells(
         orig,
         &rg,
         cfg,
-        &sim_before,
+        &before,
         (&spikes.edit, allowed - spent),
         &mut work,
-    )? {
+    )?;
+    drop(spikes);
+    // Only the check's whole-program simulations run from here on.
+    work.forget_original();
+    tick(0.7, "checking the written program")?;
+    // Without dwells: the plain rounds' regions that beat the original.
+    let mut fallback = identity(orig, vec![0.0; orig.len()]);
+    fallback.tangent_lines = tangent;
+    for (r, &e) in plain.error.iter().enumerate() {
+        if e < before_err[r] {
+            copy_region(&rg, r, &plain.edit, &mut fallback);
+        }
+    }
+    let (mut edit, mut best) = (plain.edit, plain.error);
+    match dwelt {
         Dwelt::None => {}
         Dwelt::Budget(why, rs) => {
             for r in rs {
@@ -714,30 +828,32 @@ fn in_place(
             }
         }
     }
-    tick(0.7, "checking the written program")?;
-    // Without dwells: the plain rounds' regions that beat the original.
-    let mut fallback = identity(orig, vec![0.0; orig.len()]);
-    fallback.tangent_lines = tangent;
-    for (r, &e) in plain.error.iter().enumerate() {
-        if e < before_err[r] {
-            copy_region(&rg, r, &plain.edit, &mut fallback);
-        }
-    }
+    drop(best);
     let checked = check(
-        text,
-        program,
+        src,
         (&opts, range.whole),
         &rg,
-        &before_err,
+        (&before_err, &before),
         cfg,
-        &sim_before,
         (edit, &fallback),
         &mut tick,
         &mut work,
     )?;
+    drop(fallback);
+    let orig = src.segments();
+    // The original's simulation, again (deterministic: the same numbers
+    // as the one the rounds started from, whose series were not kept).
+    let sim_before = simulate(orig, orig, &cfg.sim)?;
+    if summary(&sim_before) != before.summary {
+        return Err(ToolpathError::Config {
+            field: "text",
+            message: "the original program simulated twice gave two results; please report it"
+                .into(),
+        });
+    }
     tick(1.0, "done")?;
     let mut c = finish(
-        program,
+        (orig, &facts),
         range,
         &rg,
         &before_err,
@@ -748,10 +864,7 @@ fn in_place(
     );
     c.budget_note = work.note();
     c.unchanged = (c.nc == text).then(|| unchanged_reason(&c.regions, range));
-    if !c.dwells.is_empty()
-        && c.unchanged.is_none()
-        && crate::nc::dialect::dwell_form(program).guessed
-    {
+    if !c.dwells.is_empty() && c.unchanged.is_none() && facts.dwell_guessed {
         c.dwell_note = Some(format!(
             "{} dwell(s) written as G04 P<milliseconds> (Fanuc, Haas): nothing in the program says \
              how its control reads P; a LinuxCNC or Grbl control reads P in seconds, so each \
@@ -822,7 +935,7 @@ fn try_dwells(
     orig: &[Segment],
     rg: &Regions,
     cfg: &ReverseConfig,
-    before: &Simulation,
+    before: &Before,
     (base, allowed): (&Edit, f64),
     work: &mut Work,
 ) -> Result<Dwelt, ToolpathError> {
@@ -858,12 +971,7 @@ fn try_dwells(
     }
     // The joints with the largest original error first, as many as the
     // budget allows.
-    let mut seg_err = vec![0.0f64; orig.len()];
-    for st in &before.segments {
-        if let Some(e) = seg_err.get_mut(st.segment) {
-            *e = e.max(st.max_error_um);
-        }
-    }
+    let seg_err = &before.seg_um;
     let next_err = |i: usize| seg_err.get(i + 1).copied().unwrap_or(0.0);
     let exit = |i: usize| {
         orig.get(i + 1)
@@ -881,7 +989,7 @@ fn try_dwells(
     let mut set = cands.clone();
     let mut cur = with(&set, work)?;
     let worst = |r: &rounds::Rounds| r.error.iter().copied().fold(0.0, f64::max);
-    if set.len() * before.t.len() <= MAX_DWELL_TRIAL_SAMPLES {
+    if set.len() * before.kept <= MAX_DWELL_TRIAL_SAMPLES {
         for c in set.clone() {
             let trial_set: Vec<usize> = set.iter().copied().filter(|&x| x != c).collect();
             if trial_set.is_empty() || work.stopped {
@@ -901,43 +1009,54 @@ fn try_dwells(
 struct Checked {
     nc: String,
     edit: Edit,
-    segments: Vec<Segment>,
-    sim: Simulation,
+    /// The simulation of the written program against the original path
+    /// (`None`: the original program is given back).
+    sim: Option<Simulation>,
     after: Vec<f64>,
     reverted: Vec<Option<String>>,
 }
 
-fn changed(rg: &Regions, r: usize, edit: &Edit, id: &Edit) -> bool {
+/// Region `r` of `edit` differs from the unchanged program's edit
+/// ([`identity`] with no dwell), whose radii are `radius0`.
+fn changed(rg: &Regions, r: usize, edit: &Edit, radius0: &[f64]) -> bool {
     rg.members[r].iter().any(|&i| {
-        edit.radius[i] != id.radius[i]
-            || edit.vertex_shift[i] != id.vertex_shift[i]
-            || edit.dwell_after[i] != id.dwell_after[i]
-            || edit.spike[i] != id.spike[i]
+        edit.radius[i] != radius0[i]
+            || edit.vertex_shift[i] != [0.0; 3]
+            || edit.dwell_after[i] != 0.0
+            || edit.spike[i] != [0.0; 3]
     })
+}
+
+/// The radii of the unchanged program's edit (as [`identity`]'s; the
+/// rest of it is zeros), without the 64 B a segment of a whole edit.
+fn radii(orig: &[Segment]) -> Vec<f64> {
+    orig.iter()
+        .map(|s| match s.motion {
+            Motion::Arc(a) => a.radius,
+            _ => 0.0,
+        })
+        .collect()
 }
 
 /// Writes, parses and simulates the edit against the original path, and
 /// reverts every region whose error did not fall, until none is left.
 #[allow(clippy::too_many_arguments)]
 fn check(
-    text: &str,
-    program: &Program,
+    src: &mut Source,
     (opts, whole): (&ParseOptions, bool),
     rg: &Regions,
-    before_err: &[f64],
+    (before_err, before): (&[f64], &Before),
     cfg: &ReverseConfig,
-    before: &Simulation,
     (edit, fallback): (Edit, &Edit),
     tick: &mut dyn FnMut(f64, &str) -> Result<(), ToolpathError>,
     work: &mut Work,
 ) -> Result<Checked, ToolpathError> {
-    let orig = &program.segments;
+    let text = src.text;
     let mut rv = Review {
-        orig,
         rg,
         before_err,
-        before_seg: segment_errors(orig.len(), &before.segments),
-        id: identity(orig, vec![0.0; orig.len()]),
+        before_seg: &before.seg,
+        radius0: radii(src.segments()),
         edit,
         fallback,
         reverted: vec![None; rg.members.len()],
@@ -956,8 +1075,7 @@ fn check(
         if (0..rg.members.len()).all(|r| !rv.changed(r)) {
             break;
         }
-        let segments = rebuild(orig, &rv.edit);
-        let nc = write_source(text, program, &segments);
+        let nc = write_edit(src, &rv.edit)?;
         let Ok(written) = motion_of(&nc, opts) else {
             // A writer limit: never hand out a program that does not read back.
             break;
@@ -966,14 +1084,20 @@ fn check(
             // Out of budget: the original program, unchecked edits never.
             break;
         }
+        let orig = src.segments();
         let sim = simulate(&written, orig, &cfg.sim)?;
+        drop(written);
         let after = region_errors(rg, &sim.segments);
         let over_time = sim.motion_time > limit;
         let tried = rv.edit.clone();
-        let unimproved = rv.revert_unimproved(&after, sim.motion_time - limit, &cfg.sim);
-        let raised = rv.revert_neighbours(&after);
-        let strays =
-            rv.revert_near_strays(&segment_errors(orig.len(), &sim.segments), memory, &cfg.sim);
+        let unimproved = rv.revert_unimproved(orig, &after, sim.motion_time - limit, &cfg.sim);
+        let raised = rv.revert_neighbours(orig, &after);
+        let strays = rv.revert_near_strays(
+            orig,
+            &segment_errors(orig.len(), &sim.segments),
+            memory,
+            &cfg.sim,
+        );
         let bad = unimproved || raised || strays;
         // With a line range the largest error may lie outside, past the
         // changes' reach, where only the sampling phase differs (nm).
@@ -990,8 +1114,7 @@ fn check(
             return Ok(Checked {
                 nc,
                 edit: rv.edit,
-                segments,
-                sim,
+                sim: Some(sim),
                 after,
                 reverted: rv.reverted,
             });
@@ -1006,19 +1129,18 @@ fn check(
     // more, when it still lowers the program's maximum; the regions whose
     // own error rose say so.
     if let Some((_, edit)) = best {
-        let segments = rebuild(orig, &edit);
-        let nc = write_source(text, program, &segments);
+        let nc = write_edit(src, &edit)?;
         if let Ok(written) = motion_of(&nc, opts) {
             if work.check(work.program) {
-                let sim = simulate(&written, orig, &cfg.sim)?;
+                let sim = simulate(&written, src.segments(), &cfg.sim)?;
+                drop(written);
                 if sim.max_error < before.max_error && sim.motion_time <= limit {
                     let after = region_errors(rg, &sim.segments);
                     let reverted = rv.unsettled(&edit, &after, (before.max_error, sim.max_error));
                     return Ok(Checked {
                         nc,
                         edit,
-                        segments,
-                        sim,
+                        sim: Some(sim),
                         after,
                         reverted,
                     });
@@ -1027,20 +1149,32 @@ fn check(
         }
     }
     // Nothing left to change, or still not better everywhere.
-    Ok(rv.give_back(text, before))
+    Ok(rv.give_back(text))
+}
+
+/// The program `edit` makes of `src`, written. The blocks are read again
+/// for the patch writer before the rebuilt segments are made (the
+/// reading's peak is the larger), and both go before the caller simulates
+/// the text (the result rebuilds the segments).
+fn write_edit(src: &mut Source, edit: &Edit) -> Result<String, ToolpathError> {
+    src.program()?;
+    let segments = rebuild(src.segments(), edit);
+    let nc = write_source(src.text, src.program()?, &segments);
+    drop(segments);
+    src.slim();
+    Ok(nc)
 }
 
 /// The edit under [`check`], against the original program's regions and
 /// their errors, with the reason each reverted region went back.
 struct Review<'a> {
-    orig: &'a [Segment],
     rg: &'a Regions,
     /// Maximum error per region of the original program, mm.
     before_err: &'a [f64],
     /// Maximum error per segment of the original program, mm.
-    before_seg: Vec<f64>,
-    /// The unchanged program's edit.
-    id: Edit,
+    before_seg: &'a [f64],
+    /// The unchanged program's radii ([`radii`]).
+    radius0: Vec<f64>,
     edit: Edit,
     reverted: Vec<Option<String>>,
     /// The edit without dwells (spikes and rounds), which a region over
@@ -1065,7 +1199,7 @@ impl Review<'_> {
                         um(was),
                         um(now)
                     ))
-                } else if changed(self.rg, r, edit, &self.id) {
+                } else if changed(self.rg, r, edit, &self.radius0) {
                     None
                 } else {
                     self.reverted[r].clone()
@@ -1074,19 +1208,23 @@ impl Review<'_> {
             .collect()
     }
 
-    /// The original program, text and simulation (`before`) as the result,
-    /// with a note on every region still changed.
-    fn give_back(mut self, text: &str, before: &Simulation) -> Checked {
+    /// The original program as the result, with a note on every region
+    /// still changed.
+    fn give_back(mut self, text: &str) -> Checked {
         for r in 0..self.rg.members.len() {
             if self.changed(r) {
                 self.reverted[r] = Some("the program as a whole would not improve (error or time budget); the original is returned".into());
             }
         }
+        // The unchanged program's edit, in place of the edit.
+        self.edit.radius.clone_from(&self.radius0);
+        self.edit.vertex_shift.fill([0.0; 3]);
+        self.edit.dwell_after.fill(0.0);
+        self.edit.spike.fill([0.0; 3]);
         Checked {
             nc: text.to_string(),
-            edit: self.id,
-            segments: self.orig.to_vec(),
-            sim: before.clone(),
+            edit: self.edit,
+            sim: None,
             after: self.before_err.to_vec(),
             reverted: self.reverted,
         }
@@ -1094,12 +1232,22 @@ impl Review<'_> {
 
     /// Region `r` differs from the original.
     fn changed(&self, r: usize) -> bool {
-        changed(self.rg, r, &self.edit, &self.id)
+        changed(self.rg, r, &self.edit, &self.radius0)
+    }
+
+    /// Gives region `r` of the edit its original entries.
+    fn reset(&mut self, r: usize) {
+        for &i in &self.rg.members[r] {
+            self.edit.radius[i] = self.radius0[i];
+            self.edit.vertex_shift[i] = [0.0; 3];
+            self.edit.dwell_after[i] = 0.0;
+            self.edit.spike[i] = [0.0; 3];
+        }
     }
 
     /// Gives region `r` its original segments back, for reason `why`.
     fn revert(&mut self, r: usize, why: String) {
-        copy_region(self.rg, r, &self.id, &mut self.edit);
+        self.reset(r);
         self.reverted[r] = Some(why);
     }
 
@@ -1110,7 +1258,13 @@ impl Review<'_> {
     /// time they add covers `over` (regions whose best rounds came from
     /// different variants may each fit the budget alone and not together).
     /// Whether any was reverted.
-    fn revert_unimproved(&mut self, after: &[f64], over: f64, sim: &SimConfig) -> bool {
+    fn revert_unimproved(
+        &mut self,
+        orig: &[Segment],
+        after: &[f64],
+        over: f64,
+        sim: &SimConfig,
+    ) -> bool {
         let mut bad = false;
         // `after` has one error per region.
         for (r, &a) in after.iter().enumerate() {
@@ -1137,7 +1291,7 @@ impl Review<'_> {
                     .iter()
                     .map(|&i| {
                         self.edit.dwell_after[i]
-                            + corner::spike_time(&self.orig[i], sim, self.edit.spike[i])
+                            + corner::spike_time(&orig[i], sim, self.edit.spike[i])
                     })
                     .sum();
                 (t > 0.0).then(|| ((self.before_err[r] - after[r]) / t, t, r))
@@ -1152,7 +1306,7 @@ impl Review<'_> {
             let m = &self.rg.members[r];
             let dwells: f64 = m.iter().map(|&i| self.edit.dwell_after[i]).sum();
             if dwells > 0.0
-                && changed(self.rg, r, self.fallback, &self.id)
+                && changed(self.rg, r, self.fallback, &self.radius0)
                 && m.iter().all(|&i| self.fallback.dwell_after[i] == 0.0)
             {
                 // Its dwells go, its spikes and corrections stay.
@@ -1174,15 +1328,15 @@ impl Review<'_> {
     /// An unchanged region that got worse (`after`, mm per region): its
     /// changed neighbours reached it (no exact stop between them); they go
     /// back. Whether any was reverted.
-    fn revert_neighbours(&mut self, after: &[f64]) -> bool {
-        let (orig, rg, before_err) = (self.orig, self.rg, self.before_err);
+    fn revert_neighbours(&mut self, orig: &[Segment], after: &[f64]) -> bool {
+        let (rg, before_err) = (self.rg, self.before_err);
         let mut bad = false;
         for r in 0..rg.members.len() {
             if self.changed(r) || after[r] <= before_err[r] + NEIGHBOUR_SLACK {
                 continue;
             }
             for q in [r.wrapping_sub(1), r + 1] {
-                if q < rg.members.len() && self.changed(q) && !self.stopped_between(r, q) {
+                if q < rg.members.len() && self.changed(q) && !self.stopped_between(orig, r, q) {
                     self.revert(
                         q,
                         format!(
@@ -1209,8 +1363,8 @@ impl Review<'_> {
     /// stroke of three 0.04 mm moves at 2 ms per sample rose from 1.7 to
     /// 8.3 µm), not `q`'s doing. The program's maximum error is checked
     /// as a whole all the same.
-    fn stopped_between(&self, r: usize, q: usize) -> bool {
-        region::rapid_between(self.orig, self.rg, r, q)
+    fn stopped_between(&self, orig: &[Segment], r: usize, q: usize) -> bool {
+        region::rapid_between(orig, self.rg, r, q)
     }
 
     /// A cutting move in no region (fixed, or outside the line range)
@@ -1223,8 +1377,14 @@ impl Review<'_> {
     /// sampling phase differs (the changed region's time shifts the grid),
     /// which moves a sampled maximum by up to its change in one step: no
     /// sign of the edit, so not judged.
-    fn revert_near_strays(&mut self, after: &[f64], memory: f64, sim: &SimConfig) -> bool {
-        let (orig, rg) = (self.orig, self.rg);
+    fn revert_near_strays(
+        &mut self,
+        orig: &[Segment],
+        after: &[f64],
+        memory: f64,
+        sim: &SimConfig,
+    ) -> bool {
+        let rg = self.rg;
         let changed: Vec<usize> = (0..rg.members.len()).filter(|&r| self.changed(r)).collect();
         let mut reach = vec![None; orig.len()];
         for &r in &changed {
@@ -1297,7 +1457,7 @@ fn reason(
 
 #[allow(clippy::too_many_arguments)]
 fn finish(
-    program: &Program,
+    (orig, facts): (&[Segment], &Facts),
     range: &LineRange,
     rg: &Regions,
     before_err: &[f64],
@@ -1306,12 +1466,16 @@ fn finish(
     notes: Vec<Option<String>>,
     history: Vec<f64>,
 ) -> Compensation {
-    let orig = &program.segments;
-    let id = identity(orig, vec![0.0; orig.len()]);
+    // The written program's segments, as the check rebuilt them.
+    let (segments, sim_after) = match c.sim {
+        Some(sim) => (rebuild(orig, &c.edit), sim),
+        None => (orig.to_vec(), sim_before.clone()),
+    };
+    let radius0 = radii(orig);
     let line = |i: usize| orig[i].line;
     let mut regions: Vec<RegionNote> = (0..rg.members.len())
         .map(|r| {
-            let ch = changed(rg, r, &c.edit, &id);
+            let ch = changed(rg, r, &c.edit, &radius0);
             let m = &rg.members[r];
             let (arcs, lines) = kinds(rg, r, orig);
             RegionNote {
@@ -1334,8 +1498,14 @@ fn finish(
             }
         })
         .collect();
-    regions.extend(fixed_moves_note(program, range, rg, &sim_before, &c.sim));
-    regions.extend(outside_notes(program, rg, range, &sim_before, &c.sim));
+    regions.extend(fixed_moves_note(
+        (orig, facts.has_macros),
+        range,
+        rg,
+        &sim_before,
+        &sim_after,
+    ));
+    regions.extend(outside_notes(orig, rg, range, &sim_before, &sim_after));
     let dwells = c
         .edit
         .dwell_after
@@ -1360,15 +1530,15 @@ fn finish(
         .collect();
     Compensation {
         before: summary(&sim_before),
-        after: summary(&c.sim),
-        segments: changes(program, &c.segments, &c.edit),
+        after: summary(&sim_after),
+        segments: changes((orig, facts.blocks), &segments, &c.edit),
         dwells,
         spikes,
         regions,
         history_um: history,
         nc: c.nc,
         sim_before,
-        sim_after: c.sim,
+        sim_after,
         unchanged: None,
         dwell_note: None,
         expanded: false,
@@ -1384,13 +1554,12 @@ fn finish(
 /// they were left as they are, so an error peak there is never unexplained.
 /// `None` when every cutting move belongs to a region.
 fn fixed_moves_note(
-    program: &Program,
+    (segs, has_macros): (&[Segment], bool),
     range: &LineRange,
     rg: &Regions,
     sim_before: &Simulation,
     sim_after: &Simulation,
 ) -> Option<RegionNote> {
-    let segs = &program.segments;
     let fixed: Vec<usize> = (0..segs.len())
         .filter(|&i| segs[i].is_cutting() && rg.of[i].is_none() && range.contains(segs[i].line))
         .collect();
@@ -1406,7 +1575,7 @@ fn fixed_moves_note(
             .map(|st| st.max_error_um)
             .fold(0.0, f64::max)
     };
-    let macros = if program.has_macros() {
+    let macros = if has_macros {
         "the program computes words with macro variables or expressions (Macro B, o-words, \
          G65), and "
     } else {
@@ -1442,15 +1611,20 @@ fn summary(s: &Simulation) -> Summary {
     }
 }
 
-fn changes(p: &Program, segs: &[Segment], edit: &Edit) -> Vec<SegmentChange> {
-    let mut end_of = vec![None; p.blocks.len()];
+/// Per original segment of `orig` (of a program of `blocks` blocks), what
+/// the written `segs` made of it.
+fn changes(
+    (orig, blocks): (&[Segment], usize),
+    segs: &[Segment],
+    edit: &Edit,
+) -> Vec<SegmentChange> {
+    let mut end_of = vec![None; blocks];
     for x in segs {
         if let Some(b) = x.block.filter(|&b| b < end_of.len()) {
             end_of[b] = Some(x.end);
         }
     }
-    p.segments
-        .iter()
+    orig.iter()
         .enumerate()
         .map(|(i, s)| {
             let new_end = s.block.and_then(|b| end_of[b]).unwrap_or(s.end);

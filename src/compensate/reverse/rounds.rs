@@ -65,7 +65,7 @@ pub struct Rounds {
 #[derive(Debug)]
 struct Base {
     path: Path,
-    stats: Vec<Option<SegmentStats>>,
+    stats: Rc<Vec<Option<SegmentStats>>>,
 }
 
 /// What one compensation may still simulate. The correction rounds
@@ -134,8 +134,22 @@ impl Work {
         }
         self.base = Some(Rc::new(Base {
             path: Path::new(orig),
-            stats,
+            stats: Rc::new(stats),
         }));
+    }
+
+    /// The statistics of the original's simulation per original segment
+    /// ([`Work::set_original`]; `None` without it): the caller may drop
+    /// the simulation.
+    pub fn original_stats(&self) -> Option<Rc<Vec<Option<SegmentStats>>>> {
+        self.base.as_ref().map(|b| b.stats.clone())
+    }
+
+    /// Drops the original's reference path and statistics
+    /// ([`Work::set_original`]; 450 MB of a 1 M-segment program) once no
+    /// more rounds run: the checks simulate the whole program.
+    pub fn forget_original(&mut self) {
+        self.base = None;
     }
 
     /// Sets aside `1/share` of the rounds' budget left (for a later stage:
@@ -212,6 +226,104 @@ fn piece<'a>(cmd: &'a [Segment], at: &[usize], i: usize) -> &'a [Segment] {
     let a = if i == 0 { 0 } else { at[i] };
     let b = at.get(i + 1).copied().unwrap_or(cmd.len());
     &cmd[a..b]
+}
+
+/// A 128-bit fingerprint of each piece of `cmd` ([`piece`]): what
+/// [`LocalStats`] keeps of the last command to find the pieces that
+/// changed, instead of the command itself (184 B a segment: 175 MB of a
+/// 1 M-segment program). Two pieces that differ under `==` get different
+/// fingerprints but with a chance of 2⁻¹²⁸; equal ones get equal ones,
+/// except that ±0 are one value and a piece with a NaN gets
+/// [`NEVER_EQUAL`] (a NaN is unequal to itself under `==`).
+fn fingerprints(cmd: &[Segment], at: &[usize]) -> Vec<u128> {
+    (0..at.len())
+        .map(|i| {
+            let p = piece(cmd, at, i);
+            let mut h = Fingerprint::new();
+            for s in p {
+                // Every field, named: a new one fails to compile here.
+                let Segment {
+                    block,
+                    line,
+                    motion,
+                    start,
+                    end,
+                    feed,
+                    fixed,
+                } = s;
+                let tag = match motion {
+                    Motion::Rapid => 1,
+                    Motion::Linear => 2,
+                    Motion::Dwell { seconds } => {
+                        h.f(*seconds);
+                        3
+                    }
+                    Motion::Arc(a) => {
+                        let crate::nc::program::Arc {
+                            center,
+                            radius,
+                            plane,
+                            sweep,
+                            r_form,
+                        } = a;
+                        center.iter().for_each(|&c| h.f(c));
+                        h.f(*radius);
+                        h.f(*sweep);
+                        4 + 8 * (*plane as u64) + 64 * u64::from(*r_form)
+                    }
+                };
+                start.to_array().into_iter().for_each(|x| h.f(x));
+                end.to_array().into_iter().for_each(|x| h.f(x));
+                h.f(*feed);
+                h.u(tag);
+                h.u(block.map_or(u64::MAX, |b| b as u64));
+                h.u(*line as u64);
+                h.u(u64::from(*fixed));
+            }
+            h.u(p.len() as u64);
+            if h.nan {
+                return NEVER_EQUAL;
+            }
+            h.finish()
+        })
+        .collect()
+}
+
+/// The fingerprint of a piece that is changed whatever it was before.
+const NEVER_EQUAL: u128 = 0;
+
+/// Two SipHash states fed the same words (the second after a salt).
+struct Fingerprint {
+    h: [std::hash::DefaultHasher; 2],
+    nan: bool,
+}
+
+impl Fingerprint {
+    fn new() -> Self {
+        use std::hash::Hasher;
+        let mut h = [
+            std::hash::DefaultHasher::new(),
+            std::hash::DefaultHasher::new(),
+        ];
+        h[1].write_u8(0x5a);
+        Self { h, nan: false }
+    }
+
+    fn u(&mut self, x: u64) {
+        use std::hash::Hasher;
+        self.h.iter_mut().for_each(|h| h.write_u64(x));
+    }
+
+    /// `x`, with ±0 as one value; a NaN marks the piece.
+    fn f(&mut self, x: f64) {
+        self.nan |= x.is_nan();
+        self.u(if x == 0.0 { 0 } else { x.to_bits() });
+    }
+
+    fn finish(&self) -> u128 {
+        use std::hash::Hasher;
+        (u128::from(self.h[0].finish()) << 64) | u128::from(self.h[1].finish())
+    }
 }
 
 /// Runs up to `iterations + 1` rounds from `start` (see the module header),
@@ -312,7 +424,8 @@ pub struct LocalStats {
     own: Option<Path>,
     /// Statistics per original segment (`None`: no sample nearest to it).
     pub by_seg: Vec<Option<SegmentStats>>,
-    prev: Option<(Vec<Segment>, Vec<usize>)>,
+    /// The last command's [`fingerprints`].
+    prev: Option<Vec<u128>>,
 }
 
 impl LocalStats {
@@ -323,8 +436,11 @@ impl LocalStats {
             Some(b) => Self {
                 base: Some(b.clone()),
                 own: None,
-                by_seg: b.stats.clone(),
-                prev: Some(rebuild_indexed(orig, &identity(orig, vec![0.0; n]))),
+                by_seg: b.stats.to_vec(),
+                prev: Some({
+                    let (cmd, at) = rebuild_indexed(orig, &identity(orig, vec![0.0; n]));
+                    fingerprints(&cmd, &at)
+                }),
             },
             None => Self {
                 base: None,
@@ -350,9 +466,10 @@ impl LocalStats {
     ) -> Result<bool, ToolpathError> {
         let n = orig.len();
         let (cmd, at) = rebuild_indexed(orig, edit);
+        let now = fingerprints(&cmd, &at);
         let changed: Vec<bool> = match &self.prev {
-            Some((pc, pat)) => (0..n)
-                .map(|i| piece(&cmd, &at, i) != piece(pc, pat, i))
+            Some(prev) => (0..n)
+                .map(|i| now[i] != prev[i] || now[i] == NEVER_EQUAL)
                 .collect(),
             None => vec![true; n],
         };
@@ -371,7 +488,7 @@ impl LocalStats {
                 self.by_seg[i] = Some(st);
             }
         }
-        self.prev = Some((cmd, at));
+        self.prev = Some(now);
         Ok(true)
     }
 }
@@ -449,6 +566,65 @@ mod tests {
     use crate::compensate::reverse::region::regions;
     use crate::nc::program::parse;
     use crate::toolpath::{example::arc_example, simulate};
+
+    /// A piece's fingerprint changes with any word of its segments, and
+    /// only then (±0 alike); a NaN piece is never unchanged.
+    #[test]
+    fn fingerprints_follow_the_pieces() {
+        let p = parse(&arc_example()).unwrap();
+        let o = &p.segments;
+        let (cmd, at) = rebuild_indexed(o, &identity(o, vec![0.0; o.len()]));
+        let base = fingerprints(&cmd, &at);
+        assert_eq!(base, fingerprints(&cmd.clone(), &at));
+        let distinct: std::collections::HashSet<_> = base.iter().collect();
+        assert!(
+            distinct.len() > o.len() / 2,
+            "{} of {}",
+            distinct.len(),
+            o.len()
+        );
+        let k = at[5];
+        let changed = |f: &dyn Fn(&mut Segment)| {
+            let mut c = cmd.clone();
+            f(&mut c[k]);
+            let now = fingerprints(&c, &at);
+            (0..at.len())
+                .filter(|&i| now[i] != base[i])
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(changed(&|s| s.end.x += 1e-12), vec![5]);
+        assert_eq!(changed(&|s| s.feed *= 1.0 + 1e-15), vec![5]);
+        assert_eq!(changed(&|s| s.line += 1), vec![5]);
+        assert_eq!(changed(&|s| s.fixed = !s.fixed), vec![5]);
+        assert_eq!(changed(&|s| s.start.c = 1.0), vec![5]);
+        assert_eq!(changed(&|s| s.block = None), vec![5]);
+        let arc = cmd[k..]
+            .iter()
+            .position(|s| matches!(s.motion, Motion::Arc(_)))
+            .map(|j| k + j)
+            .unwrap();
+        let piece = at.iter().rposition(|&a| a <= arc).unwrap();
+        let mut c = cmd.clone();
+        if let Motion::Arc(a) = &mut c[arc].motion {
+            a.radius += 1e-9;
+        }
+        let now = fingerprints(&c, &at);
+        assert_eq!(
+            (0..at.len())
+                .filter(|&i| now[i] != base[i])
+                .collect::<Vec<_>>(),
+            vec![piece]
+        );
+        // A zero changes sign (as under ==): unchanged.
+        let mut c = cmd.clone();
+        c[k].start.c = -0.0;
+        assert_eq!(fingerprints(&c, &at), base);
+        // A NaN: changed, and again the next time.
+        c[k].start.c = f64::NAN;
+        let nan = fingerprints(&c, &at);
+        assert_eq!(nan[5], NEVER_EQUAL);
+        assert_eq!(nan[..5], base[..5]);
+    }
 
     #[test]
     fn work_budgets_rounds_and_checks_apart() {
