@@ -16,8 +16,7 @@
 //! The heap figures are 64-bit: a `usize`, a pointer and a `Vec` header
 //! are twice their wasm32 size, so the wasm figures are somewhat smaller.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+use std::sync::atomic::Ordering::Relaxed;
 use std::time::Instant;
 
 use mtmotion::nc::files::parse_files_owned;
@@ -25,43 +24,15 @@ use mtmotion::nc::program::{Keep, ParseOptions};
 use mtmotion::nc::summary::summarize;
 use mtmotion::toolpath::{simulate_columns_owned, SimConfig};
 
-/// The system allocator, counting the bytes live and their peak.
-struct Counting;
-
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc(l) };
-        if !p.is_null() {
-            let now = LIVE.fetch_add(l.size(), Relaxed) + l.size();
-            PEAK.fetch_max(now, Relaxed);
-        }
-        p
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        unsafe { System.dealloc(p, l) };
-        LIVE.fetch_sub(l.size(), Relaxed);
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, new: usize) -> *mut u8 {
-        let q = unsafe { System.realloc(p, l, new) };
-        if !q.is_null() {
-            // a moved block is live twice while it is copied
-            let now = LIVE.fetch_add(new, Relaxed) + new;
-            PEAK.fetch_max(now, Relaxed);
-            LIVE.fetch_sub(l.size(), Relaxed);
-        }
-        q
-    }
-}
+#[path = "support/counting_alloc.rs"]
+mod counting_alloc;
+use counting_alloc::{mib, Counting, LIVE, PEAK};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
 /// Heap live now and at most since the last call, MiB; resets the peak.
 fn heap() -> String {
-    let mib = |b: usize| b as f64 / f64::from(1 << 20);
     let live = LIVE.load(Relaxed);
     let peak = PEAK.swap(live, Relaxed);
     format!(

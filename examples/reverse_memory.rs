@@ -14,63 +14,15 @@
 //! With `PARTS` set, the size of each part it holds instead, one at a
 //! time.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+use std::sync::atomic::Ordering::Relaxed;
 use std::time::Instant;
 
-/// The system allocator, counting live bytes and their peak.
-struct Counting;
-
-static LIVE: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-// SAFETY: every call is forwarded to `System` unchanged; only counters
-// are updated beside it.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        // SAFETY: as `System.alloc`, with the caller's layout.
-        let p = unsafe { System.alloc(l) };
-        if !p.is_null() {
-            grow(l.size());
-        }
-        p
-    }
-    unsafe fn alloc_zeroed(&self, l: Layout) -> *mut u8 {
-        // SAFETY: as `System.alloc_zeroed`, with the caller's layout.
-        let p = unsafe { System.alloc_zeroed(l) };
-        if !p.is_null() {
-            grow(l.size());
-        }
-        p
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        // SAFETY: `p` was allocated by `System` with `l` (the caller's contract).
-        unsafe { System.dealloc(p, l) };
-        LIVE.fetch_sub(l.size(), Relaxed);
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, new: usize) -> *mut u8 {
-        // SAFETY: as `System.realloc`, with the caller's pointer and layout.
-        let q = unsafe { System.realloc(p, l, new) };
-        if !q.is_null() {
-            // While moving, both blocks are live.
-            grow(new);
-            LIVE.fetch_sub(l.size(), Relaxed);
-        }
-        q
-    }
-}
-
-fn grow(n: usize) {
-    let live = LIVE.fetch_add(n, Relaxed) + n;
-    PEAK.fetch_max(live, Relaxed);
-}
+#[path = "support/counting_alloc.rs"]
+mod counting_alloc;
+use counting_alloc::{mib, Counting, LIVE, PEAK};
 
 #[global_allocator]
 static A: Counting = Counting;
-
-fn mib(b: usize) -> f64 {
-    b as f64 / 1048576.0
-}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     use mtmotion::compensate::reverse::{reverse_compensate_with, ReverseConfig};

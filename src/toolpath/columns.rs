@@ -56,20 +56,6 @@ pub(super) fn kind_radius(seg: &Segment) -> (&'static str, f64) {
 }
 
 impl SegmentColumns {
-    /// Empty columns with room for `n` segments.
-    pub fn with_capacity(n: usize) -> Self {
-        Self {
-            segment: Vec::with_capacity(n),
-            line: Vec::with_capacity(n),
-            kind: Vec::with_capacity(n),
-            length: Vec::with_capacity(n),
-            radius: Vec::with_capacity(n),
-            max_error_um: Vec::with_capacity(n),
-            mean_deviation: Vec::with_capacity(n),
-            samples: Vec::with_capacity(n),
-        }
-    }
-
     /// Empty columns with room for `n` segments' segment, line, kind,
     /// length and radius, and none yet for their statistics (which
     /// [`SegmentColumns::reserve_stats`] makes once the program's segments

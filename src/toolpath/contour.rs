@@ -94,7 +94,7 @@ impl Element {
     }
 
     /// Bounding sphere: every point of the element lies within `.1` mm of
-    /// `.0` ([`line_sphere`], [`arc_sphere`]).
+    /// `.0` (`line_sphere`, `arc_sphere`).
     #[inline]
     pub fn bound(&self) -> Sphere {
         match self.geo {
