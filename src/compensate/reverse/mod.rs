@@ -1060,6 +1060,7 @@ fn check(
         edit,
         fallback,
         reverted: vec![None; rg.members.len()],
+        undo: Vec::new(),
     };
     let limit = before.motion_time * (1.0 + cfg.time_budget) + cfg.sim.dt;
     // The NC filter forgets a change after tA, the servo lag after a few
@@ -1089,7 +1090,7 @@ fn check(
         drop(written);
         let after = region_errors(rg, &sim.segments);
         let over_time = sim.motion_time > limit;
-        let tried = rv.edit.clone();
+        rv.undo.clear();
         let unimproved = rv.revert_unimproved(orig, &after, sim.motion_time - limit, &cfg.sim);
         let raised = rv.revert_neighbours(orig, &after);
         let strays = rv.revert_near_strays(
@@ -1102,13 +1103,16 @@ fn check(
         // With a line range the largest error may lie outside, past the
         // changes' reach, where only the sampling phase differs (nm).
         let worse = sim.max_error > before.max_error + if whole { 0.0 } else { NEIGHBOUR_SLACK };
-        if whole
+        // The edit this round checked, when the next round goes on from
+        // less of it (without reverts it is returned or given up below).
+        if bad
+            && whole
             && !over_time
             && !strays
             && sim.max_error < before.max_error
             && best.as_ref().is_none_or(|b| sim.max_error < b.0)
         {
-            best = Some((sim.max_error, tried));
+            best = Some((sim.max_error, rv.tried()));
         }
         if !bad && !worse && !over_time {
             return Ok(Checked {
@@ -1180,7 +1184,16 @@ struct Review<'a> {
     /// The edit without dwells (spikes and rounds), which a region over
     /// the time budget with dwells falls back to before the original.
     fallback: &'a Edit,
+    /// The entries of the segments this round's reverts changed, as they
+    /// were before each change (segment, radius, vertex shift, dwell,
+    /// spike): the checked edit is had back from them ([`Review::tried`])
+    /// without a copy of the whole edit each round (64 MB for 1 M
+    /// segments).
+    undo: Vec<(usize, Entry)>,
 }
+
+/// One segment's entries of an [`Edit`]: radius, vertex shift, dwell, spike.
+type Entry = (f64, [f64; 3], f64, [f64; 3]);
 
 impl Review<'_> {
     /// The notes of `edit` when it is returned without the checks having
@@ -1236,7 +1249,32 @@ impl Review<'_> {
     }
 
     /// Gives region `r` of the edit its original entries.
+    /// Saves region `r`'s entries before a revert changes them.
+    fn save(&mut self, r: usize) {
+        for &i in &self.rg.members[r] {
+            let e = &self.edit;
+            self.undo.push((
+                i,
+                (e.radius[i], e.vertex_shift[i], e.dwell_after[i], e.spike[i]),
+            ));
+        }
+    }
+
+    /// The edit as the round checked it: the edit with this round's
+    /// reverts undone (latest first, so each entry gets its oldest value).
+    fn tried(&self) -> Edit {
+        let mut e = self.edit.clone();
+        for &(i, (radius, shift, dwell, spike)) in self.undo.iter().rev() {
+            e.radius[i] = radius;
+            e.vertex_shift[i] = shift;
+            e.dwell_after[i] = dwell;
+            e.spike[i] = spike;
+        }
+        e
+    }
+
     fn reset(&mut self, r: usize) {
+        self.save(r);
         for &i in &self.rg.members[r] {
             self.edit.radius[i] = self.radius0[i];
             self.edit.vertex_shift[i] = [0.0; 3];
@@ -1310,6 +1348,7 @@ impl Review<'_> {
                 && m.iter().all(|&i| self.fallback.dwell_after[i] == 0.0)
             {
                 // Its dwells go, its spikes and corrections stay.
+                self.save(r);
                 copy_region(self.rg, r, self.fallback, &mut self.edit);
                 freed += dwells;
                 bad = true;
