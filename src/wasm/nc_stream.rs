@@ -37,6 +37,8 @@ pub struct NcStream {
     pushed: usize,
     /// Bytes of text the memory was reserved for.
     reserved_for: usize,
+    /// The chunk copied into wasm memory (one buffer for every push).
+    chunk: Vec<u8>,
 }
 
 #[wasm_bindgen]
@@ -71,6 +73,7 @@ impl NcStream {
             inner: Some(crate::nc::stream::NcStream::new()),
             pushed: 0,
             reserved_for: total,
+            chunk: Vec::new(),
         })
     }
 
@@ -100,9 +103,12 @@ impl NcStream {
             self.reserved_for = self.pushed + RESERVE_AHEAD / NC_BYTES_PER_TEXT_BYTE;
             reserve(RESERVE_AHEAD);
         }
-        self.stream()?
-            .push(&a.to_vec())
-            .map_err(|e| JsError::new(&e.to_string()))
+        let mut chunk = std::mem::take(&mut self.chunk);
+        chunk.resize(n, 0);
+        a.copy_to(&mut chunk);
+        let read = self.stream()?.push(&chunk);
+        self.chunk = chunk;
+        read.map_err(|e| JsError::new(&e.to_string()))
     }
 
     /// Ends the text and checks the program as `checkNc` checks a whole
