@@ -13,6 +13,10 @@
 //! perf record -g target/release/examples/large_program /tmp/big.nc
 //! ```
 //!
+//! `STREAM=1`: the program is read as `NcStream` reads it, in 1 MiB
+//! chunks of the file, never whole (`checkNc` and
+//! `simulateToolPathColumns` of the wasm `NcStream`).
+//!
 //! The heap figures are 64-bit: a `usize`, a pointer and a `Vec` header
 //! are twice their wasm32 size, so the wasm figures are somewhat smaller.
 
@@ -20,7 +24,8 @@ use std::sync::atomic::Ordering::Relaxed;
 use std::time::Instant;
 
 use mtmotion::nc::files::parse_files_owned;
-use mtmotion::nc::program::{Keep, ParseOptions};
+use mtmotion::nc::program::{Keep, ParseOptions, Program};
+use mtmotion::nc::stream::NcStream;
 use mtmotion::nc::summary::summarize;
 use mtmotion::toolpath::{simulate_columns_owned, SimConfig};
 
@@ -58,16 +63,32 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = std::env::args()
         .nth(1)
         .ok_or("usage: large_program FILE.nc")?;
-    let read = || std::fs::read_to_string(&path);
-    let t0 = Instant::now();
-    let text = read()?;
-    println!(
-        "read {} bytes in {:.2} s; {}",
-        text.len(),
-        t0.elapsed().as_secs_f64(),
-        heap()
-    );
+    let stream = std::env::var_os("STREAM").is_some_and(|v| v == "1");
+    let opts = ParseOptions::default();
+    // the program for the motion, read whole or streamed
+    let parse = || -> Result<Program, Box<dyn std::error::Error>> {
+        if stream {
+            use std::io::Read;
+            let mut file = std::fs::File::open(&path)?;
+            let mut s = NcStream::new();
+            let mut chunk = vec![0; 1 << 20];
+            loop {
+                let n = file.read(&mut chunk)?;
+                if n == 0 {
+                    break;
+                }
+                s.push(&chunk[..n]).map_err(|e| e.first().to_string())?;
+            }
+            Ok(s.finish(&opts, Keep::Motion)
+                .map_err(|e| e.first().to_string())?)
+        } else {
+            let text = std::fs::read_to_string(&path)?;
+            Ok(parse_files_owned(text, Vec::new(), &opts, Keep::Motion)
+                .map_err(|e| e.first().to_string())?)
+        }
+    };
     if std::env::var_os("LEX_ONLY").is_some() {
+        let text = std::fs::read_to_string(&path)?;
         let t0 = Instant::now();
         let (blocks, _) = mtmotion::nc::lex_all(&text);
         println!(
@@ -78,12 +99,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
         return Ok(());
     }
-    let opts = ParseOptions::default();
     let cfg = SimConfig::default();
     // checkNc: parse for the motion, summarise, drop all.
     let t0 = Instant::now();
-    let p = parse_files_owned(text, Vec::new(), &opts, Keep::Motion)
-        .map_err(|e| e.first().to_string())?;
+    let p = parse()?;
     let summary = summarize(&p, cfg.rapid_feed);
     println!(
         "check: {:.2} s, {} blocks, {} segments, {:.0} s of motion; {}",
@@ -95,10 +114,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     drop(p);
     // simulateToolPathColumns: its own copy of the text, parsed again.
-    let text = read()?;
     let t0 = Instant::now();
-    let mut p = parse_files_owned(text, Vec::new(), &opts, Keep::Motion)
-        .map_err(|e| e.first().to_string())?;
+    let mut p = parse()?;
     drop(std::mem::take(&mut p.blocks));
     println!("parse: {:.2} s; {}", t0.elapsed().as_secs_f64(), heap());
     let t0 = Instant::now();

@@ -137,6 +137,12 @@ pub fn check_texts<'a>(
     let bytes: u64 = texts.clone().into_iter().map(|t| t.len() as u64).sum();
     check_bytes(what, bytes)?;
     let n: u64 = texts.into_iter().map(|t| lines(t) as u64).sum();
+    check_nc_lines(what, n)
+}
+
+/// Checks the lines of NC texts, `n`, against [`MAX_NC_LINES`] (as
+/// [`check_texts`]; the NC stream counts them as its bytes come).
+pub fn check_nc_lines(what: &'static str, n: u64) -> Result<(), BudgetError> {
     check(
         what,
         n,

@@ -132,21 +132,49 @@ fn lex_files(text: &str, files: &[NcFile]) -> Result<Lexed, NcErrors> {
         }));
         offset += n;
     }
-    if let Some(e) = errors
+    Lexed::checked(blocks, errors, spans)
+}
+
+/// Interprets the main program's `blocks`, lexed with `errors`, exactly
+/// as [`parse_files_owned`] does with no extra files: the NC stream
+/// (`super::stream`) ends with it.
+pub(crate) fn interpret_lexed(
+    blocks: Vec<Block>,
+    errors: NcErrors,
+    options: &ParseOptions,
+    keep: Keep,
+) -> Result<Program, NcErrors> {
+    Lexed::checked(blocks, errors, Vec::new())?.interpret(options, keep)
+}
+
+/// The lexing's errors as the program's result when the lexing stops it:
+/// the one that says the text looks like another control's language
+/// (Heidenhain, Okuma), alone; `None` when the program runs.
+pub(crate) fn dialect_refusal(errors: &NcErrors) -> Option<NcErrors> {
+    errors
         .errors
         .iter()
         .find(|e| e.message.contains("this looks like"))
-    {
-        return Err(NcErrors::from(e.clone()));
-    }
-    Ok(Lexed {
-        blocks,
-        errors,
-        spans,
-    })
+        .map(|e| NcErrors::from(e.clone()))
 }
 
 impl Lexed {
+    /// The lexed program, or its dialect refusal ([`dialect_refusal`]).
+    fn checked(
+        blocks: Vec<Block>,
+        errors: NcErrors,
+        spans: Vec<(usize, String)>,
+    ) -> Result<Lexed, NcErrors> {
+        if let Some(e) = dialect_refusal(&errors) {
+            return Err(e);
+        }
+        Ok(Lexed {
+            blocks,
+            errors,
+            spans,
+        })
+    }
+
     /// Runs the lexed program: the program, or every error of the lexing
     /// and the run in source order.
     fn interpret(self, options: &ParseOptions, keep: Keep) -> Result<Program, NcErrors> {

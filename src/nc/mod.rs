@@ -43,6 +43,7 @@ mod run;
 pub mod segment;
 pub mod sequence;
 pub mod spline;
+pub mod stream;
 pub mod summary;
 pub mod units;
 pub mod writer;
@@ -188,7 +189,7 @@ impl Block {
 }
 
 /// Every error of a program, in source order, up to [`MAX_ERRORS`].
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, Default, PartialEq, thiserror::Error)]
 pub struct NcErrors {
     /// The errors found (at most [`MAX_ERRORS`]).
     pub errors: Vec<NcError>,
@@ -320,7 +321,31 @@ pub(crate) fn lex_counting(text: &str, words: &mut usize) -> (Vec<Block>, NcErro
     }
     let lines = split_lines(text);
     let mut blocks = Vec::with_capacity(lines.len());
+    if lex_lines(lines, 1, words, &mut blocks, &mut errors).is_err() {
+        return (Vec::new(), errors);
+    }
+    (blocks, errors)
+}
+
+/// The word budget stopped the lexing (its error is in the list).
+#[derive(Debug)]
+pub(crate) struct WordsOverBudget;
+
+/// Lexes `lines`, the first numbered `first`, appending a block to
+/// `blocks` for each (an empty one for a line with an error, which goes to
+/// `errors`) and adding their words to `words`: the lexing of
+/// [`lex_counting`], and of the NC stream ([`stream`]) run by run of
+/// complete lines. A line whose letters could take the words past
+/// [`crate::budget::MAX_NC_WORDS`] stops it, unlexed, with its error.
+pub(crate) fn lex_lines<'a>(
+    lines: impl IntoIterator<Item = &'a str>,
+    first: usize,
+    words: &mut usize,
+    blocks: &mut Vec<Block>,
+    errors: &mut NcErrors,
+) -> Result<(), WordsOverBudget> {
     for (i, l) in lines.into_iter().enumerate() {
+        let line = first + i;
         // Every word starts with a letter: a line whose letters could take
         // the words past the budget is refused before it is lexed (one
         // 64 MiB line of `X1X1…` would be 32 M words, 1.5 GB).
@@ -333,20 +358,20 @@ pub(crate) fn lex_counting(text: &str, words: &mut usize) -> (Vec<Block>, NcErro
                 unit: "address words by this line (its own counted by their letters)",
                 advice: "each word is held in memory while the program runs; split the program into parts and run each",
             };
-            errors.push(NcError::new(i + 1, 1, e.to_string()));
-            return (Vec::new(), errors);
+            errors.push(NcError::new(line, 1, e.to_string()));
+            return Err(WordsOverBudget);
         }
-        let b = lex_line(l, i + 1).unwrap_or_else(|e| {
+        let b = lex_line(l, line).unwrap_or_else(|e| {
             errors.push(e);
             Block {
-                line: i + 1,
+                line,
                 ..Block::default()
             }
         });
         *words += b.words.len() + b.comma_words.len();
         blocks.push(b);
     }
-    (blocks, errors)
+    Ok(())
 }
 
 /// Why `text` is refused as a whole before any line is read, if it is: over
@@ -357,9 +382,13 @@ pub fn unreadable(text: &str) -> Option<String> {
     if let Err(e) = crate::budget::check_texts("program", [text]) {
         return Some(e.to_string());
     }
-    crate::trace::binary_kind(text).map(|kind| {
-        format!("this file is {kind}, not an NC program (a text file): nothing was read")
-    })
+    crate::trace::binary_kind(text).map(not_text_message)
+}
+
+/// The refusal of a file that is `kind` (an image, a PDF, an archive; see
+/// [`crate::trace::binary_kind`]), not program text.
+pub(crate) fn not_text_message(kind: &str) -> String {
+    format!("this file is {kind}, not an NC program (a text file): nothing was read")
 }
 
 /// Fanuc Macro B keywords: a letter run equal to one of these is a macro

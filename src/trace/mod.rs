@@ -184,6 +184,20 @@ pub enum TraceError {
 pub fn split_lines(text: &str) -> Vec<&str> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let text = text.trim_end_matches(['\u{1a}', '\r', '\n']);
+    let out = split_line_ends(text);
+    if out.is_empty() {
+        vec![text]
+    } else {
+        out
+    }
+}
+
+/// The lines of `text` as they are, without their line ends (LF, CRLF or
+/// CR alone): a last line without an end is a line, an empty text has
+/// none. Nothing is dropped: [`split_lines`] is this after dropping the
+/// byte-order mark and the trailing line ends and Ctrl-Z characters, and
+/// the NC stream (`nc::stream`) splits each run of complete lines with it.
+pub(crate) fn split_line_ends(text: &str) -> Vec<&str> {
     let mut out = Vec::new();
     let bytes = text.as_bytes();
     let mut start = 0;
@@ -205,7 +219,7 @@ pub fn split_lines(text: &str) -> Vec<&str> {
         }
         i += 1;
     }
-    if start < text.len() || out.is_empty() {
+    if start < text.len() {
         out.push(&text[start..]);
     }
     out
@@ -517,7 +531,16 @@ impl Table {
 /// assert_eq!(binary_kind("time,x\n0,1\n"), None);
 /// ```
 pub fn binary_kind(text: &str) -> Option<&'static str> {
-    let t = text.trim_start_matches('\u{feff}');
+    binary_kind_of_head(text, || text.contains("JFIF"))
+}
+
+/// As [`binary_kind`], from the text's start alone: `head` holds at least
+/// its first 512 characters after the leading byte-order marks (or all of
+/// it), and `jfif` says whether the whole text contains `JFIF` (asked only
+/// when the head starts with three U+FFFD). The NC stream (`nc::stream`)
+/// judges a text it has not yet read to its end with it.
+pub(crate) fn binary_kind_of_head(head: &str, jfif: impl FnOnce() -> bool) -> Option<&'static str> {
+    let t = head.trim_start_matches('\u{feff}');
     let head: String = t.chars().take(8).collect();
     let after_junk = head.trim_start_matches(['\u{fffd}', '\u{89}']);
     let kind = if after_junk.starts_with("PNG") && head.len() > after_junk.len() {
@@ -530,7 +553,7 @@ pub fn binary_kind(text: &str) -> Option<&'static str> {
         Some("a GIF image")
     } else if head.starts_with("PK\u{3}\u{4}") {
         Some("a ZIP archive or an Excel/Office file")
-    } else if (head.starts_with("\u{fffd}\u{fffd}\u{fffd}") && t.contains("JFIF"))
+    } else if (head.starts_with("\u{fffd}\u{fffd}\u{fffd}") && jfif())
         || t.starts_with("\u{ff}\u{d8}\u{ff}")
     {
         Some("a JPEG image")

@@ -219,7 +219,7 @@ pub fn revoked(value: &JsValue) -> bool {
 
 /// What a value that is not of the expected type is, for a message: its
 /// `typeof` ("number", "object", "null"), or "a revoked Proxy".
-fn got(value: &JsValue) -> String {
+pub fn got(value: &JsValue) -> String {
     if value.is_null() {
         "null".into()
     } else if revoked(value) {

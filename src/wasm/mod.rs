@@ -29,6 +29,8 @@ pub mod convert;
 pub mod kinematics;
 #[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod machine;
+#[cfg(feature = "full")]
+pub mod nc_stream;
 pub mod results;
 #[cfg_attr(not(feature = "full"), allow(dead_code, unused_imports))]
 pub mod servo;

@@ -169,7 +169,7 @@ fn take_files(options: JsValue) -> Result<(Vec<NcFile>, JsValue), JsError> {
 
 /// Splits key `name` off an options object (read as plain data): its value
 /// (undefined when absent) and a copy of the options without it.
-fn take_key(options: JsValue, name: &str) -> Result<(JsValue, JsValue), JsError> {
+pub(super) fn take_key(options: JsValue, name: &str) -> Result<(JsValue, JsValue), JsError> {
     if !options.is_object() {
         return Ok((JsValue::UNDEFINED, options));
     }
@@ -200,7 +200,7 @@ pub fn nc_main_file(
     Ok(main_file(&refs))
 }
 
-fn parse_options(options: JsValue) -> Result<ParseOptions, JsError> {
+pub(super) fn parse_options(options: JsValue) -> Result<ParseOptions, JsError> {
     if options.is_undefined() || options.is_null() {
         return Ok(ParseOptions::default());
     }
@@ -241,7 +241,24 @@ pub fn check_nc(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "NcParseOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
-    match parse_args(&text, options)? {
+    let read = parse_args(&text, options)?;
+    // a whole-text refusal is one error at line 1, column 1
+    check_obj(read, |e| {
+        e.errors.len() == 1
+            && (e.errors[0].line, e.errors[0].column) == (1, 1)
+            && text
+                .as_string()
+                .is_some_and(|t| crate::nc::unreadable(&t).is_some())
+    })
+}
+
+/// `checkNc`'s result (`NcCheck`) for a program read: `not_read` says
+/// whether its errors refused the text as a whole.
+pub(super) fn check_obj(
+    read: Result<Program, NcErrors>,
+    not_read: impl FnOnce(&NcErrors) -> bool,
+) -> Result<JsValue, JsError> {
+    match read {
         Ok(p) => to_js(&Checked {
             not_read: false,
             errors: &[],
@@ -250,12 +267,7 @@ pub fn check_nc(
             summary: Some(summarize(&p, SimConfig::default().rapid_feed)),
         }),
         Err(e) => to_js(&Checked {
-            // a whole-text refusal is one error at line 1, column 1
-            not_read: e.errors.len() == 1
-                && (e.errors[0].line, e.errors[0].column) == (1, 1)
-                && text
-                    .as_string()
-                    .is_some_and(|t| crate::nc::unreadable(&t).is_some()),
+            not_read: not_read(&e),
             errors: &e.errors,
             truncated: e.truncated,
             warnings: &[],
@@ -360,13 +372,23 @@ pub fn simulate_tool_path_columns(
     #[wasm_bindgen(unchecked_param_type = "ToolPathConfig")] config: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "Function | null")] on_progress: JsValue,
 ) -> Result<JsValue, JsError> {
-    let (mut p, cfg, on_progress) = sim_args(text, config, on_progress, 0)?;
-    let mut progress = js_progress(&on_progress);
+    let (p, cfg, on_progress) = sim_args(text, config, on_progress, 0)?;
+    columns_sim(p, &cfg, &on_progress)
+}
+
+/// Simulates a program read (its blocks dropped) and gives
+/// `simulateToolPathColumns`'s result.
+#[cfg(feature = "full")]
+pub(super) fn columns_sim(
+    mut p: Program,
+    cfg: &SimConfig,
+    on_progress: &Option<js_sys::Function>,
+) -> Result<JsValue, JsError> {
+    let mut progress = js_progress(on_progress);
     // The segments are dropped once the timed command and the path are built.
     let segments = std::mem::take(&mut p.segments);
-    let (s, columns) = crate::toolpath::simulate_columns_owned(segments, &cfg, &mut |f| {
-        progress(f, "simulating")
-    })?;
+    let (s, columns) =
+        crate::toolpath::simulate_columns_owned(segments, cfg, &mut |f| progress(f, "simulating"))?;
     Ok(series_obj(&s)
         .val("segmentColumns", columns_obj(&columns))
         .ser("warnings", &p.warnings)?
@@ -389,6 +411,18 @@ fn sim_args(
 ) -> Result<(Program, SimConfig, Option<js_sys::Function>), JsError> {
     let text = string_arg(&text, "text")?;
     let (files, config) = take_files(config)?;
+    let (opts, cfg) = sim_config(config)?;
+    let on_progress = callback_arg(on_progress, "onProgress")?;
+    reserve_for_nc(&text, &files);
+    // The texts are freed once lexed, the blocks once run: neither is
+    // simulated, and their memory goes to the simulation.
+    let p = parse_files_owned(text, files, &opts, Keep::Motion);
+    Ok((sim_program(p, bytes_per_segment)?, cfg, on_progress))
+}
+
+/// A tool-path config without its `files`: how the program is read (its
+/// `toolRadii`) and the simulation's config.
+pub(super) fn sim_config(config: JsValue) -> Result<(ParseOptions, SimConfig), JsError> {
     let (radii, config) = take_key(config, "toolRadii")?;
     let cfg: SimConfig = if config.is_undefined() || config.is_null() {
         SimConfig::default()
@@ -403,17 +437,21 @@ fn sim_args(
         },
         ..ParseOptions::default()
     };
-    let on_progress = callback_arg(on_progress, "onProgress")?;
-    reserve_for_nc(&text, &files);
-    // The texts are freed once lexed, the blocks once run: neither is
-    // simulated, and their memory goes to the simulation.
-    let mut p = parse_files_owned(text, files, &opts, Keep::Motion)
-        .map_err(|e| JsError::new(&e.first().to_string()))?;
+    Ok((opts, cfg))
+}
+
+/// The program to simulate, read: its first error thrown, its blocks
+/// dropped, and `bytes_per_segment` reserved per segment.
+pub(super) fn sim_program(
+    read: Result<Program, NcErrors>,
+    bytes_per_segment: usize,
+) -> Result<Program, JsError> {
+    let mut p = read.map_err(|e| JsError::new(&e.first().to_string()))?;
     drop(std::mem::take(&mut p.blocks));
     if p.segments.len() <= crate::budget::MAX_TOOLPATH_SEGMENTS {
         reserve(p.segments.len() * bytes_per_segment);
     }
-    Ok((p, cfg, on_progress))
+    Ok(p)
 }
 
 /// The input of `radiusReduction` (read in [`super::args`]).

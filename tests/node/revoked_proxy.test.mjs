@@ -1,8 +1,9 @@
 // A revoked Proxy — or a Proxy whose every trap throws — in any argument
 // position of any export gives a named Error and leaks nothing. The
 // exports are enumerated from the pkg module itself (every function but
-// initSync and the default init); each has a good argument list here (a
-// new export without one fails the first test), and each position in turn
+// initSync and the default init; a class's constructor and methods, as
+// functions); each has a good argument list here (a new export without
+// one fails the first test), and each position in turn
 // gets the hostile value while the others stay good, so the position is
 // really read. 10,000 calls in all; then the wasm stack pointer must be
 // where it was (a JS exception unwinding through wasm frames skips its
@@ -61,6 +62,10 @@ const GOOD = {
   bestKffpFromTrace: ['nmv5000', { ...COND, duration: 1, kffp: { x: 60, y: 60, c: 60 } }, servoTrace, { time: 'time', timeScale: 1e-3, steadyFrom: 0 }, { method: 'analytic' }],
   checkFileSize: ['part.nc', 1000],
   checkNc: [arcs, {}],
+  'new NcStream': [1000],
+  'NcStream.push': [new TextEncoder().encode(arcs)],
+  'NcStream.checkNc': [{}],
+  'NcStream.simulateToolPathColumns': [TP, ok],
   circularDeviation: [trace],
   circularTest: [trace],
   compensateNc5: [sshape.nc, { machine: 'pocketnc-v2-10' }],
@@ -101,8 +106,33 @@ const GOOD = {
 };
 
 const exported = Object.entries(mt)
-  .filter(([name, f]) => typeof f === 'function' && name !== 'initSync' && name !== 'default')
-  .map(([name, f]) => ({ name, f }));
+  .filter(([name, f]) => typeof f === 'function' && name !== 'initSync' && name !== 'default' && !/^class\b/.test(String(f)))
+  .map(([name, f]) => ({ name, f }))
+  .concat(streamMethods());
+/** The NcStream class's constructor and methods as functions (each method
+ * on a fresh stream that has read the arcs example), so that the
+ * properties over every export cover them. */
+function streamMethods() {
+  const read = () => {
+    const s = new mt.NcStream();
+    s.push(new TextEncoder().encode(arcs));
+    return s;
+  };
+  return [
+    { name: 'new NcStream', f: (totalBytes) => new mt.NcStream(totalBytes) },
+    { name: 'NcStream.push', f: (chunk) => new mt.NcStream().push(chunk) },
+    { name: 'NcStream.checkNc', f: (options) => read().checkNc(options) },
+    { name: 'NcStream.simulateToolPathColumns', f: (config, onProgress) => read().simulateToolPathColumns(config, onProgress) },
+  ];
+}
+
+test('every class export is NcStream, and every method of it is listed above', () => {
+  const classes = Object.entries(mt).filter(([, f]) => /^class\b/.test(String(f))).map(([name]) => name);
+  assert.deepEqual(classes, ['NcStream']);
+  const methods = Object.getOwnPropertyNames(mt.NcStream.prototype).filter((m) => !['constructor', 'free', '__destroy_into_raw'].includes(m));
+  assert.deepEqual(methods.filter((m) => !exported.some(({ name }) => name === `NcStream.${m}`)), []);
+});
+
 // every (export, argument position)
 const positions = exported.flatMap(({ name, f }) => Array.from({ length: f.length }, (_, i) => ({ name, f, i })));
 

@@ -75,6 +75,10 @@ const GOOD = {
   bestKffpFromTrace: () => ['nmv5000', { ...COND, duration: 1, kffp: { x: 60, y: 60, c: 60 } }, servoTrace, { time: 'time', timeScale: 1e-3, steadyFrom: 0 }, { method: 'analytic', identify: false }],
   checkFileSize: () => ['part.nc', 1000],
   checkNc: () => [arcs, {}],
+  'new NcStream': () => [1000],
+  'NcStream.push': () => [new TextEncoder().encode(arcs)],
+  'NcStream.checkNc': () => [{}],
+  'NcStream.simulateToolPathColumns': () => [TP, () => true],
   circularDeviation: () => [trace()],
   circularTest: () => [trace()],
   compensateNc5: () => [sshape.nc, { machine: 'pocketnc-v2-10', errors: pocket.exampleErrors }],
@@ -118,8 +122,33 @@ const GOOD = {
 const goodArgs = (name) => GOOD[name]().map((a) => (typeof a === 'function' ? a : structuredClone(a)));
 
 const exported = Object.entries(mt)
-  .filter(([name, f]) => typeof f === 'function' && name !== 'initSync' && name !== 'default')
-  .map(([name, f]) => ({ name, f }));
+  .filter(([name, f]) => typeof f === 'function' && name !== 'initSync' && name !== 'default' && !/^class\b/.test(String(f)))
+  .map(([name, f]) => ({ name, f }))
+  .concat(streamMethods());
+/** The NcStream class's constructor and methods as functions (each method
+ * on a fresh stream that has read the arcs example), so that the
+ * properties over every export cover them. */
+function streamMethods() {
+  const read = () => {
+    const s = new mt.NcStream();
+    s.push(new TextEncoder().encode(arcs));
+    return s;
+  };
+  return [
+    { name: 'new NcStream', f: (totalBytes) => new mt.NcStream(totalBytes) },
+    { name: 'NcStream.push', f: (chunk) => new mt.NcStream().push(chunk) },
+    { name: 'NcStream.checkNc', f: (options) => read().checkNc(options) },
+    { name: 'NcStream.simulateToolPathColumns', f: (config, onProgress) => read().simulateToolPathColumns(config, onProgress) },
+  ];
+}
+
+test('every class export is NcStream, and every method of it is listed above', () => {
+  const classes = Object.entries(mt).filter(([, f]) => /^class\b/.test(String(f))).map(([name]) => name);
+  assert.deepEqual(classes, ['NcStream']);
+  const methods = Object.getOwnPropertyNames(mt.NcStream.prototype).filter((m) => !['constructor', 'free', '__destroy_into_raw'].includes(m));
+  assert.deepEqual(methods.filter((m) => !exported.some(({ name }) => name === `NcStream.${m}`)), []);
+});
+
 
 test('every export has a good argument list here, and it works', () => {
   assert.deepEqual(exported.filter(({ name }) => !(name in GOOD)).map(({ name }) => name), []);
