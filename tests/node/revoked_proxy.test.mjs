@@ -13,6 +13,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import * as mt from '../../pkg/mtmotion.js';
+import { exportedFunctions, testClassesListed } from './fixtures/exports.mjs';
 
 const wasm = mt.initSync({ module: readFileSync(new URL('../../pkg/mtmotion_bg.wasm', import.meta.url)) });
 
@@ -105,33 +106,8 @@ const GOOD = {
   version: [],
 };
 
-const exported = Object.entries(mt)
-  .filter(([name, f]) => typeof f === 'function' && name !== 'initSync' && name !== 'default' && !/^class\b/.test(String(f)))
-  .map(([name, f]) => ({ name, f }))
-  .concat(streamMethods());
-/** The NcStream class's constructor and methods as functions (each method
- * on a fresh stream that has read the arcs example), so that the
- * properties over every export cover them. */
-function streamMethods() {
-  const read = () => {
-    const s = new mt.NcStream();
-    s.push(new TextEncoder().encode(arcs));
-    return s;
-  };
-  return [
-    { name: 'new NcStream', f: (totalBytes) => new mt.NcStream(totalBytes) },
-    { name: 'NcStream.push', f: (chunk) => new mt.NcStream().push(chunk) },
-    { name: 'NcStream.checkNc', f: (options) => read().checkNc(options) },
-    { name: 'NcStream.simulateToolPathColumns', f: (config, onProgress) => read().simulateToolPathColumns(config, onProgress) },
-  ];
-}
-
-test('every class export is NcStream, and every method of it is listed above', () => {
-  const classes = Object.entries(mt).filter(([, f]) => /^class\b/.test(String(f))).map(([name]) => name);
-  assert.deepEqual(classes, ['NcStream']);
-  const methods = Object.getOwnPropertyNames(mt.NcStream.prototype).filter((m) => !['constructor', 'free', '__destroy_into_raw'].includes(m));
-  assert.deepEqual(methods.filter((m) => !exported.some(({ name }) => name === `NcStream.${m}`)), []);
-});
+const exported = exportedFunctions(mt, arcs);
+testClassesListed(mt, exported);
 
 // every (export, argument position)
 const positions = exported.flatMap(({ name, f }) => Array.from({ length: f.length }, (_, i) => ({ name, f, i })));
