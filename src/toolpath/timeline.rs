@@ -58,6 +58,14 @@ struct ArcGeo {
     sc0: (f64, f64),
 }
 
+impl ArcGeo {
+    /// Sine and cosine of the angle `u` seconds into the arc.
+    #[inline]
+    fn sin_cos_at(&self, u: f64) -> (f64, f64) {
+        (self.th0 + self.w * u).sin_cos()
+    }
+}
+
 /// The timed command of a whole program.
 #[derive(Debug, Clone)]
 pub struct Timeline {
@@ -328,20 +336,11 @@ impl Item {
                 ]
             }
             Geo::Arc(ref g) => {
-                let ArcGeo {
-                    c,
-                    r,
-                    th0,
-                    w,
-                    axes: (a, b, n),
-                    vn,
-                    ..
-                } = **g;
-                let (s, co) = (th0 + w * u).sin_cos();
+                let ((s, co), (a, b, n)) = (g.sin_cos_at(u), g.axes);
                 let mut p = [0.0; 3];
-                p[a] = c[a] + r * co;
-                p[b] = c[b] + r * s;
-                p[n] = self.p0[n] + vn * u;
+                p[a] = g.c[a] + g.r * co;
+                p[b] = g.c[b] + g.r * s;
+                p[n] = self.p0[n] + g.vn * u;
                 p
             }
         }
@@ -354,19 +353,11 @@ impl Item {
             Geo::Still => [0.0; 3],
             Geo::Line => self.line_velocity(),
             Geo::Arc(ref g) => {
-                let ArcGeo {
-                    r,
-                    th0,
-                    w,
-                    axes: (a, b, n),
-                    vn,
-                    ..
-                } = **g;
-                let (s, co) = (th0 + w * u).sin_cos();
+                let ((s, co), (a, b, n), rw) = (g.sin_cos_at(u), g.axes, g.r * g.w);
                 let mut v = [0.0; 3];
-                v[a] = -r * w * s;
-                v[b] = r * w * co;
-                v[n] = vn;
+                v[a] = -rw * s;
+                v[b] = rw * co;
+                v[n] = g.vn;
                 v
             }
         }
