@@ -589,27 +589,28 @@ fn pinned_cuts(program: &Program) -> Vec<bool> {
         .collect()
 }
 
-/// The written program's largest error on a cutting move sits on a
-/// `pinned` one ([`pinned_cuts`]; none when it is empty).
-fn worst_is_pinned(segments: &[Segment], pinned: &[bool], after: &Simulation) -> bool {
-    let worst = after
+/// The segment of `segments` where the written program's largest error on
+/// a cutting move sits (`after`'s statistics; `None` without one).
+fn worst_cut(segments: &[Segment], after: &Simulation) -> Option<usize> {
+    after
         .segments
         .iter()
         .filter(|st| segments.get(st.segment).is_some_and(Segment::is_cutting))
-        .max_by(|a, b| a.max_error_um.total_cmp(&b.max_error_um));
-    worst.is_some_and(|st| pinned.get(st.segment).copied().unwrap_or(false))
+        .max_by(|a, b| a.max_error_um.total_cmp(&b.max_error_um))
+        .map(|st| st.segment)
+}
+
+/// The written program's largest error on a cutting move sits on a
+/// `pinned` one ([`pinned_cuts`]; none when it is empty).
+fn worst_is_pinned(segments: &[Segment], pinned: &[bool], after: &Simulation) -> bool {
+    worst_cut(segments, after).is_some_and(|w| pinned.get(w).copied().unwrap_or(false))
 }
 
 /// The written program's largest error on a cutting move sits on a line
 /// that meets an arc tangentially, or on such an arc
 /// ([`geometry::tangent_joint`]).
 fn worst_at_tangent_line(segs: &[Segment], after: &Simulation) -> bool {
-    let worst = after
-        .segments
-        .iter()
-        .filter(|st| segs.get(st.segment).is_some_and(Segment::is_cutting))
-        .max_by(|a, b| a.max_error_um.total_cmp(&b.max_error_um));
-    let Some(w) = worst.map(|st| st.segment) else {
+    let Some(w) = worst_cut(segs, after) else {
         return false;
     };
     let line_arc = |i: usize, k: usize| {
@@ -695,27 +696,19 @@ struct Before {
     motion_time: f64,
     /// Samples kept in its series.
     kept: usize,
-    /// Maximum error per original segment, mm.
+    /// Maximum error per original segment, mm (the check judges by it,
+    /// [`try_dwells`] orders the joints by it).
     seg: Vec<f64>,
-    /// The same in µm, as [`try_dwells`] orders the joints.
-    seg_um: Vec<f64>,
 }
 
 impl Before {
     fn of(sim: &Simulation, n: usize) -> Self {
-        let mut seg_um = vec![0.0f64; n];
-        for st in &sim.segments {
-            if let Some(e) = seg_um.get_mut(st.segment) {
-                *e = e.max(st.max_error_um);
-            }
-        }
         Self {
             summary: summary(sim),
             max_error: sim.max_error,
             motion_time: sim.motion_time,
             kept: sim.t.len(),
             seg: segment_errors(n, &sim.segments),
-            seg_um,
         }
     }
 }
@@ -971,7 +964,7 @@ fn try_dwells(
     }
     // The joints with the largest original error first, as many as the
     // budget allows.
-    let seg_err = &before.seg_um;
+    let seg_err = &before.seg;
     let next_err = |i: usize| seg_err.get(i + 1).copied().unwrap_or(0.0);
     let exit = |i: usize| {
         orig.get(i + 1)
