@@ -4,17 +4,21 @@
 // checkFileSize refuses it from its size, so it is never read into the
 // page), and the page then works as before. Both a ball-bar trace and an NC
 // program are tried; no console error may appear (run.mjs fails on any).
-import { writeFileSync, mkdtempSync } from 'node:fs';
+import { writeFileSync, mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { worstDelay } from '../event-loop.mjs';
 
 const MB70 = 70 * 1024 * 1024;
+/** The temporary folders made, removed at the end (each run made 140 MB). */
+const made = [];
 
 /** A file of at least `bytes` bytes made of `line` repeated (playwright
  * takes buffers only up to 50 MB, so the file goes through a path). */
 function bigFile(name, header, line, bytes) {
-  const path = join(mkdtempSync(join(tmpdir(), 'mtmotion-huge-')), name);
+  const dir = mkdtempSync(join(tmpdir(), 'mtmotion-huge-'));
+  made.push(dir);
+  const path = join(dir, name);
   writeFileSync(path, header + line.repeat(Math.ceil(bytes / line.length)));
   return path;
 }
@@ -35,6 +39,14 @@ async function dropHuge(page, check, { tab, input, file, errorSelector, what }) 
 }
 
 export default async function (page, check) {
+  try {
+    await run(page, check);
+  } finally {
+    for (const dir of made.splice(0)) rmSync(dir, { recursive: true, force: true });
+  }
+}
+
+async function run(page, check) {
   await dropHuge(page, check, {
     tab: 'ballbar',
     input: '#panel-ballbar .drop input[type=file]:not([multiple])',

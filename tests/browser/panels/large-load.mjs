@@ -9,7 +9,7 @@
 // read and checked in the worker; the page shows its summary in the
 // CodeMirror editor (virtualised), and a warning's link far down selects
 // its line.
-import { writeFileSync, mkdtempSync } from 'node:fs';
+import { writeFileSync, mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { worstDelay } from '../event-loop.mjs';
@@ -63,6 +63,7 @@ export default async function (page, check) {
   const again = join(dirname(file), 'camotics_cameo-2.nc');
   writeFileSync(again, text);
   const second = await load(again);
+  rmSync(dirname(file), { recursive: true, force: true });
   const delay = Math.min(first.delay, second.delay);
   const longest = Math.min(first.longest, second.longest);
   const summary = (await page.textContent('#toolpath-check')) ?? '';
