@@ -22,7 +22,7 @@ pub const INLINE: usize = 15;
 /// ```
 /// use mtmotion::nc::num_text::NumText;
 /// let t = NumText::from("10.2000");
-/// assert_eq!(t, "10.2000");
+/// assert_eq!(t.as_str(), "10.2000");
 /// assert!(t.contains('.'));
 /// assert_eq!(format!("X{t}"), "X10.2000");
 /// let long = NumText::from("1234567890.12345678");
@@ -121,12 +121,6 @@ impl From<String> for NumText {
     }
 }
 
-impl From<&String> for NumText {
-    fn from(s: &String) -> Self {
-        Self::from(s.as_str())
-    }
-}
-
 impl From<NumText> for String {
     fn from(t: NumText) -> Self {
         t.as_str().to_string()
@@ -140,12 +134,6 @@ impl Deref for NumText {
     }
 }
 
-impl AsRef<str> for NumText {
-    fn as_ref(&self) -> &str {
-        self.as_str()
-    }
-}
-
 impl fmt::Display for NumText {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         fmt::Display::fmt(self.as_str(), f)
@@ -155,36 +143,6 @@ impl fmt::Display for NumText {
 impl fmt::Debug for NumText {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         fmt::Debug::fmt(self.as_str(), f)
-    }
-}
-
-impl PartialEq<str> for NumText {
-    fn eq(&self, o: &str) -> bool {
-        self.as_str() == o
-    }
-}
-
-impl PartialEq<&str> for NumText {
-    fn eq(&self, o: &&str) -> bool {
-        self.as_str() == *o
-    }
-}
-
-impl PartialEq<String> for NumText {
-    fn eq(&self, o: &String) -> bool {
-        self.as_str() == o.as_str()
-    }
-}
-
-impl PartialEq<NumText> for &str {
-    fn eq(&self, o: &NumText) -> bool {
-        *self == o.as_str()
-    }
-}
-
-impl PartialEq<NumText> for String {
-    fn eq(&self, o: &NumText) -> bool {
-        self.as_str() == o.as_str()
     }
 }
 
@@ -208,7 +166,7 @@ mod tests {
             assert_eq!(String::from(a.clone()), s);
             assert_eq!(format!("{a}|{a:?}"), format!("{s}|{s:?}"));
         }
-        assert_eq!(NumText::default(), "");
+        assert_eq!(NumText::default().as_str(), "");
         assert_ne!(NumText::from("1.0"), NumText::from("1.00"));
         // Non-ASCII text (never a number, but the type takes any str).
         assert_eq!(NumText::from("µm").as_str(), "µm");
