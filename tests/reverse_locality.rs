@@ -134,6 +134,45 @@ fn edited(orig: &[Segment], every: usize) -> (Vec<Segment>, Vec<usize>, Vec<bool
     (cmd, at, changed)
 }
 
+/// The windowed statistics of `cmd` (pieces `at`, `changed`, at most
+/// `max_core` segments a core) brought from those of the unedited
+/// program, as a correction round has them; the window samples spent and
+/// the unedited program's statistics.
+fn windowed(
+    orig: &[Segment],
+    (cmd, at): (&[Segment], &[usize]),
+    (changed, max_core): (&[bool], usize),
+    cfg: &SimConfig,
+) -> (Windowed, u64, Vec<Option<mtmotion::toolpath::SegmentStats>>) {
+    let (base, base_at) = rebuild_indexed(orig, &identity(orig, vec![0.0; orig.len()]));
+    let mut stats = vec![None; orig.len()];
+    for st in simulate_stats(&base, orig, cfg).unwrap().segments {
+        let i = st.segment;
+        stats[i] = Some(st);
+    }
+    let mut w = Windowed {
+        stats: stats.clone(),
+        starts: Some(piece_starts(&base, &base_at, cfg).unwrap()),
+    };
+    let path = Path::new(orig);
+    let mut samples = 0u64;
+    let done = update_capped(
+        cmd,
+        at,
+        (&path, orig),
+        (changed, max_core),
+        &mut w,
+        cfg,
+        &mut |s| {
+            samples += s;
+            true
+        },
+    )
+    .unwrap();
+    assert!(done);
+    (w, samples, stats)
+}
+
 /// The windowed statistics of the edited program, brought from those of
 /// the unedited one, against the whole-program simulation of the edited
 /// program: every cutting segment within 0.1 µm (maximum error, samples,
@@ -162,34 +201,7 @@ fn compare_capped(
     assert!(windows.iter().all(|w| w.core.len() <= max_core));
     // Cores in order, never overlapping.
     assert!(windows.windows(2).all(|p| p[0].core.end <= p[1].core.start));
-    // The unedited program's statistics, as a correction round has them.
-    let (base, base_at) = rebuild_indexed(orig, &identity(orig, vec![0.0; orig.len()]));
-    let before = simulate_stats(&base, orig, &cfg).unwrap();
-    let mut stats = vec![None; orig.len()];
-    for st in before.segments {
-        let i = st.segment;
-        stats[i] = Some(st);
-    }
-    let mut w = Windowed {
-        stats,
-        starts: Some(piece_starts(&base, &base_at, &cfg).unwrap()),
-    };
-    let path = Path::new(orig);
-    let mut samples = 0u64;
-    let done = update_capped(
-        &cmd,
-        &at,
-        (&path, orig),
-        (&changed, max_core),
-        &mut w,
-        &cfg,
-        &mut |s| {
-            samples += s;
-            true
-        },
-    )
-    .unwrap();
-    assert!(done);
+    let (w, samples, _) = windowed(orig, (&cmd, &at), (&changed, max_core), &cfg);
     let mut compared = 0;
     let mut worst: f64 = 0.0;
     for ws in &whole.segments {
@@ -442,14 +454,14 @@ fn cam_rounds() -> (
     (text, p, cfg, sim, r.edit, local.by_seg)
 }
 
-/// Per cutting segment, the largest difference of `windowed` from
-/// `whole`'s maximum error (µm) and its line, the windowed maximum over
-/// the program (µm) and the segments compared.
-fn against(
+/// Asserts that `windowed` equals `whole` (of `what`) per cutting
+/// segment and over the program within 0.1 µm; `sim` is the original's.
+fn assert_within(
     orig: &[Segment],
     windowed: &[Option<mtmotion::toolpath::SegmentStats>],
-    whole: &mtmotion::toolpath::Simulation,
-) -> (f64, usize, f64, usize) {
+    (whole, what): (&mtmotion::toolpath::Simulation, &str),
+    sim: &mtmotion::toolpath::Simulation,
+) {
     let (mut worst, mut at): (f64, usize) = (0.0, 0);
     let mut windowed_max: f64 = 0.0;
     let mut n = 0;
@@ -466,7 +478,14 @@ fn against(
         windowed_max = windowed_max.max(w.max_error_um);
         n += 1;
     }
-    (worst, at, windowed_max, n)
+    eprintln!(
+        "{n} segments: windowed {windowed_max:.4} µm, {what} {:.4} µm (original {:.4} µm), worst segment difference {worst:.2e} µm (line {at})",
+        whole.max_error * 1e3,
+        sim.max_error * 1e3
+    );
+    assert!(n > 19_000 && whole.max_error < 0.6 * sim.max_error);
+    assert!((windowed_max - whole.max_error * 1e3).abs() <= 0.1);
+    assert!(worst <= 0.1, "{worst} µm at line {at}");
 }
 
 /// The correction rounds' windowed statistics of their final edit equal
@@ -485,15 +504,7 @@ fn windowed_rounds_equal_a_whole_simulation_of_their_command() {
     let (_, p, cfg, sim, edit, windowed) = cam_rounds();
     let orig = &p.segments;
     let whole = simulate(&rebuild(orig, &edit), orig, &cfg).unwrap();
-    let (worst, at, windowed_max, n) = against(orig, &windowed, &whole);
-    eprintln!(
-        "{n} segments: windowed {windowed_max:.4} µm, whole simulation {:.4} µm (original {:.4} µm), worst segment difference {worst:.2e} µm (line {at})",
-        whole.max_error * 1e3,
-        sim.max_error * 1e3
-    );
-    assert!(n > 19_000 && whole.max_error < 0.6 * sim.max_error);
-    assert!((windowed_max - whole.max_error * 1e3).abs() <= 0.1);
-    assert!(worst <= 0.1, "{worst} µm at line {at}");
+    assert_within(orig, &windowed, (&whole, "whole simulation"), &sim);
 }
 
 /// The correction rounds' windowed prediction of their final program
@@ -522,15 +533,7 @@ fn windowed_rounds_predict_the_written_program_within_a_tenth_of_a_micron() {
     let written = write_source(&text, &p, &rebuild(orig, &edit));
     let back = parse(&written).unwrap().segments;
     let whole = simulate(&back, orig, &cfg).unwrap();
-    let (worst, at, windowed_max, n) = against(orig, &windowed, &whole);
-    eprintln!(
-        "{n} segments: windowed {windowed_max:.4} µm, whole re-simulation {:.4} µm (original {:.4} µm), worst segment difference {worst:.2e} µm (line {at})",
-        whole.max_error * 1e3,
-        sim.max_error * 1e3
-    );
-    assert!(n > 19_000 && whole.max_error < 0.6 * sim.max_error);
-    assert!((windowed_max - whole.max_error * 1e3).abs() <= 0.1);
-    assert!(worst <= 0.1, "{worst} µm at line {at}");
+    assert_within(orig, &windowed, (&whole, "whole re-simulation"), &sim);
 }
 
 /// A sample from far in time comes nearest to a segment that no window
@@ -551,14 +554,6 @@ fn a_later_pass_nearest_to_an_earlier_segment_is_counted_for_it() {
     let cfg = cfg();
     let diagonal = orig.iter().position(|s| s.line == 4).expect("the diagonal");
     let corner = orig.iter().position(|s| s.line == 8).expect("the corner");
-    let (base, base_at) = rebuild_indexed(orig, &identity(orig, vec![0.0; orig.len()]));
-    let before = simulate_stats(&base, orig, &cfg).unwrap();
-    let diag_before = before
-        .segments
-        .iter()
-        .find(|s| s.segment == diagonal)
-        .unwrap()
-        .clone();
     let mut e = identity(orig, vec![0.0; orig.len()]);
     e.vertex_shift[corner] = [0.05, -0.03, 0.0];
     let (cmd, at) = rebuild_indexed(orig, &e);
@@ -570,26 +565,8 @@ fn a_later_pass_nearest_to_an_earlier_segment_is_counted_for_it() {
         windows.iter().all(|w| !w.core.contains(&diagonal)),
         "{windows:?}"
     );
-    let mut stats = vec![None; orig.len()];
-    for st in before.segments {
-        let i = st.segment;
-        stats[i] = Some(st);
-    }
-    let mut w = Windowed {
-        stats,
-        starts: Some(piece_starts(&base, &base_at, &cfg).unwrap()),
-    };
-    let path = Path::new(orig);
-    assert!(update_capped(
-        &cmd,
-        &at,
-        (&path, orig),
-        (&changed, MAX_CORE),
-        &mut w,
-        &cfg,
-        &mut |_| true
-    )
-    .unwrap());
+    let (w, _, before) = windowed(orig, (&cmd, &at), (&changed, MAX_CORE), &cfg);
+    let diag_before = before[diagonal].as_ref().unwrap().clone();
     let whole = simulate_stats(&cmd, orig, &cfg).unwrap();
     let got = w.stats[diagonal].as_ref().unwrap();
     let want = whole
