@@ -66,13 +66,21 @@ const CAM: &[(&str, f64)] = &[
 /// (1789.8 µm, its `F100100.` feeds), Gates's written error did not fall
 /// (264.5 µm kept). With ties of the nearest-point search broken towards
 /// the commanded point: Haas 0.030, Pasta 0.630 (24 of 24 regions), Gates
-/// 0.880 (20 of 21), the R-word test 0.021.
+/// 0.880 (20 of 21), the R-word test 0.021. With the rounds' windowed
+/// statistics exact (`toolpath::locality`: samples of one pass nearest to
+/// another pass's segments count for those), Gates is unchanged again
+/// (264.47 -> 264.44 µm): its contours are cut at several depths, so a
+/// chunk's error holds samples of other depths' chunks, and the chunks'
+/// best rounds, taken from different rounds, no longer combine (at dt
+/// 2 ms the combination measured 255.9 µm where the chunks' best were
+/// 216.3 µm); the windows had counted only each chunk's own time, which
+/// made the chunks look independent.
 const ADDED: &[(&str, f64)] = &[
     ("gcws_FANUC0M.nc", 0.004),
     ("gcws_HAAS.nc", 0.030),
     ("linuxcnc_Pasta.ngc", 0.630),
     ("linuxcnc_rgh.ngc", 1.0),
-    ("ugs_Gates_combined_R12.nc", 0.880),
+    ("ugs_Gates_combined_R12.nc", 1.0),
     ("ugs_arc_rword_test.gcode", 0.021),
     ("ugs_no_spaces.gcode", 0.003),
 ];
@@ -293,7 +301,14 @@ fn every_simulating_corpus_program_is_never_worse_median_pinned() {
 /// the nearest-point search went to the commanded pass, unchanged after).
 /// Now the checked program with the lowest maximum error is returned when
 /// it is below the original's (measured 153.4 -> 7.0 µm, ×0.045, +4.4 %
-/// time), and every region whose own error rose says so.
+/// time), and every region whose own error rose says so. With the rounds'
+/// windowed statistics exact (`toolpath::locality`: a pass's samples
+/// nearest to the next pass count for it), 153.4 -> 33.9 µm (×0.221,
+/// +3.7 %): each run of rounds predicts its own command exactly (the
+/// last 12.3 µm), but the edit checked combines regions from different
+/// runs, and where the passes lie within the error of each other the
+/// combination is not what the runs measured (its command 37.1 µm, as
+/// written 35.2 µm).
 #[test]
 #[ignore = "seconds in a release build: run with --release -- --ignored"]
 fn an_unsettled_check_returns_its_best_checked_program() {
@@ -306,7 +321,7 @@ fn an_unsettled_check_returns_its_best_checked_program() {
     let c = reverse_compensate(&text, &cfg).unwrap();
     assert!(c.expanded, "{:?}", c.expand_note);
     let r = c.after.max_error_um / c.before.max_error_um;
-    assert!(r <= 0.05, "ratio {r:.3}, measured 0.045");
+    assert!(r <= 0.225, "ratio {r:.3}, measured 0.221");
     assert!(c.after.motion_time <= c.before.motion_time * (1.0 + cfg.time_budget) + cfg.sim.dt);
     let rose = |n: &&mtmotion::compensate::reverse::RegionNote| n.after_um > n.before_um + 0.1;
     assert!(c.regions.iter().any(|n| rose(&n)), "{:?}", c.regions);

@@ -3,10 +3,13 @@
 //! team-written programs with many corners — a raster without rapids
 //! (one region, cut into chunks) and a pocket with rapids between its
 //! contours, both asymmetric (pass lengths, step-overs, feeds and an arc
-//! vary) — the windows' per-segment statistics of an edited program equal
-//! a whole-program simulation of the same edited program within 0.1 µm
-//! (maximum error and mean deviation per segment), a window's cost does
-//! not grow with the program's length, and the compensated program's
+//! vary) — the windowed per-segment statistics of an edited program,
+//! brought from the unedited one's, equal a whole-program simulation of
+//! the same edited program within 0.1 µm (maximum error, samples and mean
+//! deviation of every cutting segment), as do the correction rounds'
+//! statistics of their final command on a CAM-like program whose error
+//! exceeds its row spacing; the windows around one changed place do not
+//! grow with the program's length, and the compensated program's
 //! reported after-error equals a whole-program re-simulation of the
 //! written program against the original path within 0.1 µm.
 
@@ -16,7 +19,9 @@ use mtmotion::compensate::reverse::{reverse_compensate, ReverseConfig};
 use mtmotion::nc::patch::write_source;
 use mtmotion::nc::program::{parse, Motion, Segment};
 use mtmotion::toolpath::contour::Path;
-use mtmotion::toolpath::locality::{plan, plan_capped, simulate_window, MAX_CORE};
+use mtmotion::toolpath::locality::{
+    piece_starts, plan, plan_capped, update_capped, Windowed, MAX_CORE,
+};
 use mtmotion::toolpath::{simulate, simulate_stats, Lag, SimConfig};
 
 /// A zigzag raster of `passes` passes in one cut (no rapid after the
@@ -129,17 +134,58 @@ fn edited(orig: &[Segment], every: usize) -> (Vec<Segment>, Vec<usize>, Vec<bool
     (cmd, at, changed)
 }
 
-/// Windows of the edited program against the whole-program simulation:
-/// per core segment within 0.1 µm; returns (window samples, whole samples,
-/// segments compared, largest difference µm).
+/// The windowed statistics of `cmd` (pieces `at`, `changed`, at most
+/// `max_core` segments a core) brought from those of the unedited
+/// program, as a correction round has them; the window samples spent and
+/// the unedited program's statistics.
+fn windowed(
+    orig: &[Segment],
+    (cmd, at): (&[Segment], &[usize]),
+    (changed, max_core): (&[bool], usize),
+    cfg: &SimConfig,
+) -> (Windowed, u64, Vec<Option<mtmotion::toolpath::SegmentStats>>) {
+    let (base, base_at) = rebuild_indexed(orig, &identity(orig, vec![0.0; orig.len()]));
+    let mut stats = vec![None; orig.len()];
+    for st in simulate_stats(&base, orig, cfg).unwrap().segments {
+        let i = st.segment;
+        stats[i] = Some(st);
+    }
+    let mut w = Windowed {
+        stats: stats.clone(),
+        starts: Some(piece_starts(&base, &base_at, cfg).unwrap()),
+    };
+    let path = Path::new(orig);
+    let mut samples = 0u64;
+    let done = update_capped(
+        cmd,
+        at,
+        (&path, orig),
+        (changed, max_core),
+        &mut w,
+        cfg,
+        &mut |s| {
+            samples += s;
+            true
+        },
+    )
+    .unwrap();
+    assert!(done);
+    (w, samples, stats)
+}
+
+/// The windowed statistics of the edited program, brought from those of
+/// the unedited one, against the whole-program simulation of the edited
+/// program: every cutting segment within 0.1 µm (maximum error, samples,
+/// mean deviation); returns (window samples, whole samples, segments
+/// compared, largest difference µm).
 fn compare(text: &str, every: usize) -> (usize, usize, usize, f64) {
     let ((samples, whole, compared, worst), windows) = compare_capped(text, every, MAX_CORE);
-    assert!(windows > 1 && samples < whole, "{samples} of {whole}");
+    assert!(windows > 1, "{windows}");
     (samples, whole, compared, worst)
 }
 
 /// As [`compare`] with at most `max_core` segments in a window's core;
-/// also the number of windows.
+/// also the number of windows of the changes alone.
 fn compare_capped(
     text: &str,
     every: usize,
@@ -155,49 +201,37 @@ fn compare_capped(
     assert!(windows.iter().all(|w| w.core.len() <= max_core));
     // Cores in order, never overlapping.
     assert!(windows.windows(2).all(|p| p[0].core.end <= p[1].core.start));
-    let path = Path::new(orig);
+    let (w, samples, _) = windowed(orig, (&cmd, &at), (&changed, max_core), &cfg);
     let mut compared = 0;
     let mut worst: f64 = 0.0;
-    let mut covered = vec![false; orig.len()];
-    for w in &windows {
-        for st in simulate_window(&cmd, (&path, orig), w, &cfg) {
-            covered[st.segment] = true;
-            // A rapid's statistics enter neither the maximum error nor a
-            // correction; where a retract runs back along its plunge, the
-            // samples of the two coincide and go to either.
-            if !orig[st.segment].is_cutting() {
-                continue;
-            }
-            let ws = whole
-                .segments
-                .iter()
-                .find(|x| x.segment == st.segment)
-                .unwrap();
-            let d = (st.max_error_um - ws.max_error_um).abs();
-            worst = worst.max(d);
-            assert!(
-                d < 0.1,
-                "segment {} (line {}): window {} µm, whole {} µm",
-                st.segment,
-                st.line,
-                st.max_error_um,
-                ws.max_error_um
-            );
-            assert_eq!(st.samples, ws.samples, "segment {}", st.segment);
-            if let (Some(a), Some(b)) = (st.mean_deviation, ws.mean_deviation) {
-                assert!((a - b).abs() < 1e-4, "segment {}: {a} vs {b}", st.segment);
-            }
-            compared += 1;
+    for ws in &whole.segments {
+        // A rapid's statistics enter neither the maximum error nor a
+        // correction; where a retract runs back along its plunge, the
+        // samples of the two coincide and go to either.
+        if !orig[ws.segment].is_cutting() {
+            continue;
         }
-    }
-    // Every changed segment with a length is in a window's core.
-    for (i, s) in orig.iter().enumerate() {
-        if changed[i] && s.length() > 0.0 {
-            assert!(covered[i], "changed segment {i} not re-simulated");
+        let st = w.stats[ws.segment].as_ref().unwrap();
+        let d = (st.max_error_um - ws.max_error_um).abs();
+        worst = worst.max(d);
+        assert!(
+            d < 0.1,
+            "segment {} (line {}): window {} µm, whole {} µm",
+            st.segment,
+            st.line,
+            st.max_error_um,
+            ws.max_error_um
+        );
+        assert_eq!(st.samples, ws.samples, "segment {}", st.segment);
+        if let (Some(a), Some(b)) = (st.mean_deviation, ws.mean_deviation) {
+            assert!((a - b).abs() < 1e-4, "segment {}: {a} vs {b}", st.segment);
         }
+        compared += 1;
     }
-    let samples = windows.iter().map(|w| w.samples).sum();
-    ((samples, whole.samples, compared, worst), windows.len())
+    (
+        (samples as usize, whole.samples, compared, worst),
+        windows.len(),
+    )
 }
 
 /// A stretch of changes longer than a window's core is cut into windows
@@ -232,7 +266,10 @@ fn windows_equal_the_whole_program_on_a_pocket_with_rapids() {
 }
 
 /// One changed vertex costs the same window in a raster of 10 passes as
-/// in one of 60: the cost grows with the corrected places, not the length.
+/// in one of 60: the windows of the changes grow with the corrected
+/// places, not the length. (A correction round also re-simulates the
+/// pieces whose start time the change moved, to the program's end:
+/// `locality::update`.)
 #[test]
 fn a_windows_cost_does_not_grow_with_the_program() {
     let cost = |passes: usize| {
@@ -382,29 +419,18 @@ fn cam_program(lines: usize) -> String {
     out.join("\n") + "\n"
 }
 
-/// The correction rounds' windowed prediction of their final program
-/// equals a whole-program re-simulation of that program as written
-/// (rebuilt, written into the text with its four decimals, read back)
-/// against the original path: per segment and over the program within
-/// 0.1 µm, on a generated 20,000-line CAM-like program (issue 27's
-/// program at 1/50 of its size, tA 40 ms, T 15 ms, dt 2 ms, one region
-/// without rapids: every round's windows cover the whole program, cut at
-/// the core cap).
-///
-/// NOT MET today, so ignored (run it with `--ignored`): 382.46 µm
-/// windowed against 382.27 µm re-simulated over the program, up to
-/// 12.6 µm apart on one segment (line 7518), 7.2 µm on the last chord
-/// before an end arc (line 10024), 0.2–0.4 µm on many segments of 2
-/// samples. Where the contour error (up to
-/// 0.7 mm) exceeds the row spacing (0.4 mm), samples of a neighbouring
-/// row or of the arc come nearest to a segment, which a window does not
-/// see (`toolpath::locality`, module header), and segments of two
-/// samples change their maximum with a sample's assignment. The same
-/// numbers before this issue's memory changes.
-#[test]
-#[ignore = "issue 27: the windowed prediction is not within 0.1 µm on this program (see the doc)"]
-fn windowed_rounds_predict_the_written_program_within_a_tenth_of_a_micron() {
-    use mtmotion::compensate::reverse::geometry::rebuild;
+/// The rounds of a 20,000-line CAM-like program (issue 27's program at
+/// 1/50 of its size, tA 40 ms, T 15 ms, dt 2 ms, one region without
+/// rapids), and the windowed statistics of their final edit brought from
+/// the original's (what a round computes).
+fn cam_rounds() -> (
+    String,
+    mtmotion::nc::program::Program,
+    SimConfig,
+    mtmotion::toolpath::Simulation,
+    mtmotion::compensate::reverse::geometry::Edit,
+    Vec<Option<mtmotion::toolpath::SegmentStats>>,
+) {
     use mtmotion::compensate::reverse::region::regions;
     use mtmotion::compensate::reverse::rounds::{run, LocalStats, Work};
     let text = cam_program(20_000);
@@ -423,13 +449,19 @@ fn windowed_rounds_predict_the_written_program_within_a_tenth_of_a_micron() {
     let rg = regions(&p);
     let start = identity(orig, vec![0.0; orig.len()]);
     let r = run(orig, &rg, (&cfg, 0.5), 6, start, &mut work).unwrap();
-    // The windowed statistics of the rounds' final edit, from the
-    // original's (what a round computes).
     let mut local = LocalStats::new(orig, &work);
     assert!(local.update(orig, &cfg, &r.edit, &mut work).unwrap());
-    let written = write_source(&text, &p, &rebuild(orig, &r.edit));
-    let back = parse(&written).unwrap().segments;
-    let whole = simulate(&back, orig, &cfg).unwrap();
+    (text, p, cfg, sim, r.edit, local.by_seg)
+}
+
+/// Asserts that `windowed` equals `whole` (of `what`) per cutting
+/// segment and over the program within 0.1 µm; `sim` is the original's.
+fn assert_within(
+    orig: &[Segment],
+    windowed: &[Option<mtmotion::toolpath::SegmentStats>],
+    (whole, what): (&mtmotion::toolpath::Simulation, &str),
+    sim: &mtmotion::toolpath::Simulation,
+) {
     let (mut worst, mut at): (f64, usize) = (0.0, 0);
     let mut windowed_max: f64 = 0.0;
     let mut n = 0;
@@ -437,7 +469,7 @@ fn windowed_rounds_predict_the_written_program_within_a_tenth_of_a_micron() {
         if !orig[st.segment].is_cutting() {
             continue;
         }
-        let w = local.by_seg[st.segment].as_ref().unwrap();
+        let w = windowed[st.segment].as_ref().unwrap();
         let d = (w.max_error_um - st.max_error_um).abs();
         if d > worst {
             worst = d;
@@ -447,11 +479,129 @@ fn windowed_rounds_predict_the_written_program_within_a_tenth_of_a_micron() {
         n += 1;
     }
     eprintln!(
-        "{n} segments: windowed {windowed_max:.4} µm, whole re-simulation {:.4} µm (original {:.4} µm), worst segment difference {worst:.2e} µm (line {at})",
+        "{n} segments: windowed {windowed_max:.4} µm, {what} {:.4} µm (original {:.4} µm), worst segment difference {worst:.2e} µm (line {at})",
         whole.max_error * 1e3,
         sim.max_error * 1e3
     );
     assert!(n > 19_000 && whole.max_error < 0.6 * sim.max_error);
     assert!((windowed_max - whole.max_error * 1e3).abs() <= 0.1);
     assert!(worst <= 0.1, "{worst} µm at line {at}");
+}
+
+/// The correction rounds' windowed statistics of their final edit equal
+/// a whole-program simulation of the same command (the edit rebuilt)
+/// against the original path: per cutting segment and over the program
+/// within 0.1 µm, on the 20,000-line CAM-like program, where the contour
+/// error (up to 0.7 mm) exceeds the row spacing (0.4 mm), so samples of a
+/// neighbouring row or of an end arc come nearest to a segment, and where
+/// the rounds change segment durations (every later sample moves on the
+/// program's grid). Before the windows measured by source and the moved
+/// pieces were re-simulated (`toolpath::locality`), 11.1 µm apart on one
+/// segment (line 12535).
+#[test]
+fn windowed_rounds_equal_a_whole_simulation_of_their_command() {
+    use mtmotion::compensate::reverse::geometry::rebuild;
+    let (_, p, cfg, sim, edit, windowed) = cam_rounds();
+    let orig = &p.segments;
+    let whole = simulate(&rebuild(orig, &edit), orig, &cfg).unwrap();
+    assert_within(orig, &windowed, (&whole, "whole simulation"), &sim);
+}
+
+/// The correction rounds' windowed prediction of their final program
+/// equals a whole-program re-simulation of that program as written
+/// (rebuilt, written into the text with its four decimals, read back)
+/// against the original path: per segment and over the program within
+/// 0.1 µm, on the 20,000-line CAM-like program ([`cam_rounds`]).
+///
+/// NOT MET today, so ignored (run it with `--ignored`): 281.59 µm
+/// windowed against 281.86 µm re-simulated over the program, up to
+/// 0.27 µm apart on one segment (line 19995), 7 segments over 0.1 µm. The
+/// windows are exact against the command they simulate
+/// ([`windowed_rounds_equal_a_whole_simulation_of_their_command`]); the
+/// written program is not that command: its four decimals move end points
+/// by up to 0.05 µm, which changes the segments' durations, so the
+/// written program ends 3.8 µs earlier and its later samples fall
+/// elsewhere on the grid, where the error at the program's sharpest Z
+/// reversal (line 19995) changes by about 0.1 µm per µs. (Before the
+/// windows were exact: 382.46 against 382.27 µm, up to 12.6 µm apart.)
+#[test]
+#[ignore = "issue 27: the written program's rounding is not simulated by the rounds (see the doc)"]
+fn windowed_rounds_predict_the_written_program_within_a_tenth_of_a_micron() {
+    use mtmotion::compensate::reverse::geometry::rebuild;
+    let (text, p, cfg, sim, edit, windowed) = cam_rounds();
+    let orig = &p.segments;
+    let written = write_source(&text, &p, &rebuild(orig, &edit));
+    let back = parse(&written).unwrap().segments;
+    let whole = simulate(&back, orig, &cfg).unwrap();
+    assert_within(orig, &windowed, (&whole, "whole re-simulation"), &sim);
+}
+
+/// A sample from far in time comes nearest to a segment that no window
+/// around the change holds: a short diagonal cut first, inside the corner
+/// that a later pass turns 2 s afterwards, whose rounding at F3000 passes
+/// nearer to the diagonal than to its own path (measured: the diagonal's
+/// samples span 0.397–2.377 s, its maximum 184.9 µm before the edit,
+/// 197.4 µm after). Moving that corner's vertex re-simulates the corner's
+/// pieces only, yet changes the diagonal's statistics: they still equal
+/// the whole program's (2·10⁻¹¹ µm), which keeping the diagonal's earlier
+/// statistics would miss by 12.6 µm.
+#[test]
+fn a_later_pass_nearest_to_an_earlier_segment_is_counted_for_it() {
+    let text = "G21 G90 G17\nG0 X10.2 Y0.5 Z1\nG1 Z0 F600\nG1 X11.2 Y1.5 F3000\n\
+                G1 X40 Y1.5\nG1 X40 Y20\nG1 X10 Y20\nG1 X10 Y0.3\nG1 X30 Y0.3\nG0 Z5\n";
+    let p = parse(text).unwrap();
+    let orig = &p.segments;
+    let cfg = cfg();
+    let diagonal = orig.iter().position(|s| s.line == 4).expect("the diagonal");
+    let corner = orig.iter().position(|s| s.line == 8).expect("the corner");
+    let mut e = identity(orig, vec![0.0; orig.len()]);
+    e.vertex_shift[corner] = [0.05, -0.03, 0.0];
+    let (cmd, at) = rebuild_indexed(orig, &e);
+    let changed: Vec<bool> = (0..orig.len())
+        .map(|i| i == corner || i == corner + 1)
+        .collect();
+    let windows = plan(&cmd, &at, &changed, &cfg).unwrap();
+    assert!(
+        windows.iter().all(|w| !w.core.contains(&diagonal)),
+        "{windows:?}"
+    );
+    let (w, _, before) = windowed(orig, (&cmd, &at), (&changed, MAX_CORE), &cfg);
+    let diag_before = before[diagonal].as_ref().unwrap().clone();
+    let whole = simulate_stats(&cmd, orig, &cfg).unwrap();
+    let got = w.stats[diagonal].as_ref().unwrap();
+    let want = whole
+        .segments
+        .iter()
+        .find(|s| s.segment == diagonal)
+        .unwrap();
+    eprintln!(
+        "diagonal: before {} µm ({} samples), windowed {} µm ({}), whole {} µm ({})",
+        diag_before.max_error_um,
+        diag_before.samples,
+        got.max_error_um,
+        got.samples,
+        want.max_error_um,
+        want.samples
+    );
+    eprintln!(
+        "spans {:?} -> {:?}, mean {:?} -> {:?}, halves {:?} -> {:?}",
+        diag_before.sample_span,
+        want.sample_span,
+        diag_before.mean_deviation,
+        want.mean_deviation,
+        diag_before.half_max,
+        want.half_max
+    );
+    // The corner's samples reach the diagonal, and the change shows there.
+    assert!((diag_before.max_error_um - want.max_error_um).abs() > 1.0);
+    assert!((got.max_error_um - want.max_error_um).abs() < 0.1);
+    assert_eq!(got.samples, want.samples);
+    for ws in &whole.segments {
+        let st = w.stats[ws.segment].as_ref().unwrap();
+        assert!(
+            (st.max_error_um - ws.max_error_um).abs() < 0.1 && st.samples == ws.samples,
+            "segment {}: {st:?} vs {ws:?}",
+            ws.segment
+        );
+    }
 }

@@ -66,15 +66,23 @@ pub struct SegmentStats {
     pub half_max: [f64; 2],
     /// Number of samples nearest to this segment.
     pub samples: usize,
+    /// The first and the last of those samples, as indices `k` of the
+    /// whole program's grid `k·dt` (`[0, 0]` with none): where in time a
+    /// windowed re-simulation finds them ([`super::locality`]). Not
+    /// serialised (as `half_deviation`).
+    #[serde(skip)]
+    pub sample_span: [u32; 2],
 }
 
 /// Running statistics of one reference element.
 #[derive(Debug, Clone, Copy, Default)]
-struct Acc {
+pub(super) struct Acc {
     samples: usize,
     max_error: f64,
     sum_dev: f64,
     n_dev: usize,
+    /// The first and the last sample's index on the program's grid.
+    span: [u32; 2],
 }
 
 /// Running statistics of one reference element over the first and the
@@ -82,7 +90,7 @@ struct Acc {
 /// ([`SegmentStats::half_deviation`], `half_vector`, `half_max`), not
 /// gathered for [`simulate_columns`] (112 B per element).
 #[derive(Debug, Clone, Copy, Default)]
-struct Halves {
+pub(super) struct Halves {
     /// Sum and count of the normal deviation over each half.
     half: [f64; 4],
     /// Sum of `near − simulated` per half and axis, and the count per half.
@@ -532,6 +540,12 @@ struct Run {
     /// The same over each half of the element, when gathered (else empty).
     halves: Vec<Halves>,
     base: usize,
+    /// A window's statistics of the elements outside `base..base +
+    /// acc.len()` that its samples come nearest to (with the halves), when
+    /// gathered ([`measure_window`]); else such samples are not counted.
+    far: Option<std::collections::HashMap<usize, (Acc, Halves)>>,
+    /// Index on the program's grid of this run's sample 0.
+    offset: usize,
     /// Largest contour error on cutting moves, mm, its sample and element.
     max_error: f64,
     max_k: usize,
@@ -577,6 +591,8 @@ impl Run {
             acc: vec![Acc::default(); elements.len()],
             halves: vec![Halves::default(); if halves { elements.len() } else { 0 }],
             base: elements.start,
+            far: None,
+            offset: 0,
             max_error: 0.0,
             max_k: 0,
             max_el: 0,
@@ -603,19 +619,28 @@ impl Run {
             return;
         };
         let e = nr.element;
-        let i = e.checked_sub(self.base);
-        let slot = i.and_then(|i| self.acc.get_mut(i));
-        let (Some(a), Some(el)) = (slot, path.elements.get(e)) else {
+        let Some(el) = path.elements.get(e) else {
             return;
         };
-        if let Some(series) = &mut self.series {
-            // At most `MAX_TOOLPATH_SEGMENTS` segments (`check_segments`),
-            // far below `u32::MAX`.
-            series.offer(k, s, &nr, u32::try_from(el.segment).unwrap_or(u32::MAX));
-        }
-        a.add(&nr);
-        if let Some(h) = i.and_then(|i| self.halves.get_mut(i)) {
+        // At most `MAX_SAMPLES` samples, below `u32::MAX`.
+        let g = u32::try_from(self.offset + k).unwrap_or(u32::MAX);
+        let i = e.checked_sub(self.base).filter(|&i| i < self.acc.len());
+        if let Some(i) = i {
+            if let Some(series) = &mut self.series {
+                // At most `MAX_TOOLPATH_SEGMENTS` segments
+                // (`check_segments`), far below `u32::MAX`.
+                series.offer(k, s, &nr, u32::try_from(el.segment).unwrap_or(u32::MAX));
+            }
+            self.acc[i].add(&nr, g);
+            if let Some(h) = self.halves.get_mut(i) {
+                h.add(el, &nr, q);
+            }
+        } else if let Some(far) = &mut self.far {
+            let (a, h) = far.entry(e).or_default();
+            a.add(&nr, g);
             h.add(el, &nr, q);
+        } else {
+            return;
         }
         if !el.rapid && nr.dist > self.max_error {
             self.max_error = nr.dist;
@@ -683,9 +708,14 @@ fn d3(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 impl Acc {
-    /// Adds a sample whose nearest point is `nr`.
+    /// Adds sample `g` (its index on the program's grid), whose nearest
+    /// point is `nr`.
     #[inline]
-    fn add(&mut self, nr: &Nearest) {
+    fn add(&mut self, nr: &Nearest, g: u32) {
+        if self.samples == 0 {
+            self.span[0] = g;
+        }
+        self.span[1] = g;
         self.samples += 1;
         if nr.dist > self.max_error {
             self.max_error = nr.dist;
@@ -694,6 +724,23 @@ impl Acc {
             self.sum_dev += nr.normal;
             self.n_dev += 1;
         }
+    }
+
+    /// The statistics of `self`'s samples and `o`'s together (`o`'s come
+    /// after `self`'s when both have some).
+    pub(super) fn merge(&mut self, o: &Acc) {
+        if o.samples == 0 {
+            return;
+        }
+        if self.samples == 0 {
+            *self = *o;
+            return;
+        }
+        self.samples += o.samples;
+        self.max_error = self.max_error.max(o.max_error);
+        self.sum_dev += o.sum_dev;
+        self.n_dev += o.n_dev;
+        self.span = [self.span[0].min(o.span[0]), self.span[1].max(o.span[1])];
     }
 
     /// The mean normal deviation, mm (`None` with no sample that has one).
@@ -723,11 +770,25 @@ impl Acc {
             }),
             half_max: h.half_max,
             samples: self.samples,
+            sample_span: self.span,
         }
     }
 }
 
 impl Halves {
+    /// The sums of `self`'s samples and `o`'s together.
+    pub(super) fn merge(&mut self, o: &Halves) {
+        for k in 0..4 {
+            self.half[k] += o.half[k];
+        }
+        for h in 0..2 {
+            for k in 0..4 {
+                self.vec[h][k] += o.vec[h][k];
+            }
+            self.half_max[h] = self.half_max[h].max(o.half_max[h]);
+        }
+    }
+
     /// Adds the sample `q` whose nearest point `nr` lies on element `el`.
     #[inline]
     fn add(&mut self, el: &Element, nr: &Nearest, q: [f64; 3]) {
@@ -746,41 +807,61 @@ impl Halves {
     }
 }
 
-/// The statistics of the reference segments `keep` from a run of
-/// `command`, a window of a longer command, sampled `n` times at
-/// `k·dt + phase`, the samples `measured` measured against the whole
-/// reference `path` (of `reference`), the nearest-point search starting
-/// at the first element of `keep`: the per-segment part of [`simulate()`] for
-/// [`super::locality`], every element of `keep` listed (samples 0 when
-/// none came near it).
+/// One element's statistics from part of a run: its index in
+/// [`Path::elements`], the accumulated samples and their halves.
+pub(super) type Part = (usize, Acc, Halves);
+
+/// The statistics, per element of the reference `path` they come nearest
+/// to, of the samples `measured` of a run of `command`, a window of a
+/// longer command sampled at `k·dt + phase` whose sample 0 is sample
+/// `offset` of the longer command's grid: the per-segment part of
+/// [`simulate()`] for [`super::locality`], which merges the parts of
+/// several windows. The samples before `measured` only run the filters,
+/// and the trackers follow the commanded and the simulated point by their
+/// local search from element `from` on, as they follow them in a run from
+/// the program start. Elements `dense` are gathered in an array, any
+/// other in a map; only elements with samples are listed.
 pub(super) fn measure_window(
     command: &[Segment],
-    (path, reference): (&Path, &[Segment]),
+    path: &Path,
     cfg: &SimConfig,
-    (phase, n): (f64, usize),
-    (measured, keep): (std::ops::Range<usize>, std::ops::Range<usize>),
-) -> Vec<SegmentStats> {
+    (phase, offset): (f64, usize),
+    measured: std::ops::Range<usize>,
+    (dense, from): (std::ops::Range<usize>, usize),
+) -> Vec<Part> {
     let tmax = cfg.t.per_axis().into_iter().fold(0.0, f64::max);
     let tl = timeline(command, cfg, tmax);
-    let els = &path.elements;
-    let lo = els.partition_point(|e| e.segment < keep.start);
-    let hi = els.partition_point(|e| e.segment < keep.end);
-    let mut run = Run::new(path, lo..hi, n, 0, true);
+    let mut run = Run::new(path, dense.clone(), 0, 0, true);
+    run.far = Some(std::collections::HashMap::new());
+    run.offset = offset;
+    run.tracker = Tracker::at(path, from);
+    run.command = Tracker::at(path, from);
     if !tl.items.is_empty() {
         let mut stepper = Stepper::with_phase(&tl, cfg.t_a, cfg.t.per_axis(), cfg.dt, phase);
-        for k in 0..n.min(measured.end) {
+        for k in 0..measured.end {
             let s = stepper.next_sample();
             if k >= measured.start {
                 run.sample(path, k, &s, tl.origin);
+            } else {
+                run.command.follow(path, s.cmd);
+                run.tracker.follow(path, s.sim);
             }
         }
     }
-    els[lo..hi]
-        .iter()
-        .zip(&run.acc)
-        .zip(&run.halves)
-        .map(|((el, a), h)| a.stats(el, &reference[el.segment], h))
-        .collect()
+    let mut parts: Vec<Part> = dense
+        .zip(run.acc.iter().zip(&run.halves))
+        .filter(|(_, (a, _))| a.samples > 0)
+        .map(|(e, (a, h))| (e, *a, *h))
+        .collect();
+    parts.extend(run.far.into_iter().flatten().map(|(e, (a, h))| (e, a, h)));
+    parts
+}
+
+/// The statistics of element `el` of `path` (of `reference`) from the
+/// merged parts `a`, `h` ([`measure_window`]).
+pub(super) fn part_stats(path: &Path, reference: &[Segment], (el, a, h): &Part) -> SegmentStats {
+    let e = &path.elements[*el];
+    a.stats(e, &reference[e.segment], h)
 }
 
 /// Simulates a parsed program against itself.

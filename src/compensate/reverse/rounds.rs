@@ -18,12 +18,12 @@
 //! keeps the edit of the round in which its own maximum error was lowest;
 //! a chunk whose error stops falling for two rounds stops being corrected.
 //! A round simulates only windows around the original segments whose
-//! rebuilt command changed since the previous round
+//! rebuilt command changed or moved in time since the previous round
 //! ([`crate::toolpath::locality`]: the NC filter forgets a change after
-//! `tA`, the servo lag after `12·T`), so its cost grows with the places
-//! still being corrected, not with the program's length; the statistics
-//! elsewhere stand from earlier rounds (the first round's are the
-//! original's simulation). The written program is then checked against
+//! `tA`, the servo lag after `12·T`), and the places whose nearest samples
+//! come from there; the statistics elsewhere stand from earlier rounds
+//! (the first round's are the original's simulation), and all of them
+//! equal a whole-program simulation of the round's command. The written program is then checked against
 //! the whole original path ([`super::reverse_compensate`]). Regions are
 //! separated by rapids (which end in an exact stop) and by fixed segments,
 //! chunks by at least several memories of motion, so the edit of one
@@ -39,7 +39,7 @@ use super::region::{chunks, Regions};
 use crate::budget::{MAX_REVERSE_CHECK_SAMPLES, MAX_REVERSE_SIMULATED_SAMPLES};
 use crate::nc::program::{Motion, Segment};
 use crate::toolpath::contour::Path;
-use crate::toolpath::locality::{memory, plan, simulate_window};
+use crate::toolpath::locality::{memory, piece_starts, update, Windowed};
 use crate::toolpath::{SegmentStats, SimConfig, Simulation, ToolpathError};
 
 /// A chunk spans at least this many [`memory`] spans of nominal motion
@@ -426,6 +426,9 @@ pub struct LocalStats {
     pub by_seg: Vec<Option<SegmentStats>>,
     /// The last command's [`fingerprints`].
     prev: Option<Vec<u128>>,
+    /// The start time of each original segment's piece in the last
+    /// command (`None` before the first update).
+    starts: Option<Vec<f64>>,
 }
 
 impl LocalStats {
@@ -441,12 +444,14 @@ impl LocalStats {
                     let (cmd, at) = rebuild_indexed(orig, &identity(orig, vec![0.0; n]));
                     fingerprints(&cmd, &at)
                 }),
+                starts: None,
             },
             None => Self {
                 base: None,
                 own: Some(Path::new(orig)),
                 by_seg: vec![None; n],
                 prev: None,
+                starts: None,
             },
         }
     }
@@ -465,6 +470,13 @@ impl LocalStats {
         work: &mut Work,
     ) -> Result<bool, ToolpathError> {
         let n = orig.len();
+        // The original's statistics are of the original program, whose
+        // pieces are those of the identity edit (timed before the edit's
+        // command is built: one command at a time).
+        if self.starts.is_none() && self.base.is_some() {
+            let (id, id_at) = rebuild_indexed(orig, &identity(orig, vec![0.0; n]));
+            self.starts = Some(piece_starts(&id, &id_at, cfg)?);
+        }
         let (cmd, at) = rebuild_indexed(orig, edit);
         let now = fingerprints(&cmd, &at);
         let changed: Vec<bool> = match &self.prev {
@@ -473,20 +485,22 @@ impl LocalStats {
                 .collect(),
             None => vec![true; n],
         };
-        let windows = plan(&cmd, &at, &changed, cfg)?;
-        if !work.round(windows.iter().map(|w| w.samples as u64).sum()) {
-            return Ok(false);
-        }
         let path = match (&self.base, &self.own) {
             (Some(b), _) => &b.path,
             (None, Some(p)) => p,
             (None, None) => return Ok(false),
         };
-        for w in &windows {
-            for st in simulate_window(&cmd, (path, orig), w, cfg) {
-                let i = st.segment;
-                self.by_seg[i] = Some(st);
-            }
+        let mut w = Windowed {
+            stats: std::mem::take(&mut self.by_seg),
+            starts: self.starts.take(),
+        };
+        let done = update(&cmd, &at, (path, orig), &changed, &mut w, cfg, &mut |s| {
+            work.round(s)
+        });
+        self.by_seg = w.stats;
+        self.starts = w.starts;
+        if !done? {
+            return Ok(false);
         }
         self.prev = Some(now);
         Ok(true)
