@@ -429,7 +429,10 @@ fn cam_rounds() -> (
     SimConfig,
     mtmotion::toolpath::Simulation,
     mtmotion::compensate::reverse::geometry::Edit,
-    Vec<Option<mtmotion::toolpath::SegmentStats>>,
+    (
+        mtmotion::compensate::reverse::rounds::LocalStats,
+        mtmotion::compensate::reverse::rounds::Work,
+    ),
 ) {
     use mtmotion::compensate::reverse::region::regions;
     use mtmotion::compensate::reverse::rounds::{run, LocalStats, Work};
@@ -451,7 +454,7 @@ fn cam_rounds() -> (
     let r = run(orig, &rg, (&cfg, 0.5), 6, start, &mut work).unwrap();
     let mut local = LocalStats::new(orig, &work);
     assert!(local.update(orig, &cfg, &r.edit, &mut work).unwrap());
-    (text, p, cfg, sim, r.edit, local.by_seg)
+    (text, p, cfg, sim, r.edit, (local, work))
 }
 
 /// Asserts that `windowed` equals `whole` (of `what`) per cutting
@@ -501,39 +504,51 @@ fn assert_within(
 #[test]
 fn windowed_rounds_equal_a_whole_simulation_of_their_command() {
     use mtmotion::compensate::reverse::geometry::rebuild;
-    let (_, p, cfg, sim, edit, windowed) = cam_rounds();
+    let (_, p, cfg, sim, edit, (local, _)) = cam_rounds();
     let orig = &p.segments;
     let whole = simulate(&rebuild(orig, &edit), orig, &cfg).unwrap();
-    assert_within(orig, &windowed, (&whole, "whole simulation"), &sim);
+    assert_within(orig, &local.by_seg, (&whole, "whole simulation"), &sim);
 }
 
-/// The correction rounds' windowed prediction of their final program
-/// equals a whole-program re-simulation of that program as written
-/// (rebuilt, written into the text with its four decimals, read back)
-/// against the original path: per segment and over the program within
-/// 0.1 µm, on the 20,000-line CAM-like program ([`cam_rounds`]).
-///
-/// NOT MET today, so ignored (run it with `--ignored`): 281.59 µm
-/// windowed against 281.86 µm re-simulated over the program, up to
-/// 0.27 µm apart on one segment (line 19995), 7 segments over 0.1 µm. The
-/// windows are exact against the command they simulate
-/// ([`windowed_rounds_equal_a_whole_simulation_of_their_command`]); the
-/// written program is not that command: its four decimals move end points
-/// by up to 0.05 µm, which changes the segments' durations, so the
-/// written program ends 3.8 µs earlier and its later samples fall
-/// elsewhere on the grid, where the error at the program's sharpest Z
-/// reversal (line 19995) changes by about 0.1 µm per µs. (Before the
-/// windows were exact: 382.46 against 382.27 µm, up to 12.6 µm apart.)
+/// The correction rounds' windowed prediction of their final program as
+/// written equals a whole-program re-simulation of the written program
+/// against the original path: per cutting segment and over the program
+/// within 0.1 µm, on the 20,000-line CAM-like program ([`cam_rounds`]).
+/// The program is rebuilt, written into the text with its four decimals
+/// and read back; the windows then bring the rounds' statistics to that
+/// command (`LocalStats::update_command` with the rebuilt command's
+/// pieces), re-simulating where the writer's rounding changed a piece.
+/// Without that last update (the rounds' statistics of their unrounded
+/// command against the written program): 281.59 against 281.86 µm, up to
+/// 0.27 µm apart on one segment (line 19995), 7 segments over 0.1 µm: the
+/// four decimals move end points by up to 0.05 µm, which changes the
+/// segments' durations, so the written program ends 3.8 µs earlier and
+/// its later samples fall elsewhere on the grid, where the error at the
+/// program's sharpest Z reversal changes by about 0.1 µm per µs.
 #[test]
-#[ignore = "issue 27: the written program's rounding is not simulated by the rounds (see the doc)"]
 fn windowed_rounds_predict_the_written_program_within_a_tenth_of_a_micron() {
-    use mtmotion::compensate::reverse::geometry::rebuild;
-    let (text, p, cfg, sim, edit, windowed) = cam_rounds();
+    let (text, p, cfg, sim, edit, (mut local, mut work)) = cam_rounds();
     let orig = &p.segments;
-    let written = write_source(&text, &p, &rebuild(orig, &edit));
+    let (cmd, at) = rebuild_indexed(orig, &edit);
+    let written = write_source(&text, &p, &cmd);
     let back = parse(&written).unwrap().segments;
+    assert_eq!(
+        back.len(),
+        cmd.len(),
+        "the written program reads back move for move"
+    );
+    // The writer rounded: some pieces differ from the rounds' command.
+    let moved = back
+        .iter()
+        .zip(&cmd)
+        .filter(|(a, b)| a.end != b.end)
+        .count();
+    assert!(moved > 1000, "{moved} moves rounded");
+    assert!(local
+        .update_command(orig, &cfg, (&back, &at), &mut work)
+        .unwrap());
     let whole = simulate(&back, orig, &cfg).unwrap();
-    assert_within(orig, &windowed, (&whole, "whole re-simulation"), &sim);
+    assert_within(orig, &local.by_seg, (&whole, "whole re-simulation"), &sim);
 }
 
 /// A sample from far in time comes nearest to a segment that no window

@@ -456,6 +456,19 @@ impl LocalStats {
         }
     }
 
+    /// Times the original program's pieces, once: the original's
+    /// statistics are of the original program, whose pieces are those of
+    /// the identity edit (timed before an edit's command is built: one
+    /// command at a time).
+    fn time_original(&mut self, orig: &[Segment], cfg: &SimConfig) -> Result<(), ToolpathError> {
+        if self.starts.is_none() && self.base.is_some() {
+            let n = orig.len();
+            let (id, id_at) = rebuild_indexed(orig, &identity(orig, vec![0.0; n]));
+            self.starts = Some(piece_starts(&id, &id_at, cfg)?);
+        }
+        Ok(())
+    }
+
     /// Simulates the windows around the original segments whose rebuilt
     /// command under `edit` differs from the last update's, when `work`
     /// affords them (`false`, nothing done, when not).
@@ -469,16 +482,30 @@ impl LocalStats {
         edit: &Edit,
         work: &mut Work,
     ) -> Result<bool, ToolpathError> {
-        let n = orig.len();
-        // The original's statistics are of the original program, whose
-        // pieces are those of the identity edit (timed before the edit's
-        // command is built: one command at a time).
-        if self.starts.is_none() && self.base.is_some() {
-            let (id, id_at) = rebuild_indexed(orig, &identity(orig, vec![0.0; n]));
-            self.starts = Some(piece_starts(&id, &id_at, cfg)?);
-        }
+        self.time_original(orig, cfg)?;
         let (cmd, at) = rebuild_indexed(orig, edit);
-        let now = fingerprints(&cmd, &at);
+        self.update_command(orig, cfg, (&cmd, &at), work)
+    }
+
+    /// As [`LocalStats::update`] for a command given as it is: `cmd`,
+    /// where original segment `i` owns `cmd[at[i]..at[i + 1]]` (the
+    /// pieces of [`rebuild_indexed`]). The written program read back
+    /// with its rebuilt command's `at` gives the windowed prediction of
+    /// the program as written, its numbers rounded as the writer rounds
+    /// them.
+    ///
+    /// # Errors
+    /// As [`simulate()`](crate::toolpath::simulate()).
+    pub fn update_command(
+        &mut self,
+        orig: &[Segment],
+        cfg: &SimConfig,
+        (cmd, at): (&[Segment], &[usize]),
+        work: &mut Work,
+    ) -> Result<bool, ToolpathError> {
+        self.time_original(orig, cfg)?;
+        let n = orig.len();
+        let now = fingerprints(cmd, at);
         let changed: Vec<bool> = match &self.prev {
             Some(prev) => (0..n)
                 .map(|i| now[i] != prev[i] || now[i] == NEVER_EQUAL)
@@ -494,7 +521,7 @@ impl LocalStats {
             stats: std::mem::take(&mut self.by_seg),
             starts: self.starts.take(),
         };
-        let done = update(&cmd, &at, (path, orig), &changed, &mut w, cfg, &mut |s| {
+        let done = update(cmd, at, (path, orig), &changed, &mut w, cfg, &mut |s| {
             work.round(s)
         });
         self.by_seg = w.stats;
