@@ -699,6 +699,18 @@ mod tests {
     use super::*;
     use crate::nc::program::parse;
 
+    /// A line and a rapid, short and long arcs both ways, a full circle,
+    /// helices in three planes and a tiny arc.
+    fn mixed_path() -> Path {
+        let p = parse(
+            "G0 X10 Y0 Z0\nG1 X12 Y3 Z1 F1000\nG3 X22 Y3 R5\nG2 X32 Y3 R-5\n\
+             G3 X32 Y3 I-7 J0\nG3 X40 Y-4 Z4 R8\nG2 X30 Y-10 Z2 R-9\nG18 G2 X40 Z6 I5 K2\n\
+             G19 G3 Y-2 Z6 J4 K0\nG17 G3 X40.3 Y-2.2 R0.2",
+        )
+        .unwrap();
+        Path::new(&p.segments)
+    }
+
     /// The exact check's lower bound is below the distance of every point
     /// `nearest_on` returns, also from a point moved off (the bound falls
     /// by at most the move), equals it for lines and often for arcs:
@@ -706,13 +718,7 @@ mod tests {
     /// helices in three planes, and a point at an arc's centre.
     #[test]
     fn lower_bounds_hold_from_anywhere_and_are_tight() {
-        let p = parse(
-            "G0 X10 Y0 Z0\nG1 X12 Y3 Z1 F1000\nG3 X22 Y3 R5\nG2 X32 Y3 R-5\n\
-             G3 X32 Y3 I-7 J0\nG3 X40 Y-4 Z4 R8\nG2 X30 Y-10 Z2 R-9\nG18 G2 X40 Z6 I5 K2\n\
-             G19 G3 Y-2 Z6 J4 K0\nG17 G3 X40.3 Y-2.2 R0.2",
-        )
-        .unwrap();
-        let path = Path::new(&p.segments);
+        let path = mixed_path();
         // A fixed pseudo-random cloud around the path (no symmetry).
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut rnd = || {
@@ -762,13 +768,7 @@ mod tests {
     /// the sphere is not needlessly large (it touches the element).
     #[test]
     fn bounding_spheres_contain_their_elements() {
-        let p = parse(
-            "G0 X10 Y0 Z0\nG1 X12 Y3 Z1 F1000\nG3 X22 Y3 R5\nG2 X32 Y3 R-5\n\
-             G3 X32 Y3 I-7 J0\nG3 X40 Y-4 Z4 R8\nG2 X30 Y-10 Z2 R-9\nG18 G2 X40 Z6 I5 K2\n\
-             G19 G3 Y-2 Z6 J4 K0\nG17 G3 X40.3 Y-2.2 R0.2",
-        )
-        .unwrap();
-        let path = Path::new(&p.segments);
+        let path = mixed_path();
         assert_eq!(path.elements.len(), 10);
         for (i, e) in path.elements.iter().enumerate() {
             let (m, rad) = e.bound();
