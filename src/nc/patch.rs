@@ -117,7 +117,7 @@ struct Dialect {
 }
 
 impl Dialect {
-    fn of(p: &Program, raw: &[&str]) -> Self {
+    fn of(p: &Program, raw: &[(&str, &str)]) -> Self {
         let inch_used = p.modal.iter().any(|m| m.inch);
         let g_pad = p
             .blocks
@@ -130,7 +130,7 @@ impl Dialect {
             let (w0, w1) = (&b.words[0], &b.words[1]);
             let line: Vec<char> = raw
                 .get(b.line.saturating_sub(1))
-                .map(|s| s.chars().collect())
+                .map(|(s, _)| s.chars().collect())
                 .unwrap_or_default();
             spaced = line
                 .get(w1.column.saturating_sub(2))
@@ -219,9 +219,25 @@ fn number_span(chars: &[char], col: usize, text: &str) -> Option<(usize, usize)>
     (got == text).then_some((p, n))
 }
 
+/// Where the writer is in the edit's segments ([`Writer::push`]).
+#[derive(Default)]
+struct Walk {
+    /// The position written so far (the first segment's start before any).
+    pos: Option<[f64; 3]>,
+    /// The motion code in force when it may differ from the one the next
+    /// block relies on (after a new G1 line, or a block whose code the
+    /// edit changed).
+    restore: Option<u32>,
+    /// The source line of the last source block.
+    last_line: Option<usize>,
+    /// New segments (`block: None`) waiting for the next source block.
+    pending: Vec<Segment>,
+}
+
 struct Writer<'a> {
     p: &'a Program,
-    raw: Vec<&'a str>,
+    /// The source lines (content, terminator).
+    raw: &'a [(&'a str, &'a str)],
     d: Dialect,
     nl: &'static str,
     /// Replacement content per line (None = unchanged).
@@ -252,6 +268,18 @@ struct Writer<'a> {
 /// assert_eq!(out, "G20 G0 X0 Y0\r\nN5 G2 X.6 Y0 R.3 F20 ; top (arc)\r\n");
 /// ```
 pub fn write_source(text: &str, program: &Program, segments: &[Segment]) -> String {
+    write_source_each(text, program, |put| segments.iter().for_each(put))
+}
+
+/// As [`write_source`], with the segments given one at a time in order
+/// (`each` calls `put` on every one): the caller need not hold them all,
+/// so a compensation can write its edit as it rebuilds it (a 1 M-segment
+/// command is 176 MB beside the blocks the writer reads).
+pub fn write_source_each(
+    text: &str,
+    program: &Program,
+    each: impl FnOnce(&mut dyn FnMut(&Segment)),
+) -> String {
     let lines = split_keep(text);
     let nb = lines.lines.len();
     let mut count = vec![0usize; program.blocks.len()];
@@ -267,10 +295,11 @@ pub fn write_source(text: &str, program: &Program, segments: &[Segment]) -> Stri
             seg_of[b] = None;
         }
     }
-    let raw: Vec<&str> = lines.lines.iter().map(|(c, _)| *c).collect();
+    drop(count);
+    let raw = &lines.lines[..];
     let mut w = Writer {
         p: program,
-        d: Dialect::of(program, &raw),
+        d: Dialect::of(program, raw),
         raw,
         nl: newline(text),
         content: vec![None; nb],
@@ -278,7 +307,9 @@ pub fn write_source(text: &str, program: &Program, segments: &[Segment]) -> Stri
         after: vec![Vec::new(); nb],
         seg_of,
     };
-    w.walk(segments);
+    let mut walk = Walk::default();
+    each(&mut |seg| w.push(&mut walk, seg));
+    w.flush(&mut walk, None);
     number_new_lines(program, &w.d, &mut w.before, &mut w.after);
     // Measured, then written: a text grown by doubling would hold twice
     // its size (a 30 MB program's 60 MB, and 90 MB while it grows).
@@ -435,53 +466,59 @@ impl Writer<'_> {
         self.p.modal.get(block).copied().unwrap_or_default()
     }
 
-    fn walk(&mut self, segments: &[Segment]) {
-        let mut pos = segments
-            .first()
-            .map_or(self.p.options.start.p(), |s| s.start.p());
-        // The motion code in force when it may differ from the one the
-        // next block relies on (after a new G1 line, or a block whose code
-        // the edit changed).
-        let mut restore: Option<u32> = None;
-        let mut last_line: Option<usize> = None;
-        for (k, seg) in segments.iter().enumerate() {
-            match seg.block {
-                Some(b) => {
-                    if let Some(l) = self.line_of(b) {
-                        last_line = Some(l);
-                    }
-                    if matches!(seg.motion, Motion::Dwell { .. }) {
-                        continue;
-                    }
-                    let (p, changed_mode) = self.block(b, seg, pos, restore.take());
-                    pos = p;
-                    restore = changed_mode;
+    /// Takes the next segment of the edit: a source block's is written at
+    /// once, a new one (`block: None`) when the next source block is known
+    /// (a connecting line goes just before it, in the modes in force there).
+    fn push(&mut self, w: &mut Walk, seg: &Segment) {
+        if w.pos.is_none() {
+            w.pos = Some(seg.start.p());
+        }
+        let Some(b) = seg.block else {
+            w.pending.push(seg.clone());
+            return;
+        };
+        self.flush(w, Some(b));
+        if let Some(l) = self.line_of(b) {
+            w.last_line = Some(l);
+        }
+        if matches!(seg.motion, Motion::Dwell { .. }) {
+            return;
+        }
+        let pos = w.pos.unwrap_or(self.p.options.start.p());
+        let (p, changed_mode) = self.block(b, seg, pos, w.restore.take());
+        w.pos = Some(p);
+        w.restore = changed_mode;
+    }
+
+    /// Writes the new segments waiting for the next source block, `next`
+    /// (`None`: there is none).
+    fn flush(&mut self, w: &mut Walk, next: Option<usize>) {
+        let mut pending = std::mem::take(&mut w.pending);
+        for seg in &pending {
+            if let Motion::Dwell { seconds } = seg.motion {
+                let at = w.last_line.unwrap_or(0);
+                let l = self.d.dwell_line(seconds);
+                if let Some(v) = self.after.get_mut(at) {
+                    v.push(l);
                 }
+                continue;
+            }
+            let pos = w.pos.unwrap_or(self.p.options.start.p());
+            let Some((text, new_pos)) = self.new_line(seg, pos, next) else {
+                continue;
+            };
+            w.pos = Some(new_pos);
+            match next.and_then(|b| self.line_of(b)) {
+                Some(l) => self.before[l].push(text),
                 None => {
-                    if let Motion::Dwell { seconds } = seg.motion {
-                        let at = last_line.unwrap_or(0);
-                        let l = self.d.dwell_line(seconds);
-                        if let Some(v) = self.after.get_mut(at) {
-                            v.push(l);
-                        }
-                        continue;
-                    }
-                    let next = segments[k + 1..].iter().find_map(|s| s.block);
-                    let Some((text, new_pos)) = self.new_line(seg, pos, next) else {
-                        continue;
-                    };
-                    pos = new_pos;
-                    match next.and_then(|b| self.line_of(b)) {
-                        Some(l) => self.before[l].push(text),
-                        None => {
-                            let at = last_line.unwrap_or(0);
-                            self.after[at].push(text);
-                        }
-                    }
-                    restore = Some(1);
+                    let at = w.last_line.unwrap_or(0);
+                    self.after[at].push(text);
                 }
             }
+            w.restore = Some(1);
         }
+        pending.clear();
+        w.pending = pending;
     }
 
     /// A new G1 line to `seg.end` from `pos`, in the modes in force before
@@ -744,7 +781,7 @@ impl Writer<'_> {
     fn p_line(&self, l: usize) -> Vec<char> {
         self.raw
             .get(l)
-            .map(|s| s.chars().collect())
+            .map(|(s, _)| s.chars().collect())
             .unwrap_or_default()
     }
 

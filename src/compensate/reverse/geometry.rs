@@ -104,12 +104,55 @@ pub fn rebuild(orig: &[Segment], edit: &Edit) -> Vec<Segment> {
 /// As [`rebuild`], with the index in the output of each original
 /// segment's own (after a connector before it, before a dwell after it).
 pub fn rebuild_indexed(orig: &[Segment], edit: &Edit) -> (Vec<Segment>, Vec<usize>) {
-    let (starts, ends) = joints(orig, edit);
+    // Counted, then filled, by the same loop: sized exactly (grown by
+    // doubling, the command of a 1 M-segment program with a few spikes
+    // would reserve 2 M segments, 368 MB).
+    let mut n = 0;
+    rebuild_each(orig, edit, &mut |_, _| n += 1);
+    let mut out = Vec::with_capacity(n);
     let mut at = Vec::with_capacity(orig.len());
-    // Sized exactly: grown by doubling, the command of a 1 M-segment
-    // program with a few spikes would reserve 2 M segments (368 MB).
-    let mut out = Vec::with_capacity(orig.len() + added(orig, edit, (&starts, &ends)));
+    rebuild_each(orig, edit, &mut |s, own| {
+        if own {
+            at.push(out.len());
+        }
+        out.push(s);
+    });
+    (out, at)
+}
+
+/// The end of what was put so far: the last segment, and the feed of
+/// the last cutting one (what a connector and a dwell are made from).
+#[derive(Default)]
+struct Tail {
+    last: Option<Segment>,
+    cut_feed: Option<f64>,
+}
+
+impl Tail {
+    fn put(&mut self, put: &mut dyn FnMut(Segment, bool), s: Segment, own: bool) {
+        if s.is_cutting() {
+            self.cut_feed = Some(s.feed);
+        }
+        self.last = Some(s.clone());
+        put(s, own);
+    }
+
+    /// Where the rebuilt program so far ends, as a point (`pen` when empty).
+    fn end(&self, pen: [f64; 3]) -> [f64; 3] {
+        self.last.as_ref().map_or(pen, |x| x.end.p())
+    }
+}
+
+/// The segments of [`rebuild`], in order, each given to `put` with
+/// whether it is an original segment's own (not a connector, a spike's
+/// line or a dwell), without holding them: a writer can take them one by
+/// one ([`crate::nc::patch::write_source_each`]).
+pub fn rebuild_each(orig: &[Segment], edit: &Edit, put: &mut dyn FnMut(Segment, bool)) {
+    let mut tail = Tail::default();
     let mut pen = orig.first().map_or([0.0; 3], |s| s.start.p());
+    // The new start of the next move, from its joint with the move before
+    // it (none before the first move: the program's first start is kept).
+    let (starts, ends) = joints(orig, edit);
     for (i, s) in orig.iter().enumerate() {
         let mut seg = s.clone();
         if !is_move(s) {
@@ -117,68 +160,44 @@ pub fn rebuild_indexed(orig: &[Segment], edit: &Edit) -> (Vec<Segment>, Vec<usiz
             seg.start.y = pen[1];
             seg.start.z = pen[2];
             seg.end = seg.start;
-            at.push(out.len());
-            out.push(seg);
+            tail.put(put, seg, true);
             continue;
         }
-        if dist(pen, starts[i]) > 1e-6 {
-            let c = connector(&out, s, pen, starts[i]);
-            out.push(c);
+        let (start, end) = (starts[i], ends[i]);
+        if dist(pen, start) > 1e-6 {
+            let c = connector(&tail, s, pen, start);
+            tail.put(put, c, false);
         }
-        seg.start.x = starts[i][0];
-        seg.start.y = starts[i][1];
-        seg.start.z = starts[i][2];
-        seg.end.x = ends[i][0];
-        seg.end.y = ends[i][1];
-        seg.end.z = ends[i][2];
+        seg.start.x = start[0];
+        seg.start.y = start[1];
+        seg.start.z = start[2];
+        seg.end.x = end[0];
+        seg.end.y = end[1];
+        seg.end.z = end[2];
         if let Motion::Arc(a) = s.motion {
-            seg.motion = refit_arc(a, edit_radius(edit, i), starts[i], ends[i]);
+            seg.motion = refit_arc(a, edit_radius(edit, i), start, end);
         }
-        pen = ends[i];
-        at.push(out.len());
-        out.push(seg);
+        pen = end;
+        tail.put(put, seg, true);
         let sp = edit.spike.get(i).copied().unwrap_or([0.0; 3]);
         if sp != [0.0; 3] {
             let tip = [pen[0] + sp[0], pen[1] + sp[1], pen[2] + sp[2]];
             for to in [tip, pen] {
-                let c = connector(&out, s, out_end(&out, pen), to);
-                out.push(c);
+                let c = connector(&tail, s, tail.end(pen), to);
+                tail.put(put, c, false);
             }
         }
         let dw = edit.dwell_after.get(i).copied().unwrap_or(0.0);
         if dw > 0.0 {
-            let mut d = out.last().cloned().unwrap_or_else(|| s.clone());
+            let mut d = tail.last.clone().unwrap_or_else(|| s.clone());
             d.block = None;
             d.line = 0;
             d.motion = Motion::Dwell { seconds: dw };
             d.start = d.end;
             d.feed = 0.0;
-            out.push(d);
+            tail.put(put, d, false);
         }
     }
-    debug_assert_eq!(
-        out.len(),
-        out.capacity(),
-        "rebuild_indexed: size counted by added()"
-    );
-    (out, at)
-}
-
-/// How many segments [`rebuild_indexed`] adds to `orig`'s: a connector
-/// where a move's new start is not the pen's position, two per spike, one
-/// per dwell (the same tests as there).
-fn added(orig: &[Segment], edit: &Edit, (starts, ends): (&[[f64; 3]], &[[f64; 3]])) -> usize {
-    let mut pen = orig.first().map_or([0.0; 3], |s| s.start.p());
-    let mut n = 0;
-    for (i, s) in orig.iter().enumerate() {
-        if is_move(s) {
-            n += usize::from(dist(pen, starts[i]) > 1e-6);
-            pen = ends[i];
-            n += 2 * usize::from(edit.spike.get(i).is_some_and(|sp| *sp != [0.0; 3]));
-            n += usize::from(edit.dwell_after.get(i).is_some_and(|&d| d > 0.0));
-        }
-    }
-    n
 }
 
 /// The new radius of segment `i` (0 when the edit has none), mm.
@@ -249,15 +268,18 @@ pub fn tangent_joint(a: &Segment, b: &Segment) -> bool {
     }
 }
 
-/// The line from the pen (where the rebuilt program so far, `out`, ends)
+/// The line from the pen (where the rebuilt program so far, `tail`, ends)
 /// to `to`, the new start of `s`: at `s`'s feed, or the last cutting feed
 /// when `s` is a rapid.
-fn connector(out: &[Segment], s: &Segment, pen: [f64; 3], to: [f64; 3]) -> Segment {
+fn connector(tail: &Tail, s: &Segment, pen: [f64; 3], to: [f64; 3]) -> Segment {
     let mut c = s.clone();
     c.block = None;
     c.line = 0;
     c.motion = Motion::Linear;
-    c.start = prev_pose(out, s, pen);
+    c.start = tail.last.as_ref().map_or(s.start, |x| x.end);
+    c.start.x = pen[0];
+    c.start.y = pen[1];
+    c.start.z = pen[2];
     c.end = c.start;
     c.end.x = to[0];
     c.end.y = to[1];
@@ -265,10 +287,7 @@ fn connector(out: &[Segment], s: &Segment, pen: [f64; 3], to: [f64; 3]) -> Segme
     c.feed = if s.is_cutting() {
         s.feed
     } else {
-        out.iter()
-            .rev()
-            .find(|x| x.is_cutting())
-            .map_or(s.feed, |x| x.feed)
+        tail.cut_feed.unwrap_or(s.feed)
     };
     c
 }
@@ -299,19 +318,6 @@ fn refit_arc(mut a: Arc, r: f64, start: [f64; 3], end: [f64; 3]) -> Motion {
         a.sweep = sw;
         Motion::Arc(a)
     }
-}
-
-/// Where the rebuilt program so far ends, as a point (`pen` when empty).
-fn out_end(out: &[Segment], pen: [f64; 3]) -> [f64; 3] {
-    out.last().map_or(pen, |x| x.end.p())
-}
-
-fn prev_pose(out: &[Segment], s: &Segment, pen: [f64; 3]) -> crate::nc::program::Pose {
-    let mut p = out.last().map_or(s.start, |x| x.end);
-    p.x = pen[0];
-    p.y = pen[1];
-    p.z = pen[2];
-    p
 }
 
 #[cfg(test)]

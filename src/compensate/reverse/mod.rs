@@ -72,10 +72,10 @@ pub mod rounds;
 
 use serde::{Deserialize, Serialize};
 
-use crate::nc::patch::write_source;
+use crate::nc::patch::write_source_each;
 use crate::nc::program::{dist, parse_with, DwellP, Motion, ParseOptions, Program, Segment};
 use crate::toolpath::{sample_estimate, simulate, SimConfig, Simulation, ToolpathError};
-use geometry::{rebuild, Edit};
+use geometry::Edit;
 use lines::{line_range, outside_notes, LineRange};
 use region::{kinds, region_errors, regions_in, segment_errors, Regions};
 use rounds::{copy_region, identity, Work};
@@ -635,6 +635,9 @@ struct Source<'t> {
     program: Program,
     /// The blocks and modal states are there.
     full: bool,
+    /// The segments' fingerprint ([`rounds::fingerprints`], taken when
+    /// the blocks are first dropped), which a second reading must give.
+    fingerprint: Option<u128>,
 }
 
 impl<'t> Source<'t> {
@@ -644,6 +647,7 @@ impl<'t> Source<'t> {
             text,
             program,
             full: true,
+            fingerprint: None,
         }
     }
 
@@ -653,25 +657,33 @@ impl<'t> Source<'t> {
 
     /// Drops the blocks and modal states.
     fn slim(&mut self) {
+        if self.fingerprint.is_none() {
+            self.fingerprint = Some(rounds::fingerprints(&self.program.segments, &[0])[0]);
+        }
         self.program.blocks = Vec::new();
         self.program.modal = Vec::new();
         self.full = false;
     }
 
     /// The whole program, read again if slimmed (the same segments, or an
-    /// error: never a program whose blocks are not its segments').
+    /// error: never a program whose blocks are not its segments'). The
+    /// segments are dropped for the reading, which gives them again, and
+    /// compared by their fingerprint: both copies at once were 175 MB of
+    /// a 1 M-segment program at the reading's peak.
     fn program(&mut self) -> Result<&Program, ToolpathError> {
         if !self.full {
+            let was = self.fingerprint;
+            self.program.segments = Vec::new();
             let p = parse_with(self.text, &self.program.options)?;
-            if p.segments != self.program.segments {
+            let now = rounds::fingerprints(&p.segments, &[0])[0];
+            if was.is_none_or(|f| f != now || f == rounds::NEVER_EQUAL) {
                 return Err(ToolpathError::Config {
                     field: "text",
                     message: "the program read a second time gave other moves; please report it"
                         .into(),
                 });
             }
-            self.program.blocks = p.blocks;
-            self.program.modal = p.modal;
+            self.program = p;
             self.full = true;
         }
         Ok(&self.program)
@@ -761,7 +773,8 @@ fn in_place(
     let mut start = identity(orig, vec![0.0; orig.len()]);
     start.tangent_lines = tangent;
     let spikes = corner::search(orig, &cfg.sim, &found, &stats, &start, allowed, &mut work)?;
-    drop(stats);
+    // Not held through the rounds and checks (64 B a segment).
+    drop((stats, start, found));
     tick(0.25, "correction rounds")?;
     // Half of what is left waits for the dwells, which rounds that reach
     // the budget would leave nothing: the CAMotics cameo raster (35k
@@ -1150,14 +1163,16 @@ fn check(
 }
 
 /// The program `edit` makes of `src`, written. The blocks are read again
-/// for the patch writer before the rebuilt segments are made (the
-/// reading's peak is the larger), and both go before the caller simulates
-/// the text (the result rebuilds the segments).
+/// for the patch writer, which takes the rebuilt segments one at a time
+/// as they are made ([`geometry::rebuild_each`]): the rebuilt command is
+/// never held beside the blocks (176 MB of a 1 M-segment program). The
+/// blocks go before the caller simulates the text.
 fn write_edit(src: &mut Source, edit: &Edit) -> Result<String, ToolpathError> {
     src.program()?;
-    let segments = rebuild(src.segments(), edit);
-    let nc = write_source(src.text, src.program()?, &segments);
-    drop(segments);
+    let program = &src.program;
+    let nc = write_source_each(src.text, program, |put| {
+        geometry::rebuild_each(&program.segments, edit, &mut |s, _| put(&s));
+    });
     src.slim();
     Ok(nc)
 }
@@ -1498,11 +1513,9 @@ fn finish(
     notes: Vec<Option<String>>,
     history: Vec<f64>,
 ) -> Compensation {
-    // The written program's segments, as the check rebuilt them.
-    let (segments, sim_after) = match c.sim {
-        Some(sim) => (rebuild(orig, &c.edit), sim),
-        None => (orig.to_vec(), sim_before.clone()),
-    };
+    // The written program's segments are the check's rebuilt ones.
+    let rebuilt = c.sim.is_some();
+    let sim_after = c.sim.unwrap_or_else(|| sim_before.clone());
     let radius0 = radii(orig);
     let line = |i: usize| orig[i].line;
     let mut regions: Vec<RegionNote> = (0..rg.members.len())
@@ -1563,7 +1576,7 @@ fn finish(
     Compensation {
         before: summary(&sim_before),
         after: summary(&sim_after),
-        segments: changes((orig, facts.blocks), &segments, &c.edit),
+        segments: changes((orig, facts.blocks), rebuilt, &c.edit),
         dwells,
         spikes,
         regions,
@@ -1644,22 +1657,24 @@ fn summary(s: &Simulation) -> Summary {
 }
 
 /// Per original segment of `orig` (of a program of `blocks` blocks), what
-/// the written `segs` made of it.
-fn changes(
-    (orig, blocks): (&[Segment], usize),
-    segs: &[Segment],
-    edit: &Edit,
-) -> Vec<SegmentChange> {
+/// the written program made of it: `edit` rebuilt ([`geometry::rebuild_each`],
+/// one segment at a time), or with `rebuilt` false the original itself.
+fn changes((orig, blocks): (&[Segment], usize), rebuilt: bool, edit: &Edit) -> Vec<SegmentChange> {
     let mut end_of = vec![None; blocks];
-    for x in segs {
+    let mut note = |x: &Segment| {
         if let Some(b) = x.block.filter(|&b| b < end_of.len()) {
-            end_of[b] = Some(x.end);
+            end_of[b] = Some(x.end.p());
         }
+    };
+    if rebuilt {
+        geometry::rebuild_each(orig, edit, &mut |x, _| note(&x));
+    } else {
+        orig.iter().for_each(note);
     }
     orig.iter()
         .enumerate()
         .map(|(i, s)| {
-            let new_end = s.block.and_then(|b| end_of[b]).unwrap_or(s.end);
+            let new_end = s.block.and_then(|b| end_of[b]).unwrap_or(s.end.p());
             let (kind, r) = match s.motion {
                 Motion::Arc(a) => ("arc", a.radius),
                 Motion::Linear => ("line", 0.0),
@@ -1672,7 +1687,7 @@ fn changes(
                 kind,
                 radius_before: r,
                 radius_after: if kind == "arc" { edit.radius[i] } else { 0.0 },
-                end_shift_um: dist(s.end.p(), new_end.p()) * 1e3,
+                end_shift_um: dist(s.end.p(), new_end) * 1e3,
             }
         })
         .collect()

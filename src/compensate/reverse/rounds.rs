@@ -235,7 +235,7 @@ fn piece<'a>(cmd: &'a [Segment], at: &[usize], i: usize) -> &'a [Segment] {
 /// fingerprints but with a chance of 2⁻¹²⁸; equal ones get equal ones,
 /// except that ±0 are one value and a piece with a NaN gets
 /// [`NEVER_EQUAL`] (a NaN is unequal to itself under `==`).
-fn fingerprints(cmd: &[Segment], at: &[usize]) -> Vec<u128> {
+pub(super) fn fingerprints(cmd: &[Segment], at: &[usize]) -> Vec<u128> {
     (0..at.len())
         .map(|i| {
             let p = piece(cmd, at, i);
@@ -290,7 +290,7 @@ fn fingerprints(cmd: &[Segment], at: &[usize]) -> Vec<u128> {
 }
 
 /// The fingerprint of a piece that is changed whatever it was before.
-const NEVER_EQUAL: u128 = 0;
+pub(super) const NEVER_EQUAL: u128 = 0;
 
 /// Two SipHash states fed the same words (the second after a salt).
 struct Fingerprint {
