@@ -135,7 +135,7 @@ fn parts(text: &str) {
     drop(_st);
     let _path = sized("Path::new", || mtmotion::toolpath::contour::Path::new(orig));
     drop(_path);
-    let mut work = rounds::Work::for_program(sim.samples as u64);
+    let mut work = rounds::Work::for_program(p.segments.len(), sim.samples as u64);
     sized("set_original", || work.set_original(orig, &sim));
     let rg = sized("regions", || region::regions(&p));
     {

@@ -188,11 +188,26 @@ pub const MAX_CIRCULAR_POINTS: usize = 2_000_000;
 /// windows around the places it changes (`toolpath::locality`), so this is
 /// a budget on corrected places, not on the program's length; the rounds
 /// stop early, keeping their best so far, when the next would exceed it.
+/// A program's budget is [`REVERSE_SAMPLES_PER_SEGMENT`] per segment,
+/// at least [`MIN_REVERSE_SIMULATED_SAMPLES`] and at most this.
 /// The whole-program simulations (the original and the checks of the
 /// written program) are budgeted apart ([`MAX_REVERSE_CHECK_SAMPLES`],
 /// [`MAX_TOOLPATH_SAMPLES`] each). About 0.6 µs per simulated sample in
 /// the wasm build.
 pub const MAX_REVERSE_SIMULATED_SAMPLES: usize = 16_000_000;
+
+/// The window samples a reverse compensation may spend per segment of
+/// the program (see [`MAX_REVERSE_SIMULATED_SAMPLES`]): a longer program
+/// has more places to correct. Measured natively at dt 2 ms: the CAMotics
+/// botomata pocket (6,216 segments, every corner corrected, each round's
+/// windows about 2.45 M of its 2.84 M samples) spent 16 M window samples
+/// for ×0.028 in 4.95 s and 8 M for ×0.032 in 3.18 s; the 35,288-line
+/// cameo raster fell to ×0.852 at 8 M (×0.062 at 16 M).
+pub const REVERSE_SAMPLES_PER_SEGMENT: usize = 400;
+
+/// The least window budget of a reverse compensation (see
+/// [`REVERSE_SAMPLES_PER_SEGMENT`]).
+pub const MIN_REVERSE_SIMULATED_SAMPLES: usize = 8_000_000;
 
 /// Most samples of the checks of one reverse compensation's written
 /// program (each a whole-program simulation against the original path),

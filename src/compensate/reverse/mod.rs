@@ -748,7 +748,7 @@ fn in_place(
     };
     src.slim();
     let orig = src.segments();
-    let mut work = Work::for_program(sample_estimate(orig, &cfg.sim)? as u64);
+    let mut work = Work::for_program(orig.len(), sample_estimate(orig, &cfg.sim)? as u64);
     let mut tick = |f: f64, s: &str| {
         if progress(f, s) {
             Ok(())

@@ -36,7 +36,10 @@ use std::rc::Rc;
 
 use super::geometry::{rebuild_indexed, Edit};
 use super::region::{chunks, Regions};
-use crate::budget::{MAX_REVERSE_CHECK_SAMPLES, MAX_REVERSE_SIMULATED_SAMPLES};
+use crate::budget::{
+    MAX_REVERSE_CHECK_SAMPLES, MAX_REVERSE_SIMULATED_SAMPLES, MIN_REVERSE_SIMULATED_SAMPLES,
+    REVERSE_SAMPLES_PER_SEGMENT,
+};
 use crate::nc::program::{Motion, Segment};
 use crate::toolpath::contour::Path;
 use crate::toolpath::locality::{memory, piece_starts, update, Windowed};
@@ -70,8 +73,9 @@ struct Base {
 
 /// What one compensation may still simulate. The correction rounds
 /// simulate windows around the places they change
-/// ([`crate::toolpath::locality`]), up to
-/// [`MAX_REVERSE_SIMULATED_SAMPLES`] samples in all; the whole-program
+/// ([`crate::toolpath::locality`]), up to [`REVERSE_SAMPLES_PER_SEGMENT`]
+/// samples per segment in all, within [`MIN_REVERSE_SIMULATED_SAMPLES`]
+/// and [`MAX_REVERSE_SIMULATED_SAMPLES`]; the whole-program
 /// simulations (the original, the checks of the written program) are
 /// budgeted apart: each is at most one simulation's budget
 /// ([`crate::budget::MAX_TOOLPATH_SAMPLES`]), and the checks may spend
@@ -79,6 +83,8 @@ struct Base {
 /// that is more.
 #[derive(Debug, Clone)]
 pub struct Work {
+    /// The rounds' budget, window samples.
+    limit: u64,
     left: u64,
     checks: u64,
     /// Samples of one simulation of the whole program.
@@ -88,17 +94,26 @@ pub struct Work {
     base: Option<Rc<Base>>,
 }
 
+/// The rounds' window budget of a program of `segments` segments (see
+/// [`Work`]).
+pub fn window_budget(segments: usize) -> u64 {
+    (segments.saturating_mul(REVERSE_SAMPLES_PER_SEGMENT))
+        .clamp(MIN_REVERSE_SIMULATED_SAMPLES, MAX_REVERSE_SIMULATED_SAMPLES) as u64
+}
+
 impl Work {
-    /// The budget of one compensation of a program of `program` samples.
-    pub fn for_program(program: u64) -> Self {
-        Self::new(MAX_REVERSE_SIMULATED_SAMPLES as u64, program)
+    /// The budget of one compensation of a program of `segments`
+    /// segments and `program` samples.
+    pub fn for_program(segments: usize, program: u64) -> Self {
+        Self::new(window_budget(segments), program)
     }
 
     /// What the result says when the budget cut the work short.
     pub fn note(&self) -> Option<String> {
         self.stopped.then(|| {
             format!(
-                "the work budget ({MAX_REVERSE_SIMULATED_SAMPLES} simulated samples of correction windows around the corrected places, checks of the written program {} samples at most, {} per simulation of this program) stopped the correction early; the best rounds so far are kept and checked. Raise dt or compensate the program in parts for a full run",
+                "the work budget ({} simulated samples of correction windows around the corrected places ({REVERSE_SAMPLES_PER_SEGMENT} per segment, within {MIN_REVERSE_SIMULATED_SAMPLES} and {MAX_REVERSE_SIMULATED_SAMPLES}), checks of the written program {} samples at most, {} per simulation of this program) stopped the correction early; the best rounds so far are kept and checked. Raise dt or compensate the program in parts for a full run",
+                self.limit,
                 MAX_REVERSE_CHECK_SAMPLES.max(2 * self.program as usize),
                 self.program
             )
@@ -109,6 +124,7 @@ impl Work {
     /// samples, and the checks' own budget (see [`Work`]).
     pub fn new(limit: u64, program: u64) -> Self {
         Self {
+            limit,
             left: limit,
             checks: (MAX_REVERSE_CHECK_SAMPLES as u64).max(program.saturating_mul(2)),
             program,
@@ -680,8 +696,27 @@ mod tests {
         // A program larger than half of it is still checked twice.
         let mut w = Work::new(0, big);
         assert!(w.check(big) && w.check(big) && !w.check(1));
-        assert!(Work::for_program(1).note().is_none());
+        assert!(Work::for_program(1, 1).note().is_none());
         assert!(w.note().unwrap().contains(&format!("{big} per simulation")));
+    }
+
+    /// The rounds' budget grows with the program, 400 window samples a
+    /// segment, from 8 M (up to 20,000 segments) to 16 M (from 40,000).
+    #[test]
+    fn the_window_budget_grows_with_the_segments() {
+        assert_eq!(window_budget(0), 8_000_000);
+        assert_eq!(window_budget(20_000), 8_000_000);
+        assert_eq!(window_budget(20_001), 8_000_400);
+        assert_eq!(window_budget(35_288), 14_115_200);
+        assert_eq!(window_budget(40_000), 16_000_000);
+        assert_eq!(window_budget(usize::MAX), 16_000_000);
+        let mut w = Work::for_program(30_000, 5);
+        assert_eq!(w.left(), 12_000_000);
+        assert!(!w.round(12_000_001) && w.stopped);
+        assert!(w
+            .note()
+            .unwrap()
+            .starts_with("the work budget (12000000 simulated samples"));
     }
 
     #[test]
