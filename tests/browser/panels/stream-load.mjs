@@ -11,7 +11,7 @@
 import { writeFileSync, mkdtempSync, readFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
-import { worstDelay } from '../event-loop.mjs';
+import { mainThread } from '../event-loop.mjs';
 
 /** Rows of short G1 chords with a Z wave, joined by small arcs, a comment
  * every 500 lines and a feed change every 250, four decimals: about 32
@@ -58,20 +58,8 @@ export default async function (page, check) {
   /** Runs `act` while recording the main thread's long tasks: the worst
    * event-loop delay and the longest task, ms. */
   async function measured(what, act) {
-    await page.evaluate(() => {
-      const w = /** @type {any} */ (window);
-      w.__longTasks = [];
-      w.__longObserver = new PerformanceObserver((list) => w.__longTasks.push(...list.getEntries().map((e) => e.duration)));
-      w.__longObserver.observe({ type: 'longtask' });
-    });
     const t0 = Date.now();
-    const delay = await worstDelay(page, act);
-    const tasks = await page.evaluate(() => {
-      const w = /** @type {any} */ (window);
-      w.__longObserver.disconnect();
-      return w.__longTasks;
-    });
-    const longest = Math.max(0, ...tasks);
+    const { delay, tasks, longest } = await mainThread(page, act);
     console.log(`  ${what} in ${Date.now() - t0} ms: longest main-thread task ${longest.toFixed(0)} ms (${tasks.length} of 50 ms or more), worst event-loop delay ${delay.toFixed(0)} ms`);
     return { delay, longest };
   }
