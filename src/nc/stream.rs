@@ -385,6 +385,34 @@ mod tests {
     }
 
     #[test]
+    fn lines_shorter_than_the_first_regrow_the_list_once_more() {
+        // 300 lines of 32 bytes, then 5,000 of 16, told the exact length
+        let mut text: Vec<u8> = (0..300)
+            .flat_map(|i| format!("G1 X{i:05} Y1 Z0 F1000 (LONGER.)\n").into_bytes())
+            .collect();
+        assert_eq!(text.len(), 300 * 32);
+        text.extend(uniform(5_000));
+        let mut s = NcStream::with_size_hint(text.len() as u64);
+        let mut capacities = vec![];
+        for c in text.chunks(4096) {
+            s.push(c).unwrap();
+            if capacities.last() != Some(&s.blocks.capacity()) {
+                capacities.push(s.blocks.capacity());
+            }
+        }
+        s.read_tail().unwrap();
+        assert_eq!(s.blocks.len(), 5_300);
+        // sized at the first run for 32 bytes a line (127 + ⌈85,536 / 32
+        // × 1.1⌉), then, once full, again from the lines per byte read by
+        // then (not by doubling to 6,136, nor at every run as the lines
+        // got shorter): within a tenth of the lines
+        assert_eq!(capacities[0], 127 + 2_941);
+        assert!(capacities.len() <= 3, "{capacities:?}");
+        let last = *capacities.last().unwrap();
+        assert!((5_300..5_830).contains(&last), "{capacities:?}");
+    }
+
+    #[test]
     fn a_short_hint_regrows_from_the_lines_per_byte_read() {
         let text = uniform(10_000);
         // told 8,000 bytes (500 lines): the first run, 255 lines, makes
