@@ -245,6 +245,25 @@ fn the_text_budgets_refuse_at_the_line_that_passes_them() {
         )),
         "{e}"
     );
+    // exactly the limit: 4 M lines, the last ended by its LF, are read
+    let mut s = NcStream::new();
+    for k in 0..ends.div_ceil(mb) {
+        s.push(&vec![b'\n'; mb.min(ends - k * mb)]).unwrap();
+    }
+    // the same with CR-only line ends (a CR is a line end once its next
+    // byte is no LF) and with CRLF (one line end each), refused alike
+    for end in [&b"\r"[..], b"\r\n"] {
+        let chunk = end.repeat(mb);
+        let chunks =
+            (0..ends.div_ceil(mb)).map(|k| chunk[..end.len() * mb.min(ends - k * mb)].to_vec());
+        let e = refusal(chunks.chain([b"G0 X0".to_vec()]));
+        let e = &e.errors[0];
+        assert_eq!((e.line, e.column), (MAX_NC_LINES + 1, 1), "{end:?}: {e}");
+        assert!(
+            e.message.contains(&format!("{} lines", MAX_NC_LINES + 1)),
+            "{end:?}: {e}"
+        );
+    }
     // bytes: a 64 MiB comment on line 3
     let head = b"G0 X0\nG1 X1 F100\n(".to_vec();
     let body = (0..MAX_TEXT_BYTES / mb).map(|_| vec![b'x'; mb]);

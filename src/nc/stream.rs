@@ -135,8 +135,7 @@ impl NcStream {
         }
         self.count_line_ends(bytes);
         self.pending.extend_from_slice(bytes);
-        let lines = self.line_ends + u64::from(self.cr_last || self.open_line);
-        if let Some(e) = self.over_budget(&self.pending, lines) {
+        if let Some(e) = self.over_budget(&self.pending, self.lines()) {
             return Err(self.refuse(e, true));
         }
         // The run: up to the last line end before the last byte that is no
@@ -191,11 +190,17 @@ impl NcStream {
         }
         let pending = std::mem::take(&mut self.pending);
         let tail = String::from_utf8_lossy(&pending);
-        let lines = self.line_ends + u64::from(self.cr_last || self.open_line);
-        if let Some(e) = self.over_budget(tail.as_bytes(), lines) {
+        if let Some(e) = self.over_budget(tail.as_bytes(), self.lines()) {
             return Err(self.refuse(e, true));
         }
         self.read(&tail, true)
+    }
+
+    /// Lines in the bytes pushed: their line ends, and the last line if
+    /// no line end ends it (or it ends in a CR, counted once the next
+    /// byte is known).
+    fn lines(&self) -> u64 {
+        self.line_ends + u64::from(self.cr_last || self.open_line)
     }
 
     /// Adds the line ends of `bytes` (LF, CRLF or CR alone, as
