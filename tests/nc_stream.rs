@@ -10,10 +10,11 @@
 //! multi-byte and invalid bytes, no final line end, `%` delimiters, BOM,
 //! Ctrl-Z, CR-only files, binary files) at every cut into two chunks as
 //! well. The refusals over the budgets name the line where the count
-//! passed the limit.
+//! passed the limit. A size hint, right or wrong, changes nothing read;
+//! both readings tell a refusal as a whole (`notRead`) alike.
 
 use mtmotion::budget::{MAX_NC_LINES, MAX_NC_WORDS, MAX_TEXT_BYTES};
-use mtmotion::nc::files::parse_files_owned;
+use mtmotion::nc::files::{parse_files_noting_refusal, parse_files_owned, NcFile};
 use mtmotion::nc::program::{Keep, ParseOptions, Program};
 use mtmotion::nc::stream::NcStream;
 use mtmotion::nc::NcErrors;
@@ -143,6 +144,44 @@ fn texts_that_cut_badly_stream_as_their_whole_text() {
     }
 }
 
+/// A size hint changes the memory only: any hint, right or wrong, gives
+/// the whole text's reading (the hint sizes the block list from the lines
+/// per byte read, so a text whose first lines are short, then long, and
+/// a hint far too short or too long, are read as well).
+#[test]
+fn a_size_hint_of_any_size_reads_as_the_whole_text() {
+    let mut texts = nasty();
+    let mut mixed = b"%\nO1\n".to_vec();
+    for i in 0..3000 {
+        let line = if i < 1000 {
+            format!("X{i}\n")
+        } else {
+            format!("G1 X{i}.125 Y-{i}.5 Z0.25 F1200 (PASS {i})\n")
+        };
+        mixed.extend(line.into_bytes());
+    }
+    mixed.extend_from_slice(b"M30\n%\n");
+    texts.push(("short lines, then long", mixed));
+    for (name, bytes) in texts {
+        let want = format!("{:?}", whole(&bytes, Keep::All));
+        let n = bytes.len() as u64;
+        for hint in [1, n / 2, n, 3 * n + 7] {
+            for size in [1, 7, 4096] {
+                let mut s = NcStream::with_size_hint(hint);
+                let got = bytes
+                    .chunks(size)
+                    .try_for_each(|c| s.push(c))
+                    .and_then(|()| s.finish(&ParseOptions::default(), Keep::All));
+                let got = format!("{got:?}");
+                assert!(
+                    got == want,
+                    "{name}, hint {hint}, chunks of {size}:\n{got}\n{want}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn nasty_texts_give_what_their_names_say() {
     // the comparison above is with the whole text; these pin that the
@@ -206,6 +245,25 @@ fn the_text_budgets_refuse_at_the_line_that_passes_them() {
         )),
         "{e}"
     );
+    // exactly the limit: 4 M lines, the last ended by its LF, are read
+    let mut s = NcStream::new();
+    for k in 0..ends.div_ceil(mb) {
+        s.push(&vec![b'\n'; mb.min(ends - k * mb)]).unwrap();
+    }
+    // the same with CR-only line ends (a CR is a line end once its next
+    // byte is no LF) and with CRLF (one line end each), refused alike
+    for end in [&b"\r"[..], b"\r\n"] {
+        let chunk = end.repeat(mb);
+        let chunks =
+            (0..ends.div_ceil(mb)).map(|k| chunk[..end.len() * mb.min(ends - k * mb)].to_vec());
+        let e = refusal(chunks.chain([b"G0 X0".to_vec()]));
+        let e = &e.errors[0];
+        assert_eq!((e.line, e.column), (MAX_NC_LINES + 1, 1), "{end:?}: {e}");
+        assert!(
+            e.message.contains(&format!("{} lines", MAX_NC_LINES + 1)),
+            "{end:?}: {e}"
+        );
+    }
     // bytes: a 64 MiB comment on line 3
     let head = b"G0 X0\nG1 X1 F100\n(".to_vec();
     let body = (0..MAX_TEXT_BYTES / mb).map(|_| vec![b'x'; mb]);
@@ -240,4 +298,80 @@ fn the_word_budget_refuses_at_its_line_as_the_whole_text_does() {
     let got = got.expect("a push refuses the line");
     assert_eq!(got, want);
     assert_eq!((got.errors[0].line, got.errors[0].column), (3, 1));
+}
+
+/// Whether a text was refused as a whole (`checkNc`'s `notRead`), as the
+/// whole-text reading says it (`parse_files_noting_refusal`, which
+/// `checkNc` of a string reads it from) and as the stream does
+/// (`finish_noting_refusal`): the same for every text written to break
+/// the stream, whole and in chunks; true for a binary file and over the
+/// budgets only, never for a line's own error at line 1, column 1.
+#[test]
+fn a_refusal_as_a_whole_is_told_by_both_readings() {
+    let o = ParseOptions::default();
+    let whole_read = |bytes: &[u8], files: Vec<NcFile>| {
+        let text = String::from_utf8_lossy(bytes).into_owned();
+        let (read, whole) = parse_files_noting_refusal(text, files, &o, Keep::Motion);
+        (format!("{read:?}"), whole)
+    };
+    let stream_read = |bytes: &[u8], size: usize| {
+        let mut s = NcStream::new();
+        for c in bytes.chunks(size) {
+            if s.push(c).is_err() {
+                break;
+            }
+        }
+        let (read, whole) = s.finish_noting_refusal(&o, Keep::Motion);
+        (format!("{read:?}"), whole)
+    };
+    let mut refused = 0;
+    for (name, bytes) in nasty() {
+        let want = whole_read(&bytes, Vec::new());
+        assert_eq!(
+            want.0,
+            format!("{:?}", whole(&bytes, Keep::Motion)),
+            "{name}"
+        );
+        refused += usize::from(want.1);
+        for size in [1, 7, bytes.len().max(1)] {
+            assert_eq!(stream_read(&bytes, size), want, "{name}, chunks of {size}");
+        }
+    }
+    assert!(
+        refused >= 2,
+        "the binary files among the nasty texts: {refused}"
+    );
+    let png = b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR".to_vec();
+    assert!(whole_read(&png, Vec::new()).1, "a PNG");
+    let over = vec![b'\n'; MAX_NC_LINES + 1];
+    let (read, whole) = whole_read(&over, Vec::new());
+    assert!(
+        whole && read.contains("more than the limit of 4000000"),
+        "{read}"
+    );
+    // a line's error at line 1, column 1, is the line's: the text was read
+    let (read, whole) = whole_read(b"X\nG0 X1\n", Vec::new());
+    assert!(!whole && read.contains("line: 1, column: 1"), "{read}");
+    // the program and its files over the budget together: none is read
+    let half = |name: &str| NcFile {
+        name: name.into(),
+        text: "\n".repeat(MAX_NC_LINES / 2 + 1),
+    };
+    let (read, whole) = whole_read(b"G0 X1\n", vec![half("a.nc"), half("b.nc")]);
+    assert!(whole && read.contains("program and its files"), "{read}");
+    // a binary file beside a program that is read is that file's error
+    let img = NcFile {
+        name: "img.nc".into(),
+        text: String::from_utf8_lossy(&png).into_owned(),
+    };
+    let (read, whole) = whole_read(b"G0 X1\n", vec![img]);
+    assert!(!whole && read.contains("img.nc"), "{read}");
+    // a program refused beside a file with an error of its own: the file
+    // was read, so the text was not refused as a whole
+    let bad = NcFile {
+        name: "bad.nc".into(),
+        text: "G1 X".into(),
+    };
+    let (read, whole) = whole_read(&png, vec![bad]);
+    assert!(!whole && read.contains("bad.nc"), "{read}");
 }

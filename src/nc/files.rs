@@ -66,7 +66,9 @@ pub fn parse_files_keeping(
     options: &ParseOptions,
     keep: Keep,
 ) -> Result<Program, NcErrors> {
-    lex_files(text, files)?.interpret(options, keep)
+    lex_files(text, files)
+        .map_err(|(e, _)| e)?
+        .interpret(options, keep)
 }
 
 /// As [`parse_files_keeping`], taking the texts and freeing them once they
@@ -83,10 +85,43 @@ pub fn parse_files_owned(
     options: &ParseOptions,
     keep: Keep,
 ) -> Result<Program, NcErrors> {
-    let lexed = lex_files(&text, &files)?;
+    parse_files_noting_refusal(text, files, options, keep).0
+}
+
+/// As [`parse_files_owned`], and whether the text was refused as a whole,
+/// before any line was read (`checkNc`'s `notRead`): its one error says
+/// the program, or the program and its files together, are over the text
+/// budget ([`crate::budget::check_texts`]), or that the program is no text
+/// file (an image, a PDF, an archive; [`super::unreadable`]).
+///
+/// # Examples
+/// ```
+/// use mtmotion::nc::files::parse_files_noting_refusal;
+/// use mtmotion::nc::program::{Keep, ParseOptions};
+/// let o = ParseOptions::default();
+/// let png = "\u{fffd}PNG\r\n\u{1a}\n\0\0\0\rIHDR".to_string();
+/// let (read, whole) = parse_files_noting_refusal(png, vec![], &o, Keep::Motion);
+/// assert!(whole && read.unwrap_err().errors.len() == 1);
+/// let (read, whole) = parse_files_noting_refusal("G1 X".into(), vec![], &o, Keep::Motion);
+/// assert!(!whole && read.is_err());
+/// ```
+pub fn parse_files_noting_refusal(
+    text: String,
+    files: Vec<NcFile>,
+    options: &ParseOptions,
+    keep: Keep,
+) -> (Result<Program, NcErrors>, bool) {
+    let lexed = match lex_files(&text, &files) {
+        Ok(lexed) => lexed,
+        Err((e, whole)) => return (Err(e), whole),
+    };
     drop(text);
     drop(files);
-    lexed.interpret(options, keep)
+    let refused = lexed.refused;
+    let read = lexed.interpret(options, keep);
+    // the program's refusal alone: no file's error beside it
+    let whole = refused && read.as_ref().is_err_and(|e| e.errors.len() == 1);
+    (read, whole)
 }
 
 /// A program and its files lexed into one list of blocks: the errors
@@ -95,11 +130,14 @@ struct Lexed {
     blocks: Vec<Block>,
     errors: NcErrors,
     spans: Vec<(usize, String)>,
+    /// The program's text was refused as a whole ([`super::unreadable`]).
+    refused: bool,
 }
 
 /// Lexes `text` and then `files` into one list of blocks (the budgets
-/// checked over all of them); `Err` for a text refused as a whole.
-fn lex_files(text: &str, files: &[NcFile]) -> Result<Lexed, NcErrors> {
+/// checked over all of them); `Err` for the texts refused together (over
+/// the budget: `true`) or for the dialect refusal (`false`).
+fn lex_files(text: &str, files: &[NcFile]) -> Result<Lexed, (NcErrors, bool)> {
     if !files.is_empty() {
         // one budget spans the program and its files (20 files of 100,000
         // lines took 1.25 GB when every block kept its modal state)
@@ -110,11 +148,11 @@ fn lex_files(text: &str, files: &[NcFile]) -> Result<Lexed, NcErrors> {
                 truncated: false,
             };
             errors.push(NcError::new(1, 1, e.to_string()));
-            return Err(errors);
+            return Err((errors, true));
         }
     }
     let mut words = 0;
-    let (mut blocks, mut errors) = super::lex_counting(text, &mut words);
+    let (mut blocks, mut errors, refused) = super::lex_noting_refusal(text, &mut words);
     let mut spans = Vec::new();
     let mut offset = blocks.len();
     for (k, f) in files.iter().enumerate() {
@@ -132,7 +170,8 @@ fn lex_files(text: &str, files: &[NcFile]) -> Result<Lexed, NcErrors> {
         }));
         offset += n;
     }
-    Lexed::checked(blocks, errors, spans)
+    let lexed = Lexed::checked(blocks, errors, spans).map_err(|e| (e, false))?;
+    Ok(Lexed { refused, ..lexed })
 }
 
 /// Interprets the main program's `blocks`, lexed with `errors`, exactly
@@ -172,6 +211,7 @@ impl Lexed {
             blocks,
             errors,
             spans,
+            refused: false,
         })
     }
 
@@ -182,6 +222,7 @@ impl Lexed {
             blocks,
             mut errors,
             spans,
+            ..
         } = self;
         match interpret_keeping(blocks, options, keep) {
             Ok(mut p) if errors.is_empty() => {

@@ -311,20 +311,27 @@ pub fn lex_all(text: &str) -> (Vec<Block>, NcErrors) {
 /// As [`lex_all`], adding the words lexed to `words` (the count of the
 /// texts lexed before, which share the budget).
 pub(crate) fn lex_counting(text: &str, words: &mut usize) -> (Vec<Block>, NcErrors) {
+    let (blocks, errors, _) = lex_noting_refusal(text, words);
+    (blocks, errors)
+}
+
+/// As [`lex_counting`], and whether `text` was refused as a whole
+/// ([`unreadable`]: its one error is then at line 1, column 1).
+pub(crate) fn lex_noting_refusal(text: &str, words: &mut usize) -> (Vec<Block>, NcErrors, bool) {
     let mut errors = NcErrors {
         errors: Vec::new(),
         truncated: false,
     };
     if let Some(why) = unreadable(text) {
         errors.push(NcError::new(1, 1, why));
-        return (Vec::new(), errors);
+        return (Vec::new(), errors, true);
     }
     let lines = split_lines(text);
     let mut blocks = Vec::with_capacity(lines.len());
     if lex_lines(lines, 1, words, &mut blocks, &mut errors).is_err() {
-        return (Vec::new(), errors);
+        return (Vec::new(), errors, false);
     }
-    (blocks, errors)
+    (blocks, errors, false)
 }
 
 /// The word budget stopped the lexing (its error is in the list).

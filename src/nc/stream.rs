@@ -88,12 +88,34 @@ pub struct NcStream {
     /// The refusal, if the text was refused, and whether it was refused
     /// as a whole (over the text budget, or not a text file).
     refused: Option<(NcErrors, bool)>,
+    /// The text's length in bytes if known ([`NcStream::with_size_hint`]).
+    expected_bytes: u64,
 }
 
 impl NcStream {
     /// A stream with nothing read.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// A stream with nothing read that will be given about `total_bytes`
+    /// bytes (a file's size): the block list is then sized from it and
+    /// the lines read so far, once, instead of growing by doubling. Only
+    /// the memory differs from [`NcStream::new`]: the result is the same
+    /// whatever the hint (a wrong one costs a regrowth or unused room).
+    ///
+    /// Why: in wasm, whose memory never shrinks, each doubling of the
+    /// list leaves a hole the program's interpretation fills with small
+    /// blocks that outlive the list; the simulation's large blocks then
+    /// found no room below the segments and grew the memory (the 2 M-line
+    /// program of `bench/node/large-program.bench.mjs`: 940 MiB against
+    /// the whole-text reading's 831; docs/performance.md).
+    pub fn with_size_hint(total_bytes: u64) -> Self {
+        Self {
+            // a text over the budget is refused: no more room is made
+            expected_bytes: total_bytes.min(MAX_TEXT_BYTES as u64),
+            ..Self::default()
+        }
     }
 
     /// Reads `bytes`, the next chunk of the program's text (any cut: a
@@ -113,8 +135,7 @@ impl NcStream {
         }
         self.count_line_ends(bytes);
         self.pending.extend_from_slice(bytes);
-        let lines = self.line_ends + u64::from(self.cr_last || self.open_line);
-        if let Some(e) = self.over_budget(&self.pending, lines) {
+        if let Some(e) = self.over_budget(&self.pending, self.lines()) {
             return Err(self.refuse(e, true));
         }
         // The run: up to the last line end before the last byte that is no
@@ -169,11 +190,17 @@ impl NcStream {
         }
         let pending = std::mem::take(&mut self.pending);
         let tail = String::from_utf8_lossy(&pending);
-        let lines = self.line_ends + u64::from(self.cr_last || self.open_line);
-        if let Some(e) = self.over_budget(tail.as_bytes(), lines) {
+        if let Some(e) = self.over_budget(tail.as_bytes(), self.lines()) {
             return Err(self.refuse(e, true));
         }
         self.read(&tail, true)
+    }
+
+    /// Lines in the bytes pushed: their line ends, and the last line if
+    /// no line end ends it (or it ends in a CR, counted once the next
+    /// byte is known).
+    fn lines(&self) -> u64 {
+        self.line_ends + u64::from(self.cr_last || self.open_line)
     }
 
     /// Adds the line ends of `bytes` (LF, CRLF or CR alone, as
@@ -234,6 +261,7 @@ impl NcStream {
             crate::trace::split_line_ends(text)
         };
         let n = lines.len();
+        self.reserve_blocks(n);
         let first = self.read_lines + 1;
         let over = super::lex_lines(
             lines,
@@ -249,6 +277,27 @@ impl NcStream {
             return Err(self.refuse_all(e, false));
         }
         Ok(())
+    }
+
+    /// Makes room for `n` more blocks (a run's lines): with
+    /// a size hint, room for the lines the text's remaining bytes hold at
+    /// the lines per byte read so far, and a tenth more (one allocation
+    /// instead of doublings; see [`NcStream::with_size_hint`]).
+    fn reserve_blocks(&mut self, n: usize) {
+        let room = self.blocks.capacity() - self.blocks.len();
+        if self.expected_bytes == 0 || n <= room {
+            return;
+        }
+        let read = self.read_bytes.max(1) as f64;
+        let lines_per_byte = (self.read_lines + n) as f64 / read;
+        let left = self.expected_bytes.saturating_sub(self.read_bytes) as f64;
+        if left == 0.0 {
+            // more than the hint said: grow as without one (doubling)
+            self.blocks.reserve(n);
+            return;
+        }
+        let more = ((left * lines_per_byte * 1.1).ceil() as usize).min(budget::MAX_NC_LINES);
+        self.blocks.reserve_exact(n + more);
     }
 
     /// The binary-file check on the text so far, `text` its newest run
@@ -298,4 +347,91 @@ fn line_ends_before(bytes: &[u8], at: usize) -> usize {
     (0..at)
         .filter(|&i| bytes[i] == b'\n' || (bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n')))
         .count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 10,000 lines of 16 bytes, the same text as `n` whole lines.
+    fn uniform(n: usize) -> Vec<u8> {
+        (0..n)
+            .flat_map(|i| format!("G1 X{i:05} Y1 Z0\n").into_bytes())
+            .collect()
+    }
+
+    #[test]
+    fn a_size_hint_sizes_the_block_list_once() {
+        let text = uniform(10_000);
+        assert_eq!(text.len(), 160_000);
+        let mut s = NcStream::with_size_hint(text.len() as u64);
+        let mut capacities = Vec::new();
+        for c in text.chunks(4096) {
+            s.push(c).unwrap();
+            capacities.push(s.blocks.capacity());
+        }
+        s.read_tail().unwrap();
+        capacities.push(s.blocks.capacity());
+        assert_eq!(s.blocks.len(), 10_000);
+        // sized at the first run (the 255 lines of its first 4,080 bytes:
+        // the 256th line's end may be the text's last), for its lines
+        // and 1.1 × the 155,920 bytes left at 16 bytes a line: 255 +
+        // ⌈9,745 × 1.1⌉; never grown after
+        let first = capacities[0];
+        assert_eq!(first, 255 + 10_720);
+        assert!(capacities.iter().all(|&c| c == first), "{capacities:?}");
+        // without the hint the list grows by doubling: 16,384 blocks
+        let mut s = NcStream::new();
+        for c in text.chunks(4096) {
+            s.push(c).unwrap();
+        }
+        s.read_tail().unwrap();
+        assert_eq!(s.blocks.capacity(), 16_384);
+    }
+
+    #[test]
+    fn lines_shorter_than_the_first_regrow_the_list_once_more() {
+        // 300 lines of 32 bytes, then 5,000 of 16, told the exact length
+        let mut text: Vec<u8> = (0..300)
+            .flat_map(|i| format!("G1 X{i:05} Y1 Z0 F1000 (LONGER.)\n").into_bytes())
+            .collect();
+        assert_eq!(text.len(), 300 * 32);
+        text.extend(uniform(5_000));
+        let mut s = NcStream::with_size_hint(text.len() as u64);
+        let mut capacities = vec![];
+        for c in text.chunks(4096) {
+            s.push(c).unwrap();
+            if capacities.last() != Some(&s.blocks.capacity()) {
+                capacities.push(s.blocks.capacity());
+            }
+        }
+        s.read_tail().unwrap();
+        assert_eq!(s.blocks.len(), 5_300);
+        // sized at the first run for 32 bytes a line (127 + ⌈85,536 / 32
+        // × 1.1⌉), then, once full, again from the lines per byte read by
+        // then (not by doubling to 6,136, nor at every run as the lines
+        // got shorter): within a tenth of the lines
+        assert_eq!(capacities[0], 127 + 2_941);
+        assert!(capacities.len() <= 3, "{capacities:?}");
+        let last = *capacities.last().unwrap();
+        assert!((5_300..5_830).contains(&last), "{capacities:?}");
+    }
+
+    #[test]
+    fn a_short_hint_regrows_from_the_lines_per_byte_read() {
+        let text = uniform(10_000);
+        // told 8,000 bytes (500 lines): the first run, 255 lines, makes
+        // room for them and 1.1 × the 245 lines of the 3,920 bytes left
+        // (255 + ⌈269.5⌉); past the hint the list grows by doubling
+        let mut s = NcStream::with_size_hint(8_000);
+        let mut chunks = text.chunks(4096);
+        s.push(chunks.next().unwrap()).unwrap();
+        assert_eq!(s.blocks.capacity(), 525);
+        for c in chunks {
+            s.push(c).unwrap();
+        }
+        s.read_tail().unwrap();
+        assert_eq!(s.blocks.len(), 10_000);
+        assert_eq!(s.blocks.capacity(), 525 << 5);
+    }
 }

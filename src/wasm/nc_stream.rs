@@ -70,7 +70,7 @@ impl NcStream {
         };
         reserve(total.saturating_mul(NC_BYTES_PER_TEXT_BYTE));
         Ok(NcStream {
-            inner: Some(crate::nc::stream::NcStream::new()),
+            inner: Some(crate::nc::stream::NcStream::with_size_hint(total as u64)),
             pushed: 0,
             reserved_for: total,
             chunk: Vec::new(),
@@ -122,7 +122,7 @@ impl NcStream {
         not_reentered()?;
         let opts = parse_options(no_files(options, "options")?)?;
         let (read, not_read) = self.take()?.finish_noting_refusal(&opts, Keep::Motion);
-        check_obj(read, |_| not_read)
+        check_obj(read, not_read)
     }
 
     /// Ends the text and simulates the program as
@@ -151,7 +151,11 @@ impl NcStream {
         self.inner.as_mut().ok_or_else(spent)
     }
 
+    /// The stream, to finish: the chunk buffer is freed first (left in
+    /// wasm memory, it would split the room the lexed blocks leave, which
+    /// the simulation's large blocks use).
     fn take(&mut self) -> Result<crate::nc::stream::NcStream, JsError> {
+        self.chunk = Vec::new();
         self.inner.take().ok_or_else(spent)
     }
 }

@@ -12,7 +12,7 @@ use super::convert::{
     reserve, string_arg, to_js, Obj, NC_BYTES_PER_TEXT_BYTE, SIM_BYTES_PER_SEGMENT,
 };
 use crate::compensate::reverse::{reverse_compensate_with, ReverseConfig};
-use crate::nc::files::{main_file, parse_files_owned, NcFile};
+use crate::nc::files::{main_file, parse_files_noting_refusal, parse_files_owned, NcFile};
 use crate::nc::program::{Keep, ParseOptions, Program, Segment, ToolRadii, Warning};
 use crate::nc::summary::{summarize, Summary};
 use crate::nc::{NcError, NcErrors};
@@ -129,7 +129,9 @@ pub fn parse_nc(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "NcParseOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
-    let p = parse_args(&text, options)?.map_err(|e| JsError::new(&e.to_string()))?;
+    let p = parse_args(&text, options)?
+        .0
+        .map_err(|e| JsError::new(&e.to_string()))?;
     let rapid_feed = SimConfig::default().rapid_feed;
     to_js(&Parsed {
         segments: &p.segments,
@@ -139,14 +141,18 @@ pub fn parse_nc(
 }
 
 /// Reads `parseNc`/`checkNc`'s arguments and parses: an `Err` for a bad
-/// argument, `Ok(Err(_))` for the program's own errors.
-fn parse_args(text: &JsValue, options: JsValue) -> Result<Result<Program, NcErrors>, JsError> {
+/// argument, `Ok((Err(_), _))` for the program's own errors, with
+/// whether the text was refused as a whole (`checkNc`'s `notRead`).
+fn parse_args(
+    text: &JsValue,
+    options: JsValue,
+) -> Result<(Result<Program, NcErrors>, bool), JsError> {
     let text = string_arg(text, "text")?;
     let (files, options) = take_files(options)?;
     let opts = parse_options(options)?;
     reserve_for_nc(&text, &files);
     // the texts are freed once lexed, before the segments are made
-    Ok(parse_files_owned(text, files, &opts, Keep::Motion))
+    Ok(parse_files_noting_refusal(text, files, &opts, Keep::Motion))
 }
 
 /// Reserves the wasm memory reading `text` and `files` will take, in one
@@ -241,22 +247,15 @@ pub fn check_nc(
     #[wasm_bindgen(unchecked_param_type = "string")] text: JsValue,
     #[wasm_bindgen(unchecked_optional_param_type = "NcParseOptions")] options: JsValue,
 ) -> Result<JsValue, JsError> {
-    let read = parse_args(&text, options)?;
-    // a whole-text refusal is one error at line 1, column 1
-    check_obj(read, |e| {
-        e.errors.len() == 1
-            && (e.errors[0].line, e.errors[0].column) == (1, 1)
-            && text
-                .as_string()
-                .is_some_and(|t| crate::nc::unreadable(&t).is_some())
-    })
+    let (read, not_read) = parse_args(&text, options)?;
+    check_obj(read, not_read)
 }
 
 /// `checkNc`'s result (`NcCheck`) for a program read: `not_read` says
 /// whether its errors refused the text as a whole.
 pub(super) fn check_obj(
     read: Result<Program, NcErrors>,
-    not_read: impl FnOnce(&NcErrors) -> bool,
+    not_read: bool,
 ) -> Result<JsValue, JsError> {
     match read {
         Ok(p) => to_js(&Checked {
@@ -267,7 +266,7 @@ pub(super) fn check_obj(
             summary: Some(summarize(&p, SimConfig::default().rapid_feed)),
         }),
         Err(e) => to_js(&Checked {
-            not_read: not_read(&e),
+            not_read,
             errors: &e.errors,
             truncated: e.truncated,
             warnings: &[],

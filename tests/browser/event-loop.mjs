@@ -20,3 +20,22 @@ export async function worstDelay(page, work) {
     return w.__worst;
   });
 }
+
+/** The main thread while `work` runs: the worst event-loop delay
+ * (worstDelay) and the browser's Long Tasks (PerformanceObserver
+ * 'longtask': every task of 50 ms or more), in ms. */
+export async function mainThread(page, work) {
+  await page.evaluate(() => {
+    const w = /** @type {any} */ (window);
+    w.__longTasks = [];
+    w.__longObserver = new PerformanceObserver((list) => w.__longTasks.push(...list.getEntries().map((e) => e.duration)));
+    w.__longObserver.observe({ type: 'longtask' });
+  });
+  const delay = await worstDelay(page, work);
+  const tasks = await page.evaluate(() => {
+    const w = /** @type {any} */ (window);
+    w.__longObserver.disconnect();
+    return w.__longTasks;
+  });
+  return { delay, tasks, longest: Math.max(0, ...tasks) };
+}

@@ -68,6 +68,11 @@ test('a binary file, a bad chunk, files and a spent stream are refused with what
   const png = new Uint8Array([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 0x0d]);
   assert.deepEqual(streamed(png, 3).checkNc(), mt.checkNc(new TextDecoder().decode(png)));
   assert.equal(streamed(png, 3).checkNc().notRead, true);
+  // checkNc of a string tells a refusal as a whole from a line's error at
+  // line 1, column 1 (the core says which; the text is not read twice)
+  assert.equal(mt.checkNc(new TextDecoder().decode(png)).notRead, true);
+  const lineError = mt.checkNc('X\nG0 X1\n');
+  assert.deepEqual([lineError.notRead, lineError.errors[0].line, lineError.errors[0].column], [false, 1, 1]);
   const s = new mt.NcStream();
   assert.throws(() => s.push('G0 X0'), /chunk: expected a Uint8Array, got string/);
   assert.throws(() => s.checkNc({ files: [] }), /options\.files: an NcStream reads the main program alone/);

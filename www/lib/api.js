@@ -219,7 +219,7 @@ export function inPageApi(wasm) {
     await new Promise((r) => setTimeout(r, 0));
     if (signal?.aborted) throw new Error('cancelled');
     try {
-      return onProgress ? f(...args, onProgress) : f(...args);
+      return await (onProgress ? f(...args, onProgress) : f(...args));
     } catch (e) {
       if (e instanceof WebAssembly.RuntimeError) throw new Error(`the calculation failed inside the engine (${e.message}); reload the page to restart it`, { cause: e });
       throw e;

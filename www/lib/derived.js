@@ -25,8 +25,79 @@ export function unpackSimulation(r) {
   return { ...rest, segments };
 }
 
+/**
+ * A large program file read into the core's NcStream chunk by chunk
+ * (File.stream()), never as one string: the stream, told the file's size.
+ * `onProgress(fraction, 'reading')` at each whole per cent read. A chunk
+ * the core refuses (over a budget, not a text file) ends the reading: the
+ * stream keeps the refusal, which its checkNc reports and its simulation
+ * throws.
+ * @param {typeof import('../pkg/mtmotion.js')} wasm
+ * @param {Blob} file
+ * @param {Function} [onProgress]
+ */
+async function streamFile(wasm, file, onProgress) {
+  const stream = new wasm.NcStream(file.size);
+  const reader = file.stream().getReader();
+  let read = 0;
+  let shown = -1;
+  try {
+    for (;;) {
+      const { done, value } = await reader.read();
+      if (done) break;
+      try {
+        stream.push(value);
+      } catch {
+        // refused: the stream keeps the core's refusal
+        await reader.cancel();
+        break;
+      }
+      read += value.length;
+      const percent = Math.floor((100 * read) / Math.max(1, file.size));
+      if (onProgress && percent !== shown) onProgress((shown = percent) / 100, 'reading');
+    }
+  } catch (e) {
+    // the file could not be read (removed, unreadable)
+    stream.free();
+    throw e;
+  }
+  return stream;
+}
+
 /** name → (wasm module, ...args) → result */
 export const derived = {
+  /**
+   * checkNc of a program file read streamed (NcStream: the whole text is
+   * never one string in the page, the worker or wasm memory).
+   * @param {typeof import('../pkg/mtmotion.js')} wasm
+   * @param {Blob} file
+   * @param {import('../pkg/mtmotion.js').NcStreamParseOptions} [options]
+   * @param {Function} [onProgress]
+   */
+  checkNcFile: async (wasm, file, options, onProgress) => {
+    const stream = await streamFile(wasm, file, onProgress);
+    try {
+      return stream.checkNc(options);
+    } finally {
+      stream.free();
+    }
+  },
+  /**
+   * simulateToolPathPacked of a program file read streamed (NcStream's
+   * simulateToolPathColumns): progress 'reading', then 'simulating'.
+   * @param {typeof import('../pkg/mtmotion.js')} wasm
+   * @param {Blob} file
+   * @param {import('../pkg/mtmotion.js').NcStreamToolPathConfig} config
+   * @param {Function} [onProgress]
+   */
+  simulateNcFilePacked: async (wasm, file, config, onProgress) => {
+    const stream = await streamFile(wasm, file, onProgress);
+    try {
+      return stream.simulateToolPathColumns(config, onProgress);
+    } finally {
+      stream.free();
+    }
+  },
   /**
    * parseNc(text, options), its segments as drawing pieces (lib/pieces.js).
    * @param {typeof import('../pkg/mtmotion.js')} wasm

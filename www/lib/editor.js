@@ -130,6 +130,8 @@ export function ncEditor({ id, onLine }) {
   const native = Object.getOwnPropertyDescriptor(HTMLTextAreaElement.prototype, 'value');
 
   let editedSinceChange = false;
+  /** The next text set is shown read-only (setReadOnly). */
+  let readOnly = false;
   const extensions = [
     lineNumbers(), highlightActiveLineGutter(), highlightActiveLine(), drawSelection(), history(),
     keymap.of([...defaultKeymap, ...historyKeymap]),
@@ -174,7 +176,7 @@ export function ncEditor({ id, onLine }) {
    * setter): a new editor state (no undo into the previous program, no
    * marks of it), cheaper than an edit of the whole text. */
   const install = (doc, str) => {
-    view.setState(EditorState.create({ doc, extensions }));
+    view.setState(EditorState.create({ doc, extensions: readOnly ? [...extensions, EditorState.readOnly.of(true), EditorView.editable.of(false)] : extensions }));
     cachedDoc = view.state.doc;
     cachedText = str;
     mirror();
@@ -283,5 +285,9 @@ export function ncEditor({ id, onLine }) {
     if (n >= 1 && n <= view.state.doc.lines) centre(view.state.doc.line(n).from);
   }
 
-  return { el, handle, view, selectLine, showCheck, markLine };
+  /** Texts set from now on are read-only (true) or editable (false). */
+  const setReadOnly = (on) => {
+    readOnly = on;
+  };
+  return { el, handle, view, selectLine, showCheck, markLine, setReadOnly };
 }

@@ -101,7 +101,9 @@ export function checkFilesWith(check) {
 
 /**
  * Drag-and-drop area with a file picker; calls onText(text, fileName), or
- * with `multiple`, onFiles([{ text, name }, …]) once for all dropped files.
+ * with `multiple`, onFiles([{ text, name }, …]) once for all dropped files
+ * (a file over `largeFrom` bytes as { file, name }, unread: the File, to
+ * be read in chunks).
  * Each file's size is first checked by the core (checkFilesWith): a file
  * it would refuse is never read, and onRefused(error) shows the core's
  * budget error instead (reading 50 MB into the page stalls it), with the
@@ -111,13 +113,13 @@ export function checkFilesWith(check) {
  * With `onBytes`, a file that is not UTF-8 text (a .mat capture) goes
  * to onBytes(bytes, fileName) as a Uint8Array (the core reads it by its
  * format); a shared link cannot carry it.
- * @param {{ label?: string, accept?: string, id?: string, multiple?: boolean, link?: string,
+ * @param {{ label?: string, accept?: string, id?: string, multiple?: boolean, link?: string, largeFrom?: number,
  *   onText?: (text: string, name: string) => unknown,
  *   onBytes?: (bytes: Uint8Array, name: string) => unknown,
- *   onFiles?: (files: { text: string, name: string }[]) => unknown,
+ *   onFiles?: (files: { text?: string, file?: File, name: string }[]) => unknown,
  *   onRefused: (error: Error, names: string) => unknown }} options
  */
-export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, onBytes, multiple = false, onFiles, onRefused, id, link }) {
+export function dropZone({ label = 'Drop a file here, or click to choose one', accept, onText, onBytes, multiple = false, onFiles, onRefused, id, link, largeFrom = Infinity }) {
   const input = h('input', { type: 'file', accept, hidden: true, multiple, id });
   const el = h('div', { class: 'drop', tabindex: 0, role: 'button' }, label, input);
   if (link && !multiple) linkedDrops.set(link, { el, onText, file: null });
@@ -129,7 +131,7 @@ export function dropZone({ label = 'Drop a file here, or click to choose one', a
     } catch (e) {
       return onRefused(e instanceof Error ? e : new Error(String(e)), list.map((f) => f.name).join(', '));
     }
-    if (multiple) return onFiles(await Promise.all(list.map(async (f) => ({ text: await f.text(), name: f.name }))));
+    if (multiple) return onFiles(await Promise.all(list.map(async (f) => (f.size > largeFrom ? { file: f, name: f.name } : { text: await f.text(), name: f.name }))));
     /** @type {{ text: string, name: string, binary?: boolean }} */
     let file = { text: await list[0].text(), name: list[0].name };
     let bytes = null;

@@ -32,7 +32,8 @@ export function serveCalls(wasm, ready) {
       const f = Object.hasOwn(derived, fn) ? (...a) => derived[fn](wasm, ...a) : wasm[fn];
       if (typeof f !== 'function' || fn === 'default' || fn.startsWith('init')) throw new Error(`unknown function '${fn}'`);
       const callArgs = progress ? [...args, (fraction, message) => self.postMessage({ id, progress: [fraction, message] })] : args;
-      const result = f(...callArgs);
+      // a derived call may be async (a file read streamed)
+      const result = await f(...callArgs);
       self.postMessage({ id, result }, { transfer: [...new Set(transferables(result))] });
     } catch (e) {
       self.postMessage({ id, error: String((e && e.message) || e), trap: isTrap(e) });

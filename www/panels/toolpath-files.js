@@ -6,7 +6,7 @@
 import { h } from '../lib/ui.js';
 
 /** State of the extra files: take(list) on a drop, options(o) adds `files`. */
-export function programFiles(api, { onMain }) {
+export function programFiles(api, { onMain, onMainFile, onRefused }) {
   let extra = [];
   const note = h('div', { id: 'toolpath-files', style: 'font-size:90%' });
   const clear = () => {
@@ -14,9 +14,15 @@ export function programFiles(api, { onMain }) {
     note.replaceChildren();
   };
   async function take(list) {
+    // a file too large to read whole comes unread ({ name, file }): it is
+    // read in chunks as the main program alone
+    const large = list.find((f) => f.file);
+    if (large && list.length > 1) {
+      return onRefused(new Error(`${large.name} is too large to read with other files: drop it alone (a large program is read in chunks as the main program alone; paste its subprograms after M30 in it)`));
+    }
     if (list.length === 1) {
       clear();
-      return onMain(list[0].text, list[0].name);
+      return large ? onMainFile(large.file, large.name) : onMain(list[0].text, list[0].name);
     }
     const i = await api.call('ncMainFile', [list.map((f) => f.text)]);
     const main = list[i];

@@ -44,15 +44,37 @@ export async function mount(root, api) {
   const lineLink = (w, cls) => w.file ? h('li', { class: cls }, `${w.file}, line ${w.line}, column ${w.column}: ${w.message}`) : h('li', { class: cls },
     h('a', { href: '#', class: 'nc-line', 'data-line': w.line, onclick: (e) => { e.preventDefault(); selectLine(w.line); } }, `line ${w.line}, column ${w.column}`),
     `: ${w.message}`);
+  // A program file over STREAM_FROM bytes is never one string on the page:
+  // the worker reads it in chunks into the core's NcStream (checkNcFile,
+  // simulateNcFilePacked), and the editor shows its first HEAD_BYTES only,
+  // read-only, with a note. 8 MiB: about 250,000 lines of a CAM finishing
+  // post; the 35k-line cameo (1.1 MB) stays in the editor, editable.
+  const STREAM_FROM = 8 << 20;
+  const HEAD_BYTES = 16 << 10;
+  /** The program read from its file in chunks: { file, name }, or null
+   * when the program is the editor's text. */
+  let bigFile = null;
+  const bigNote = h('p', { class: 'note', id: 'toolpath-big-note', hidden: true });
+  /** Back to the editor's own text (an example, a smaller file). */
+  const leaveBigFile = () => {
+    bigFile = null;
+    bigNote.hidden = true;
+    editor.setReadOnly(false);
+  };
+  const mb = (bytes) => `${fmt(bytes / 1e6, 3)} MB`;
   let checkSeq = 0;
-  /** Checks the program in the text area; `known` is a check of that same
-   * text already made (a large dropped file is checked before it is shown). */
+  /** Checks the program in the text area (or the large file read in
+   * chunks); `known` is a check of that same program already made (a
+   * dropped file is checked before it is shown). */
   async function checkProgram(known) {
     const seq = ++checkSeq;
     try {
-      const c = known ?? (await api.call('checkNc', [nc.value, files.options(radiiOption())]));
+      const c = known ?? (bigFile
+        ? await api.call('checkNcFile', [bigFile.file, radiiOption()])
+        : await api.call('checkNc', [nc.value, files.options(radiiOption())]));
       if (seq !== checkSeq) return;
-      editor.showCheck(c);
+      // the editor holds the head only: no marks piled on its last line
+      editor.showCheck(bigFile ? null : c);
       if (c.errors.length) {
         check.replaceChildren(
           h('p', { class: 'error' }, `${c.errors.length}${c.truncated ? '+' : ''} error(s): the program cannot be simulated until they are fixed.`),
@@ -87,7 +109,7 @@ export async function mount(root, api) {
   const example = selectField({
     label: 'Built-in example', id: 'toolpath-example', value: 'arcs',
     options: [['arcs', 'Fig. 2-like path, B–D as 43 arcs'], ['lines', 'Fig. 2-like path, B–D as 83 lines']],
-    onChange: (v) => { files.clear(); nc.value = examples[v]; fileName = `example-${v}.nc`; programChanged(); checkProgram(); },
+    onChange: (v) => { files.clear(); leaveBigFile(); nc.value = examples[v]; fileName = `example-${v}.nc`; programChanged(); checkProgram(); },
   });
   // Every dropped file is checked first: one the core does not read at all
   // (over its text budget, or not a text file: a PNG dropped on the program
@@ -106,13 +128,48 @@ export async function mount(root, api) {
       showError(check, new Error(`${name} was not loaded: ${problem}. The program shown is unchanged.`));
       return;
     }
+    leaveBigFile();
     nc.value = text;
     fileName = name;
     programChanged();
     checkProgram(known);
   };
-  const files = programFiles(api, { onMain: takeProgram });
-  const drop = dropZone({ label: 'Drop an NC program (with its subprogram files, if any) here, or click to choose', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', multiple: true, onFiles: files.take, onRefused: (e) => showError(check, e), id: 'toolpath-file' });
+  /** A program file over STREAM_FROM: checked in the worker as it is read
+   * in chunks (progress in the check area), then its head shown. */
+  const takeProgramFile = async (file, name) => {
+    const seq = ++checkSeq;
+    const reading = h('p', { id: 'toolpath-reading' }, `Reading ${name} (${mb(file.size)}) in the worker…`);
+    check.replaceChildren(reading);
+    let known;
+    let problem = null;
+    try {
+      known = await api.call('checkNcFile', [file, radiiOption()], {
+        onProgress: (f) => { reading.textContent = `Reading ${name} (${mb(file.size)}) in the worker: ${Math.round(f * 100)} %`; },
+      });
+      if (known.notRead) problem = known.errors[0].message;
+    } catch (e) {
+      problem = e instanceof Error ? e.message : String(e);
+    }
+    if (seq !== checkSeq) return;
+    if (problem) {
+      check.replaceChildren();
+      showError(check, new Error(`${name} was not loaded: ${problem}. The program shown is unchanged.`));
+      return;
+    }
+    const head = await file.slice(0, HEAD_BYTES).text();
+    const shown = head.slice(0, head.lastIndexOf('\n') + 1);
+    const lines = shown.split('\n').length - 1;
+    bigFile = { file, name };
+    editor.setReadOnly(true);
+    nc.value = shown;
+    bigNote.textContent = `${name} is ${mb(file.size)}: a program over ${mb(STREAM_FROM)} is read in chunks by the worker, checked and simulated from the file, never as one text on the page. The editor shows its first ${lines.toLocaleString('en')} lines only, read-only; compensation is not offered for it. Choose an example or drop a smaller file to edit a program.`;
+    bigNote.hidden = false;
+    fileName = name;
+    programChanged();
+    checkProgram(known);
+  };
+  const files = programFiles(api, { onMain: takeProgram, onMainFile: takeProgramFile, onRefused: (e) => showError(check, e) });
+  const drop = dropZone({ label: 'Drop an NC program (with its subprogram files, if any) here, or click to choose', accept: '.nc,.txt,.tap,.ngc,.cnc,.iso', multiple: true, largeFrom: STREAM_FROM, onFiles: files.take, onRefused: (e) => showError(check, e), id: 'toolpath-file' });
   const tA = numberField({ label: 'tA (acc/dec)', value: 40, unit: 'ms', step: 1, min: 0, id: 'toolpath-ta' });
   const tx = numberField({ label: 'T X', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-tx' });
   const ty = numberField({ label: 'T Y', value: 15, unit: 'ms', step: 1, min: 0, id: 'toolpath-ty' });
@@ -231,15 +288,17 @@ export async function mount(root, api) {
     const token = simUi.start();
     const abort = simRun.start();
     try {
-      // The program's segments (the core's parseNc reading) draw the programmed path.
-      const parsed = api.call('programPieces', [nc.value, files.options(radiiOption())]).catch(() => null);
-      const packed = await api.call('simulateToolPathPacked', [nc.value, files.options({ ...cfg(), ...radiiOption() })], {
-        signal: abort.signal,
-        onProgress: (f) => {
-          simCancel.hidden = false;
-          simProgress.set(f, `simulating: ${Math.round(f * 100)} %`);
-        },
-      });
+      // The program's segments (the core's parseNc reading) draw the
+      // programmed path; not for a large file read in chunks (the
+      // simulated path is drawn, coloured by its error).
+      const parsed = bigFile ? Promise.resolve(null) : api.call('programPieces', [nc.value, files.options(radiiOption())]).catch(() => null);
+      const onProgress = (f, stage = 'simulating') => {
+        simCancel.hidden = false;
+        simProgress.set(f, `${stage}: ${Math.round(f * 100)} %`);
+      };
+      const packed = bigFile
+        ? await api.call('simulateNcFilePacked', [bigFile.file, { ...cfg(), ...radiiOption() }], { signal: abort.signal, onProgress })
+        : await api.call('simulateToolPathPacked', [nc.value, files.options({ ...cfg(), ...radiiOption() })], { signal: abort.signal, onProgress });
       const s = unpackSimulation(packed);
       if (!simUi.current(token)) return;
       const program = await parsed;
@@ -300,6 +359,11 @@ export async function mount(root, api) {
   }
 
   async function compensate() {
+    if (bigFile) {
+      compUi.clear();
+      showError(compOut, new Error(`reverse compensation reads the program as one text and writes it again: it is not offered for ${bigFile.name}, read in chunks (over ${mb(STREAM_FROM)})`));
+      return;
+    }
     const token = compUi.start();
     const abort = compRun.start();
     cancel.hidden = false;
@@ -366,6 +430,7 @@ export async function mount(root, api) {
       h('h3', {}, 'NC program'),
       h('div', { class: 'row', style: 'display:flex;flex-wrap:wrap;gap:12px;align-items:flex-end' }, example.el, drop, radiiField),
       files.note,
+      bigNote,
       h('div', { style: 'display:grid;grid-template-columns:repeat(auto-fit,minmax(280px,1fr));gap:12px' }, editor.el, check)),
     h('div', { class: 'card' },
       h('h3', {}, 'Model (Eq. 1 moving average tA, Eq. 2 first-order lag T per axis)'),

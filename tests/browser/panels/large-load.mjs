@@ -12,7 +12,7 @@
 import { writeFileSync, mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
-import { worstDelay } from '../event-loop.mjs';
+import { mainThread } from '../event-loop.mjs';
 import { readFileSync } from 'node:fs';
 import { corpusMissing, readCorpus } from '../../support/corpus.mjs';
 
@@ -33,23 +33,11 @@ export default async function (page, check) {
   const input = await page.$('#panel-toolpath .drop input[type=file]');
   /** One load of the cameo: its worst event-loop delay and longest task. */
   async function load(file) {
-    await page.evaluate(() => {
-      const w = /** @type {any} */ (window);
-      w.__longTasks = [];
-      w.__longObserver = new PerformanceObserver((list) => w.__longTasks.push(...list.getEntries().map((e) => e.duration)));
-      w.__longObserver.observe({ type: 'longtask' });
-    });
     const t0 = Date.now();
-    const delay = await worstDelay(page, async () => {
+    const { delay, tasks, longest } = await mainThread(page, async () => {
       await input.setInputFiles(file);
       await page.waitForFunction((n) => (document.querySelector('#toolpath-check')?.textContent ?? '').includes(` / ${n} / `) || document.querySelector('#toolpath-check .error-box'), lines, { timeout: 60_000 });
     });
-    const tasks = await page.evaluate(() => {
-      const w = /** @type {any} */ (window);
-      w.__longObserver.disconnect();
-      return w.__longTasks;
-    });
-    const longest = Math.max(0, ...tasks);
     console.log(`  cameo (35,288 lines) loaded and checked in ${Date.now() - t0} ms: longest main-thread task ${longest.toFixed(0)} ms (${tasks.length} of 50 ms or more), worst event-loop delay ${delay.toFixed(0)} ms`);
     return { delay, longest };
   }
