@@ -295,7 +295,7 @@ impl Path {
     /// [`Path::nearest_on`] can return on element `i`, mm: a line's exact
     /// distance (its clamped projection), an arc's distance to the
     /// cylinder band its interior points lie on or to its nearer end point
-    /// (as [`ArcGeo::farther_than`]). Both are distances to a fixed set, so
+    /// (as `ArcGeo::farther_than`). Both are distances to a fixed set, so
     /// from another point `p` the bound falls by at most `|p − q|`.
     #[inline]
     pub fn lower_bound(&self, i: usize, q: [f64; 3]) -> f64 {
