@@ -205,6 +205,13 @@ pub const MAX_REVERSE_SIMULATED_SAMPLES: usize = 16_000_000;
 /// cameo raster fell to ×0.852 at 8 M (×0.062 at 16 M).
 pub const REVERSE_SAMPLES_PER_SEGMENT: usize = 400;
 
+/// The window samples a reverse compensation may spend, in simulations of
+/// the whole program, when that is more than its segments' share
+/// ([`REVERSE_SAMPLES_PER_SEGMENT`]): a finer `dt` or a longer motion time
+/// makes every window longer in samples. Botomata at dt 1 ms (5.7 M
+/// samples a simulation) was returned unchanged with 8 M window samples.
+pub const REVERSE_PROGRAM_SIMULATIONS: usize = 3;
+
 /// The least window budget of a reverse compensation (see
 /// [`REVERSE_SAMPLES_PER_SEGMENT`]).
 pub const MIN_REVERSE_SIMULATED_SAMPLES: usize = 8_000_000;

@@ -92,8 +92,12 @@ const ADDED: &[(&str, f64)] = &[
 /// (1 of 3 regions changed, the largest error is in another). The Fusion
 /// 360 program 0.721 -> 0.215 (534.75 -> 115.10 µm) when a line meeting
 /// an arc tangentially keeps its end (`geometry::Edit::tangent_lines`,
-/// tried where the largest error sits at such a joint).
-const FIELD: &[(&str, f64)] = &[("cncsprayer_fusion-output.nc", 0.215)];
+/// tried where the largest error sits at such a joint). 0.215 -> 0.250
+/// (133.5 µm) when the rounds' window budget became 400 samples a segment
+/// or three simulations of the program, at least 8 M (`budget.rs`; it was
+/// 16 M for every program): at dt 1 ms its rounds stop at the budget; at
+/// the dt 2 ms it is 0.213 either way.
+const FIELD: &[(&str, f64)] = &[("cncsprayer_fusion-output.nc", 0.250)];
 
 /// Programs whose largest error sits on moves they compute, compensated
 /// written flat (`Compensation::expanded`; tA 40 ms, T 15 ms, dt 1 ms):
@@ -308,7 +312,9 @@ fn every_simulating_corpus_program_is_never_worse_median_pinned() {
 /// last 12.3 µm), but the edit checked combines regions from different
 /// runs, and where the passes lie within the error of each other the
 /// combination is not what the runs measured (its command 37.1 µm, as
-/// written 35.2 µm).
+/// written 35.2 µm). So the better single run, as it is, is checked too
+/// when the check does not settle, and the lower of the two returned:
+/// 153.4 -> 11.2 µm (×0.073, +4.6 %).
 #[test]
 #[ignore = "seconds in a release build: run with --release -- --ignored"]
 fn an_unsettled_check_returns_its_best_checked_program() {
@@ -321,7 +327,7 @@ fn an_unsettled_check_returns_its_best_checked_program() {
     let c = reverse_compensate(&text, &cfg).unwrap();
     assert!(c.expanded, "{:?}", c.expand_note);
     let r = c.after.max_error_um / c.before.max_error_um;
-    assert!(r <= 0.225, "ratio {r:.3}, measured 0.221");
+    assert!(r <= 0.075, "ratio {r:.3}, measured 0.073");
     assert!(c.after.motion_time <= c.before.motion_time * (1.0 + cfg.time_budget) + cfg.sim.dt);
     let rose = |n: &&mtmotion::compensate::reverse::RegionNote| n.after_um > n.before_um + 0.1;
     assert!(c.regions.iter().any(|n| rose(&n)), "{:?}", c.regions);

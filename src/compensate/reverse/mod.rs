@@ -92,6 +92,11 @@ const NEIGHBOUR_SLACK: f64 = 1e-4;
 /// Rounds of writing, checking and reverting regions at most.
 const MAX_CHECKS: usize = 10;
 
+/// Most segments for which the better single run of rounds is held for
+/// the check beside their combination (64 B a segment: 6.4 MB here; the
+/// 1 M-segment program's memory is budgeted without it).
+const SINGLE_RUN_SEGMENTS: usize = 100_000;
+
 /// Settings of the reverse compensation. Read through a flat mirror
 /// (`ReverseConfigIn`): serde reads a flattened field as a map and drops
 /// the keys no part names.
@@ -816,6 +821,17 @@ fn in_place(
             copy_region(&rg, r, &plain.edit, &mut fallback);
         }
     }
+    // The better of the two runs as it is, for when the check of their
+    // combination does not settle (see `check`): a run's regions are
+    // judged against its own command, and where passes lie closer than
+    // their error (LinuxCNC threading) the combination of two runs'
+    // regions is not their prediction. Held up to SINGLE_RUN_SEGMENTS
+    // (64 B a segment).
+    let largest = |e: &[f64]| e.iter().copied().fold(0.0, f64::max);
+    let single = (orig.len() <= SINGLE_RUN_SEGMENTS).then(|| match &dwelt {
+        Dwelt::Ran(d) if largest(&d.error) < largest(&plain.error) => d.edit.clone(),
+        _ => plain.edit.clone(),
+    });
     let (mut edit, mut best) = (plain.edit, plain.error);
     match dwelt {
         Dwelt::None => {}
@@ -841,7 +857,7 @@ fn in_place(
         &rg,
         (&before_err, &before),
         cfg,
-        (edit, &fallback),
+        (edit, &fallback, single),
         &mut tick,
         &mut work,
     )?;
@@ -1053,7 +1069,7 @@ fn check(
     rg: &Regions,
     (before_err, before): (&[f64], &Before),
     cfg: &ReverseConfig,
-    (edit, fallback): (Edit, &Edit),
+    (edit, fallback, single): (Edit, &Edit, Option<Edit>),
     tick: &mut dyn FnMut(f64, &str) -> Result<(), ToolpathError>,
     work: &mut Work,
 ) -> Result<Checked, ToolpathError> {
@@ -1136,27 +1152,51 @@ fn check(
     // Reverting did not settle: each round raised other regions (passes
     // closer than their error, as LinuxCNC threading's 12.7 µm infeed,
     // move samples between them). The best checked program, checked once
-    // more, when it still lowers the program's maximum; the regions whose
-    // own error rose say so.
-    if let Some((_, edit)) = best {
+    // more, or the better single run of rounds as it is (`single`), when
+    // it is lower still: whichever lowers the program's maximum most; the
+    // regions whose own error rose say so.
+    let mut unsettled: Option<(Checked, f64)> = None;
+    let from_best = best.is_some();
+    let candidates = [best.map(|b| b.1), single.filter(|_| whole)];
+    for (k, edit) in candidates.into_iter().flatten().enumerate() {
         let nc = write_edit(src, &edit)?;
-        if let Ok(written) = motion_of(&nc, opts) {
-            if work.check(work.program) {
-                let sim = simulate(&written, src.segments(), &cfg.sim)?;
-                drop(written);
-                if sim.max_error < before.max_error && sim.motion_time <= limit {
-                    let after = region_errors(rg, &sim.segments);
-                    let reverted = rv.unsettled(&edit, &after, (before.max_error, sim.max_error));
-                    return Ok(Checked {
-                        nc,
-                        edit,
-                        sim: Some(sim),
-                        after,
-                        reverted,
-                    });
-                }
-            }
+        let Ok(written) = motion_of(&nc, opts) else {
+            continue;
+        };
+        if !work.check(work.program) {
+            break;
         }
+        let sim = simulate(&written, src.segments(), &cfg.sim)?;
+        drop(written);
+        let lowest = unsettled.as_ref().map_or(before.max_error, |u| u.1);
+        // The single run was not reviewed: no cutting move outside every
+        // region may rise (stricter than `revert_near_strays`).
+        let single_run = k == usize::from(from_best);
+        let orig = src.segments();
+        let fixed_rose = single_run
+            && segment_errors(orig.len(), &sim.segments)
+                .iter()
+                .zip(rv.before_seg)
+                .enumerate()
+                .any(|(i, (a, b))| {
+                    rg.of[i].is_none() && orig[i].is_cutting() && *a > b + NEIGHBOUR_SLACK
+                });
+        if sim.max_error < lowest && sim.motion_time <= limit && !fixed_rose {
+            let after = region_errors(rg, &sim.segments);
+            let reverted = rv.unsettled(&edit, &after, (before.max_error, sim.max_error));
+            let max_error = sim.max_error;
+            let c = Checked {
+                nc,
+                edit,
+                sim: Some(sim),
+                after,
+                reverted,
+            };
+            unsettled = Some((c, max_error));
+        }
+    }
+    if let Some((c, _)) = unsettled {
+        return Ok(c);
     }
     // Nothing left to change, or still not better everywhere.
     Ok(rv.give_back(text))

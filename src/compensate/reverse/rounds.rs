@@ -38,7 +38,7 @@ use super::geometry::{rebuild_indexed, Edit};
 use super::region::{chunks, Regions};
 use crate::budget::{
     MAX_REVERSE_CHECK_SAMPLES, MAX_REVERSE_SIMULATED_SAMPLES, MIN_REVERSE_SIMULATED_SAMPLES,
-    REVERSE_SAMPLES_PER_SEGMENT,
+    REVERSE_PROGRAM_SIMULATIONS, REVERSE_SAMPLES_PER_SEGMENT,
 };
 use crate::nc::program::{Motion, Segment};
 use crate::toolpath::contour::Path;
@@ -94,25 +94,32 @@ pub struct Work {
     base: Option<Rc<Base>>,
 }
 
-/// The rounds' window budget of a program of `segments` segments (see
-/// [`Work`]).
-pub fn window_budget(segments: usize) -> u64 {
-    (segments.saturating_mul(REVERSE_SAMPLES_PER_SEGMENT))
-        .clamp(MIN_REVERSE_SIMULATED_SAMPLES, MAX_REVERSE_SIMULATED_SAMPLES) as u64
+/// The rounds' window budget of a program of `segments` segments and
+/// `program` samples (see [`Work`]): [`REVERSE_SAMPLES_PER_SEGMENT`] a
+/// segment or [`REVERSE_PROGRAM_SIMULATIONS`] simulations of the program,
+/// whichever is more, within [`MIN_REVERSE_SIMULATED_SAMPLES`] and
+/// [`MAX_REVERSE_SIMULATED_SAMPLES`].
+pub fn window_budget(segments: usize, program: u64) -> u64 {
+    let places = segments.saturating_mul(REVERSE_SAMPLES_PER_SEGMENT) as u64;
+    let runs = program.saturating_mul(REVERSE_PROGRAM_SIMULATIONS as u64);
+    places.max(runs).clamp(
+        MIN_REVERSE_SIMULATED_SAMPLES as u64,
+        MAX_REVERSE_SIMULATED_SAMPLES as u64,
+    )
 }
 
 impl Work {
     /// The budget of one compensation of a program of `segments`
     /// segments and `program` samples.
     pub fn for_program(segments: usize, program: u64) -> Self {
-        Self::new(window_budget(segments), program)
+        Self::new(window_budget(segments, program), program)
     }
 
     /// What the result says when the budget cut the work short.
     pub fn note(&self) -> Option<String> {
         self.stopped.then(|| {
             format!(
-                "the work budget ({} simulated samples of correction windows around the corrected places ({REVERSE_SAMPLES_PER_SEGMENT} per segment, within {MIN_REVERSE_SIMULATED_SAMPLES} and {MAX_REVERSE_SIMULATED_SAMPLES}), checks of the written program {} samples at most, {} per simulation of this program) stopped the correction early; the best rounds so far are kept and checked. Raise dt or compensate the program in parts for a full run",
+                "the work budget ({} simulated samples of correction windows around the corrected places ({REVERSE_SAMPLES_PER_SEGMENT} per segment or {REVERSE_PROGRAM_SIMULATIONS} simulations of the program, within {MIN_REVERSE_SIMULATED_SAMPLES} and {MAX_REVERSE_SIMULATED_SAMPLES}), checks of the written program {} samples at most, {} per simulation of this program) stopped the correction early; the best rounds so far are kept and checked. Raise dt or compensate the program in parts for a full run",
                 self.limit,
                 MAX_REVERSE_CHECK_SAMPLES.max(2 * self.program as usize),
                 self.program
@@ -700,16 +707,20 @@ mod tests {
         assert!(w.note().unwrap().contains(&format!("{big} per simulation")));
     }
 
-    /// The rounds' budget grows with the program, 400 window samples a
-    /// segment, from 8 M (up to 20,000 segments) to 16 M (from 40,000).
+    /// The rounds' budget grows with the program: 400 window samples a
+    /// segment or three simulations of it, whichever is more, from 8 M to
+    /// 16 M.
     #[test]
-    fn the_window_budget_grows_with_the_segments() {
-        assert_eq!(window_budget(0), 8_000_000);
-        assert_eq!(window_budget(20_000), 8_000_000);
-        assert_eq!(window_budget(20_001), 8_000_400);
-        assert_eq!(window_budget(35_288), 14_115_200);
-        assert_eq!(window_budget(40_000), 16_000_000);
-        assert_eq!(window_budget(usize::MAX), 16_000_000);
+    fn the_window_budget_grows_with_the_program() {
+        assert_eq!(window_budget(0, 0), 8_000_000);
+        assert_eq!(window_budget(20_000, 2_666_666), 8_000_000);
+        assert_eq!(window_budget(20_001, 0), 8_000_400);
+        assert_eq!(window_budget(35_288, 2_000_000), 14_115_200);
+        assert_eq!(window_budget(6_216, 2_836_088), 8_508_264);
+        assert_eq!(window_budget(10, 2_666_667), 8_000_001);
+        assert_eq!(window_budget(40_000, 0), 16_000_000);
+        assert_eq!(window_budget(0, 5_333_334), 16_000_000);
+        assert_eq!(window_budget(usize::MAX, u64::MAX), 16_000_000);
         let mut w = Work::for_program(30_000, 5);
         assert_eq!(w.left(), 12_000_000);
         assert!(!w.round(12_000_001) && w.stopped);
