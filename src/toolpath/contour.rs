@@ -546,6 +546,13 @@ impl Tracker {
     #[inline]
     pub fn follow(&mut self, path: &Path, q: [f64; 3]) -> Option<f64> {
         let best = self.local(path, q)?;
+        self.settle(path, q, &best);
+        Some(best.s)
+    }
+
+    /// Moves the tracker to `best`, the nearest point of `path` to `q`.
+    #[inline]
+    fn settle(&mut self, path: &Path, q: [f64; 3], best: &Nearest) {
         self.cur = best.element;
         self.s = best.s;
         if !path.elements[best.element].rapid {
@@ -553,7 +560,6 @@ impl Tracker {
         }
         self.err = best.dist;
         self.last = Some(q);
-        Some(best.s)
     }
 
     /// The nearest point of `path` to `q`, searched around the last one.
@@ -612,13 +618,7 @@ impl Tracker {
                 best = f;
             }
         }
-        self.cur = best.element;
-        self.s = best.s;
-        if !path.elements[best.element].rapid {
-            self.s_cut = best.s;
-        }
-        self.err = best.dist;
-        self.last = Some(q);
+        self.settle(path, q, &best);
         Some(best)
     }
 
