@@ -827,9 +827,8 @@ fn in_place(
     // their error (LinuxCNC threading) the combination of two runs'
     // regions is not their prediction. Held up to SINGLE_RUN_SEGMENTS
     // (64 B a segment).
-    let largest = |e: &[f64]| e.iter().copied().fold(0.0, f64::max);
     let single = (orig.len() <= SINGLE_RUN_SEGMENTS).then(|| match &dwelt {
-        Dwelt::Ran(d) if largest(&d.error) < largest(&plain.error) => d.edit.clone(),
+        Dwelt::Ran(d) if d.worst() < plain.worst() => d.edit.clone(),
         _ => plain.edit.clone(),
     });
     let (mut edit, mut best) = (plain.edit, plain.error);
@@ -1010,7 +1009,6 @@ fn try_dwells(
     cands.sort_unstable();
     let mut set = cands.clone();
     let mut cur = with(&set, work)?;
-    let worst = |r: &rounds::Rounds| r.error.iter().copied().fold(0.0, f64::max);
     if set.len() * before.kept <= MAX_DWELL_TRIAL_SAMPLES {
         for c in set.clone() {
             let trial_set: Vec<usize> = set.iter().copied().filter(|&x| x != c).collect();
@@ -1018,7 +1016,7 @@ fn try_dwells(
                 break;
             }
             let trial = with(&trial_set, work)?;
-            if worst(&trial) <= worst(&cur) * 1.01 {
+            if trial.worst() <= cur.worst() * 1.01 {
                 set = trial_set;
                 cur = trial;
             }
@@ -1088,7 +1086,7 @@ fn check(
     // The NC filter forgets a change after tA, the servo lag after a few
     // T: a corner spike's transient (up to 0.2 mm) is below 1 nm after
     // 12·T (e⁻¹² ≈ 6·10⁻⁶).
-    let memory = cfg.sim.t_a + 12.0 * cfg.sim.t.per_axis().into_iter().fold(0.0, f64::max);
+    let memory = crate::toolpath::locality::memory(&cfg.sim);
     // The checked edit with the lowest maximum error below the original's
     // (whole program, within the time budget, no fixed move raised), for
     // when reverting does not settle.

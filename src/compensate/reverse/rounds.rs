@@ -63,6 +63,13 @@ pub struct Rounds {
     pub history_um: Vec<f64>,
 }
 
+impl Rounds {
+    /// The largest of the regions' best maximum errors, mm.
+    pub fn worst(&self) -> f64 {
+        self.error.iter().copied().fold(0.0, f64::max)
+    }
+}
+
 /// The original program's simulation, from which every set of rounds
 /// starts: its reference path and per-segment statistics.
 #[derive(Debug)]
@@ -73,9 +80,8 @@ struct Base {
 
 /// What one compensation may still simulate. The correction rounds
 /// simulate windows around the places they change
-/// ([`crate::toolpath::locality`]), up to [`REVERSE_SAMPLES_PER_SEGMENT`]
-/// samples per segment in all, within [`MIN_REVERSE_SIMULATED_SAMPLES`]
-/// and [`MAX_REVERSE_SIMULATED_SAMPLES`]; the whole-program
+/// ([`crate::toolpath::locality`]), up to [`window_budget`] samples in
+/// all; the whole-program
 /// simulations (the original, the checks of the written program) are
 /// budgeted apart: each is at most one simulation's budget
 /// ([`crate::budget::MAX_TOOLPATH_SAMPLES`]), and the checks may spend
