@@ -6,7 +6,9 @@
 
 use wasm_bindgen::prelude::*;
 
-use super::convert::{callback_arg, got, not_reentered, reserve, NC_BYTES_PER_TEXT_BYTE};
+use super::convert::{
+    callback_arg, got, not_reentered, opt_number_arg, reserve, NC_BYTES_PER_TEXT_BYTE,
+};
 use super::toolpath::{check_obj, columns_sim, parse_options, sim_config, sim_program, take_key};
 use crate::nc::program::{Keep, Program};
 use crate::nc::NcErrors;
@@ -51,22 +53,17 @@ impl NcStream {
         #[wasm_bindgen(unchecked_optional_param_type = "number")] total_bytes: JsValue,
     ) -> Result<NcStream, JsError> {
         not_reentered()?;
-        let total = if total_bytes.is_undefined() || total_bytes.is_null() {
-            0
-        } else {
-            let Some(n) = total_bytes.as_f64() else {
+        let total = match opt_number_arg(&total_bytes, "totalBytes")? {
+            None => 0,
+            Some(n) if n < 0.0 => {
                 return Err(JsError::new(&format!(
-                    "totalBytes: expected a number, got {}",
-                    got(&total_bytes)
-                )));
-            };
-            if !(n.is_finite() && n >= 0.0) {
-                return Err(JsError::new(&format!(
-                    "totalBytes: expected the text's length in bytes, a finite number ≥ 0, got {n}"
-                )));
+                    "totalBytes: expected the text's length in bytes, a number ≥ 0, got {n}"
+                )))
             }
-            crate::budget::check_bytes("program", n as u64)?;
-            n as usize
+            Some(n) => {
+                crate::budget::check_bytes("program", n as u64)?;
+                n as usize
+            }
         };
         reserve(total.saturating_mul(NC_BYTES_PER_TEXT_BYTE));
         Ok(NcStream {
