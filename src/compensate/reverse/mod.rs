@@ -1730,3 +1730,47 @@ fn changes((orig, blocks): (&[Segment], usize), rebuilt: bool, edit: &Edit) -> V
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TEXT: &str = "G21 G90 G17\nG0 X1.5 Y-2\nG1 X12.25 F900\nG2 X15.25 Y1 I0 J3\nG1 Z-1.75\n";
+
+    fn source(text: &str) -> Source<'_> {
+        Source::new(text, parse_with(text, &ParseOptions::default()).unwrap())
+    }
+
+    #[test]
+    fn slim_drops_the_blocks_and_program_reads_them_again() {
+        let whole = parse_with(TEXT, &ParseOptions::default()).unwrap();
+        let mut s = source(TEXT);
+        s.slim();
+        assert!(s.program.blocks.is_empty() && s.program.modal.is_empty());
+        assert_eq!(s.segments(), &whole.segments[..]);
+        assert_eq!(s.program().unwrap(), &whole);
+        // A second slim keeps the first fingerprint and reads the same.
+        s.slim();
+        assert!(s.program.blocks.is_empty());
+        assert_eq!(s.program().unwrap(), &whole);
+    }
+
+    #[test]
+    fn a_second_reading_with_other_moves_is_an_error() {
+        let mut s = source(TEXT);
+        s.slim();
+        let right = s.fingerprint.unwrap();
+        assert_ne!(right, rounds::NEVER_EQUAL);
+        for wrong in [right ^ 1, rounds::NEVER_EQUAL] {
+            s.slim();
+            s.fingerprint = Some(wrong);
+            match s.program() {
+                Err(ToolpathError::Config { field, message }) => {
+                    assert_eq!(field, "text");
+                    assert!(message.contains("other moves"), "{message}");
+                }
+                other => panic!("fingerprint {wrong:#x}: {other:?}"),
+            }
+        }
+    }
+}
