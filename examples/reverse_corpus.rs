@@ -5,7 +5,9 @@
 //!
 //! Run: `cargo run --release --example reverse_corpus [dt_ms] [file…]`
 //! (tA 40 ms, T 15 ms, dt 2 ms unless given; with `RC_STAGES` set, the
-//! time at which each stage starts is printed). The corpus is read from
+//! time at which each stage starts is printed; with `RC_DIGEST` set, a
+//! hash of each written program and its numbers to full precision, to
+//! compare two builds bit for bit). The corpus is read from
 //! `../shared/nc_corpus` or `MTMOTION_NC_CORPUS` (see
 //! `tests/support/corpus.rs`).
 
@@ -58,6 +60,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let r = c.after.max_error_um / c.before.max_error_um;
                 ratios.push(r);
                 let changed = c.regions.iter().filter(|n| n.changed).count();
+                if std::env::var_os("RC_DIGEST").is_some() {
+                    // To compare two builds bit for bit: the written text's
+                    // hash and the summaries as stored.
+                    use std::hash::{Hash, Hasher};
+                    let mut h = std::collections::hash_map::DefaultHasher::new();
+                    c.nc.hash(&mut h);
+                    println!(
+                        "  digest {:016x} after {:?} {:?} before {:?} {:?} history {:?}",
+                        h.finish(),
+                        c.after.max_error_um,
+                        c.after.motion_time,
+                        c.before.max_error_um,
+                        c.before.motion_time,
+                        c.history_um
+                    );
+                }
                 println!(
                     "{name:48} {:9.1} -> {:9.1} µm ×{r:.3}  time {:+.2} %  regions {changed}/{}  {:.2} s{}{}{}",
                     c.before.max_error_um,
