@@ -41,7 +41,7 @@
 //! 2. A segment whose earlier samples all lie in the cores, or that had
 //!    none, gets the cores' samples as its statistics; one that had
 //!    earlier samples outside the cores (the hull of their pieces, from
-//!    the first and last sample, [`SegmentStats::sample_span`], and the
+//!    the first and last sample, [`WindowStats::sample_span`], and the
 //!    earlier start times) keeps the cores' part open; those outside
 //!    pieces are then simulated by windows of their own and counted for
 //!    it alone (their samples are the earlier ones: nothing there moved).
