@@ -22,7 +22,7 @@ use mtmotion::toolpath::contour::Path;
 use mtmotion::toolpath::locality::{
     piece_starts, plan, plan_capped, update_capped, Windowed, MAX_CORE,
 };
-use mtmotion::toolpath::{simulate, simulate_stats, Lag, SimConfig};
+use mtmotion::toolpath::{simulate, simulate_stats, Lag, SimConfig, WindowStats};
 
 /// A zigzag raster of `passes` passes in one cut (no rapid after the
 /// plunge): pass lengths, step-overs and feeds vary, every fifth turn is
@@ -143,12 +143,11 @@ fn windowed(
     (cmd, at): (&[Segment], &[usize]),
     (changed, max_core): (&[bool], usize),
     cfg: &SimConfig,
-) -> (Windowed, u64, Vec<Option<mtmotion::toolpath::SegmentStats>>) {
+) -> (Windowed, u64, Vec<Option<WindowStats>>) {
     let (base, base_at) = rebuild_indexed(orig, &identity(orig, vec![0.0; orig.len()]));
     let mut stats = vec![None; orig.len()];
     for st in simulate_stats(&base, orig, cfg).unwrap().segments {
-        let i = st.segment;
-        stats[i] = Some(st);
+        stats[st.segment] = Some((&st).into());
     }
     let mut w = Windowed {
         stats: stats.clone(),
@@ -217,14 +216,14 @@ fn compare_capped(
         assert!(
             d < 0.1,
             "segment {} (line {}): window {} µm, whole {} µm",
-            st.segment,
-            st.line,
+            ws.segment,
+            ws.line,
             st.max_error_um,
             ws.max_error_um
         );
-        assert_eq!(st.samples, ws.samples, "segment {}", st.segment);
-        if let (Some(a), Some(b)) = (st.mean_deviation, ws.mean_deviation) {
-            assert!((a - b).abs() < 1e-4, "segment {}: {a} vs {b}", st.segment);
+        assert_eq!(st.samples as usize, ws.samples, "segment {}", ws.segment);
+        if let (Some(a), Some(b)) = (st.mean_deviation(), ws.mean_deviation) {
+            assert!((a - b).abs() < 1e-4, "segment {}: {a} vs {b}", ws.segment);
         }
         compared += 1;
     }
@@ -461,7 +460,7 @@ fn cam_rounds() -> (
 /// segment and over the program within 0.1 µm; `sim` is the original's.
 fn assert_within(
     orig: &[Segment],
-    windowed: &[Option<mtmotion::toolpath::SegmentStats>],
+    windowed: &[Option<WindowStats>],
     (whole, what): (&mtmotion::toolpath::Simulation, &str),
     sim: &mtmotion::toolpath::Simulation,
 ) {
@@ -581,7 +580,7 @@ fn a_later_pass_nearest_to_an_earlier_segment_is_counted_for_it() {
         "{windows:?}"
     );
     let (w, _, before) = windowed(orig, (&cmd, &at), (&changed, MAX_CORE), &cfg);
-    let diag_before = before[diagonal].as_ref().unwrap().clone();
+    let diag_before = before[diagonal].unwrap();
     let whole = simulate_stats(&cmd, orig, &cfg).unwrap();
     let got = w.stats[diagonal].as_ref().unwrap();
     let want = whole
@@ -602,7 +601,7 @@ fn a_later_pass_nearest_to_an_earlier_segment_is_counted_for_it() {
         "spans {:?} -> {:?}, mean {:?} -> {:?}, halves {:?} -> {:?}",
         diag_before.sample_span,
         want.sample_span,
-        diag_before.mean_deviation,
+        diag_before.mean_deviation(),
         want.mean_deviation,
         diag_before.half_max,
         want.half_max
@@ -610,11 +609,11 @@ fn a_later_pass_nearest_to_an_earlier_segment_is_counted_for_it() {
     // The corner's samples reach the diagonal, and the change shows there.
     assert!((diag_before.max_error_um - want.max_error_um).abs() > 1.0);
     assert!((got.max_error_um - want.max_error_um).abs() < 0.1);
-    assert_eq!(got.samples, want.samples);
+    assert_eq!(got.samples as usize, want.samples);
     for ws in &whole.segments {
         let st = w.stats[ws.segment].as_ref().unwrap();
         assert!(
-            (st.max_error_um - ws.max_error_um).abs() < 0.1 && st.samples == ws.samples,
+            (st.max_error_um - ws.max_error_um).abs() < 0.1 && st.samples as usize == ws.samples,
             "segment {}: {st:?} vs {ws:?}",
             ws.segment
         );

@@ -17,6 +17,7 @@
 
 pub mod arc;
 mod block;
+pub mod block_modes;
 pub mod corner;
 pub mod cutter;
 pub mod cutter_path;

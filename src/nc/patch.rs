@@ -118,7 +118,7 @@ struct Dialect {
 
 impl Dialect {
     fn of(p: &Program, raw: &[(&str, &str)]) -> Self {
-        let inch_used = p.modal.iter().any(|m| m.inch);
+        let inch_used = p.modes.any_inch();
         let g_pad = p
             .blocks
             .iter()
@@ -462,8 +462,9 @@ impl Writer<'_> {
             .filter(|&l| l < self.content.len())
     }
 
+    /// The modes after `block` the writer reads ([`Program::modes`]).
     fn modal(&self, block: usize) -> Modal {
-        self.p.modal.get(block).copied().unwrap_or_default()
+        self.p.modes.get(block).unwrap_or_default()
     }
 
     /// Takes the next segment of the edit: a source block's is written at
@@ -534,7 +535,7 @@ impl Writer<'_> {
         let m = match next {
             Some(b) if b > 0 => self.modal(b - 1),
             Some(_) => Modal::default(),
-            None => self.p.modal.last().copied().unwrap_or_default(),
+            None => self.p.modes.last().unwrap_or_default(),
         };
         let mut parts = vec![self.d.g(1)];
         let (to, pos) = (program_point(&m, seg.end.p()), program_point(&m, pos));

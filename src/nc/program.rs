@@ -337,8 +337,13 @@ pub struct Program {
     /// The lexed blocks (one per source line).
     pub blocks: Vec<Block>,
     /// Modal state after each block (same length as `blocks`); read with
-    /// [`Keep::Motion`], only the state at the end (one entry).
+    /// [`Keep::Motion`] or [`Keep::Patch`], only the state at the end (one
+    /// entry).
     pub modal: Vec<Modal>,
+    /// What the source-preserving writer ([`super::patch`]) reads of the
+    /// modal state after each block, compactly ([`super::block_modes`]);
+    /// empty when read with [`Keep::Motion`].
+    pub modes: super::block_modes::BlockModes,
     /// The program moved in mm (`[0]`) and in inch (`[1]`) units (the
     /// units in force after each block that gave a segment).
     pub moved_units: [bool; 2],
@@ -369,6 +374,12 @@ pub enum Keep {
     /// ([`super::writer`], [`super::patch`]) need to give a program back.
     #[default]
     All,
+    /// Only what the source-preserving writer ([`super::patch`]) reads
+    /// of each block's modal state ([`Program::modes`], 4 bytes a block
+    /// and the distinct states), and the state at the end: for a caller
+    /// that writes the program back in place but never flat
+    /// ([`super::writer`]).
+    Patch,
     /// Only the state at the end: for a caller that simulates or checks
     /// the motion and never writes the program back. A block's modal
     /// state is 368 bytes, so a 2 M-line program saves 740 MB (1.5 GB

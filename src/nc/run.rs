@@ -37,6 +37,7 @@
 use std::collections::HashMap;
 
 use super::block::interpret_block;
+use super::block_modes::BlockModes;
 use super::fadal::Subroutines;
 use super::gcodes::code10;
 use super::macro_exec::{has_macros, Macros, Step};
@@ -60,6 +61,9 @@ pub(super) struct Run<'a> {
     /// Modal state after each block (`None`: not run yet); empty when the
     /// run keeps none ([`Keep::Motion`]).
     modal: Vec<Option<Modal>>,
+    /// The writer's modes after each block (empty when the run keeps
+    /// none, [`Keep::Motion`]).
+    modes: BlockModes,
     /// What the program keeps for a writer.
     keep: Keep,
     /// Moves were made in mm (`[0]`) and in inch (`[1]`) units.
@@ -171,7 +175,11 @@ impl<'a> Run<'a> {
             corners: Vec::new(),
             modal: match keep {
                 Keep::All => vec![None; blocks.len()],
-                Keep::Motion => Vec::new(),
+                Keep::Motion | Keep::Patch => Vec::new(),
+            },
+            modes: match keep {
+                Keep::All | Keep::Patch => BlockModes::with_blocks(blocks.len()),
+                Keep::Motion => BlockModes::default(),
             },
             keep,
             moved_units: [false; 2],
@@ -285,6 +293,7 @@ impl<'a> Run<'a> {
         if let Some(m) = self.modal.get_mut(bi) {
             m.get_or_insert(self.st);
         }
+        self.modes.record(bi, &self.st, true);
     }
 
     /// Records the modal state after block `bi` (when the run keeps them).
@@ -292,6 +301,7 @@ impl<'a> Run<'a> {
         if let Some(m) = self.modal.get_mut(bi) {
             *m = Some(self.st);
         }
+        self.modes.record(bi, &self.st, false);
     }
 
     /// Counts the block against the executed-block budget; the error that
@@ -640,6 +650,7 @@ impl<'a> Run<'a> {
             mut errors,
             corners,
             modal,
+            mut modes,
             stack,
             runs,
             stretches,
@@ -660,11 +671,12 @@ impl<'a> Run<'a> {
                 format!("{} ends without M99", f.target),
             ));
         }
-        let mut last = Modal {
+        let last_start = Modal {
             pos: opt.start,
             inch: opt.units == super::program::Units::Inch,
             ..Modal::default()
         };
+        let mut last = last_start;
         let modal: Vec<Modal> = match keep {
             Keep::All => modal
                 .into_iter()
@@ -675,8 +687,9 @@ impl<'a> Run<'a> {
                     last
                 })
                 .collect(),
-            Keep::Motion => vec![st],
+            Keep::Motion | Keep::Patch => vec![st],
         };
+        modes.fill(&last_start);
         for s in &mut segments {
             if s.block
                 .is_some_and(|bi| runs.get(bi).is_some_and(|&n| n > 1))
@@ -704,6 +717,7 @@ impl<'a> Run<'a> {
         Ok(Program {
             blocks,
             modal,
+            modes,
             moved_units,
             segments,
             warnings,

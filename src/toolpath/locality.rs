@@ -41,7 +41,7 @@
 //! 2. A segment whose earlier samples all lie in the cores, or that had
 //!    none, gets the cores' samples as its statistics; one that had
 //!    earlier samples outside the cores (the hull of their pieces, from
-//!    the first and last sample, [`SegmentStats::sample_span`], and the
+//!    the first and last sample, [`WindowStats::sample_span`], and the
 //!    earlier start times) keeps the cores' part open; those outside
 //!    pieces are then simulated by windows of their own and counted for
 //!    it alone (their samples are the earlier ones: nothing there moved).
@@ -65,7 +65,7 @@ use std::ops::Range;
 use super::contour::Path;
 use super::simulate::{measure_window, part_stats, sample_count, timeline, Acc, Halves, Part};
 use super::timeline::Timeline;
-use super::{SegmentStats, SimConfig, ToolpathError};
+use super::{SimConfig, ToolpathError, WindowStats};
 use crate::nc::program::Segment;
 
 /// How long after a change of the command the response may still differ:
@@ -352,8 +352,9 @@ fn parts(command: &[Segment], path: &Path, at: &[usize], w: &Window, cfg: &SimCo
 /// command changes, by re-simulating windows ([`update`]).
 #[derive(Debug, Clone, Default)]
 pub struct Windowed {
-    /// Statistics per reference segment (`None`: no length).
-    pub stats: Vec<Option<SegmentStats>>,
+    /// Statistics per reference segment (`None`: no length), as much of
+    /// each as a windowed update and reverse compensation read.
+    pub stats: Vec<Option<WindowStats>>,
     /// Start time of each reference segment's piece in the command the
     /// statistics are of, s (`None`: not known, every piece is
     /// re-simulated).
@@ -449,7 +450,7 @@ pub fn update_capped(
     }
     // The pieces of the earlier command whose time holds a segment's
     // earlier samples (all of M when the earlier command is not known).
-    let old_pieces = |st: &SegmentStats| -> Option<Range<usize>> {
+    let old_pieces = |st: &WindowStats| -> Option<Range<usize>> {
         if st.samples == 0 {
             return None;
         }
@@ -502,7 +503,7 @@ pub fn update_capped(
             } else if span(e).is_some_and(|r| !all_in_m(&r)) {
                 open.insert(e, (a, h));
             } else {
-                w.stats[els[e].segment] = Some(part_stats(path, reference, &(e, a, h)));
+                w.stats[els[e].segment] = Some((&part_stats(path, reference, &(e, a, h))).into());
                 written[e] = true;
             }
         }
@@ -517,7 +518,7 @@ pub fn update_capped(
         }
         let Some(r) = span(e) else {
             if w.stats[els[e].segment].is_none() {
-                w.stats[els[e].segment] = Some(empty(e));
+                w.stats[els[e].segment] = Some((&empty(e)).into());
             }
             continue;
         };
@@ -525,7 +526,7 @@ pub fn update_capped(
             continue; // untouched
         }
         if all_in_m(&r) {
-            w.stats[els[e].segment] = Some(empty(e));
+            w.stats[els[e].segment] = Some((&empty(e)).into());
         } else {
             open.insert(e, (Acc::default(), Halves::default()));
         }
@@ -577,14 +578,14 @@ pub fn update_capped(
         }
     }
     for (e, (a, h)) in open.into_iter().chain(again) {
-        w.stats[els[e].segment] = Some(part_stats(path, reference, &(e, a, h)));
+        w.stats[els[e].segment] = Some((&part_stats(path, reference, &(e, a, h))).into());
     }
     w.starts = Some(tm.ps);
     Ok(true)
 }
 
 /// The pieces of `tm` whose time holds the samples of `st`.
-fn new_pieces(tm: &Timing, st: &SegmentStats) -> Range<usize> {
+fn new_pieces(tm: &Timing, st: &WindowStats) -> Range<usize> {
     let piece = |g: u32| {
         tm.ps
             .partition_point(|&s| bound(s, tm.dt) <= g as usize)

@@ -44,7 +44,7 @@ pub use columns::SegmentColumns;
 pub use simulate::{
     sample_estimate, simulate, simulate_columns, simulate_columns_owned, simulate_program,
     simulate_stats, simulate_text, simulate_thinned, simulate_with_progress, SegmentStats,
-    Simulation, PROGRESS_EVERY,
+    Simulation, WindowStats, PROGRESS_EVERY,
 };
 
 /// The servo time constant: one for all axes or one per axis X, Y, Z.

@@ -46,22 +46,17 @@ pub struct SegmentStats {
     /// Mean signed normal deviation of those samples (arcs: the mean radius
     /// loss, positive inside; lines in XY: positive to the left), mm.
     pub mean_deviation: Option<f64>,
-    /// The same over the first and the second half of the segment's
-    /// length (used to shift the vertices of line programs), mm. Not
-    /// serialised: reverse compensation's own input, and four JS objects
-    /// per segment that a 40,000-segment program's result would carry.
-    #[serde(skip)]
-    pub half_deviation: [Option<f64>; 2],
     /// The mean contour-error vector `near − simulated` per axis X, Y, Z
-    /// over the first and the second half (any plane; used to shift the
-    /// vertices of line chains per axis), mm. Not serialised (as
-    /// `half_deviation`).
+    /// over the first and the second half of the segment's length (any
+    /// plane; used to shift the vertices of line chains per axis), mm. Not
+    /// serialised: reverse compensation's own input, and six JS numbers
+    /// per segment that a 40,000-segment program's result would carry.
     #[serde(skip)]
     pub half_vector: [Option<[f64; 3]>; 2],
     /// Largest contour error of the samples nearest to the first and the
     /// second half of the segment's length, mm (0 with no sample): the
     /// error at each end's corner, used by reverse compensation's corner
-    /// pre-distortion. Not serialised (as `half_deviation`).
+    /// pre-distortion. Not serialised (as `half_vector`).
     #[serde(skip)]
     pub half_max: [f64; 2],
     /// Number of samples nearest to this segment.
@@ -69,9 +64,59 @@ pub struct SegmentStats {
     /// The first and the last of those samples, as indices `k` of the
     /// whole program's grid `k·dt` (`[0, 0]` with none): where in time a
     /// windowed re-simulation finds them ([`super::locality`]). Not
-    /// serialised (as `half_deviation`).
+    /// serialised (as `half_vector`).
     #[serde(skip)]
     pub sample_span: [u32; 2],
+}
+
+/// What a windowed update ([`super::locality::Windowed`]) and reverse
+/// compensation's rounds keep of a segment's [`SegmentStats`]: the same
+/// values, bit for bit, without what the segment itself gives (index,
+/// line, kind, length, radius), which they do not read, and with the
+/// options as flags (96 B instead of 168: a 1 M-segment program's rounds
+/// hold two such tables).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WindowStats {
+    /// As [`SegmentStats::max_error_um`], µm.
+    pub max_error_um: f64,
+    mean_deviation: f64,
+    half_vector: [[f64; 3]; 2],
+    /// As [`SegmentStats::half_max`], mm.
+    pub half_max: [f64; 2],
+    /// As [`SegmentStats::sample_span`].
+    pub sample_span: [u32; 2],
+    /// As [`SegmentStats::samples`] (at most `u32::MAX`: the grid's
+    /// indices are `u32`).
+    pub samples: u32,
+    /// `mean_deviation`, `half_vector[0]`, `half_vector[1]` are there.
+    has: [bool; 3],
+}
+
+impl WindowStats {
+    /// As [`SegmentStats::mean_deviation`], mm.
+    pub fn mean_deviation(&self) -> Option<f64> {
+        self.has[0].then_some(self.mean_deviation)
+    }
+
+    /// As [`SegmentStats::half_vector`]`[h]`, mm.
+    pub fn half_vector(&self, h: usize) -> Option<[f64; 3]> {
+        (h < 2 && self.has[1 + h]).then(|| self.half_vector[h])
+    }
+}
+
+impl From<&SegmentStats> for WindowStats {
+    fn from(s: &SegmentStats) -> Self {
+        let [v0, v1] = s.half_vector;
+        Self {
+            max_error_um: s.max_error_um,
+            mean_deviation: s.mean_deviation.unwrap_or(0.0),
+            half_vector: [v0.unwrap_or_default(), v1.unwrap_or_default()],
+            half_max: s.half_max,
+            sample_span: s.sample_span,
+            samples: u32::try_from(s.samples).unwrap_or(u32::MAX),
+            has: [s.mean_deviation.is_some(), v0.is_some(), v1.is_some()],
+        }
+    }
 }
 
 /// Running statistics of one reference element.
@@ -87,12 +132,10 @@ pub(super) struct Acc {
 
 /// Running statistics of one reference element over the first and the
 /// second half of its length: reverse compensation's own input
-/// ([`SegmentStats::half_deviation`], `half_vector`, `half_max`), not
-/// gathered for [`simulate_columns`] (112 B per element).
+/// ([`SegmentStats::half_vector`], `half_max`), not gathered for
+/// [`simulate_columns`] (80 B per element).
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct Halves {
-    /// Sum and count of the normal deviation over each half.
-    half: [f64; 4],
     /// Sum of `near − simulated` per half and axis, and the count per half.
     vec: [[f64; 4]; 2],
     /// Largest error per half.
@@ -760,10 +803,6 @@ impl Acc {
             radius,
             max_error_um: self.max_error * 1e3,
             mean_deviation: self.mean(),
-            half_deviation: [0, 1].map(|k| {
-                let half = &h.half;
-                (half[2 * k + 1] > 0.0).then(|| half[2 * k] / half[2 * k + 1])
-            }),
             half_vector: [0, 1].map(|k| {
                 let v = &h.vec[k];
                 (v[3] > 0.0).then(|| [v[0] / v[3], v[1] / v[3], v[2] / v[3]])
@@ -778,9 +817,6 @@ impl Acc {
 impl Halves {
     /// The sums of `self`'s samples and `o`'s together.
     pub(super) fn merge(&mut self, o: &Halves) {
-        for k in 0..4 {
-            self.half[k] += o.half[k];
-        }
         for h in 0..2 {
             for k in 0..4 {
                 self.vec[h][k] += o.vec[h][k];
@@ -799,10 +835,6 @@ impl Halves {
         self.vec[h][3] += 1.0;
         if nr.dist > self.half_max[h] {
             self.half_max[h] = nr.dist;
-        }
-        if nr.normal.is_finite() {
-            self.half[2 * h] += nr.normal;
-            self.half[2 * h + 1] += 1.0;
         }
     }
 }

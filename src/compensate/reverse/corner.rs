@@ -43,7 +43,7 @@ use super::geometry::Edit;
 use super::region::Regions;
 use super::rounds::{LocalStats, Work};
 use crate::nc::program::{Motion, Segment};
-use crate::toolpath::{SegmentStats, SimConfig, ToolpathError};
+use crate::toolpath::{SegmentStats, SimConfig, ToolpathError, WindowStats};
 
 /// The smallest turn a spike is tried at, rad (as a dwell's corner,
 /// [`super::CORNER_TURN`]).
@@ -135,7 +135,7 @@ pub fn corners(orig: &[Segment], rg: &Regions, cfg: &SimConfig) -> Vec<Corner> {
 /// The error at corner `c` in statistics indexed by segment: the larger
 /// of the last half of the segment before it and the first half of the
 /// one after, mm.
-pub fn corner_error(c: &Corner, by_seg: &[Option<&SegmentStats>]) -> f64 {
+pub fn corner_error(c: &Corner, by_seg: &[Option<&WindowStats>]) -> f64 {
     let half = |i: usize, h: usize| {
         by_seg
             .get(i)
@@ -194,12 +194,12 @@ pub fn search(
     orig: &[Segment],
     cfg: &SimConfig,
     found: &[Corner],
-    before: &[Option<SegmentStats>],
+    before: &[Option<WindowStats>],
     start: &Edit,
     time_left: f64,
     work: &mut Work,
 ) -> Result<Spikes, ToolpathError> {
-    let by0: Vec<Option<&SegmentStats>> = before.iter().map(Option::as_ref).collect();
+    let by0: Vec<Option<&WindowStats>> = before.iter().map(Option::as_ref).collect();
     let found: Vec<Corner> = found
         .iter()
         .copied()
@@ -242,7 +242,7 @@ pub fn search(
         if !local.update(orig, cfg, &edit, work)? {
             break;
         }
-        let by: Vec<Option<&SegmentStats>> = local.by_seg.iter().map(Option::as_ref).collect();
+        let by: Vec<Option<&WindowStats>> = local.by_seg.iter().map(Option::as_ref).collect();
         history.push(
             by.iter()
                 .flatten()

@@ -73,7 +73,7 @@ pub mod rounds;
 use serde::{Deserialize, Serialize};
 
 use crate::nc::patch::write_source_each;
-use crate::nc::program::{dist, parse_with, DwellP, Motion, ParseOptions, Program, Segment};
+use crate::nc::program::{dist, parse_with, DwellP, Keep, Motion, ParseOptions, Program, Segment};
 use crate::toolpath::{sample_estimate, simulate, SimConfig, Simulation, ToolpathError};
 use geometry::Edit;
 use lines::{line_range, outside_notes, LineRange};
@@ -528,7 +528,7 @@ pub fn reverse_compensate_with(
     if !worst_is_pinned(src.segments(), &pinned, &c.sim_after) {
         return Ok(c);
     }
-    let (flat, fp) = match crate::nc::writer::write_expanded(src.program()?) {
+    let (flat, fp) = match crate::nc::writer::write_expanded(src.program(Keep::All)?) {
         Ok(flat) => flat,
         Err(why) => {
             c.expand_note = Some(format!("not written flat: {why}"));
@@ -647,17 +647,18 @@ fn worst_at_tangent_line(segs: &[Segment], after: &Simulation) -> bool {
     (w > 0 && line_arc(w - 1, w)) || (w + 1 < segs.len() && line_arc(w, w + 1))
 }
 
-/// The program under compensation. Only the patch writer
-/// ([`crate::nc::patch`]) reads its blocks and per-block modal state
-/// (about 750 MB of a 1 M-line program, beside 175 MB of segments): they
-/// are dropped while the rounds and checks simulate ([`Source::slim`]) and
-/// read again from the text for a write ([`Source::program`]); everything
-/// else reads the segments, which are kept.
+/// The program under compensation. Only the writers read its blocks
+/// and per-block modal state (about 750 MB of a 1 M-line program, beside
+/// 175 MB of segments; the patch writer ([`crate::nc::patch`]) only the
+/// compact [`Program::modes`], [`Keep::Patch`]): they are dropped while
+/// the rounds and checks simulate ([`Source::slim`]) and read again from
+/// the text for a write ([`Source::program`]); everything else reads the
+/// segments, which are kept.
 struct Source<'t> {
     text: &'t str,
     program: Program,
-    /// The blocks and modal states are there.
-    full: bool,
+    /// What of the blocks and modal states is there (`None`: dropped).
+    kept: Option<Keep>,
     /// The segments' fingerprint ([`rounds::fingerprints`], taken when
     /// the blocks are first dropped), which a second reading must give.
     fingerprint: Option<u128>,
@@ -669,7 +670,7 @@ impl<'t> Source<'t> {
         Self {
             text,
             program,
-            full: true,
+            kept: Some(Keep::All),
             fingerprint: None,
         }
     }
@@ -685,19 +686,23 @@ impl<'t> Source<'t> {
         }
         self.program.blocks = Vec::new();
         self.program.modal = Vec::new();
-        self.full = false;
+        self.program.modes = Default::default();
+        self.kept = None;
     }
 
-    /// The whole program, read again if slimmed (the same segments, or an
-    /// error: never a program whose blocks are not its segments'). The
+    /// The program with what `keep` says (or more), read again if slimmed
+    /// (the same segments, or an error: never a program whose blocks are
+    /// not its segments'). The
     /// segments are dropped for the reading, which gives them again, and
     /// compared by their fingerprint: both copies at once were 175 MB of
     /// a 1 M-segment program at the reading's peak.
-    fn program(&mut self) -> Result<&Program, ToolpathError> {
-        if !self.full {
+    fn program(&mut self, keep: Keep) -> Result<&Program, ToolpathError> {
+        if self.kept.is_none_or(|k| k != Keep::All && k != keep) {
             let was = self.fingerprint;
             self.program.segments = Vec::new();
-            let p = parse_with(self.text, &self.program.options)?;
+            let p =
+                crate::nc::files::parse_files_keeping(self.text, &[], &self.program.options, keep)
+                    .map_err(|e| e.first())?;
             let now = rounds::fingerprints(&p.segments, &[0])[0];
             if was.is_none_or(|f| f != now || f == rounds::NEVER_EQUAL) {
                 return Err(ToolpathError::Config {
@@ -707,7 +712,7 @@ impl<'t> Source<'t> {
                 });
             }
             self.program = p;
-            self.full = true;
+            self.kept = Some(keep);
         }
         Ok(&self.program)
     }
@@ -785,7 +790,7 @@ fn in_place(
     let tangent = variant.is_some();
     let text = src.text;
     let (opts, facts, rg) = {
-        let program = src.program()?;
+        let program = src.program(Keep::Patch)?;
         let facts = Facts {
             blocks: program.blocks.len(),
             has_macros: program.has_macros(),
@@ -1307,7 +1312,7 @@ fn check(
 /// never held beside the blocks (176 MB of a 1 M-segment program). The
 /// blocks go before the caller simulates the text.
 fn write_edit(src: &mut Source, edit: &Edit) -> Result<String, ToolpathError> {
-    src.program()?;
+    src.program(Keep::Patch)?;
     let program = &src.program;
     let nc = write_source_each(src.text, program, |put| {
         geometry::rebuild_each(&program.segments, edit, &mut |s, _| put(&s));

@@ -43,7 +43,7 @@ use crate::budget::{
 use crate::nc::program::{Motion, Segment};
 use crate::toolpath::contour::Path;
 use crate::toolpath::locality::{memory, piece_starts, update, Windowed};
-use crate::toolpath::{SegmentStats, SimConfig, Simulation, ToolpathError};
+use crate::toolpath::{SimConfig, Simulation, ToolpathError, WindowStats};
 
 /// A chunk spans at least this many [`memory`] spans of nominal motion
 /// (8 × 0.22 s at tA 40 ms, T 15 ms): long against the reach of a change
@@ -75,7 +75,7 @@ impl Rounds {
 #[derive(Debug)]
 struct Base {
     path: Path,
-    stats: Rc<Vec<Option<SegmentStats>>>,
+    stats: Rc<Vec<Option<WindowStats>>>,
 }
 
 /// What one compensation may still simulate. The correction rounds
@@ -158,7 +158,7 @@ impl Work {
         let mut stats = vec![None; orig.len()];
         for st in &sim.segments {
             if let Some(slot) = stats.get_mut(st.segment) {
-                *slot = Some(st.clone());
+                *slot = Some(st.into());
             }
         }
         self.base = Some(Rc::new(Base {
@@ -170,7 +170,7 @@ impl Work {
     /// The statistics of the original's simulation per original segment
     /// ([`Work::set_original`]; `None` without it): the caller may drop
     /// the simulation.
-    pub fn original_stats(&self) -> Option<Rc<Vec<Option<SegmentStats>>>> {
+    pub fn original_stats(&self) -> Option<Rc<Vec<Option<WindowStats>>>> {
         self.base.as_ref().map(|b| b.stats.clone())
     }
 
@@ -475,7 +475,7 @@ pub struct LocalStats {
     base: Option<Rc<Base>>,
     own: Option<Path>,
     /// Statistics per original segment (`None`: no sample nearest to it).
-    pub by_seg: Vec<Option<SegmentStats>>,
+    pub by_seg: Vec<Option<WindowStats>>,
     /// The last command's [`fingerprints`].
     prev: Option<Vec<u128>>,
     /// The start time of each original segment's piece in the last
@@ -600,14 +600,14 @@ pub const DEFAULT_STEP: f64 = 0.5;
 fn correct(
     orig: &[Segment],
     regions: &Regions,
-    by_seg: &[Option<SegmentStats>],
+    by_seg: &[Option<WindowStats>],
     (live, step): (&dyn Fn(usize) -> bool, f64),
     edit: &mut Edit,
 ) {
     for (i, s) in orig.iter().enumerate() {
         if let (Motion::Arc(_), Some(st)) = (s.motion, &by_seg[i]) {
             if live(i) && regions.arc_free[i] {
-                edit.radius[i] += step * st.mean_deviation.unwrap_or(0.0);
+                edit.radius[i] += step * st.mean_deviation().unwrap_or(0.0);
             }
         }
     }
@@ -617,8 +617,8 @@ fn correct(
             continue;
         }
         let v: Vec<[f64; 3]> = [
-            by_seg[i].as_ref().and_then(|s| s.half_vector[1]),
-            by_seg[k].as_ref().and_then(|s| s.half_vector[0]),
+            by_seg[i].as_ref().and_then(|s| s.half_vector(1)),
+            by_seg[k].as_ref().and_then(|s| s.half_vector(0)),
         ]
         .into_iter()
         .flatten()
