@@ -1850,15 +1850,28 @@ mod tests {
     #[test]
     fn slim_drops_the_blocks_and_program_reads_them_again() {
         let whole = parse_with(TEXT, &ParseOptions::default()).unwrap();
+        assert_eq!(whole.modal.len(), 5);
         let mut s = source(TEXT);
         s.slim();
         assert!(s.program.blocks.is_empty() && s.program.modal.is_empty());
+        assert_eq!(s.program.modes.states(), 0);
         assert_eq!(s.segments(), &whole.segments[..]);
-        assert_eq!(s.program().unwrap(), &whole);
-        // A second slim keeps the first fingerprint and reads the same.
+        assert_eq!(s.program(Keep::All).unwrap(), &whole);
+        // Read whole, a Patch reading needs nothing more.
+        let at = s.program(Keep::Patch).unwrap() as *const Program;
+        assert_eq!(s.program(Keep::All).unwrap() as *const Program, at);
+        assert_eq!(s.program.modal.len(), 5);
+        // A second slim keeps the first fingerprint; the writer's reading
+        // keeps the blocks and the writer's modes, one whole modal state.
         s.slim();
         assert!(s.program.blocks.is_empty());
-        assert_eq!(s.program().unwrap(), &whole);
+        let patch = s.program(Keep::Patch).unwrap();
+        assert_eq!(patch.blocks, whole.blocks);
+        assert_eq!(patch.segments, whole.segments);
+        assert_eq!(patch.modes, whole.modes);
+        assert_eq!(patch.modal.len(), 1);
+        // … and a whole reading after it reads again.
+        assert_eq!(s.program(Keep::All).unwrap(), &whole);
     }
 
     #[test]
@@ -1870,7 +1883,7 @@ mod tests {
         for wrong in [right ^ 1, rounds::NEVER_EQUAL] {
             s.slim();
             s.fingerprint = Some(wrong);
-            match s.program() {
+            match s.program(Keep::All) {
                 Err(ToolpathError::Config { field, message }) => {
                     assert_eq!(field, "text");
                     assert!(message.contains("other moves"), "{message}");
