@@ -418,11 +418,13 @@ fn cam_program(lines: usize) -> String {
     out.join("\n") + "\n"
 }
 
-/// The rounds of a 20,000-line CAM-like program (issue 27's program at
-/// 1/50 of its size, tA 40 ms, T 15 ms, dt 2 ms, one region without
-/// rapids), and the windowed statistics of their final edit brought from
-/// the original's (what a round computes).
-fn cam_rounds() -> (
+/// The rounds of a CAM-like program of `lines` lines (20,000: issue 27's
+/// program at 1/50 of its size; tA 40 ms, T 15 ms, dt 2 ms, one region
+/// without rapids), and the windowed statistics of their final edit
+/// brought from the original's (what a round computes).
+fn cam_rounds(
+    lines: usize,
+) -> (
     String,
     mtmotion::nc::program::Program,
     SimConfig,
@@ -435,10 +437,10 @@ fn cam_rounds() -> (
 ) {
     use mtmotion::compensate::reverse::region::regions;
     use mtmotion::compensate::reverse::rounds::{run, LocalStats, Work};
-    let text = cam_program(20_000);
+    let text = cam_program(lines);
     let p = parse(&text).unwrap();
     let orig = &p.segments;
-    assert!(orig.len() > 19_000, "{}", orig.len());
+    assert!(orig.len() > lines * 19 / 20, "{}", orig.len());
     let cfg = SimConfig {
         t_a: 0.04,
         t: Lag::All(0.015),
@@ -457,12 +459,14 @@ fn cam_rounds() -> (
 }
 
 /// Asserts that `windowed` equals `whole` (of `what`) per cutting
-/// segment and over the program within 0.1 µm; `sim` is the original's.
+/// segment and over the program within 0.1 µm; `sim` is the original's,
+/// whose maximum `whole`'s must be below `gain` times (the rounds did
+/// lower it).
 fn assert_within(
     orig: &[Segment],
     windowed: &[Option<WindowStats>],
     (whole, what): (&mtmotion::toolpath::Simulation, &str),
-    sim: &mtmotion::toolpath::Simulation,
+    (sim, gain): (&mtmotion::toolpath::Simulation, f64),
 ) {
     let (mut worst, mut at): (f64, usize) = (0.0, 0);
     let mut windowed_max: f64 = 0.0;
@@ -485,7 +489,7 @@ fn assert_within(
         whole.max_error * 1e3,
         sim.max_error * 1e3
     );
-    assert!(n > 19_000 && whole.max_error < 0.6 * sim.max_error);
+    assert!(n > 19_000 && whole.max_error < gain * sim.max_error);
     assert!((windowed_max - whole.max_error * 1e3).abs() <= 0.1);
     assert!(worst <= 0.1, "{worst} µm at line {at}");
 }
@@ -503,10 +507,15 @@ fn assert_within(
 #[test]
 fn windowed_rounds_equal_a_whole_simulation_of_their_command() {
     use mtmotion::compensate::reverse::geometry::rebuild;
-    let (_, p, cfg, sim, edit, (local, _)) = cam_rounds();
+    let (_, p, cfg, sim, edit, (local, _)) = cam_rounds(20_000);
     let orig = &p.segments;
     let whole = simulate(&rebuild(orig, &edit), orig, &cfg).unwrap();
-    assert_within(orig, &local.by_seg, (&whole, "whole simulation"), &sim);
+    assert_within(
+        orig,
+        &local.by_seg,
+        (&whole, "whole simulation"),
+        (&sim, 0.6),
+    );
 }
 
 /// The correction rounds' windowed prediction of their final program as
@@ -526,7 +535,23 @@ fn windowed_rounds_equal_a_whole_simulation_of_their_command() {
 /// program's sharpest Z reversal changes by about 0.1 µm per µs.
 #[test]
 fn windowed_rounds_predict_the_written_program_within_a_tenth_of_a_micron() {
-    let (text, p, cfg, sim, edit, (mut local, mut work)) = cam_rounds();
+    windowed_rounds_predict_the_written_program(20_000, 0.6);
+}
+
+/// The same on the issue's 1,000,000-line program (the program of
+/// `bench/node/large-program.bench.mjs` and `reverse-large`): minutes and
+/// about 3 GB in a release build, so run with `cargo test --release --test
+/// reverse_locality -- --ignored`.
+#[test]
+#[ignore = "a 1 M-line program: run with --release -- --ignored"]
+fn windowed_rounds_predict_the_written_million_line_program_within_a_tenth_of_a_micron() {
+    // Six unbudgeted rounds lower it less than on 20,000 lines (measured
+    // 590.6 → 418.0 µm; compensateNc's 203.0 adds dwells and the check).
+    windowed_rounds_predict_the_written_program(1_000_000, 0.75);
+}
+
+fn windowed_rounds_predict_the_written_program(lines: usize, gain: f64) {
+    let (text, p, cfg, sim, edit, (mut local, mut work)) = cam_rounds(lines);
     let orig = &p.segments;
     let (cmd, at) = rebuild_indexed(orig, &edit);
     let written = write_source(&text, &p, &cmd);
@@ -542,12 +567,17 @@ fn windowed_rounds_predict_the_written_program_within_a_tenth_of_a_micron() {
         .zip(&cmd)
         .filter(|(a, b)| a.end != b.end)
         .count();
-    assert!(moved > 1000, "{moved} moves rounded");
+    assert!(moved > lines / 20, "{moved} moves rounded");
     assert!(local
         .update_command(orig, &cfg, (&back, &at), &mut work)
         .unwrap());
     let whole = simulate(&back, orig, &cfg).unwrap();
-    assert_within(orig, &local.by_seg, (&whole, "whole re-simulation"), &sim);
+    assert_within(
+        orig,
+        &local.by_seg,
+        (&whole, "whole re-simulation"),
+        (&sim, gain),
+    );
 }
 
 /// A sample from far in time comes nearest to a segment that no window
