@@ -183,3 +183,40 @@ fn a_program_that_cannot_be_written_flat_says_why_in_the_result() {
         "{note}"
     );
 }
+
+/// The progress of a compensation written flat: the run in place reports
+/// the first half (its fractions times 0.5, as a share of the whole), the
+/// flat run the second (0.5 + 0.5 × its fraction, its messages prefixed
+/// "written flat: "); every fraction within [0, 1] and never going back.
+#[test]
+fn progress_of_a_flat_compensation_runs_through_both_halves_in_order() {
+    let mut seen: Vec<(f64, String)> = Vec::new();
+    let c = mtmotion::compensate::reverse::reverse_compensate_with(MACRO, &cfg(), &mut |f, s| {
+        seen.push((f, s.to_string()));
+        true
+    })
+    .unwrap();
+    assert!(c.expanded);
+    // Measured: in place 0, 0.05, 0.125, 0.25, 0.35, 0.35, 0.5 ("done"),
+    // then flat 0.5, 0.55, 0.625, 0.75, 0.85, 0.85, 1.
+    let flat = seen
+        .iter()
+        .position(|(_, s)| s.starts_with("written flat: "))
+        .expect("the flat run reports");
+    assert!(flat >= 5, "{seen:?}");
+    assert!(seen[..flat]
+        .iter()
+        .all(|(f, s)| *f <= 0.5 && !s.contains("flat")));
+    assert!(seen[flat..]
+        .iter()
+        .all(|(f, s)| *f >= 0.5 && s.starts_with("written flat: ")));
+    assert!(seen.windows(2).all(|w| w[0].0 <= w[1].0), "{seen:?}");
+    assert_eq!((seen[0].0, seen[flat - 1].0), (0.0, 0.5), "{seen:?}");
+    assert_eq!(seen[flat].0, 0.5);
+    assert_eq!(seen.last().unwrap().0, 1.0, "{seen:?}");
+    // A stage in between: the in-place run's correction rounds at
+    // 0.25 × 0.5, the flat run's at 0.5 + 0.25 × 0.5.
+    let at = |name: &str| seen.iter().find(|(_, s)| s == name).map(|x| x.0);
+    assert_eq!(at("correction rounds"), Some(0.125));
+    assert_eq!(at("written flat: correction rounds"), Some(0.625));
+}
